@@ -1,0 +1,145 @@
+!> Command line of davit. Only this program turns errors into exit codes:
+!> 0 success, 1 bad input or failed run, 2 usage error.
+program davit
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use davit_kinds, only: davit_version
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type, read_config, document_keys
+  use davit_io_deck_reader, only: key_doc
+  use davit_system_driver, only: run_summary, run_simulation
+  implicit none
+
+  interface
+    function c_mkdir(path, mode) bind(C, name="mkdir") result(status)
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_int), value :: mode
+      integer(c_int) :: status
+    end function c_mkdir
+  end interface
+
+  character(len=:), allocatable :: command
+  integer :: nargs
+
+  nargs = command_argument_count()
+  if (nargs < 1) call usage_error("missing subcommand")
+  command = argument(1)
+  select case (command)
+  case ("-h", "--help", "help")
+    call print_help()
+  case ("-V", "--version", "version")
+    write (output_unit, "(a)") "davit "//davit_version
+  case ("run")
+    call cmd_run()
+  case ("keys")
+    call cmd_keys()
+  case default
+    call usage_error("unknown subcommand or option '"//command//"'")
+  end select
+
+contains
+
+  subroutine cmd_run()
+    character(len=:), allocatable :: deck, out, arg
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(run_summary) :: summary
+    integer :: i
+    deck = ""
+    out = ""
+    i = 2
+    do while (i <= nargs)
+      arg = argument(i)
+      select case (arg)
+      case ("-o", "--output")
+        if (i == nargs) call usage_error("option "//arg//" needs a file name")
+        out = argument(i + 1)
+        i = i + 2
+      case default
+        if (arg(1:1) == "-") call usage_error("unknown option '"//arg//"' for 'run'")
+        if (len(deck) > 0) call usage_error("'run' takes one deck, got '"//deck// &
+                                            "' and '"//arg//"'")
+        deck = arg
+        i = i + 1
+      end select
+    end do
+    if (len(deck) == 0) call usage_error("'run' needs a deck file: davit run DECK.nml")
+    call read_config(deck, cfg, error)
+    if (allocated(error)) call fail(error)
+    if (len(out) == 0) out = default_output(deck)
+    call run_simulation(cfg, out, summary, error)
+    if (allocated(error)) call fail(error)
+    write (output_unit, "(a,i0,a,i0,a,f0.3,a)") "davit: wrote '"//out//"' (", summary%steps, &
+      " steps, ", summary%rhs_evaluations, " RHS evaluations, ", summary%wall_time, " s)"
+  end subroutine cmd_run
+
+  !> Print every deck key as a Markdown table per group (the README tables).
+  subroutine cmd_keys()
+    type(key_doc), allocatable :: docs(:)
+    character(len=:), allocatable :: group
+    integer :: i
+    if (nargs > 1) call usage_error("'keys' takes no arguments")
+    call document_keys(docs)
+    group = ""
+    do i = 1, size(docs)
+      if (docs(i)%group /= group) then
+        group = docs(i)%group
+        if (i > 1) write (output_unit, "(a)") ""
+        write (output_unit, "(a)") "#### `&"//group//"`", "", &
+          "| key | default | allowed | units | meaning |", "|---|---|---|---|---|"
+      end if
+      write (output_unit, "(a)") "| `"//docs(i)%key//"` | "//docs(i)%default//" | "// &
+        docs(i)%allowed//" | "//docs(i)%units//" | "//docs(i)%description//" |"
+    end do
+  end subroutine cmd_keys
+
+  !> out/<deck name without .nml>.h5, creating out/ if needed.
+  function default_output(deck) result(path)
+    character(len=*), intent(in) :: deck
+    character(len=:), allocatable :: path, base
+    integer :: slash, dot, status
+    slash = index(deck, "/", back=.true.)
+    base = deck(slash + 1:)
+    dot = index(base, ".", back=.true.)
+    if (dot > 1) base = base(1:dot - 1)
+    status = c_mkdir("out"//c_null_char, int(o'755', c_int))
+    path = "out/"//base//".h5"
+  end function default_output
+
+  subroutine print_help()
+    write (output_unit, "(a)") &
+      "davit "//davit_version//": lifeboat launch from a ship's davit in rough seas", &
+      "", &
+      "usage:", &
+      "  davit run DECK.nml [-o OUT.h5]   run a scenario; default output out/DECK.h5", &
+      "  davit keys                       print every deck key (Markdown tables)", &
+      "  davit --help | -h                this help", &
+      "  davit --version | -V             print the version", &
+      "", &
+      "exit status: 0 success, 1 bad input or failed run, 2 usage error"
+  end subroutine print_help
+
+  function argument(i) result(arg)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: arg
+    integer :: n
+    call get_command_argument(i, length=n)
+    allocate (character(len=n) :: arg)
+    if (n > 0) call get_command_argument(i, arg)
+  end function argument
+
+  subroutine usage_error(message)
+    character(len=*), intent(in) :: message
+    write (error_unit, "(a)") "davit: error: "//message, &
+      "usage: davit run DECK.nml [-o OUT.h5] | davit keys | davit --help | davit --version"
+    stop 2, quiet=.true.
+  end subroutine usage_error
+
+  subroutine fail(error)
+    type(error_type), intent(in) :: error
+    write (error_unit, "(a)") "davit: error: "//error%message
+    error stop 1, quiet=.true.
+  end subroutine fail
+
+end program davit

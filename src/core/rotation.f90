@@ -1,0 +1,55 @@
+!> Rotation matrix and Euler-angle kinematics (paper eqs. 1-2 and 5).
+!>
+!> Convention (review §0): N3 points down; the body frame is x forward, y starboard, z down;
+!> theta = (roll, pitch, yaw), C = Rz(theta3) Ry(theta2) Rx(theta1) maps body components to
+!> inertial ones, v_N = C v_b.
+module davit_core_rotation
+  use davit_kinds, only: wp
+  implicit none
+  private
+  public :: rotation_matrix, euler_rates, cross, skew
+
+contains
+
+  !> Eq. (2): C = Rz(theta3) Ry(theta2) Rx(theta1).
+  pure function rotation_matrix(theta) result(c)
+    real(wp), intent(in) :: theta(3)
+    real(wp) :: c(3, 3)
+    real(wp) :: s1, s2, s3, c1, c2, c3
+    s1 = sin(theta(1)); c1 = cos(theta(1))
+    s2 = sin(theta(2)); c2 = cos(theta(2))
+    s3 = sin(theta(3)); c3 = cos(theta(3))
+    c(1, :) = [c2*c3, s1*s2*c3 - s3*c1, c1*s2*c3 + s3*s1]
+    c(2, :) = [c2*s3, s1*s2*s3 + c1*c3, c1*s2*s3 - c3*s1]
+    c(3, :) = [-s2, s1*c2, c1*c2]
+  end function rotation_matrix
+
+  !> Eq. (5): Euler-angle rates from the body angular velocity omega (body components).
+  !> Singular at theta2 = +-90 deg, which a hanging or floating lifeboat never reaches.
+  pure function euler_rates(theta, omega) result(rates)
+    real(wp), intent(in) :: theta(3), omega(3)
+    real(wp) :: rates(3)
+    real(wp) :: s1, c1, c2, t
+    s1 = sin(theta(1)); c1 = cos(theta(1)); c2 = cos(theta(2))
+    t = omega(2)*s1 + omega(3)*c1
+    rates(1) = omega(1) + tan(theta(2))*t
+    rates(2) = omega(2)*c1 - omega(3)*s1
+    rates(3) = t/c2
+  end function euler_rates
+
+  pure function cross(a, b) result(c)
+    real(wp), intent(in) :: a(3), b(3)
+    real(wp) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function cross
+
+  !> Skew matrix: skew(a) b = a x b.
+  pure function skew(a) result(s)
+    real(wp), intent(in) :: a(3)
+    real(wp) :: s(3, 3)
+    s(1, :) = [0.0_wp, -a(3), a(2)]
+    s(2, :) = [a(3), 0.0_wp, -a(1)]
+    s(3, :) = [-a(2), a(1), 0.0_wp]
+  end function skew
+
+end module davit_core_rotation

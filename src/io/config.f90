@@ -1,0 +1,185 @@
+!> Run configuration: every deck key with its default (SI units), range and description.
+!> config_type is plain data; nothing here knows about the integrator or the output file.
+module davit_io_config
+  use davit_kinds, only: wp, pi
+  use davit_error, only: error_type, fatal_error
+  use davit_io_namelist, only: nml_deck, read_deck, parse_deck
+  use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
+  implicit none
+  private
+  public :: config_type, simulation_config, boat_config, slings_config
+  public :: read_config, parse_config, document_keys
+
+  type :: simulation_config
+    real(wp) :: t_end, dt, output_interval
+    character(len=:), allocatable :: integrator
+    integer :: seed
+  end type simulation_config
+
+  !> Lifeboat of Section III.B (review F5) and its initial state.
+  type :: boat_config
+    real(wp) :: mass, inertia(3)
+    real(wp) :: position(3), euler(3), velocity(3), angular_velocity(3)
+  end type boat_config
+
+  !> Two massless elastic slings from fixed anchors to the hooks (foundation rigging).
+  type :: slings_config
+    real(wp) :: hook_fore(3), hook_aft(3), anchor_fore(3), anchor_aft(3)
+    real(wp) :: length, diameter, youngs_modulus, damping
+  end type slings_config
+
+  type :: config_type
+    character(len=:), allocatable :: filename
+    !> The deck text as read, stored in the output file.
+    character(len=:), allocatable :: deck_text
+    type(simulation_config) :: simulation
+    type(boat_config) :: boat
+    type(slings_config) :: slings
+  end type config_type
+
+contains
+
+  !> Read, validate and return the configuration of deck file `filename`.
+  subroutine read_config(filename, cfg, error)
+    character(len=*), intent(in) :: filename
+    type(config_type), intent(out) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    type(nml_deck) :: deck
+    call read_deck(filename, deck, error)
+    if (allocated(error)) return
+    call config_from_deck(deck, cfg, error)
+  end subroutine read_config
+
+  !> Same as read_config for deck text in memory (tests).
+  subroutine parse_config(filename, text, cfg, error)
+    character(len=*), intent(in) :: filename, text
+    type(config_type), intent(out) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    type(nml_deck) :: deck
+    call parse_deck(filename, text, deck, error)
+    if (allocated(error)) return
+    call config_from_deck(deck, cfg, error)
+  end subroutine parse_config
+
+  !> The documentation of every key (defaults of an empty deck).
+  subroutine document_keys(docs)
+    type(key_doc), allocatable, intent(out) :: docs(:)
+    type(nml_deck) :: deck
+    type(config_type) :: cfg
+    type(deck_reader_type) :: reader
+    type(error_type), allocatable :: error
+    call parse_deck("(defaults)", "", deck, error)
+    call reader%init(deck)
+    call read_all(reader, cfg)
+    docs = reader%docs
+  end subroutine document_keys
+
+  subroutine config_from_deck(deck, cfg, error)
+    type(nml_deck), intent(in) :: deck
+    type(config_type), intent(out) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    type(deck_reader_type) :: reader
+    call reader%init(deck)
+    call read_all(reader, cfg)
+    call reader%finish(error)
+    if (allocated(error)) return
+    cfg%filename = deck%filename
+    cfg%deck_text = deck%text
+    call check_consistency(cfg, error)
+  end subroutine config_from_deck
+
+  subroutine read_all(r, cfg)
+    type(deck_reader_type), intent(inout) :: r
+    type(config_type), intent(inout) :: cfg
+    call read_simulation(r, cfg%simulation)
+    call read_boat(r, cfg%boat)
+    call read_slings(r, cfg%slings)
+  end subroutine read_all
+
+  subroutine read_simulation(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(simulation_config), intent(inout) :: s
+    character(len=*), parameter :: g = "simulation"
+    call r%real(g, "t_end", s%t_end, 60.0_wp, 0.0_wp, 1.0e5_wp, "s", &
+                "Simulated time span from t = 0.", lo_open=.true.)
+    call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
+                "Integrator time step (fixed-step methods).", lo_open=.true.)
+    call r%choice(g, "integrator", s%integrator, "rk4", [character(len=8) :: "rk4"], &
+                  "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's).")
+    call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &
+                "Interval between recorded samples; rounded to a whole number of steps.", &
+                lo_open=.true.)
+    call r%int(g, "seed", s%seed, 12345, 0, huge(1), "-", &
+               "Random seed, recorded in the output (used by random seas).")
+  end subroutine read_simulation
+
+  subroutine read_boat(r, b)
+    type(deck_reader_type), intent(inout) :: r
+    type(boat_config), intent(inout) :: b
+    character(len=*), parameter :: g = "boat"
+    call r%real(g, "mass", b%mass, 8500.0_wp, 0.0_wp, 1.0e6_wp, "kg", &
+                "Lifeboat mass (paper III.B).", lo_open=.true.)
+    call r%real_vec(g, "inertia", b%inertia, [25020.0_wp, 51745.0_wp, 51745.0_wp], &
+                    0.0_wp, 1.0e9_wp, "kg m^2", &
+                    "Principal moments of inertia about b1, b2, b3 (paper III.B).", &
+                    lo_open=.true.)
+    call r%real_vec(g, "position", b%position, [0.0_wp, 13.3_wp, -15.0_wp], -1.0e4_wp, &
+                    1.0e4_wp, "m", "Initial CG position in the inertial frame (z down; "// &
+                    "15 m above the still water, review G3).")
+    call r%real_vec(g, "euler", b%euler, [0.0_wp, 0.0_wp, 0.0_wp], -1.5_wp, 1.5_wp, "rad", &
+                    "Initial roll, pitch, yaw (ZYX, eq. 2).")
+    call r%real_vec(g, "velocity", b%velocity, [0.0_wp, 0.0_wp, 0.0_wp], -100.0_wp, &
+                    100.0_wp, "m/s", "Initial CG velocity in the inertial frame.")
+    call r%real_vec(g, "angular_velocity", b%angular_velocity, [0.0_wp, 0.0_wp, 0.0_wp], &
+                    -10.0_wp, 10.0_wp, "rad/s", &
+                    "Initial angular velocity in body components (u1..u3).")
+  end subroutine read_boat
+
+  subroutine read_slings(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(slings_config), intent(inout) :: s
+    character(len=*), parameter :: g = "slings"
+    call r%real_vec(g, "hook_fore", s%hook_fore, [4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
+                    50.0_wp, "m", "Fore hook point in the boat frame (review G4).")
+    call r%real_vec(g, "hook_aft", s%hook_aft, [-4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
+                    50.0_wp, "m", "Aft hook point in the boat frame (review G4).")
+    call r%real_vec(g, "anchor_fore", s%anchor_fore, [4.6_wp, 13.3_wp, -19.55_wp], &
+                    -1.0e4_wp, 1.0e4_wp, "m", &
+                    "Fixed upper end of the fore sling, inertial frame.")
+    call r%real_vec(g, "anchor_aft", s%anchor_aft, [-4.6_wp, 13.3_wp, -19.55_wp], &
+                    -1.0e4_wp, 1.0e4_wp, "m", "Fixed upper end of the aft sling, inertial frame.")
+    call r%real(g, "length", s%length, 3.0_wp, 0.01_wp, 1000.0_wp, "m", &
+                "Unstretched sling length.")
+    call r%real(g, "diameter", s%diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", &
+                "Wire diameter; EA = E pi d^2/4 (20 mm, paper III.B).", lo_open=.true.)
+    call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
+                "Pa", "Young's modulus of the wire (paper III.B).")
+    call r%real(g, "damping", s%damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
+                "Absolute axial dashpot per sling (review §1.6, G26); 0 = undamped.")
+  end subroutine read_slings
+
+  !> Checks that involve more than one key.
+  subroutine check_consistency(cfg, error)
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    associate (s => cfg%simulation)
+      if (s%output_interval < s%dt) then
+        call fatal_error(error, cfg%filename//": &simulation: output_interval = "// &
+                         fmt_real(s%output_interval)//" must be >= dt = "//fmt_real(s%dt))
+        return
+      end if
+      if (s%t_end < s%dt) then
+        call fatal_error(error, cfg%filename//": &simulation: t_end = "//fmt_real(s%t_end)// &
+                         " must be >= dt = "//fmt_real(s%dt))
+        return
+      end if
+    end associate
+    if (norm2(cfg%slings%hook_fore - cfg%slings%hook_aft) < 1.0e-6_wp) then
+      call fatal_error(error, cfg%filename//": &slings: hook_fore and hook_aft must differ")
+    end if
+    if (abs(cfg%boat%euler(2)) > 0.5_wp*pi - 0.1_wp) then
+      call fatal_error(error, cfg%filename//": &boat: euler(2) (pitch) too close to 90 deg")
+    end if
+  end subroutine check_consistency
+
+end module davit_io_config

@@ -1,0 +1,360 @@
+!> Typed, range-checked access to a parsed deck, with one call per key. The same calls also
+!> produce the key documentation (README tables, `davit keys`), so the documented defaults
+!> and ranges are the ones the code enforces.
+module davit_io_deck_reader
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use davit_kinds, only: wp
+  use davit_error, only: error_type, fatal_error
+  use davit_io_namelist, only: nml_deck, to_lower, int_to_str
+  implicit none
+  private
+  public :: deck_reader_type, key_doc, fmt_real
+
+  type :: key_doc
+    character(len=:), allocatable :: group, key, default, allowed, units, description
+  end type key_doc
+
+  type :: deck_reader_type
+    type(nml_deck) :: deck
+    !> Known groups, in order of first use.
+    character(len=64), allocatable :: known(:)
+    type(key_doc), allocatable :: docs(:)
+    type(error_type), allocatable :: error
+  contains
+    procedure :: init => reader_init
+    procedure :: real => get_real
+    procedure :: real_vec => get_real_vec
+    procedure :: int => get_int
+    procedure :: logical => get_logical
+    procedure :: choice => get_choice
+    procedure :: fail => reader_fail
+    procedure :: finish => reader_finish
+  end type deck_reader_type
+
+contains
+
+  subroutine reader_init(self, deck)
+    class(deck_reader_type), intent(inout) :: self
+    type(nml_deck), intent(in) :: deck
+    self%deck = deck
+    allocate (self%known(0), self%docs(0))
+    if (allocated(self%error)) deallocate (self%error)
+  end subroutine reader_init
+
+  !> Real scalar with range lo..hi (open at an end where lo_open/hi_open).
+  subroutine get_real(self, group, key, x, default, lo, hi, units, description, lo_open, hi_open)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, units, description
+    real(wp), intent(out) :: x
+    real(wp), intent(in) :: default, lo, hi
+    logical, intent(in), optional :: lo_open, hi_open
+    real(wp) :: v(1)
+    call get_real_vec(self, group, key, v, [default], lo, hi, units, description, &
+                      lo_open, hi_open)
+    x = v(1)
+  end subroutine get_real
+
+  !> Real vector of fixed size(x); every component must be in the range.
+  subroutine get_real_vec(self, group, key, x, default, lo, hi, units, description, &
+                          lo_open, hi_open)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, units, description
+    real(wp), intent(out) :: x(:)
+    real(wp), intent(in) :: default(:), lo, hi
+    logical, intent(in), optional :: lo_open, hi_open
+    character(len=:), allocatable :: allowed, value
+    character(len=:), allocatable :: items(:)
+    logical :: lop, hop
+    integer :: i, ios, line
+    lop = .false.; hop = .false.
+    if (present(lo_open)) lop = lo_open
+    if (present(hi_open)) hop = hi_open
+    allowed = fmt_real(lo)//trim(merge(" < ", " <=", lop))//" "//key// &
+              trim(merge(" < ", " <=", hop))//" "//fmt_real(hi)
+    if (size(x) > 1) allowed = allowed//" ("//int_to_str(size(x))//" values)"
+    call self_doc(self, group, key, join_reals(default), allowed, units, description)
+    x = default
+    if (.not. lookup(self, group, key, value, line)) return
+    call split_items(value, items)
+    if (size(items) /= size(x)) then
+      call self%fail(line, group, key, value, "expects "//int_to_str(size(x))// &
+                     " real value(s), got "//int_to_str(size(items)), allowed, units)
+      return
+    end if
+    do i = 1, size(x)
+      read (items(i), *, iostat=ios) x(i)
+      if (ios /= 0 .or. .not. is_number(items(i))) then
+        if (size(x) == 1) then
+          call self%fail(line, group, key, value, "not a real number", allowed, units)
+        else
+          call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
+                         trim(items(i))//"') is not a real number", allowed, units)
+        end if
+        return
+      end if
+      if (.not. ieee_is_finite(x(i))) then
+        call self%fail(line, group, key, value, "must be finite", allowed, units)
+        return
+      end if
+      if (x(i) < lo .or. x(i) > hi .or. (lop .and. x(i) == lo) .or. (hop .and. x(i) == hi)) then
+        call self%fail(line, group, key, value, "out of range", allowed, units)
+        return
+      end if
+    end do
+  end subroutine get_real_vec
+
+  subroutine get_int(self, group, key, n, default, lo, hi, units, description)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, units, description
+    integer, intent(out) :: n
+    integer, intent(in) :: default, lo, hi
+    character(len=:), allocatable :: allowed, value
+    integer :: ios, line
+    allowed = int_to_str(lo)//" <= "//key//" <= "//int_to_str(hi)//" (integer)"
+    call self_doc(self, group, key, int_to_str(default), allowed, units, description)
+    n = default
+    if (.not. lookup(self, group, key, value, line)) return
+    read (value, *, iostat=ios) n
+    if (ios /= 0 .or. verify(trim(value), "+-0123456789") /= 0) then
+      call self%fail(line, group, key, value, "not an integer", allowed, units)
+      return
+    end if
+    if (n < lo .or. n > hi) call self%fail(line, group, key, value, "out of range", allowed, units)
+  end subroutine get_int
+
+  subroutine get_logical(self, group, key, flag, default, description)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, description
+    logical, intent(out) :: flag
+    logical, intent(in) :: default
+    character(len=:), allocatable :: value, v
+    integer :: line
+    call self_doc(self, group, key, merge(".true. ", ".false.", default), &
+                  ".true. or .false.", "-", description)
+    flag = default
+    if (.not. lookup(self, group, key, value, line)) return
+    v = to_lower(value)
+    select case (v)
+    case (".true.", "t", ".t.", "true")
+      flag = .true.
+    case (".false.", "f", ".f.", "false")
+      flag = .false.
+    case default
+      call self%fail(line, group, key, value, "not a logical", &
+                     ".true. or .false.", "-")
+    end select
+  end subroutine get_logical
+
+  !> String restricted to a list of choices (case-insensitive, quotes optional).
+  subroutine get_choice(self, group, key, s, default, choices, description)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, default, description
+    character(len=*), intent(in) :: choices(:)
+    character(len=:), allocatable, intent(out) :: s
+    character(len=:), allocatable :: value, allowed
+    integer :: line, i
+    allowed = "one of"
+    do i = 1, size(choices)
+      allowed = allowed//" '"//trim(choices(i))//"'"
+    end do
+    call self_doc(self, group, key, "'"//default//"'", allowed, "-", description)
+    s = default
+    if (.not. lookup(self, group, key, value, line)) return
+    s = to_lower(unquote(value))
+    do i = 1, size(choices)
+      if (s == trim(choices(i))) return
+    end do
+    call self%fail(line, group, key, value, "unknown choice", allowed, "-")
+  end subroutine get_choice
+
+  !> Record the first error with file, line, group and key.
+  subroutine reader_fail(self, line, group, key, value, problem, allowed, units)
+    class(deck_reader_type), intent(inout) :: self
+    integer, intent(in) :: line
+    character(len=*), intent(in) :: group, key, value, problem, allowed, units
+    character(len=:), allocatable :: msg
+    if (allocated(self%error)) return
+    msg = self%deck%filename//":"//int_to_str(line)//": &"//group//": "//key//" = "// &
+          value//": "//problem//"; allowed: "//allowed
+    if (units /= "-" .and. len(units) > 0) msg = msg//" ["//units//"]"
+    call fatal_error(self%error, msg)
+  end subroutine reader_fail
+
+  !> Reject unknown groups and keys; return the first error found.
+  subroutine reader_finish(self, error)
+    class(deck_reader_type), intent(inout) :: self
+    type(error_type), allocatable, intent(out) :: error
+    integer :: i, k
+    character(len=:), allocatable :: names
+    if (allocated(self%error)) then
+      call move_alloc(self%error, error)
+      return
+    end if
+    do i = 1, size(self%deck%groups)
+      if (.not. any(self%known == self%deck%groups(i))) then
+        call fatal_error(error, self%deck%filename//":"// &
+                         int_to_str(self%deck%group_lines(i))//": unknown namelist group &"// &
+                         trim(self%deck%groups(i))//"; allowed groups: "//group_list(self))
+        return
+      end if
+    end do
+    do i = 1, size(self%deck%entries)
+      associate (e => self%deck%entries(i))
+        if (e%used) cycle
+        names = ""
+        do k = 1, size(self%docs)
+          if (self%docs(k)%group == e%group) names = names//" "//self%docs(k)%key
+        end do
+        call fatal_error(error, self%deck%filename//":"//int_to_str(e%line)//": &"// &
+                         e%group//": unknown key '"//e%key//"'; allowed keys:"//names)
+        return
+      end associate
+    end do
+  end subroutine reader_finish
+
+  function group_list(self) result(s)
+    type(deck_reader_type), intent(in) :: self
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ""
+    do i = 1, size(self%known)
+      if (i > 1) s = s//", "
+      s = s//"&"//trim(self%known(i))
+    end do
+  end function group_list
+
+  subroutine self_doc(self, group, key, default, allowed, units, description)
+    type(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, default, allowed, units, description
+    type(key_doc) :: d
+    if (.not. any(self%known == group)) self%known = [character(len=64) :: self%known, group]
+    d%group = group
+    d%key = key
+    d%default = default
+    d%allowed = allowed
+    d%units = units
+    d%description = description
+    self%docs = [self%docs, d]
+  end subroutine self_doc
+
+  !> Find group/key in the deck; mark it used. False if absent or an error is pending.
+  logical function lookup(self, group, key, value, line) result(found)
+    type(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key
+    character(len=:), allocatable, intent(out) :: value
+    integer, intent(out) :: line
+    integer :: i
+    found = .false.
+    line = 0
+    value = ""
+    if (allocated(self%error)) return
+    do i = 1, size(self%deck%entries)
+      if (self%deck%entries(i)%group == group .and. self%deck%entries(i)%key == key) then
+        self%deck%entries(i)%used = .true.
+        value = self%deck%entries(i)%value
+        line = self%deck%entries(i)%line
+        found = .true.
+        return
+      end if
+    end do
+  end function lookup
+
+  !> Split a value list on commas and blanks.
+  subroutine split_items(value, items)
+    character(len=*), intent(in) :: value
+    character(len=:), allocatable, intent(out) :: items(:)
+    integer :: i, n, start
+    character(len=len(value) + 1) :: v
+    v = value
+    do i = 1, len(v)
+      if (v(i:i) == ",") v(i:i) = " "
+    end do
+    allocate (character(len=max(1, len(value))) :: items(0))
+    n = 0
+    i = 1
+    do while (i <= len_trim(v))
+      if (v(i:i) == " ") then
+        i = i + 1
+        cycle
+      end if
+      start = i
+      do while (i <= len(v))
+        if (v(i:i) == " ") exit
+        i = i + 1
+      end do
+      n = n + 1
+      items = [character(len=max(1, len(value))) :: items, v(start:i - 1)]
+    end do
+  end subroutine split_items
+
+  !> A plain decimal or exponent number (list-directed READ alone would accept 'T' etc.).
+  pure logical function is_number(s)
+    character(len=*), intent(in) :: s
+    is_number = verify(trim(s), "+-.0123456789eEdD") == 0 .and. scan(s, "0123456789") > 0
+  end function is_number
+
+  pure function unquote(s) result(r)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: r
+    integer :: n
+    r = trim(adjustl(s))
+    n = len(r)
+    if (n >= 2) then
+      if ((r(1:1) == "'" .and. r(n:n) == "'") .or. (r(1:1) == '"' .and. r(n:n) == '"')) &
+        r = r(2:n - 1)
+    end if
+  end function unquote
+
+  pure function join_reals(x) result(s)
+    real(wp), intent(in) :: x(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ""
+    do i = 1, size(x)
+      if (i > 1) s = s//", "
+      s = s//fmt_real(x(i))
+    end do
+  end function join_reals
+
+  !> Shortest readable form of a real (no trailing zeros).
+  pure function fmt_real(x) result(s)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=40) :: buf
+    integer :: p, e
+    if (x == 0.0_wp) then
+      s = "0"
+      return
+    end if
+    if (abs(x) >= 1.0e-3_wp .and. abs(x) < 1.0e6_wp) then
+      write (buf, "(f0.8)") x
+      s = trim(buf)
+      do while (s(len(s):len(s)) == "0")
+        s = s(1:len(s) - 1)
+      end do
+      if (s(len(s):len(s)) == ".") s = s(1:len(s) - 1)
+      if (s(1:1) == ".") s = "0"//s
+      if (s(1:min(2, len(s))) == "-.") s = "-0"//s(2:)
+    else
+      write (buf, "(es20.8)") x
+      s = trim(adjustl(buf))
+      e = index(s, "E")
+      p = e - 1
+      do while (s(p:p) == "0")
+        p = p - 1
+      end do
+      if (s(p:p) == ".") p = p - 1
+      s = s(1:p)//"e"//trim(adjustl(int_str_exp(s(e + 1:))))
+    end if
+  end function fmt_real
+
+  pure function int_str_exp(e) result(s)
+    character(len=*), intent(in) :: e
+    character(len=:), allocatable :: s
+    integer :: n, ios
+    read (e, *, iostat=ios) n
+    if (ios /= 0) n = 0
+    s = int_to_str(n)
+  end function int_str_exp
+
+end module davit_io_deck_reader

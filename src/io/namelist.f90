@@ -1,0 +1,362 @@
+!> A namelist-deck parser that keeps line numbers, so that every error can point at the
+!> file, the group, the key and the line (Fortran's own namelist READ reports none of these).
+!>
+!> Syntax accepted: `&group key = value, key = value /`, across any number of lines; `!`
+!> starts a comment outside quotes; a group ends with `/` or `&end`. Values are kept as
+!> text; typed parsing and range checks live in davit_io_deck_reader.
+module davit_io_namelist
+  use davit_error, only: error_type, fatal_error
+  implicit none
+  private
+  public :: nml_entry, nml_deck, read_deck, parse_deck, to_lower, int_to_str
+
+  type :: nml_entry
+    character(len=:), allocatable :: group, key, value
+    integer :: line = 0
+    logical :: used = .false.
+  end type nml_entry
+
+  type :: nml_deck
+    character(len=:), allocatable :: filename
+    !> The full deck text, stored verbatim in every output file.
+    character(len=:), allocatable :: text
+    type(nml_entry), allocatable :: entries(:)
+    character(len=64), allocatable :: groups(:)
+    integer, allocatable :: group_lines(:)
+  end type nml_deck
+
+  character(len=*), parameter :: ident_chars = "abcdefghijklmnopqrstuvwxyz0123456789_"
+
+contains
+
+  !> Read and parse the deck file `filename`.
+  subroutine read_deck(filename, deck, error)
+    character(len=*), intent(in) :: filename
+    type(nml_deck), intent(out) :: deck
+    type(error_type), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer :: unit, ios, nbytes
+    character(len=256) :: msg
+    logical :: exists
+
+    inquire (file=filename, exist=exists)
+    if (.not. exists) then
+      call fatal_error(error, "cannot open input deck '"//filename//"': no such file")
+      return
+    end if
+    open (newunit=unit, file=filename, access="stream", form="unformatted", &
+          action="read", status="old", iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call fatal_error(error, "cannot open input deck '"//filename//"': "//trim(msg))
+      return
+    end if
+    inquire (unit=unit, size=nbytes)
+    allocate (character(len=max(nbytes, 0)) :: text)
+    if (nbytes > 0) read (unit, iostat=ios, iomsg=msg) text
+    close (unit)
+    if (ios /= 0) then
+      call fatal_error(error, "cannot read input deck '"//filename//"': "//trim(msg))
+      return
+    end if
+    call parse_deck(filename, text, deck, error)
+  end subroutine read_deck
+
+  !> Parse deck text; `filename` is only used in messages.
+  subroutine parse_deck(filename, text, deck, error)
+    character(len=*), intent(in) :: filename, text
+    type(nml_deck), intent(out) :: deck
+    type(error_type), allocatable, intent(out) :: error
+    character(len=:), allocatable :: body, group
+    integer, allocatable :: body_line(:)
+    integer :: pos, line, eol, open_line, nb
+    character(len=:), allocatable :: raw
+
+    deck%filename = filename
+    deck%text = text
+    allocate (deck%entries(0), deck%groups(0), deck%group_lines(0))
+    allocate (character(len=len(text)) :: body)
+    allocate (body_line(len(text) + 1))
+    pos = 1
+    line = 0
+    nb = 0
+    group = ""
+    open_line = 0
+    do while (pos <= len(text))
+      eol = index(text(pos:), new_line("a"))
+      if (eol == 0) then
+        eol = len(text) + 1
+      else
+        eol = pos + eol - 1
+      end if
+      line = line + 1
+      raw = strip_comment(text(pos:eol - 1))
+      pos = eol + 1
+      call scan_line(raw, line)
+      if (allocated(error)) return
+    end do
+    if (len(group) > 0) then
+      call fatal_error(error, at_line(open_line)//"group &"//group// &
+                       " is not closed: end it with '/'")
+    end if
+
+  contains
+
+    !> Feed one comment-free line to the group state machine.
+    subroutine scan_line(str, lineno)
+      character(len=*), intent(in) :: str
+      integer, intent(in) :: lineno
+      integer :: i, j, k
+      logical :: in_quote
+      character :: quote
+      i = 1
+      in_quote = .false.
+      quote = " "
+      do while (i <= len(str))
+        if (len(group) == 0) then
+          ! outside any group: only blanks or the start of a group
+          if (str(i:i) == " " .or. str(i:i) == achar(9) .or. str(i:i) == achar(13)) then
+            i = i + 1
+            cycle
+          end if
+          if (str(i:i) /= "&") then
+            call fatal_error(error, at_line(lineno)//"text outside a namelist group: '"// &
+                             trim(adjustl(str))//"' (groups start with &name)")
+            return
+          end if
+          j = i + 1
+          do while (j <= len(str))
+            if (index(ident_chars, to_lower(str(j:j))) == 0) exit
+            j = j + 1
+          end do
+          if (j == i + 1) then
+            call fatal_error(error, at_line(lineno)//"'&' must be followed by a group name")
+            return
+          end if
+          group = to_lower(str(i + 1:j - 1))
+          do k = 1, size(deck%groups)
+            if (deck%groups(k) == group) then
+              call fatal_error(error, at_line(lineno)//"group &"//group// &
+                               " appears twice (first at line "// &
+                               int_to_str(deck%group_lines(k))//")")
+              return
+            end if
+          end do
+          deck%groups = [character(len=64) :: deck%groups, group]
+          deck%group_lines = [deck%group_lines, lineno]
+          open_line = lineno
+          nb = 0
+          i = j
+          cycle
+        end if
+        ! inside a group
+        if (in_quote) then
+          if (str(i:i) == quote) in_quote = .false.
+        else if (str(i:i) == "'" .or. str(i:i) == '"') then
+          in_quote = .true.
+          quote = str(i:i)
+        else if (str(i:i) == "/") then
+          call close_group()
+          if (allocated(error)) return
+          i = i + 1
+          cycle
+        else if (str(i:i) == "&") then
+          if (to_lower(str(i:min(len(str), i + 3))) == "&end") then
+            call close_group()
+            if (allocated(error)) return
+            i = i + 4
+            cycle
+          end if
+          call fatal_error(error, at_line(lineno)//"group &"//group//" (opened at line "// &
+                           int_to_str(open_line)//") is not closed before a new group")
+          return
+        end if
+        nb = nb + 1
+        body(nb:nb) = str(i:i)
+        body_line(nb) = lineno
+        i = i + 1
+      end do
+      if (len(group) > 0) then
+        ! line break acts as a separator
+        nb = nb + 1
+        body(nb:nb) = " "
+        body_line(nb) = lineno
+        if (in_quote) then
+          call fatal_error(error, at_line(lineno)//"&"//group//": unterminated string")
+          return
+        end if
+      end if
+    end subroutine scan_line
+
+    subroutine close_group()
+      call split_assignments(body(1:nb), body_line(1:nb))
+      group = ""
+      nb = 0
+    end subroutine close_group
+
+    !> Split "k1 = v1, k2 = v2" into entries, keeping the line of each key.
+    subroutine split_assignments(b, bline)
+      character(len=*), intent(in) :: b
+      integer, intent(in) :: bline(:)
+      integer, allocatable :: eq(:), kstart(:)
+      integer :: i, n, ks, ke, vs, ve
+      logical :: in_quote
+      character :: quote
+      character(len=:), allocatable :: key, value
+      allocate (eq(0))
+      in_quote = .false.
+      quote = " "
+      do i = 1, len(b)
+        if (in_quote) then
+          if (b(i:i) == quote) in_quote = .false.
+        else if (b(i:i) == "'" .or. b(i:i) == '"') then
+          in_quote = .true.
+          quote = b(i:i)
+        else if (b(i:i) == "=") then
+          eq = [eq, i]
+        end if
+      end do
+      n = size(eq)
+      allocate (kstart(n))
+      do i = 1, n
+        ke = eq(i) - 1
+        do while (ke >= 1)
+          if (b(ke:ke) /= " ") exit
+          ke = ke - 1
+        end do
+        ks = ke
+        do while (ks >= 1)
+          if (index(ident_chars, to_lower(b(ks:ks))) == 0) exit
+          ks = ks - 1
+        end do
+        ks = ks + 1
+        if (ks > ke) then
+          call fatal_error(error, at_line(bline(max(1, eq(i) - 1)))//"&"//group// &
+                           ": '=' without a key name before it")
+          return
+        end if
+        kstart(i) = ks
+      end do
+      if (n == 0) then
+        if (len_trim(b) > 0) then
+          call fatal_error(error, at_line(first_line(b, bline))//"&"//group// &
+                           ": expected 'key = value', found '"//trim(adjustl(b))//"'")
+        end if
+        return
+      end if
+      if (len_trim(b(1:kstart(1) - 1)) > 0) then
+        call fatal_error(error, at_line(first_line(b, bline))//"&"//group// &
+                         ": expected 'key = value', found '"// &
+                         trim(adjustl(b(1:kstart(1) - 1)))//"'")
+        return
+      end if
+      do i = 1, n
+        ke = eq(i) - 1
+        key = to_lower(trim(b(kstart(i):ke)))
+        vs = eq(i) + 1
+        if (i < n) then
+          ve = kstart(i + 1) - 1
+        else
+          ve = len(b)
+        end if
+        value = trim(adjustl(b(vs:ve)))
+        if (len(value) > 0) then
+          if (value(len(value):len(value)) == ",") value = trim(value(1:len(value) - 1))
+        end if
+        if (len(value) == 0) then
+          call fatal_error(error, at_line(bline(kstart(i)))//"&"//group//": "//key// &
+                           " has no value")
+          return
+        end if
+        call add_entry(key, value, bline(kstart(i)))
+        if (allocated(error)) return
+      end do
+    end subroutine split_assignments
+
+    subroutine add_entry(key, value, lineno)
+      character(len=*), intent(in) :: key, value
+      integer, intent(in) :: lineno
+      type(nml_entry) :: e
+      integer :: k
+      do k = 1, size(deck%entries)
+        if (deck%entries(k)%group == group .and. deck%entries(k)%key == key) then
+          call fatal_error(error, at_line(lineno)//"&"//group//": "//key// &
+                           " is given twice (first at line "// &
+                           int_to_str(deck%entries(k)%line)//")")
+          return
+        end if
+      end do
+      e%group = group
+      e%key = key
+      e%value = value
+      e%line = lineno
+      deck%entries = [deck%entries, e]
+    end subroutine add_entry
+
+    pure function at_line(lineno) result(s)
+      integer, intent(in) :: lineno
+      character(len=:), allocatable :: s
+      s = filename//":"//int_to_str(lineno)//": "
+    end function at_line
+
+  end subroutine parse_deck
+
+  !> Line of the first non-blank character of b.
+  pure integer function first_line(b, bline) result(l)
+    character(len=*), intent(in) :: b
+    integer, intent(in) :: bline(:)
+    integer :: i
+    l = bline(1)
+    do i = 1, len(b)
+      if (b(i:i) /= " ") then
+        l = bline(i)
+        return
+      end if
+    end do
+  end function first_line
+
+  !> Remove a trailing `!` comment (outside quotes) and carriage returns.
+  pure function strip_comment(str) result(s)
+    character(len=*), intent(in) :: str
+    character(len=:), allocatable :: s
+    integer :: i
+    logical :: in_quote
+    character :: quote
+    in_quote = .false.
+    quote = " "
+    s = str
+    do i = 1, len(str)
+      if (in_quote) then
+        if (str(i:i) == quote) in_quote = .false.
+      else if (str(i:i) == "'" .or. str(i:i) == '"') then
+        in_quote = .true.
+        quote = str(i:i)
+      else if (str(i:i) == "!") then
+        s = str(1:i - 1)
+        exit
+      end if
+    end do
+    do i = 1, len(s)
+      if (s(i:i) == achar(13) .or. s(i:i) == achar(9)) s(i:i) = " "
+    end do
+  end function strip_comment
+
+  pure function to_lower(str) result(s)
+    character(len=*), intent(in) :: str
+    character(len=len(str)) :: s
+    integer :: i, c
+    s = str
+    do i = 1, len(str)
+      c = iachar(str(i:i))
+      if (c >= iachar("A") .and. c <= iachar("Z")) s(i:i) = achar(c + 32)
+    end do
+  end function to_lower
+
+  pure function int_to_str(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, "(i0)") i
+    s = trim(buf)
+  end function int_to_str
+
+end module davit_io_namelist

@@ -1,0 +1,61 @@
+!> The one integrator interface. A problem is anything with a right-hand side
+!> y' = f(t, y); the integrator owns its work arrays, so many integrations can run on many
+!> threads with nothing shared.
+module davit_solve_integrator
+  use davit_kinds, only: wp, i8
+  implicit none
+  private
+  public :: ode_problem, integrator_type
+
+  !> An ODE y' = f(t, y). The system state (parameters, layout) lives in the extension.
+  type, abstract :: ode_problem
+  contains
+    procedure(rhs_interface), deferred :: rhs
+  end type ode_problem
+
+  abstract interface
+    subroutine rhs_interface(self, t, y, dydt)
+      import :: ode_problem, wp
+      class(ode_problem), intent(in) :: self
+      real(wp), intent(in) :: t
+      real(wp), intent(in) :: y(:)
+      real(wp), intent(out) :: dydt(:)
+    end subroutine rhs_interface
+  end interface
+
+  !> Base of every integrator: statistics and the step contract.
+  type, abstract :: integrator_type
+    integer(i8) :: steps = 0
+    integer(i8) :: rhs_evaluations = 0
+  contains
+    procedure(init_interface), deferred :: init
+    procedure(step_interface), deferred :: step
+    procedure(name_interface), deferred :: name
+  end type integrator_type
+
+  abstract interface
+    !> Allocate the work arrays for a state of size n (the only allocation).
+    subroutine init_interface(self, n)
+      import :: integrator_type
+      class(integrator_type), intent(inout) :: self
+      integer, intent(in) :: n
+    end subroutine init_interface
+
+    !> Advance y from t to t + dt; t is updated.
+    subroutine step_interface(self, problem, t, y, dt)
+      import :: integrator_type, ode_problem, wp
+      class(integrator_type), intent(inout) :: self
+      class(ode_problem), intent(in) :: problem
+      real(wp), intent(inout) :: t
+      real(wp), intent(inout) :: y(:)
+      real(wp), intent(in) :: dt
+    end subroutine step_interface
+
+    pure function name_interface(self) result(name)
+      import :: integrator_type
+      class(integrator_type), intent(in) :: self
+      character(len=:), allocatable :: name
+    end function name_interface
+  end interface
+
+end module davit_solve_integrator

@@ -1,0 +1,19 @@
+!> Runs every Fortran test suite; optional first argument filters cases by name.
+program main
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use harness, only: suite_type, run_suites
+  use test_rotation, only: collect_rotation
+  use test_deck, only: collect_deck
+  use test_hanging, only: collect_hanging
+  implicit none
+  type(suite_type), allocatable :: suites(:)
+  character(len=256) :: filter
+  integer :: npass, nfail
+
+  filter = ""
+  if (command_argument_count() > 0) call get_command_argument(1, filter)
+  suites = [collect_rotation(), collect_deck(), collect_hanging()]
+  call run_suites(suites, trim(filter), npass, nfail)
+  write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
+  if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.
+end program main

@@ -1,0 +1,129 @@
+!> Deck reading: a table of malformed decks, each with the message it must produce, and a
+!> well-formed deck using the full namelist syntax.
+module test_deck
+  use davit_kinds, only: wp
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type, parse_config, read_config, document_keys
+  use davit_io_deck_reader, only: key_doc
+  use harness, only: suite_type, case_state, new_case, check, check_true
+  implicit none
+  private
+  public :: collect_deck
+
+  character(len=*), parameter :: nl = new_line("a")
+
+  type :: bad_deck
+    character(len=:), allocatable :: text, expected
+  end type bad_deck
+
+contains
+
+  function collect_deck() result(suite)
+    type(suite_type) :: suite
+    suite%name = "deck"
+    suite%cases = [new_case("malformed_decks_table", malformed_decks), &
+                   new_case("missing_file", missing_file), &
+                   new_case("full_syntax", full_syntax), &
+                   new_case("defaults_documented_and_valid", defaults_documented)]
+  end function collect_deck
+
+  function bad(text, expected) result(b)
+    character(len=*), intent(in) :: text, expected
+    type(bad_deck) :: b
+    b%text = text
+    b%expected = expected
+  end function bad
+
+  subroutine malformed_decks(state)
+    type(case_state), intent(inout) :: state
+    type(bad_deck), allocatable :: table(:)
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    integer :: i
+    table = [ &
+      bad("&simulation"//nl//"  dtt = 0.001"//nl//"/", &
+          "t.nml:2: &simulation: unknown key 'dtt'; allowed keys: t_end dt integrator"), &
+      bad("&simulation dt = 'abc' /", &
+          "t.nml:1: &simulation: dt = 'abc': not a real number; allowed: 0 < dt <= 1 [s]"), &
+      bad("&simulation"//nl//nl//" dt = -1.0 /", &
+          "t.nml:3: &simulation: dt = -1.0: out of range; allowed: 0 < dt <= 1 [s]"), &
+      bad("&simulaton t_end = 1 /", &
+          "t.nml:1: unknown namelist group &simulaton; allowed groups: &simulation, &boat, &slings"), &
+      bad("&boat mass = 1.0"//nl//"! no slash", "t.nml:1: group &boat is not closed"), &
+      bad("&boat position = 1.0, 2.0 /", &
+          "&boat: position = 1.0, 2.0: expects 3 real value(s), got 2"), &
+      bad("&simulation integrator = 'euler' /", &
+          "&simulation: integrator = 'euler': unknown choice; allowed: one of 'rk4'"), &
+      bad("&slings length = 2.0,"//nl//" length = 3.0 /", &
+          "t.nml:2: &slings: length is given twice (first at line 1)"), &
+      bad("&simulation seed = 1.5 /", "&simulation: seed = 1.5: not an integer"), &
+      bad("t_end = 3"//nl//"&simulation /", "t.nml:1: text outside a namelist group"), &
+      bad("&simulation dt = 0.01, output_interval = 0.001 /", &
+          "&simulation: output_interval = 0.001 must be >= dt = 0.01"), &
+      bad("&simulation"//nl//" dt = /", "t.nml:2: &simulation: dt has no value"), &
+      bad("&boat mass = 0 /", "mass = 0: out of range; allowed: 0 < mass <= 1e6 [kg]"), &
+      bad("&slings damping = NaN /", "&slings: damping = NaN: not a real number") ]
+    do i = 1, size(table)
+      call parse_config("t.nml", table(i)%text, cfg, error)
+      call check_true(state, allocated(error), "deck "//table(i)%text//" must be rejected")
+      if (.not. allocated(error)) cycle
+      call check_true(state, index(error%message, table(i)%expected) > 0, &
+                      "message '"//error%message//"' must contain '"//table(i)%expected//"'")
+    end do
+  end subroutine malformed_decks
+
+  subroutine missing_file(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    call read_config("no/such/deck.nml", cfg, error)
+    call check_true(state, allocated(error), "missing deck must be an error")
+    if (allocated(error)) call check_true(state, error%message == &
+      "cannot open input deck 'no/such/deck.nml': no such file", error%message)
+  end subroutine missing_file
+
+  !> Comments, several groups, multi-line arrays, upper case, '&end', double quotes.
+  subroutine full_syntax(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    character(len=*), parameter :: text = &
+      "! a comment line"//nl// &
+      "&SIMULATION  T_END = 12.5, dt = 2e-3 ! trailing comment"//nl// &
+      "   integrator = ""RK4"", output_interval=0.05 /"//nl// &
+      "&boat"//nl//"  position = 1.0,"//nl//"  2.0  -3.5"//nl//"  mass = 4.2d3"//nl//"&end"
+    call parse_config("t.nml", text, cfg, error)
+    call check_true(state, .not. allocated(error), "valid deck accepted")
+    if (allocated(error)) then
+      call check_true(state, .false., error%message)
+      return
+    end if
+    call check(state, cfg%simulation%t_end, 12.5_wp, "t_end", abs_tol=0.0_wp)
+    call check(state, cfg%simulation%dt, 2.0e-3_wp, "dt", abs_tol=0.0_wp)
+    call check(state, cfg%simulation%output_interval, 0.05_wp, "output_interval", abs_tol=0.0_wp)
+    call check_true(state, cfg%simulation%integrator == "rk4", "integrator")
+    call check(state, cfg%boat%position(3), -3.5_wp, "position(3)", abs_tol=0.0_wp)
+    call check(state, cfg%boat%mass, 4200.0_wp, "mass", abs_tol=0.0_wp)
+    call check(state, cfg%boat%inertia(1), 25020.0_wp, "default inertia", abs_tol=0.0_wp)
+    call check_true(state, index(cfg%deck_text, "! a comment line") == 1, "deck text kept")
+  end subroutine full_syntax
+
+  !> Every key documented with a default, range, units and a description.
+  subroutine defaults_documented(state)
+    type(case_state), intent(inout) :: state
+    type(key_doc), allocatable :: docs(:)
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    integer :: i
+    call document_keys(docs)
+    call check_true(state, size(docs) >= 19, "at least 19 documented keys")
+    do i = 1, size(docs)
+      call check_true(state, len(docs(i)%default) > 0 .and. len(docs(i)%allowed) > 0 .and. &
+                      len(docs(i)%units) > 0 .and. len(docs(i)%description) > 10, &
+                      "documentation of "//docs(i)%group//"/"//docs(i)%key)
+    end do
+    call parse_config("empty.nml", "", cfg, error)
+    call check_true(state, .not. allocated(error), "an empty deck (all defaults) is valid")
+  end subroutine defaults_documented
+
+end module test_deck
