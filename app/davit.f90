@@ -139,7 +139,7 @@ contains
   subroutine fail(error)
     type(error_type), intent(in) :: error
     write (error_unit, "(a)") "davit: error: "//error%message
-    error stop 1, quiet=.true.
+    stop 1, quiet=.true.
   end subroutine fail
 
 end program davit

@@ -1,7 +1,7 @@
 !> Run configuration: every deck key with its default (SI units), range and description.
 !> config_type is plain data; nothing here knows about the integrator or the output file.
 module davit_io_config
-  use davit_kinds, only: wp, pi
+  use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
@@ -176,9 +176,6 @@ contains
     end associate
     if (norm2(cfg%slings%hook_fore - cfg%slings%hook_aft) < 1.0e-6_wp) then
       call fatal_error(error, cfg%filename//": &slings: hook_fore and hook_aft must differ")
-    end if
-    if (abs(cfg%boat%euler(2)) > 0.5_wp*pi - 0.1_wp) then
-      call fatal_error(error, cfg%filename//": &boat: euler(2) (pitch) too close to 90 deg")
     end if
   end subroutine check_consistency
 

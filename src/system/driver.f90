@@ -10,7 +10,7 @@ module davit_system_driver
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_solve_integrator, only: integrator_type
   use davit_solve_factory, only: new_integrator
-  use davit_system_model, only: system_type, new_system, nstate
+  use davit_system_model, only: system_type, new_system, nstate, boat_u
   implicit none
   private
   public :: run_summary, run_simulation
@@ -29,6 +29,9 @@ module davit_system_driver
     real(wp), allocatable :: angular_velocity(:, :), acceleration(:, :), tension(:, :)
     real(wp), allocatable :: energy(:)
   end type record_type
+
+  !> Speeds beyond this (m/s, rad/s) are a numerical blow-up, not a lifeboat.
+  real(wp), parameter :: speed_limit = 1.0e3_wp
 
   character(len=*), parameter :: state_names(nstate) = [character(len=14) :: &
     "boat roll", "boat pitch", "boat yaw", "boat q4", "boat q5", "boat q6", &
@@ -70,8 +73,9 @@ contains
       bad = first_bad(y)
       if (bad > 0) then
         call fatal_error(run_error, "run diverged at t = "//fmt_real(t)//" s: "// &
-                         trim(state_names(bad))//" is not finite (step "// &
-                         "size dt = "//fmt_real(dt)//" s may exceed the stability limit)")
+                         trim(state_names(bad))//" = "//fmt_real(y(bad))//" is not finite"// &
+                         " or beyond "//fmt_real(speed_limit)//" (step size dt = "// &
+                         fmt_real(dt)//" s may exceed the stability limit)")
         exit
       end if
       if (mod(i, every) == 0) call record(rec, sys, t, y)
@@ -94,12 +98,15 @@ contains
     end if
   end subroutine run_simulation
 
+  !> Index of the first non-finite state component, or of a speed beyond any physical
+  !> value (|u| > speed_limit, m/s or rad/s), which marks a numerical blow-up early.
   pure integer function first_bad(y)
     real(wp), intent(in) :: y(:)
     integer :: k
     first_bad = 0
     do k = 1, size(y)
-      if (.not. ieee_is_finite(y(k))) then
+      if (.not. ieee_is_finite(y(k)) .or. &
+          (k >= boat_u(1) .and. k <= boat_u(2) .and. abs(y(k)) > speed_limit)) then
         first_bad = k
         return
       end if

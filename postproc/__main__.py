@@ -1,0 +1,34 @@
+"""Command line: python -m postproc FIGURE RUN.h5 [-o OUTDIR]
+
+FIGURE is one of: trajectory, tension, acceleration, run (all figures of one run).
+"""
+import argparse
+import os
+import sys
+
+from . import figures, layout
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m postproc", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("figure", choices=sorted(figures.RUN_FIGURES) + ["run"])
+    parser.add_argument("input", help="davit HDF5 output file")
+    parser.add_argument("-o", "--outdir", default="out", help="folder for PNG files")
+    args = parser.parse_args(argv)
+    try:
+        run = layout.load(args.input)
+    except (OSError, ValueError) as exc:
+        print(f"postproc: error: {exc}", file=sys.stderr)
+        return 1
+    stem = os.path.splitext(os.path.basename(args.input))[0]
+    names = sorted(figures.RUN_FIGURES) if args.figure == "run" else [args.figure]
+    for name in names:
+        path = figures.RUN_FIGURES[name](run, args.outdir, stem)
+        if path:
+            print(f"postproc: wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

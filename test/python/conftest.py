@@ -1,0 +1,51 @@
+"""Shared fixtures: the davit binary (DAVIT_BIN, set by make.sh, or found through fpm) and a
+short run file written by the Fortran code during the test session."""
+import os
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+SHORT_DECK = """! short swing for the Python tests
+&simulation t_end = 2.0, dt = 1.0e-3, output_interval = 0.002 /
+&boat velocity = 0.0, 0.5, 0.0 /
+"""
+
+
+def _find_binary():
+    env = os.environ.get("DAVIT_BIN")
+    if env:
+        return env
+    out = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"],
+                         cwd=ROOT, capture_output=True, text=True, check=True)
+    return str(ROOT / out.stdout.strip().splitlines()[-1])
+
+
+@pytest.fixture(scope="session")
+def davit_bin():
+    return _find_binary()
+
+
+@pytest.fixture(scope="session")
+def davit(davit_bin):
+    """Run davit with arguments; returns the CompletedProcess."""
+    def run(*args, cwd=None):
+        return subprocess.run([davit_bin, *map(str, args)], capture_output=True, text=True,
+                              cwd=cwd, timeout=300)
+    return run
+
+
+@pytest.fixture(scope="session")
+def short_run(davit, tmp_path_factory):
+    """(deck path, h5 path) of a 2 s swing written by the Fortran code."""
+    folder = tmp_path_factory.mktemp("short")
+    deck = folder / "short.nml"
+    deck.write_text(SHORT_DECK)
+    out = folder / "short.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    return deck, out
