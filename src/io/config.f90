@@ -1,20 +1,37 @@
 !> Run configuration: every deck key with its default (SI units), range and description.
 !> config_type is plain data; nothing here knows about the integrator or the output file.
 module davit_io_config
-  use davit_kinds, only: wp
+  use davit_kinds, only: wp, pi
+  use davit_sea_spectrum, only: spectrum_peak_omega
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   implicit none
   private
-  public :: config_type, simulation_config, boat_config, slings_config
+  public :: config_type, simulation_config, boat_config, slings_config, sea_config
+  public :: wind_config
   public :: read_config, parse_config, document_keys
 
   type :: simulation_config
     real(wp) :: t_end, dt, output_interval
-    character(len=:), allocatable :: integrator
+    character(len=:), allocatable :: integrator, scene
     integer :: seed
   end type simulation_config
+
+  !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
+  type :: sea_config
+    integer :: level, spreading_s, n_frequencies, n_directions
+    character(len=:), allocatable :: wave_type
+    real(wp) :: height, period, direction, phase, spread_window, omega_min, omega_max
+    real(wp) :: ramp_time
+    logical :: jitter, independent_frequencies
+    real(wp), allocatable :: probes_x(:), probes_y(:)
+  end type sea_config
+
+  !> Steady wind for the force models (eq. 15, 46); direction it blows towards [rad].
+  type :: wind_config
+    real(wp) :: speed, direction
+  end type wind_config
 
   !> Lifeboat of Section III.B (review F5) and its initial state.
   type :: boat_config
@@ -35,6 +52,8 @@ module davit_io_config
     type(simulation_config) :: simulation
     type(boat_config) :: boat
     type(slings_config) :: slings
+    type(sea_config) :: sea
+    type(wind_config) :: wind
   end type config_type
 
 contains
@@ -94,6 +113,8 @@ contains
     call read_simulation(r, cfg%simulation)
     call read_boat(r, cfg%boat)
     call read_slings(r, cfg%slings)
+    call read_sea(r, cfg%sea)
+    call read_wind(r, cfg%wind, cfg%sea)
   end subroutine read_all
 
   subroutine read_simulation(r, s)
@@ -104,6 +125,10 @@ contains
                 "Simulated time span from t = 0.", lo_open=.true.)
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
+    call r%choice(g, "scene", s%scene, "hanging_boat", &
+                  [character(len=16) :: "hanging_boat", "sea"], &
+                  "What to simulate: 'hanging_boat' (boat on two slings from fixed points) "// &
+                  "or 'sea' (the wave field alone, recorded at &sea probes).")
     call r%choice(g, "integrator", s%integrator, "rk4", [character(len=8) :: "rk4"], &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's).")
     call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &
@@ -158,6 +183,77 @@ contains
                 "Absolute axial dashpot per sling (review §1.6, G26); 0 = undamped.")
   end subroutine read_slings
 
+  subroutine read_sea(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(sea_config), intent(inout) :: s
+    character(len=*), parameter :: g = "sea"
+    real(wp) :: preset_height, deg
+    deg = pi/180.0_wp
+    call r%int(g, "level", s%level, 5, 4, 5, "-", &
+               "Sea-state preset (review G19): 4 = H 2.5 m, wind 8 m/s; 5 = H 4 m, wind 10 m/s.")
+    preset_height = merge(2.5_wp, 4.0_wp, s%level == 4)
+    call r%choice(g, "wave_type", s%wave_type, "calm", &
+                  [character(len=10) :: "calm", "airy", "stokes2", "irregular"], &
+                  "'calm', regular 'airy' (linear) or 'stokes2' (second order), or "// &
+                  "short-crested 'irregular' (eqs. 43-45).")
+    call r%real(g, "height", s%height, preset_height, 0.0_wp, 20.0_wp, "m", &
+                "Regular: wave height 2a. Irregular: H of eq. 44 (Hs = 0.9971 H).", &
+                lo_open=.true., default_text="level preset (4)")
+    call r%real(g, "period", s%period, 2.0_wp*pi/spectrum_peak_omega(s%height), 1.0_wp, &
+                40.0_wp, "s", "Regular-wave period; default the peak period of eq. 44 "// &
+                "for the height (10.06 s at 2.5 m, 12.72 s at 4 m, review G18).", &
+                default_text="peak period (12.72)")
+    call r%real(g, "direction_deg", s%direction, 90.0_wp, -360.0_wp, 360.0_wp, "deg", &
+                "Propagation direction (mean direction if irregular), from N1 towards N2; "// &
+                "with the ship heading along N1 this is the encounter angle chi (review §0).")
+    s%direction = s%direction*deg
+    call r%real(g, "phase_deg", s%phase, 0.0_wp, -360.0_wp, 360.0_wp, "deg", &
+                "Phase epsilon of a regular wave at the origin at t = 0.")
+    s%phase = s%phase*deg
+    call r%int(g, "spreading_s", s%spreading_s, 1, 1, 30, "-", &
+               "Exponent s of the cos-2s spreading, eq. 45 (review G20).")
+    call r%real(g, "spread_window_deg", s%spread_window, 30.0_wp, 0.0_wp, 90.0_wp, "deg", &
+                "Directions span mean +- this; weights renormalised to sum to one.", &
+                lo_open=.true.)
+    s%spread_window = s%spread_window*deg
+    call r%int(g, "n_frequencies", s%n_frequencies, 100, 1, 5000, "-", &
+               "Number of frequency bins (review G21).")
+    call r%int(g, "n_directions", s%n_directions, 13, 1, 361, "-", &
+               "Number of directions, endpoints of the window included (1 = long-crested).")
+    call r%real(g, "omega_min", s%omega_min, 0.3_wp, 0.0_wp, 20.0_wp, "rad/s", &
+                "Lower end of the frequency band.", lo_open=.true.)
+    call r%real(g, "omega_max", s%omega_max, 3.0_wp, 0.0_wp, 20.0_wp, "rad/s", &
+                "Upper end of the frequency band.", lo_open=.true.)
+    call r%logical(g, "jitter", s%jitter, .true., &
+                   "Draw each frequency uniformly inside its bin (no repeat period); "// &
+                   ".false. = bin centres.")
+    call r%logical(g, "independent_frequencies", s%independent_frequencies, .true., &
+                   "Each direction draws its own frequency in the bin (an ergodic sea); "// &
+                   ".false. = the directions of a bin share one frequency, as eq. 43 is "// &
+                   "printed (point variance then scatters ~3x more between seeds).")
+    call r%real(g, "ramp_periods", s%ramp_time, 2.0_wp, 0.0_wp, 100.0_wp, "-", &
+                "Smooth start: forcing ramped by (1 - cos)/2 over this many (peak) periods.")
+    s%ramp_time = s%ramp_time*s%period
+    call r%real_list(g, "probes_x", s%probes_x, [0.0_wp], -1.0e5_wp, 1.0e5_wp, "m", &
+                     "x of the wave probes recorded by the 'sea' scene.", 1, 1000)
+    call r%real_list(g, "probes_y", s%probes_y, [0.0_wp], -1.0e5_wp, 1.0e5_wp, "m", &
+                     "y of the wave probes (as many as probes_x).", 1, 1000)
+  end subroutine read_sea
+
+  subroutine read_wind(r, w, sea)
+    type(deck_reader_type), intent(inout) :: r
+    type(wind_config), intent(inout) :: w
+    type(sea_config), intent(in) :: sea
+    character(len=*), parameter :: g = "wind"
+    call r%real(g, "speed", w%speed, merge(8.0_wp, 10.0_wp, sea%level == 4), 0.0_wp, &
+                80.0_wp, "m/s", "Steady wind speed for the force models (not the "// &
+                "spectrum's U = 6.28 sqrt(H)).", default_text="level preset (10)")
+    call r%real(g, "direction_deg", w%direction, sea%direction*180.0_wp/pi, -360.0_wp, &
+                360.0_wp, "deg", "Direction the wind blows towards, from N1 towards N2.", &
+                default_text="&sea direction_deg")
+    w%direction = w%direction*pi/180.0_wp
+  end subroutine read_wind
+
   !> Checks that involve more than one key.
   subroutine check_consistency(cfg, error)
     type(config_type), intent(in) :: cfg
@@ -174,6 +270,17 @@ contains
         return
       end if
     end associate
+    if (cfg%sea%omega_min >= cfg%sea%omega_max) then
+      call fatal_error(error, cfg%filename//": &sea: omega_min = "// &
+                       fmt_real(cfg%sea%omega_min)//" must be < omega_max = "// &
+                       fmt_real(cfg%sea%omega_max))
+      return
+    end if
+    if (size(cfg%sea%probes_x) /= size(cfg%sea%probes_y)) then
+      call fatal_error(error, cfg%filename//": &sea: probes_x and probes_y must have the "// &
+                       "same number of values")
+      return
+    end if
     if (norm2(cfg%slings%hook_fore - cfg%slings%hook_aft) < 1.0e-6_wp) then
       call fatal_error(error, cfg%filename//": &slings: hook_fore and hook_aft must differ")
     end if

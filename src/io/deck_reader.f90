@@ -24,6 +24,7 @@ module davit_io_deck_reader
     procedure :: init => reader_init
     procedure :: real => get_real
     procedure :: real_vec => get_real_vec
+    procedure :: real_list => get_real_list
     procedure :: int => get_int
     procedure :: logical => get_logical
     procedure :: choice => get_choice
@@ -42,26 +43,61 @@ contains
   end subroutine reader_init
 
   !> Real scalar with range lo..hi (open at an end where lo_open/hi_open).
-  subroutine get_real(self, group, key, x, default, lo, hi, units, description, lo_open, hi_open)
+  !> `default_text` documents a default that depends on other keys.
+  subroutine get_real(self, group, key, x, default, lo, hi, units, description, lo_open, &
+                      hi_open, default_text)
     class(deck_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: group, key, units, description
     real(wp), intent(out) :: x
     real(wp), intent(in) :: default, lo, hi
     logical, intent(in), optional :: lo_open, hi_open
+    character(len=*), intent(in), optional :: default_text
     real(wp) :: v(1)
     call get_real_vec(self, group, key, v, [default], lo, hi, units, description, &
-                      lo_open, hi_open)
+                      lo_open, hi_open, default_text)
     x = v(1)
   end subroutine get_real
 
-  !> Real vector of fixed size(x); every component must be in the range.
-  subroutine get_real_vec(self, group, key, x, default, lo, hi, units, description, &
-                          lo_open, hi_open)
+  !> Real list of min_count..max_count values, each in the range.
+  subroutine get_real_list(self, group, key, x, default, lo, hi, units, description, &
+                           min_count, max_count)
     class(deck_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: group, key, units, description
-    real(wp), intent(out) :: x(:)
+    real(wp), allocatable, intent(out) :: x(:)
+    real(wp), intent(in) :: default(:), lo, hi
+    integer, intent(in) :: min_count, max_count
+    character(len=:), allocatable :: value, items(:)
+    integer :: line, n
+    x = default
+    if (.not. peek(self, group, key, value, line)) then
+      call get_real_vec(self, group, key, x, default, lo, hi, units, description, &
+                        count_text=int_to_str(min_count)//"-"//int_to_str(max_count))
+      return
+    end if
+    call split_items(value, items)
+    n = size(items)
+    if (n < min_count .or. n > max_count) then
+      call self_doc(self, group, key, join_reals(default), "", units, description)
+      call self%fail(line, group, key, value, "expects "//int_to_str(min_count)//" to "// &
+                     int_to_str(max_count)//" values, got "//int_to_str(n), &
+                     int_to_str(min_count)//"-"//int_to_str(max_count)//" values", units)
+      return
+    end if
+    deallocate (x)
+    allocate (x(n))
+    call get_real_vec(self, group, key, x, [(default(1), line = 1, n)], lo, hi, units, &
+                      description, count_text=int_to_str(min_count)//"-"//int_to_str(max_count))
+  end subroutine get_real_list
+
+  !> Real vector of fixed size(x); every component must be in the range.
+  subroutine get_real_vec(self, group, key, x, default, lo, hi, units, description, &
+                          lo_open, hi_open, default_text, count_text)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, units, description
+    real(wp), intent(inout) :: x(:)
     real(wp), intent(in) :: default(:), lo, hi
     logical, intent(in), optional :: lo_open, hi_open
+    character(len=*), intent(in), optional :: default_text, count_text
     character(len=:), allocatable :: allowed, value
     character(len=:), allocatable :: items(:)
     logical :: lop, hop
@@ -71,8 +107,16 @@ contains
     if (present(hi_open)) hop = hi_open
     allowed = fmt_real(lo)//trim(merge(" < ", " <=", lop))//" "//key// &
               trim(merge(" < ", " <=", hop))//" "//fmt_real(hi)
-    if (size(x) > 1) allowed = allowed//" ("//int_to_str(size(x))//" values)"
-    call self_doc(self, group, key, join_reals(default), allowed, units, description)
+    if (present(count_text)) then
+      allowed = allowed//" ("//count_text//" values)"
+    else if (size(x) > 1) then
+      allowed = allowed//" ("//int_to_str(size(x))//" values)"
+    end if
+    if (present(default_text)) then
+      call self_doc(self, group, key, default_text, allowed, units, description)
+    else
+      call self_doc(self, group, key, join_reals(default), allowed, units, description)
+    end if
     x = default
     if (.not. lookup(self, group, key, value, line)) return
     call split_items(value, items)
@@ -103,15 +147,20 @@ contains
     end do
   end subroutine get_real_vec
 
-  subroutine get_int(self, group, key, n, default, lo, hi, units, description)
+  subroutine get_int(self, group, key, n, default, lo, hi, units, description, default_text)
     class(deck_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: group, key, units, description
     integer, intent(out) :: n
     integer, intent(in) :: default, lo, hi
+    character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: allowed, value
     integer :: ios, line
     allowed = int_to_str(lo)//" <= "//key//" <= "//int_to_str(hi)//" (integer)"
-    call self_doc(self, group, key, int_to_str(default), allowed, units, description)
+    if (present(default_text)) then
+      call self_doc(self, group, key, default_text, allowed, units, description)
+    else
+      call self_doc(self, group, key, int_to_str(default), allowed, units, description)
+    end if
     n = default
     if (.not. lookup(self, group, key, value, line)) return
     read (value, *, iostat=ios) n
@@ -129,7 +178,7 @@ contains
     logical, intent(in) :: default
     character(len=:), allocatable :: value, v
     integer :: line
-    call self_doc(self, group, key, merge(".true. ", ".false.", default), &
+    call self_doc(self, group, key, trim(merge(".true. ", ".false.", default)), &
                   ".true. or .false.", "-", description)
     flag = default
     if (.not. lookup(self, group, key, value, line)) return
@@ -236,6 +285,15 @@ contains
     d%description = description
     self%docs = [self%docs, d]
   end subroutine self_doc
+
+  !> Like lookup, for a list whose length must be known before it is parsed.
+  logical function peek(self, group, key, value, line)
+    type(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key
+    character(len=:), allocatable, intent(out) :: value
+    integer, intent(out) :: line
+    peek = lookup(self, group, key, value, line)
+  end function peek
 
   !> Find group/key in the deck; mark it used. False if absent or an error is pending.
   logical function lookup(self, group, key, value, line) result(found)

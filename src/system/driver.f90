@@ -3,7 +3,7 @@
 !> the offending quantity; the partial record is still written, marked incomplete.
 module davit_system_driver
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use davit_kinds, only: wp, i8, davit_version
+  use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
   use davit_io_deck_reader, only: fmt_real
@@ -11,16 +11,11 @@ module davit_system_driver
   use davit_solve_integrator, only: integrator_type
   use davit_solve_factory, only: new_integrator
   use davit_system_model, only: system_type, new_system, nstate, boat_u
+  use davit_system_run_summary, only: run_summary, write_root_attributes
+  use davit_system_sea_run, only: run_sea
   implicit none
   private
   public :: run_summary, run_simulation
-
-  type :: run_summary
-    integer(i8) :: steps = 0, rhs_evaluations = 0
-    real(wp) :: wall_time = 0.0_wp
-    integer :: samples = 0
-    logical :: complete = .false.
-  end type run_summary
 
   !> Recorded time series, (components, samples).
   type :: record_type
@@ -39,7 +34,21 @@ module davit_system_driver
 
 contains
 
+  !> Run the deck's scene and write `out_path`.
   subroutine run_simulation(cfg, out_path, summary, error)
+    type(config_type), intent(in) :: cfg
+    character(len=*), intent(in) :: out_path
+    type(run_summary), intent(out) :: summary
+    type(error_type), allocatable, intent(out) :: error
+    select case (cfg%simulation%scene)
+    case ("sea")
+      call run_sea(cfg, out_path, summary, error)
+    case default
+      call run_hanging_boat(cfg, out_path, summary, error)
+    end select
+  end subroutine run_simulation
+
+  subroutine run_hanging_boat(cfg, out_path, summary, error)
     type(config_type), intent(in) :: cfg
     character(len=*), intent(in) :: out_path
     type(run_summary), intent(out) :: summary
@@ -96,7 +105,7 @@ contains
     else if (allocated(io_error)) then
       call move_alloc(io_error, error)
     end if
-  end subroutine run_simulation
+  end subroutine run_hanging_boat
 
   !> Index of the first non-finite state component, or of a speed beyond any physical
   !> value (|u| > speed_limit, m/s or rad/s), which marks a numerical blow-up early.
@@ -163,21 +172,7 @@ contains
     call w%group("diagnostics")
     call w%write_1d("diagnostics/energy", rec%energy(1:n), "J", &
                     "Total mechanical energy: kinetic + gravity (-m g z) + elastic")
-    call w%attr_str("/", "davit_version", davit_version)
-    call w%attr_str("/", "input_file", cfg%filename)
-    call w%attr_str("/", "input_namelist", cfg%deck_text)
-    call w%attr_int("/", "seed", int(cfg%simulation%seed, i8))
-    call w%attr_str("/", "integrator", integrator)
-    call w%attr_real("/", "dt", cfg%simulation%dt)
-    call w%attr_int("/", "steps", summary%steps)
-    call w%attr_int("/", "rhs_evaluations", summary%rhs_evaluations)
-    call w%attr_real("/", "wall_time", summary%wall_time)
-    call w%attr_int("/", "complete", merge(1_i8, 0_i8, summary%complete))
-    if (allocated(run_error)) then
-      call w%attr_str("/", "status", run_error%message)
-    else
-      call w%attr_str("/", "status", "ok")
-    end if
+    call write_root_attributes(w, cfg, summary, integrator, run_error)
   end subroutine write_output
 
 end module davit_system_driver

@@ -1,0 +1,46 @@
+!> What every run reports: integrator statistics, completion, and the root attributes of
+!> the output file, shared by all scenes.
+module davit_system_run_summary
+  use davit_kinds, only: wp, i8, davit_version
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type
+  use davit_io_hdf5_writer, only: h5_writer_type
+  implicit none
+  private
+  public :: run_summary, write_root_attributes
+
+  type :: run_summary
+    integer(i8) :: steps = 0, rhs_evaluations = 0
+    real(wp) :: wall_time = 0.0_wp
+    integer :: samples = 0
+    logical :: complete = .false.
+  end type run_summary
+
+contains
+
+  !> davit_version, input file and deck text, seed, integrator statistics, completion.
+  subroutine write_root_attributes(w, cfg, summary, integrator, run_error)
+    type(h5_writer_type), intent(inout) :: w
+    type(config_type), intent(in) :: cfg
+    type(run_summary), intent(in) :: summary
+    character(len=*), intent(in) :: integrator
+    type(error_type), allocatable, intent(in) :: run_error
+    call w%attr_str("/", "davit_version", davit_version)
+    call w%attr_str("/", "input_file", cfg%filename)
+    call w%attr_str("/", "input_namelist", cfg%deck_text)
+    call w%attr_str("/", "scene", cfg%simulation%scene)
+    call w%attr_int("/", "seed", int(cfg%simulation%seed, i8))
+    call w%attr_str("/", "integrator", integrator)
+    call w%attr_real("/", "dt", cfg%simulation%dt)
+    call w%attr_int("/", "steps", summary%steps)
+    call w%attr_int("/", "rhs_evaluations", summary%rhs_evaluations)
+    call w%attr_real("/", "wall_time", summary%wall_time)
+    call w%attr_int("/", "complete", merge(1_i8, 0_i8, summary%complete))
+    if (allocated(run_error)) then
+      call w%attr_str("/", "status", run_error%message)
+    else
+      call w%attr_str("/", "status", "ok")
+    end if
+  end subroutine write_root_attributes
+
+end module davit_system_run_summary
