@@ -11,6 +11,9 @@ cd "$(dirname "$0")"
 APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config python3)
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest)
 DEFAULT_DECK=input/hanging_boat.nml
+# Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
+# 3x better than with the x86-64 baseline (davit bench).
+FPM_FLAGS=(--profile release --flag "-march=native")
 
 log() { printf '%s\n' "make.sh: $*" >&2; }
 
@@ -59,8 +62,8 @@ setup() {
   setup_apt
   setup_python
   log "building (release)"
-  fpm build --profile release >/dev/null 2>&1 || fpm build --profile release
-  DAVIT_BIN="$(fpm run --profile release --runner echo 2>/dev/null | tail -n 1)"
+  fpm build "${FPM_FLAGS[@]}" >/dev/null 2>&1 || fpm build "${FPM_FLAGS[@]}"
+  DAVIT_BIN="$(fpm run "${FPM_FLAGS[@]}" --runner echo 2>/dev/null | tail -n 1)"
   export DAVIT_BIN="$PWD/$DAVIT_BIN"
 }
 
@@ -78,8 +81,8 @@ run_tests() {
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"
   plog="$(mktemp)"
-  log "Fortran tests (fpm test --profile release)"
-  fpm test --profile release 2>&1 | grep -v '^\[' | tee "$flog" || status=1
+  log "Fortran tests (fpm test ${FPM_FLAGS[*]})"
+  fpm test "${FPM_FLAGS[@]}" 2>&1 | grep -v '^\[' | tee "$flog" || status=1
   line="$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$flog" | tail -n 1 || true)"
   if [ -n "$line" ]; then
     fpass="${line%% passed*}"

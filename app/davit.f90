@@ -7,7 +7,9 @@ program davit
   use davit_error, only: error_type
   use davit_io_config, only: config_type, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
-  use davit_system_driver, only: run_summary, run_simulation
+  use davit_system_driver, only: run_simulation
+  use davit_system_run_summary, only: run_summary
+  use davit_system_bench, only: bench_result, run_bench
   implicit none
 
   interface
@@ -34,6 +36,8 @@ program davit
     call cmd_run()
   case ("keys")
     call cmd_keys()
+  case ("bench")
+    call cmd_bench()
   case default
     call usage_error("unknown subcommand or option '"//command//"'")
   end select
@@ -73,6 +77,22 @@ contains
     write (output_unit, "(a,i0,a,i0,a,f0.3,a)") "davit: wrote '"//out//"' (", summary%steps, &
       " steps, ", summary%rhs_evaluations, " RHS evaluations, ", summary%wall_time, " s)"
   end subroutine cmd_run
+
+  subroutine cmd_bench()
+    type(bench_result), allocatable :: results(:)
+    logical :: quick
+    integer :: i
+    quick = .false.
+    do i = 2, nargs
+      select case (argument(i))
+      case ("--quick")
+        quick = .true.
+      case default
+        call usage_error("unknown option '"//argument(i)//"' for 'bench'")
+      end select
+    end do
+    call run_bench(quick, results)
+  end subroutine cmd_bench
 
   !> Print every deck key as a Markdown table per group (the README tables).
   subroutine cmd_keys()
@@ -114,6 +134,7 @@ contains
       "usage:", &
       "  davit run DECK.nml [-o OUT.h5]   run a scenario; default output out/DECK.h5", &
       "  davit keys                       print every deck key (Markdown tables)", &
+      "  davit bench [--quick]            time the hot paths (single thread)", &
       "  davit --help | -h                this help", &
       "  davit --version | -V             print the version", &
       "", &
@@ -132,7 +153,8 @@ contains
   subroutine usage_error(message)
     character(len=*), intent(in) :: message
     write (error_unit, "(a)") "davit: error: "//message, &
-      "usage: davit run DECK.nml [-o OUT.h5] | davit keys | davit --help | davit --version"
+      "usage: davit run DECK.nml [-o OUT.h5] | davit keys | davit bench [--quick] | "// &
+      "davit --help | davit --version"
     stop 2, quiet=.true.
   end subroutine usage_error
 

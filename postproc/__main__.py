@@ -1,6 +1,7 @@
 """Command line: python -m postproc FIGURE RUN.h5 [-o OUTDIR]
 
-FIGURE is one of: trajectory, tension, acceleration, run (all figures of one run).
+FIGURE is one of: trajectory, tension, acceleration (boat runs), surface (the paper's
+Fig. 6), spectrum (sea runs), or run (every figure the file supports).
 """
 import argparse
 import os
@@ -22,9 +23,13 @@ def main(argv=None):
         print(f"postproc: error: {exc}", file=sys.stderr)
         return 1
     stem = os.path.splitext(os.path.basename(args.input))[0]
-    names = sorted(figures.RUN_FIGURES) if args.figure == "run" else [args.figure]
+    names = figures.figures_for(run) if args.figure == "run" else [args.figure]
     for name in names:
-        path = figures.RUN_FIGURES[name](run, args.outdir, stem)
+        try:
+            path = figures.RUN_FIGURES[name](run, args.outdir, stem)
+        except ValueError as exc:
+            print(f"postproc: error: {exc}", file=sys.stderr)
+            return 1
         if path:
             print(f"postproc: wrote {path}")
     return 0

@@ -20,6 +20,7 @@ def _save(fig, outdir, name):
 
 def trajectory(run, outdir, stem):
     """Boat CG trajectory in the paper's planes ox1z1 and oy1z1 (z1 up), and against time."""
+    run.require(layout.BOAT, "boat trajectory")
     p = layout.to_plot_frame(run.get(layout.BOAT_POSITION))
     t = run.time
     fig, ax = plt.subplots(2, 2, figsize=(10, 8))
@@ -63,6 +64,7 @@ def sling_tension(run, outdir, stem):
 
 def acceleration(run, outdir, stem):
     """Horizontal and vertical CG acceleration (inertial frame, gravity not subtracted)."""
+    run.require([layout.BOAT_ACCELERATION], "boat acceleration")
     a = run.get(layout.BOAT_ACCELERATION)
     t = run.time
     fig, ax = plt.subplots(figsize=(9, 4.5))
@@ -75,5 +77,93 @@ def acceleration(run, outdir, stem):
     return _save(fig, outdir, f"{stem}_acceleration.png")
 
 
+def _sea_height(run):
+    """H of the recorded sea, from the deck text (or 4 sigma of the first probe)."""
+    import re
+    match = re.search(r"height\s*=\s*([0-9.eEdD+-]+)", run.attrs.get("input_namelist", ""))
+    if match:
+        return float(match.group(1).lower().replace("d", "e"))
+    level = re.search(r"level\s*=\s*([45])", run.attrs.get("input_namelist", ""))
+    return {"4": 2.5, "5": 4.0}.get(level.group(1) if level else "5")
+
+
+def surface(run, outdir, stem, size=200.0, n=161):
+    """Paper Fig. 6: the sea surface over a size x size patch at the last recorded time,
+    rebuilt from the component table."""
+    run.require(layout.SEA, "sea")
+    t = float(run.time[-1])
+    x = np.linspace(-size / 2, size / 2, n)
+    xx, yy = np.meshgrid(x, x, indexing="ij")
+    eta = np.empty_like(xx)
+    for i in range(n):  # row by row keeps memory at n * components
+        eta[i] = layout.sea_elevation(run, t, xx[i], yy[i])
+    fig = plt.figure(figsize=(9, 7))
+    ax = fig.add_subplot(projection="3d")
+    ax.plot_surface(xx, yy, eta, cmap="viridis", linewidth=0, antialiased=True)
+    ax.set(xlabel="x [m]", ylabel="y [m]", zlabel="eta [m] (up)")
+    ax.set_zlim(-3 * np.std(eta) * 2, 3 * np.std(eta) * 2)
+    ax.set_title(f"Sea surface at t = {t:.1f} s ({os.path.basename(run.path)}; "
+                 f"{len(run.get(layout.SEA_OMEGA))} components)")
+    fig.tight_layout()
+    return _save(fig, outdir, f"{stem}_surface.png")
+
+
+def welch(x, dt, nseg):
+    """One-sided spectral density of x (per rad/s) by Welch's method with Hann windows and
+    50 % overlap."""
+    x = np.asarray(x, dtype=float) - np.mean(x)
+    step = nseg // 2
+    window = np.hanning(nseg)
+    scale = 1.0 / (np.sum(window ** 2))
+    acc = None
+    count = 0
+    for start in range(0, len(x) - nseg + 1, step):
+        seg = x[start:start + nseg] * window
+        p = np.abs(np.fft.rfft(seg)) ** 2 * scale
+        acc = p if acc is None else acc + p
+        count += 1
+    p = acc / count
+    p[1:-1] *= 2.0  # one-sided
+    omega = 2 * np.pi * np.fft.rfftfreq(nseg, dt)
+    return omega, p * dt / (2 * np.pi)
+
+
+def spectrum(run, outdir, stem):
+    """Spectrum of the first probe's record (after the ramp) against eq. 44."""
+    run.require(layout.SEA, "sea")
+    t = run.time
+    dt = float(t[1] - t[0])
+    ramp_time = float(run.group_attrs.get("sea", {}).get("ramp_time", 0.0))
+    eta = run.get(layout.SEA_ELEVATION)[:, 0][t >= ramp_time]
+    nseg = int(2 ** np.floor(np.log2(max(len(eta) // 8, 16))))
+    omega, s = welch(eta, dt, nseg)
+    height = _sea_height(run)
+    fig, ax = plt.subplots(figsize=(9, 5))
+    ax.plot(omega, s, lw=1, label=f"probe record (Welch, {nseg * dt:.0f} s segments)")
+    w = np.linspace(0.2, 3.5, 400)
+    ax.plot(w, layout.chinese_spectrum(w, height), "k--", lw=1.2,
+            label=f"eq. 44, H = {height:g} m")
+    hs = 4 * np.std(eta)
+    ax.set(xlim=(0, 3.5), xlabel="omega [rad/s]", ylabel="S [m^2 s]",
+           title=f"Wave spectrum: record Hs = 4 std = {hs:.2f} m, "
+                 f"eq. 44 Hs = {0.9971 * height:.2f} m")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    return _save(fig, outdir, f"{stem}_spectrum.png")
+
+
 RUN_FIGURES = {"trajectory": trajectory, "tension": sling_tension,
-               "acceleration": acceleration}
+               "acceleration": acceleration, "surface": surface, "spectrum": spectrum}
+
+
+def figures_for(run):
+    """The figures that a file's contents support."""
+    names = []
+    if run.has(*layout.BOAT):
+        names += ["trajectory", "acceleration"]
+    if run.has(layout.SLING_TENSION):
+        names.append("tension")
+    if run.has(*layout.SEA):
+        names += ["surface", "spectrum"]
+    return names

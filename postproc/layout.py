@@ -9,6 +9,8 @@ from dataclasses import dataclass
 import h5py
 import numpy as np
 
+GRAVITY = 9.81
+
 TIME = "time"
 BOAT_POSITION = "boat/position"
 BOAT_EULER = "boat/euler"
@@ -17,23 +19,31 @@ BOAT_ANGULAR_VELOCITY = "boat/angular_velocity"
 BOAT_ACCELERATION = "boat/acceleration"
 SLING_TENSION = "slings/tension"
 ENERGY = "diagnostics/energy"
+SEA_ELEVATION = "sea/elevation"
+SEA_PROBES = "sea/probe_position"
+SEA_OMEGA = "sea/components/omega"
+SEA_K = "sea/components/wavenumber"
+SEA_DIRECTION = "sea/components/direction"
+SEA_AMPLITUDE = "sea/components/amplitude"
+SEA_PHASE = "sea/components/phase"
 
-REQUIRED = (TIME, BOAT_POSITION, BOAT_EULER, BOAT_VELOCITY, BOAT_ANGULAR_VELOCITY,
-            BOAT_ACCELERATION)
+BOAT = (BOAT_POSITION, BOAT_EULER, BOAT_VELOCITY, BOAT_ANGULAR_VELOCITY, BOAT_ACCELERATION)
+SEA = (SEA_ELEVATION, SEA_PROBES, SEA_OMEGA, SEA_K, SEA_DIRECTION, SEA_AMPLITUDE, SEA_PHASE)
 ROOT_ATTRIBUTES = ("davit_version", "input_namelist", "seed", "steps", "rhs_evaluations",
                    "wall_time", "complete", "status")
 
 
 def _text(value):
-    return value.decode() if isinstance(value, (bytes, np.bytes_)) else str(value)
+    return value.decode() if isinstance(value, (bytes, np.bytes_)) else value
 
 
 @dataclass
 class Run:
-    """A davit run file, loaded into numpy arrays (time along the first axis)."""
+    """A davit output file loaded into numpy arrays (time along the first axis)."""
     path: str
     attrs: dict
     datasets: dict
+    group_attrs: dict
 
     @property
     def time(self):
@@ -42,26 +52,39 @@ class Run:
     def get(self, name):
         return self.datasets.get(name)
 
+    def has(self, *names):
+        return all(name in self.datasets for name in names)
+
+    def require(self, names, what):
+        missing = [name for name in names if name not in self.datasets]
+        if missing:
+            raise ValueError(f"{self.path}: no {what} in this file "
+                             f"(missing {', '.join(missing)})")
+
     @property
     def complete(self):
         return int(self.attrs.get("complete", 0)) == 1
 
+    @property
+    def scene(self):
+        return self.attrs.get("scene", "")
+
 
 def load(path):
-    """Read every dataset and the root attributes of a davit output file."""
-    datasets = {}
+    """Read every dataset and the attributes of a davit output file."""
+    datasets, group_attrs = {}, {}
     with h5py.File(path, "r") as f:
-        attrs = {k: (_text(v) if isinstance(v, (bytes, np.bytes_)) else v)
-                 for k, v in f.attrs.items()}
+        attrs = {k: _text(v) for k, v in f.attrs.items()}
 
         def visit(name, obj):
             if isinstance(obj, h5py.Dataset):
                 datasets[name] = obj[()]
+            else:
+                group_attrs[name] = {k: _text(v) for k, v in obj.attrs.items()}
         f.visititems(visit)
-    missing = [name for name in REQUIRED if name not in datasets]
-    if missing:
-        raise ValueError(f"{path}: not a davit run file (missing {', '.join(missing)})")
-    return Run(path=path, attrs=attrs, datasets=datasets)
+    if TIME not in datasets or "davit_version" not in attrs:
+        raise ValueError(f"{path}: not a davit output file")
+    return Run(path=path, attrs=attrs, datasets=datasets, group_attrs=group_attrs)
 
 
 def dataset_metadata(path):
@@ -82,3 +105,36 @@ def to_plot_frame(xyz):
     out[..., 1] *= -1.0
     out[..., 2] *= -1.0
     return out
+
+
+def sea_ramp(run, t):
+    """The smooth-start factor (1 - cos(pi t/T))/2 of the recorded sea."""
+    ramp_time = float(run.group_attrs.get("sea", {}).get("ramp_time", 0.0))
+    t = np.asarray(t, dtype=float)
+    if ramp_time <= 0:
+        return np.ones_like(t)
+    return np.where(t < ramp_time, 0.5 * (1 - np.cos(np.pi * np.clip(t, 0, None) / ramp_time)),
+                    1.0)
+
+
+def sea_elevation(run, t, x, y):
+    """Rebuild eta(x, y, t) from the recorded component table (eq. 43; Stokes-2 adds
+    k a^2/2 cos 2 theta). x and y broadcast together."""
+    w, k = run.get(SEA_OMEGA), run.get(SEA_K)
+    g, a, eps = run.get(SEA_DIRECTION), run.get(SEA_AMPLITUDE), run.get(SEA_PHASE)
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    theta = (w * t + eps - k * (x[..., None] * np.cos(g) + y[..., None] * np.sin(g)))
+    eta1 = np.sum(a * np.cos(theta), axis=-1)
+    r = sea_ramp(run, t)
+    eta = r * eta1
+    if run.group_attrs.get("sea", {}).get("wave_type") == "stokes2":
+        eta = eta + 0.5 * k[0] * (r * a[0]) ** 2 * np.cos(2 * theta[..., 0])
+    return eta
+
+
+def chinese_spectrum(omega, height):
+    """Eq. 44: S = 0.74 w^-5 exp(-g^2/(U^2 w^2)), U = 6.28 sqrt(H) [m^2 s]."""
+    u = 6.28 * np.sqrt(height)
+    omega = np.asarray(omega, dtype=float)
+    return 0.74 / omega ** 5 * np.exp(-(GRAVITY / u) ** 2 / omega ** 2)

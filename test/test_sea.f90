@@ -26,6 +26,7 @@ contains
     type(suite_type) :: suite
     suite%name = "sea"
     suite%cases = [new_case("fast_sincos_vs_libm", sincos_accuracy), &
+                   new_case("rng_uniform_and_streams_independent", rng_quality), &
                    new_case("spectrum_moments_A1", spectrum_moments), &
                    new_case("discrete_m0", discrete_m0), &
                    new_case("spreading_normalisation_A2", spreading_normalisation), &
@@ -69,6 +70,58 @@ contains
     call note(state, "max |error| for |x| < 1e4", err)
     call check(state, err, 0.0_wp, "fast_sincos error", abs_tol=1e-15_wp)
   end subroutine sincos_accuracy
+
+  !> Uniform moments (mean 1/2, variance 1/12) and independence of neighbouring seeds and
+  !> streams: the correlation of n-sample vectors has standard deviation 1/sqrt(n), so over
+  !> 40 seeds x 40 streams' pairs its RMS must be within 15 % of that and its maximum below
+  !> 5/sqrt(n).
+  subroutine rng_quality(state)
+    type(case_state), intent(inout) :: state
+    integer, parameter :: n = 2000, m = 40
+    real(wp) :: u(n, m), v(n, m), c, rms, cmax, mean, var
+    type(rng_type) :: rng
+    integer :: i, j, k, pairs
+    do j = 1, m
+      rng = new_rng(j)
+      do i = 1, n
+        call rng_uniform(rng, u(i, j))
+      end do
+      rng = new_rng(7, stream=j)
+      do i = 1, n
+        call rng_uniform(rng, v(i, j))
+      end do
+    end do
+    mean = sum(u)/size(u)
+    var = sum((u - mean)**2)/size(u)
+    call check(state, mean, 0.5_wp, "mean", abs_tol=4/sqrt(12.0_wp*size(u)))
+    call check(state, var, 1/12.0_wp, "variance", rel_tol=0.02_wp)
+    do k = 1, 2
+      rms = 0.0_wp; cmax = 0.0_wp; pairs = 0
+      do j = 1, m
+        do i = j + 1, m
+          if (k == 1) then
+            c = corr(u(:, i), u(:, j))
+          else
+            c = corr(v(:, i), v(:, j))
+          end if
+          rms = rms + c*c; cmax = max(cmax, abs(c)); pairs = pairs + 1
+        end do
+      end do
+      rms = sqrt(rms/pairs)
+      call note(state, trim(merge("seeds  ", "streams", k == 1))//": rms corr * sqrt(n)", &
+                rms*sqrt(real(n, wp)))
+      call check(state, rms*sqrt(real(n, wp)), 1.0_wp, "rms correlation", rel_tol=0.15_wp)
+      call check_true(state, cmax < 5/sqrt(real(n, wp)), "max correlation below 5 sigma")
+    end do
+  contains
+    pure real(wp) function corr(a, b)
+      real(wp), intent(in) :: a(:), b(:)
+      real(wp) :: da(size(a)), db(size(b))
+      da = a - sum(a)/size(a)
+      db = b - sum(b)/size(b)
+      corr = sum(da*db)/sqrt(sum(da*da)*sum(db*db))
+    end function corr
+  end subroutine rng_quality
 
   !> m0 = 0.37 U^4/g^4 against quadrature; Hs = 0.9971 H; w_p = 0.9877/sqrt(H) and the
   !> numerical maximum of S; band fractions in (0.3, 3): 0.9943 (2.5 m) and 0.9890 (4 m).

@@ -9,6 +9,7 @@ module davit_core_random
   public :: rng_type, new_rng, rng_uniform
 
   integer(i8), parameter :: m1 = 4294967087_i8, m2 = 4294944443_i8
+  integer(i8), parameter :: two32 = 4294967296_i8
   integer(i8), parameter :: a12 = 1403580_i8, a13n = 810728_i8
   integer(i8), parameter :: a21 = 527612_i8, a23n = 1370589_i8
 
@@ -19,33 +20,37 @@ module davit_core_random
 
 contains
 
-  !> A generator seeded from `seed` and an optional `stream` index (e.g. a sweep case):
-  !> the pair is mixed by a 32-bit LCG into the six state words, then 16 outputs are dropped.
+  !> A generator seeded from `seed` and an optional `stream` index (e.g. a sweep case). The
+  !> six state words are independent 32-bit hashes of (seed, stream, word), so nearby seeds
+  !> and streams give unrelated sequences (a plain LCG fill left measurable correlations
+  !> between the phase vectors of neighbouring seeds).
   function new_rng(seed, stream) result(rng)
     integer, intent(in) :: seed
     integer, intent(in), optional :: stream
     type(rng_type) :: rng
-    integer(i8) :: x
+    integer(i8) :: key
     real(wp) :: dummy
     integer :: i
-    x = modulo(int(seed, i8), 4294967296_i8)
-    if (present(stream)) x = modulo(x + 2654435761_i8*modulo(int(stream, i8), 65536_i8) + &
-                                    int(stream, i8)/65536_i8, 4294967296_i8)
+    key = hash32(modulo(int(seed, i8), two32))
+    if (present(stream)) key = hash32(ieor(key, hash32(modulo(int(stream, i8) + 1_i8, two32))))
     do i = 1, 3
-      x = lcg(x)
-      rng%s1(i) = 1_i8 + modulo(x, m1 - 1_i8)
-      x = lcg(x)
-      rng%s2(i) = 1_i8 + modulo(x, m2 - 1_i8)
+      rng%s1(i) = 1_i8 + modulo(hash32(ieor(key, hash32(int(2*i - 1, i8)))), m1 - 1_i8)
+      rng%s2(i) = 1_i8 + modulo(hash32(ieor(key, hash32(int(2*i, i8) + 1000_i8))), m2 - 1_i8)
     end do
     do i = 1, 16
       call rng_uniform(rng, dummy)
     end do
   end function new_rng
 
-  pure integer(i8) function lcg(x)
+  !> A 32-bit integer hash (xor-shift-multiply, multiplier 0x45d9f3b); all products stay
+  !> below 2^59, so int64 arithmetic never overflows.
+  pure integer(i8) function hash32(x) result(h)
     integer(i8), intent(in) :: x
-    lcg = modulo(69069_i8*x + 1234567_i8, 4294967296_i8)
-  end function lcg
+    h = modulo(x, two32)
+    h = modulo(ieor(ishft(h, -16), h)*73244475_i8, two32)
+    h = modulo(ieor(ishft(h, -16), h)*73244475_i8, two32)
+    h = ieor(ishft(h, -16), h)
+  end function hash32
 
   !> Uniform in (0, 1).
   pure subroutine rng_uniform(rng, u)

@@ -20,7 +20,8 @@ def _find_binary():
     env = os.environ.get("DAVIT_BIN")
     if env:
         return env
-    out = subprocess.run(["fpm", "run", "--profile", "release", "--runner", "echo"],
+    out = subprocess.run(["fpm", "run", "--profile", "release", "--flag", "-march=native",
+                          "--runner", "echo"],
                          cwd=ROOT, capture_output=True, text=True, check=True)
     return str(ROOT / out.stdout.strip().splitlines()[-1])
 
@@ -46,6 +47,24 @@ def short_run(davit, tmp_path_factory):
     deck = folder / "short.nml"
     deck.write_text(SHORT_DECK)
     out = folder / "short.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    return deck, out
+
+
+SEA_DECK = """&simulation scene = 'sea', t_end = 300.0, output_interval = 0.5, seed = 7 /
+&sea level = 4, wave_type = 'irregular', direction_deg = 45.0,
+     probes_x = 0.0, 120.0, -40.0, probes_y = 0.0, 30.0, 75.0 /
+"""
+
+
+@pytest.fixture(scope="session")
+def sea_run(davit, tmp_path_factory):
+    """(deck path, h5 path) of a 300 s Level 4 irregular sea at three probes."""
+    folder = tmp_path_factory.mktemp("sea")
+    deck = folder / "sea.nml"
+    deck.write_text(SEA_DECK)
+    out = folder / "sea.h5"
     result = davit("run", deck, "-o", out)
     assert result.returncode == 0, result.stderr
     return deck, out

@@ -9,7 +9,7 @@ BAD_DECKS = [
     ("&simulation dt = -1 /\n", r"bad\.nml:1: &simulation: dt = -1: out of range; "
                                 r"allowed: 0 < dt <= 1 \[s\]"),
     ("&boat mass = heavy /\n", r"bad\.nml:1: &boat: mass = heavy: not a real number"),
-    ("&sea height = 4 /\n", r"bad\.nml:1: unknown namelist group &sea"),
+    ("&seastate height = 4 /\n", r"bad\.nml:1: unknown namelist group &seastate"),
     ("&simulation t_end = 5\n", r"bad\.nml:1: group &simulation is not closed"),
 ]
 

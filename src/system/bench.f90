@@ -1,0 +1,164 @@
+!> `davit bench`: timings of the hot paths, printed as a table. Speed goals live here, never
+!> in tests. Sea: cost per component-point of the wave evaluations (Level 5 irregular sea,
+!> 100 x 13 components).
+module davit_system_bench
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use davit_kinds, only: wp, i8, pi
+  use davit_core_random, only: rng_type, new_rng
+  use davit_sea_wave_field, only: wave_field_type, new_irregular_sea, wave_elevation, &
+                                  wave_kinematics, point_phasors, time_phasors, &
+                                  rotation_phasors, advance_phasors, elevation_from_phasors
+  implicit none
+  private
+  public :: bench_result, run_bench
+
+  type :: bench_result
+    character(len=:), allocatable :: name, unit
+    real(wp) :: value = 0.0_wp
+  end type bench_result
+
+contains
+
+  subroutine run_bench(quick, results)
+    logical, intent(in) :: quick
+    type(bench_result), allocatable, intent(out) :: results(:)
+    real(wp) :: budget
+    budget = merge(0.05_wp, 0.5_wp, quick)
+    allocate (results(0))
+    call bench_sea(budget, results)
+    call print_table(results)
+  end subroutine run_bench
+
+  subroutine bench_sea(budget, results)
+    real(wp), intent(in) :: budget
+    type(bench_result), allocatable, intent(inout) :: results(:)
+    integer, parameter :: np = 20
+    type(wave_field_type) :: field
+    type(rng_type) :: rng
+    real(wp) :: x(np), y(np), z(np), eta(np), v(3), a(3), p, sink, per
+    real(wp), allocatable :: cb(:, :), sb(:, :), ca(:), sa(:), cr(:), sr(:), th(:), c(:)
+    integer(i8) :: reps, r
+    integer :: j
+    rng = new_rng(1)
+    call new_irregular_sea(field, 4.0_wp, pi/2, 1, pi/6, 100, 13, 0.3_wp, 3.0_wp, .true., &
+                           .true., rng, 0.0_wp)
+    do j = 1, np
+      x(j) = 0.6_wp*j - 6.0_wp
+      y(j) = 13.3_wp
+      z(j) = 0.5_wp
+    end do
+    sink = 0.0_wp
+
+    ! 1. elevation at arbitrary (moving) points: one phase evaluation per component-point
+    reps = scaled(budget, timed_ns(10_i8)*1.0e-9_wp*field%n*np)
+    per = timed_ns(reps)
+    call add(results, "sea: elevation, arbitrary points", "ns/(component*point)", per)
+
+    ! 2. kinematics (elevation + velocity + acceleration + pressure, Wheeler stretching)
+    reps = scaled(budget, timed_kin_ns(10_i8)*1.0e-9_wp*field%n*np)
+    per = timed_kin_ns(reps)
+    call add(results, "sea: kinematics, arbitrary points", "ns/(component*point)", per)
+
+    ! 3. fixed probes: precomputed spatial phasors, time phasors advanced by rotation
+    allocate (cb(field%n, np), sb(field%n, np), ca(field%n), sa(field%n), cr(field%n), &
+              sr(field%n))
+    call point_phasors(field, x, y, cb, sb)
+    call time_phasors(field, 0.0_wp, ca, sa)
+    call rotation_phasors(field, 0.01_wp, cr, sr)
+    reps = scaled(budget, timed_probe_ns(10_i8)*1.0e-9_wp*field%n*np)
+    per = timed_probe_ns(reps)
+    call add(results, "sea: elevation, fixed probes (phasors)", "ns/(component*point)", per)
+
+    ! 4. reference: the libm cosine alone, per phase
+    allocate (th(field%n), c(field%n))
+    reps = scaled(budget, timed_libm_ns(10_i8)*1.0e-9_wp*field%n)
+    per = timed_libm_ns(reps)
+    call add(results, "reference: libm cos per phase", "ns/phase", per)
+    if (sink == 12345.678_wp) write (output_unit, *) sink
+
+  contains
+
+    !> Repetitions that fill `seconds` given the time of one repetition.
+    integer(i8) function scaled(seconds, one) result(n)
+      real(wp), intent(in) :: seconds, one
+      n = max(1_i8, int(seconds/max(one, 1.0e-12_wp), i8))
+    end function scaled
+
+    real(wp) function timed_ns(n) result(ns)
+      integer(i8), intent(in) :: n
+      integer(i8) :: c0, c1, rate
+      call system_clock(c0, rate)
+      do r = 1, n
+        do j = 1, np
+          sink = sink + wave_elevation(field, 0.01_wp*r, x(j), y(j))
+        end do
+      end do
+      call system_clock(c1)
+      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*np*field%n, wp)*1.0e9_wp
+    end function timed_ns
+
+    real(wp) function timed_kin_ns(n) result(ns)
+      integer(i8), intent(in) :: n
+      integer(i8) :: c0, c1, rate
+      real(wp) :: e
+      call system_clock(c0, rate)
+      do r = 1, n
+        do j = 1, np
+          call wave_kinematics(field, 0.01_wp*r, [x(j), y(j), z(j)], e, v, a, p)
+          sink = sink + v(1) + p
+        end do
+      end do
+      call system_clock(c1)
+      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*np*field%n, wp)*1.0e9_wp
+    end function timed_kin_ns
+
+    real(wp) function timed_probe_ns(n) result(ns)
+      integer(i8), intent(in) :: n
+      integer(i8) :: c0, c1, rate
+      call system_clock(c0, rate)
+      do r = 1, n
+        call advance_phasors(ca, sa, cr, sr)
+        call elevation_from_phasors(field, 0.01_wp*r, ca, sa, cb, sb, eta)
+        sink = sink + eta(1)
+      end do
+      call system_clock(c1)
+      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*np*field%n, wp)*1.0e9_wp
+    end function timed_probe_ns
+
+    real(wp) function timed_libm_ns(n) result(ns)
+      integer(i8), intent(in) :: n
+      integer(i8) :: c0, c1, rate
+      call system_clock(c0, rate)
+      do r = 1, n
+        th = field%omega*(0.01_wp*r) + field%phase
+        c = cos(th)
+        sink = sink + c(1)
+      end do
+      call system_clock(c1)
+      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*field%n, wp)*1.0e9_wp
+    end function timed_libm_ns
+
+  end subroutine bench_sea
+
+  subroutine add(results, name, unit, value)
+    type(bench_result), allocatable, intent(inout) :: results(:)
+    character(len=*), intent(in) :: name, unit
+    real(wp), intent(in) :: value
+    type(bench_result) :: r
+    r%name = name
+    r%unit = unit
+    r%value = value
+    results = [results, r]
+  end subroutine add
+
+  subroutine print_table(results)
+    type(bench_result), intent(in) :: results(:)
+    integer :: i
+    write (output_unit, "(a)") "| benchmark | value | unit |", "|---|---|---|"
+    do i = 1, size(results)
+      write (output_unit, "(a,f0.3,a)") "| "//results(i)%name//" | ", results(i)%value, &
+        " | "//results(i)%unit//" |"
+    end do
+  end subroutine print_table
+
+end module davit_system_bench
