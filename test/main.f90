@@ -6,6 +6,7 @@ program main
   use test_deck, only: collect_deck
   use test_hanging, only: collect_hanging
   use test_sea, only: collect_sea
+  use test_ship, only: collect_ship
   implicit none
   type(suite_type), allocatable :: suites(:)
   character(len=256) :: filter
@@ -13,7 +14,7 @@ program main
 
   filter = ""
   if (command_argument_count() > 0) call get_command_argument(1, filter)
-  suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea()]
+  suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), collect_ship()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.
