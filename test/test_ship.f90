@@ -3,6 +3,8 @@
 module test_ship
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_ship_froude_krylov, only: box_type, fk_box_load, fk_transfer
+  use davit_ship_wind_load, only: ship_wind_type, ship_wind_load
+  use davit_kinds, only: rho_air
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -14,7 +16,8 @@ contains
     type(suite_type) :: suite
     suite%name = "ship"
     suite%cases = [new_case("fk_closed_form_vs_quadrature", fk_quadrature), &
-                   new_case("fk_long_wave_limits_A3", fk_long_wave)]
+                   new_case("fk_long_wave_limits_A3", fk_long_wave), &
+                   new_case("beam_wind_pushes_and_heels_to_port", wind_signs)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -167,5 +170,29 @@ contains
                box%length*box%draught**2/2)*sin(phi), "pitch moment, long wave along x", &
                rel_tol=1e-5_wp)
   end subroutine fk_long_wave
+
+  !> Wind from starboard (air moving towards port, -y) must push the ship to port (Y < 0)
+  !> and heel it to port (K < 0 about x forward with z down) with the G14 magnitude; a head
+  !> wind pushes it astern; neither gives a yaw moment (sin 2 alpha = 0).
+  subroutine wind_signs(state)
+    type(case_state), intent(inout) :: state
+    type(ship_wind_type) :: w
+    real(wp) :: load(6), q
+    q = 0.5_wp*rho_air*10.0_wp**2
+    load = ship_wind_load(w, [0.0_wp, -10.0_wp, 0.0_wp])
+    call check(state, load(2), -0.85_wp*q*w%area_lateral, "Y of a beam wind from starboard", &
+               rel_tol=1e-12_wp)
+    call check(state, load(4), -0.85_wp*q*w%area_lateral*w%height, "K: heel to port", &
+               rel_tol=1e-12_wp)
+    call check(state, load(1), 0.0_wp, "no surge force", abs_tol=1e-9_wp*q*w%area_front)
+    call check(state, load(6), 0.0_wp, "no yaw moment", &
+               abs_tol=1e-9_wp*q*w%area_lateral*w%length_overall)
+    load = ship_wind_load(w, [-10.0_wp, 0.0_wp, 0.0_wp])
+    call check(state, load(1), -0.7_wp*q*w%area_front, "head wind pushes astern", &
+               rel_tol=1e-12_wp)
+    load = ship_wind_load(w, [0.0_wp, 10.0_wp, 0.0_wp])
+    call check(state, load(2), 0.85_wp*q*w%area_lateral, "wind from port pushes to starboard", &
+               rel_tol=1e-12_wp)
+  end subroutine wind_signs
 
 end module test_ship
