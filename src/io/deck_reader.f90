@@ -69,7 +69,7 @@ contains
     character(len=:), allocatable :: value, items(:)
     integer :: line, n
     x = default
-    if (.not. peek(self, group, key, value, line)) then
+    if (.not. lookup(self, group, key, value, line)) then
       call get_real_vec(self, group, key, x, default, lo, hi, units, description, &
                         count_text=int_to_str(min_count)//"-"//int_to_str(max_count))
       return
@@ -285,15 +285,6 @@ contains
     d%description = description
     self%docs = [self%docs, d]
   end subroutine self_doc
-
-  !> Like lookup, for a list whose length must be known before it is parsed.
-  logical function peek(self, group, key, value, line)
-    type(deck_reader_type), intent(inout) :: self
-    character(len=*), intent(in) :: group, key
-    character(len=:), allocatable, intent(out) :: value
-    integer, intent(out) :: line
-    peek = lookup(self, group, key, value, line)
-  end function peek
 
   !> Find group/key in the deck; mark it used. False if absent or an error is pending.
   logical function lookup(self, group, key, value, line) result(found)

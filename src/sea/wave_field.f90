@@ -185,43 +185,39 @@ contains
   end function stokes_correction
 
   !> Elevation, water velocity and acceleration (inertial, z down) and dynamic pressure at
-  !> the point p = (x, y, z).
+  !> the point p = (x, y, z). The phases are evaluated once: the elevation (needed first for
+  !> the stretched depth) and the kinematics share them.
   pure subroutine wave_kinematics(field, t, p, eta, velocity, acceleration, pressure)
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, p(3)
     real(wp), intent(out) :: eta, velocity(3), acceleration(3), pressure
-    real(wp) :: th(chunk), s(chunk), c(chunk), e(chunk), aw(chunk), r, d
-    integer :: i0, m
+    real(wp) :: s(field%n), c(field%n), e(field%n), r, d
     velocity = 0.0_wp
     acceleration = 0.0_wp
     pressure = 0.0_wp
-    eta = wave_elevation(field, t, p(1), p(2))
-    d = p(3) + eta
-    if (field%kind == wave_none .or. d < 0.0_wp) return
+    eta = 0.0_wp
+    if (field%kind == wave_none) return
     r = wave_ramp(field, t)
-    do i0 = 1, field%n, chunk
-      m = min(chunk, field%n - i0 + 1)
-      associate (w => field%omega(i0:i0 + m - 1), a => field%amplitude(i0:i0 + m - 1), &
-                 kx => field%kx(i0:i0 + m - 1), ky => field%ky(i0:i0 + m - 1), &
-                 k => field%k(i0:i0 + m - 1), cd => field%cos_dir(i0:i0 + m - 1), &
-                 sd => field%sin_dir(i0:i0 + m - 1))
-        th(1:m) = w*t + field%phase(i0:i0 + m - 1) - kx*p(1) - ky*p(2)
-        call fast_sincos(th(1:m), s(1:m), c(1:m))
-        e(1:m) = a*exp(-k*d)
-        aw(1:m) = e(1:m)*w
-        ! horizontal components along the propagation direction
-        velocity(1) = velocity(1) + sum(aw(1:m)*c(1:m)*cd)
-        velocity(2) = velocity(2) + sum(aw(1:m)*c(1:m)*sd)
-        velocity(3) = velocity(3) + sum(aw(1:m)*s(1:m))
-        acceleration(1) = acceleration(1) - sum(aw(1:m)*w*s(1:m)*cd)
-        acceleration(2) = acceleration(2) - sum(aw(1:m)*w*s(1:m)*sd)
-        acceleration(3) = acceleration(3) + sum(aw(1:m)*w*c(1:m))
-        pressure = pressure + sum(e(1:m)*c(1:m))
-      end associate
-    end do
-    velocity = r*velocity
-    acceleration = r*acceleration
-    pressure = r*rho_water*gravity*pressure
+    call fast_sincos(field%omega*t + field%phase - field%kx*p(1) - field%ky*p(2), s, c)
+    eta = sum(field%amplitude*c)
+    if (field%kind == wave_stokes2) then
+      eta = r*eta + stokes_correction(field, eta, r)
+    else
+      eta = r*eta
+    end if
+    d = p(3) + eta
+    if (d < 0.0_wp) return
+    ! a exp(-k d) w: the orbital speed of each component at the stretched depth
+    e = field%amplitude*exp(-field%k*d)
+    pressure = r*rho_water*gravity*sum(e*c)
+    e = e*field%omega
+    velocity(1) = r*sum(e*c*field%cos_dir)
+    velocity(2) = r*sum(e*c*field%sin_dir)
+    velocity(3) = r*sum(e*s)
+    e = e*field%omega
+    acceleration(1) = -r*sum(e*s*field%cos_dir)
+    acceleration(2) = -r*sum(e*s*field%sin_dir)
+    acceleration(3) = r*sum(e*c)
   end subroutine wave_kinematics
 
   !> Spatial phasors of fixed points: cb = cos(k . x), sb = sin(k . x), shape (n, np).
