@@ -5,6 +5,9 @@ module test_ship
   use davit_ship_froude_krylov, only: box_type, fk_box_load, fk_transfer
   use davit_ship_wind_load, only: ship_wind_type, ship_wind_load
   use davit_kinds, only: rho_air
+  use davit_ship_section_added_mass, only: section_added_mass, rectangle_contour, &
+                                           ellipse_contour
+  use davit_error, only: error_type
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -17,7 +20,8 @@ contains
     suite%name = "ship"
     suite%cases = [new_case("fk_closed_form_vs_quadrature", fk_quadrature), &
                    new_case("fk_long_wave_limits_A3", fk_long_wave), &
-                   new_case("beam_wind_pushes_and_heels_to_port", wind_signs)]
+                   new_case("beam_wind_pushes_and_heels_to_port", wind_signs), &
+                   new_case("section_added_mass_exact_shapes", section_exact)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -194,5 +198,40 @@ contains
     call check(state, load(2), 0.85_wp*q*w%area_lateral, "wind from port pushes to starboard", &
                rel_tol=1e-12_wp)
   end subroutine wind_signs
+
+  !> Infinite-frequency added masses of half-ellipses, whose doubled body is a full
+  !> ellipse in unbounded fluid: heave rho pi b^2/2 (b the half-beam), roll about the
+  !> waterline centre (pi/16) rho (b^2 - t^2)^2; a semicircle does not roll any water.
+  subroutine section_exact(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: shapes(2, 3) = reshape([1.0_wp, 1.0_wp, 10.4_wp, 4.4_wp, &
+                                                   2.0_wp, 5.0_wp], [2, 3])
+    real(wp), allocatable :: y(:), z(:)
+    real(wp) :: a(4), b, t
+    type(error_type), allocatable :: error
+    integer :: k
+    do k = 1, size(shapes, 2)
+      b = shapes(1, k); t = shapes(2, k)
+      call ellipse_contour(b, t, 400, y, z)
+      call section_added_mass(y, z, a, error)
+      call check_true_err(error)
+      call check(state, a(2), rho_water*pi*b**2/2, "half-ellipse heave", rel_tol=5e-3_wp)
+      call check(state, a(3), pi/16*rho_water*(b**2 - t**2)**2, "half-ellipse roll", &
+                 rel_tol=1e-2_wp, abs_tol=1e-3_wp*rho_water*b**4)
+      if (k == 2) call note(state, "B 20.8, T 4.4 half-ellipse heave / exact", &
+                            a(2)/(rho_water*pi*b**2/2))
+    end do
+    call rectangle_contour(20.8_wp, 4.4_wp, 40, 120, y, z)
+    call section_added_mass(y, z, a, error)
+    call note(state, "rectangle 20.8 x 4.4: a22 [t/m]", a(1)/1e3_wp)
+    call note(state, "rectangle 20.8 x 4.4: a33 [t/m]", a(2)/1e3_wp)
+    call note(state, "rectangle 20.8 x 4.4: a44 [t m^2/m]", a(3)/1e3_wp)
+    call note(state, "rectangle a33 / (rho pi B^2/8)", a(2)/(rho_water*pi*20.8_wp**2/8))
+  contains
+    subroutine check_true_err(err)
+      type(error_type), allocatable, intent(in) :: err
+      if (allocated(err)) call check(state, 1.0_wp, 0.0_wp, err%message)
+    end subroutine check_true_err
+  end subroutine section_exact
 
 end module test_ship
