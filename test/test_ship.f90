@@ -8,6 +8,8 @@ module test_ship
   use davit_ship_section_added_mass, only: section_added_mass, rectangle_contour, &
                                            ellipse_contour
   use davit_error, only: error_type
+  use davit_io_config, only: config_type, parse_config
+  use davit_ship_hull, only: hull_type, new_hull, hull_natural_periods
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -21,7 +23,8 @@ contains
     suite%cases = [new_case("fk_closed_form_vs_quadrature", fk_quadrature), &
                    new_case("fk_long_wave_limits_A3", fk_long_wave), &
                    new_case("beam_wind_pushes_and_heels_to_port", wind_signs), &
-                   new_case("section_added_mass_exact_shapes", section_exact)]
+                   new_case("section_added_mass_exact_shapes", section_exact), &
+                   new_case("hull_derived_quantities_G9_G11", hull_derived)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -233,5 +236,31 @@ contains
       if (allocated(err)) call check(state, 1.0_wp, 0.0_wp, err%message)
     end subroutine check_true_err
   end subroutine section_exact
+
+  !> Table 1 defaults give the review's derived numbers (G9, G11, §1.8).
+  subroutine hull_derived(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(hull_type) :: hull
+    type(error_type), allocatable :: error
+    real(wp) :: t(3)
+    call parse_config("t.nml", "", cfg, error)
+    call new_hull(hull, cfg%ship, error)
+    call check(state, merge(1.0_wp, 0.0_wp, allocated(error)), 0.0_wp, "hull built")
+    call check(state, hull%box%length, 107.65_wp, "box length sqrt(Cb) Lwl", abs_tol=0.01_wp)
+    call check(state, hull%c33, 2.25e7_wp, "C33", rel_tol=5e-3_wp)
+    call check(state, hull%c44, 4.13e8_wp, "C44", rel_tol=5e-3_wp)
+    call check(state, hull%c55, 2.18e10_wp, "C55", rel_tol=5e-3_wp)
+    call check(state, hull%inertia(1), 4.72e8_wp, "I_xx", rel_tol=5e-3_wp)
+    call check(state, hull%inertia(2), 7.49e9_wp, "I_yy", rel_tol=5e-3_wp)
+    t = hull_natural_periods(hull)
+    call note(state, "A33/Delta", hull%added_mass(3)/hull%mass)
+    call note(state, "A22/Delta", hull%added_mass(2)/hull%mass)
+    call note(state, "A44/I_xx", hull%added_inertia(1)/hull%inertia(1))
+    call note(state, "A55/I_yy", hull%added_inertia(2)/hull%inertia(2))
+    call note(state, "heave period [s]", t(1))
+    call note(state, "roll period [s]", t(2))
+    call note(state, "pitch period [s]", t(3))
+  end subroutine hull_derived
 
 end module test_ship
