@@ -137,9 +137,10 @@ contains
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
     call r%choice(g, "scene", s%scene, "hanging_boat", &
-                  [character(len=16) :: "hanging_boat", "sea"], &
-                  "What to simulate: 'hanging_boat' (boat on two slings from fixed points) "// &
-                  "or 'sea' (the wave field alone, recorded at &sea probes).")
+                  [character(len=16) :: "hanging_boat", "sea", "ship"], &
+                  "What to simulate: 'hanging_boat' (boat on two slings from fixed points), "// &
+                  "'sea' (the wave field alone, recorded at &sea probes) or 'ship' (the "// &
+                  "ship alone in the sea and wind).")
     call r%choice(g, "integrator", s%integrator, "rk4", [character(len=8) :: "rk4"], &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's).")
     call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &

@@ -11,6 +11,9 @@ module davit_solve_integrator
   type, abstract :: ode_problem
   contains
     procedure(rhs_interface), deferred :: rhs
+    !> Hook for the time loop after each accepted step (e.g. refreshing slowly varying
+    !> coefficients outside the RHS); does nothing by default.
+    procedure :: after_step => no_after_step
   end type ode_problem
 
   abstract interface
@@ -57,5 +60,12 @@ module davit_solve_integrator
       character(len=:), allocatable :: name
     end function name_interface
   end interface
+
+contains
+
+  subroutine no_after_step(self, t, y)
+    class(ode_problem), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+  end subroutine no_after_step
 
 end module davit_solve_integrator

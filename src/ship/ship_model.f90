@@ -1,0 +1,184 @@
+!> The ship as a 6-DOF rigid body (paper §II.C, eqs. 35-41) with the review's corrections:
+!> direction-dependent added mass handled by computing omega x (M v) and omega x (I omega)
+!> explicitly (review §1.2, 1.1 eq. 89), Froude-Krylov box loads in closed form summed over
+!> all wave components (review §1.8), hydrostatic restoring and radiation damping
+!> (G10-G12), zero-speed cross-flow drag for sway and yaw, surge resistance, and wind
+!> (eq. 46, G14). One-way coupled: the davit loads do not act on the ship (review §1.11).
+!>
+!> State y(1:12): Euler angles (roll, pitch, yaw; eq. 2), CG position in the inertial
+!> frame (the MMG convention; qdot = C v), angular velocity and velocity in ship axes.
+module davit_ship_ship_model
+  use davit_kinds, only: wp, pi, gravity, rho_water
+  use davit_core_rotation, only: rotation_matrix, euler_rates, cross
+  use davit_core_fastmath, only: fast_sincos
+  use davit_solve_integrator, only: ode_problem
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp
+  use davit_sea_wind, only: wind_type, wind_velocity
+  use davit_ship_hull, only: hull_type
+  use davit_ship_froude_krylov, only: fk_box_load, fk_transfer
+  use davit_ship_wind_load, only: ship_wind_load
+  implicit none
+  private
+  public :: ship_system_type, new_ship_system, ship_nstate, ship_loads
+
+  integer, parameter :: ship_nstate = 12
+  !> Surge resistance coefficient on the wetted surface (review G12; Mumford's surface).
+  real(wp), parameter :: surge_ct = 0.003_wp
+  !> Gauss points along the hull for the cross-flow drag integral.
+  integer, parameter :: ngauss = 8
+  real(wp), parameter :: gx(ngauss) = [-0.9602898564975363_wp, -0.7966664774136267_wp, &
+    -0.5255324099163290_wp, -0.1834346424956498_wp, 0.1834346424956498_wp, &
+    0.5255324099163290_wp, 0.7966664774136267_wp, 0.9602898564975363_wp]
+  real(wp), parameter :: gw(ngauss) = [0.1012285362903763_wp, 0.2223810344533745_wp, &
+    0.3137066458778873_wp, 0.3626837833783620_wp, 0.3626837833783620_wp, &
+    0.3137066458778873_wp, 0.2223810344533745_wp, 0.1012285362903763_wp]
+
+  type, extends(ode_problem) :: ship_system_type
+    type(hull_type) :: hull
+    type(wave_field_type) :: sea
+    type(wind_type) :: wind
+    logical :: frozen = .false.
+    !> Equilibrium CG depth [m] and wetted surface [m^2].
+    real(wp) :: z_eq = 0.0_wp, wetted = 0.0_wp
+    !> Froude-Krylov loads about G of each component for heading psi_ref:
+    !> load = fk_sin(:, i) sin(Phi_i) + fk_cos(:, i) cos(Phi_i).
+    real(wp), allocatable :: fk_sin(:, :), fk_cos(:, :)
+    real(wp) :: psi_ref = 0.0_wp
+  contains
+    procedure :: rhs => ship_rhs
+    procedure :: refresh_heading
+    procedure :: after_step => ship_after_step
+  end type ship_system_type
+
+  !> Yaw drift [rad] after which the Froude-Krylov coefficients are recomputed.
+  real(wp), parameter :: heading_tolerance = 0.5_wp*pi/180.0_wp
+
+contains
+
+  subroutine new_ship_system(self, hull, sea, wind, frozen, z_eq, heading)
+    type(ship_system_type), intent(out) :: self
+    type(hull_type), intent(in) :: hull
+    type(wave_field_type), intent(in) :: sea
+    type(wind_type), intent(in) :: wind
+    logical, intent(in) :: frozen
+    real(wp), intent(in) :: z_eq, heading
+    self%hull = hull
+    self%sea = sea
+    self%wind = wind
+    self%frozen = frozen
+    self%z_eq = z_eq
+    ! Mumford's wetted surface 1.7 L d + V/d
+    self%wetted = 1.7_wp*hull%lpp*hull%draught + hull%mass/rho_water/hull%draught
+    allocate (self%fk_sin(6, sea%n), self%fk_cos(6, sea%n))
+    call self%refresh_heading(heading)
+  end subroutine new_ship_system
+
+  !> Recompute the heading-dependent Froude-Krylov coefficients (chi = gamma - psi). The
+  !> time loop calls this when the yaw has drifted, so the RHS stays free of it.
+  pure subroutine refresh_heading(self, psi)
+    class(ship_system_type), intent(inout) :: self
+    real(wp), intent(in) :: psi
+    real(wp) :: raw(6)
+    integer :: i
+    associate (s => self%sea, h => self%hull)
+      do i = 1, s%n
+        ! X, Y, K, M go with sin(Phi), Z and N with cos(Phi); split before the transfer to
+        ! G, which mixes them (M_G gets x_G Z, N_G gets -x_G Y)
+        raw = fk_box_load(h%box, s%amplitude(i), s%k(i), s%direction(i) - psi, 0.5_wp*pi)
+        raw([3, 6]) = 0.0_wp
+        self%fk_sin(:, i) = fk_transfer(raw, h%cg_x, h%cg_z)
+        raw = fk_box_load(h%box, s%amplitude(i), s%k(i), s%direction(i) - psi, 0.0_wp)
+        raw([1, 2, 4, 5]) = 0.0_wp
+        self%fk_cos(:, i) = fk_transfer(raw, h%cg_x, h%cg_z)
+      end do
+    end associate
+    self%psi_ref = psi
+  end subroutine refresh_heading
+
+  subroutine ship_after_step(self, t, y)
+    class(ship_system_type), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    if (abs(y(3) - self%psi_ref) > heading_tolerance) call self%refresh_heading(y(3))
+  end subroutine ship_after_step
+
+  subroutine ship_rhs(self, t, y, dydt)
+    class(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: dydt(:)
+    real(wp) :: c(3, 3), load(6), mt(3), it(3)
+    if (self%frozen) then
+      dydt = 0.0_wp
+      return
+    end if
+    c = rotation_matrix(y(1:3))
+    load = ship_loads(self, t, y, c)
+    mt = self%hull%mass + self%hull%added_mass
+    it = self%hull%inertia + self%hull%added_inertia
+    dydt(1:3) = euler_rates(y(1:3), y(7:9))
+    dydt(4:6) = matmul(c, y(10:12))
+    dydt(7:9) = (load(4:6) - cross(y(7:9), it*y(7:9)))/it
+    dydt(10:12) = (load(1:3) - cross(y(7:9), mt*y(10:12)))/mt
+  end subroutine ship_rhs
+
+  !> All external loads (X, Y, Z, K, M, N) in ship axes about G.
+  function ship_loads(self, t, y, c) result(load)
+    class(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:), c(3, 3)
+    real(wp) :: load(6)
+    real(wp) :: fz, wz, p, vrel(3)
+    associate (h => self%hull, om => y(7:9), v => y(10:12))
+      ! hydrostatic restoring about the equilibrium (weight and buoyancy cancel there)
+      fz = -h%c33*(y(6) - self%z_eq)
+      ! radiation damping of heave acts on the vertical velocity in N
+      wz = dot_product(c(3, :), v)
+      fz = fz - h%b33*wz
+      load(1:3) = fz*c(3, :)
+      p = om(1)
+      load(4) = -h%c44*(y(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
+      load(5) = -h%c55*(y(2) - h%trim) - h%b55*om(2)
+      load(6) = 0.0_wp
+      load = load + crossflow(h, self%wetted, v, om(3))
+      if (self%sea%kind /= wave_none) load = load + wave_loads(self, t, y, c)
+      vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
+      load = load + ship_wind_load(h%wind, vrel)
+    end associate
+  end function ship_loads
+
+  !> Zero-speed cross-flow drag for sway and yaw, -1/2 rho d C_D |v + x r| (v + x r) along
+  !> the hull, and surge resistance -1/2 rho S C_T |u| u (review G12).
+  pure function crossflow(h, wetted, v, r) result(load)
+    type(hull_type), intent(in) :: h
+    real(wp), intent(in) :: wetted, v(3), r
+    real(wp) :: load(6), x, vl, half
+    integer :: k
+    load = 0.0_wp
+    half = 0.5_wp*h%lpp
+    do k = 1, ngauss
+      x = half*gx(k)
+      vl = v(2) + x*r
+      load(2) = load(2) - gw(k)*half*abs(vl)*vl
+      load(6) = load(6) - gw(k)*half*abs(vl)*vl*x
+    end do
+    load([2, 6]) = 0.5_wp*rho_water*h%draught*h%cd*load([2, 6])
+    load(1) = -0.5_wp*rho_water*wetted*surge_ct*abs(v(1))*v(1)
+  end function crossflow
+
+  !> Froude-Krylov loads of all components at the ship's position: the phase of each
+  !> component at O' (review §1.8, "position phase").
+  function wave_loads(self, t, y, c) result(load)
+    class(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:), c(3, 3)
+    real(wp) :: load(6), o(3), s(self%sea%n), cs(self%sea%n)
+    integer :: j
+    associate (sea => self%sea)
+      o = y(4:6) - matmul(c, [self%hull%cg_x, 0.0_wp, self%hull%cg_z])
+      call fast_sincos(sea%omega*t + sea%phase - sea%kx*o(1) - sea%ky*o(2), s, cs)
+      do j = 1, 6
+        load(j) = sum(self%fk_sin(j, :)*s) + sum(self%fk_cos(j, :)*cs)
+      end do
+      load = wave_ramp(sea, t)*load
+    end associate
+  end function wave_loads
+
+end module davit_ship_ship_model

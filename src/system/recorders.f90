@@ -1,0 +1,186 @@
+!> What each integrated scene records, and how it names its state components in
+!> diagnostics. The time loop in davit_system_driver only calls these methods.
+module davit_system_recorders
+  use davit_kinds, only: wp
+  use davit_core_rotation, only: rotation_matrix
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_system_model, only: system_type
+  implicit none
+  private
+  public :: recorder_type, boat_recorder, ship_recorder
+
+  type, abstract :: recorder_type
+    integer :: n = 0
+    real(wp), allocatable :: time(:)
+  contains
+    procedure(init_interface), deferred :: init
+    procedure(sample_interface), deferred :: sample
+    procedure(write_interface), deferred :: write
+    procedure(name_interface), deferred :: state_name
+    procedure :: speed_range => body_speed_range
+  end type recorder_type
+
+  abstract interface
+    subroutine init_interface(self, nmax)
+      import :: recorder_type
+      class(recorder_type), intent(inout) :: self
+      integer, intent(in) :: nmax
+    end subroutine init_interface
+    subroutine sample_interface(self, t, y)
+      import :: recorder_type, wp
+      class(recorder_type), intent(inout) :: self
+      real(wp), intent(in) :: t, y(:)
+    end subroutine sample_interface
+    subroutine write_interface(self, w)
+      import :: recorder_type, h5_writer_type
+      class(recorder_type), intent(in) :: self
+      type(h5_writer_type), intent(inout) :: w
+    end subroutine write_interface
+    pure function name_interface(self, k) result(name)
+      import :: recorder_type
+      class(recorder_type), intent(in) :: self
+      integer, intent(in) :: k
+      character(len=:), allocatable :: name
+    end function name_interface
+  end interface
+
+  character(len=*), parameter :: body_names(12) = [character(len=7) :: "roll", "pitch", &
+    "yaw", "q4", "q5", "q6", "omega1", "omega2", "omega3", "v1", "v2", "v3"]
+
+  !> The hanging boat: CG kinematics, sling tensions, energy.
+  type, extends(recorder_type) :: boat_recorder
+    type(system_type) :: sys
+    real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
+    real(wp), allocatable :: angular_velocity(:, :), acceleration(:, :), tension(:, :)
+    real(wp), allocatable :: energy(:)
+  contains
+    procedure :: init => boat_init
+    procedure :: sample => boat_sample
+    procedure :: write => boat_write
+    procedure :: state_name => boat_state_name
+  end type boat_recorder
+
+  !> The ship alone: CG position and velocity (inertial), attitude, body rates.
+  type, extends(recorder_type) :: ship_recorder
+    real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
+    real(wp), allocatable :: angular_velocity(:, :)
+  contains
+    procedure :: init => ship_init
+    procedure :: sample => ship_sample
+    procedure :: write => ship_write
+    procedure :: state_name => ship_state_name
+  end type ship_recorder
+
+contains
+
+  !> Indices of the speeds in y (a rigid body's u in y(7:12) by default).
+  pure function body_speed_range(self) result(r)
+    class(recorder_type), intent(in) :: self
+    integer :: r(2)
+    r = [7, 12]
+  end function body_speed_range
+
+  subroutine boat_init(self, nmax)
+    class(boat_recorder), intent(inout) :: self
+    integer, intent(in) :: nmax
+    allocate (self%time(nmax), self%position(3, nmax), self%euler(3, nmax), &
+              self%velocity(3, nmax), self%angular_velocity(3, nmax), &
+              self%acceleration(3, nmax), self%tension(2, nmax), self%energy(nmax))
+  end subroutine boat_init
+
+  subroutine boat_sample(self, t, y)
+    class(boat_recorder), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer :: k
+    if (self%n >= size(self%time)) return
+    self%n = self%n + 1
+    k = self%n
+    self%time(k) = t
+    call self%sys%observe(t, y, self%position(:, k), self%euler(:, k), self%velocity(:, k), &
+                          self%angular_velocity(:, k), self%acceleration(:, k))
+    self%tension(:, k) = self%sys%sling_tensions(y)
+    self%energy(k) = self%sys%energy(y)
+  end subroutine boat_sample
+
+  subroutine boat_write(self, w)
+    class(boat_recorder), intent(in) :: self
+    type(h5_writer_type), intent(inout) :: w
+    integer :: n
+    n = self%n
+    call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample")
+    call w%group("boat")
+    call w%write_2d("boat/position", self%position(:, 1:n), "m", &
+                    "Lifeboat CG position, inertial frame N (x, y horizontal, z down)")
+    call w%write_2d("boat/euler", self%euler(:, 1:n), "rad", &
+                    "Lifeboat roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+    call w%write_2d("boat/velocity", self%velocity(:, 1:n), "m/s", &
+                    "Lifeboat CG velocity, inertial frame N")
+    call w%write_2d("boat/angular_velocity", self%angular_velocity(:, 1:n), "rad/s", &
+                    "Lifeboat angular velocity, boat-frame components (u1, u2, u3)")
+    call w%write_2d("boat/acceleration", self%acceleration(:, 1:n), "m/s^2", &
+                    "Lifeboat CG acceleration, inertial frame N (gravity not subtracted)")
+    call w%group("slings")
+    call w%write_2d("slings/tension", self%tension(:, 1:n), "N", &
+                    "Sling tension (fore, aft), spring plus dashpot, tension-only")
+    call w%group("diagnostics")
+    call w%write_1d("diagnostics/energy", self%energy(1:n), "J", &
+                    "Total mechanical energy: kinetic + gravity (-m g z) + elastic")
+  end subroutine boat_write
+
+  pure function boat_state_name(self, k) result(name)
+    class(boat_recorder), intent(in) :: self
+    integer, intent(in) :: k
+    character(len=:), allocatable :: name
+    name = "boat "//trim(body_names(k))
+  end function boat_state_name
+
+  subroutine ship_init(self, nmax)
+    class(ship_recorder), intent(inout) :: self
+    integer, intent(in) :: nmax
+    allocate (self%time(nmax), self%position(3, nmax), self%euler(3, nmax), &
+              self%velocity(3, nmax), self%angular_velocity(3, nmax))
+  end subroutine ship_init
+
+  subroutine ship_sample(self, t, y)
+    class(ship_recorder), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer :: k
+    if (self%n >= size(self%time)) return
+    self%n = self%n + 1
+    k = self%n
+    self%time(k) = t
+    self%euler(:, k) = y(1:3)
+    self%position(:, k) = y(4:6)
+    self%angular_velocity(:, k) = y(7:9)
+    self%velocity(:, k) = matmul(rotation_matrix(y(1:3)), y(10:12))
+  end subroutine ship_sample
+
+  subroutine ship_write(self, w)
+    class(ship_recorder), intent(in) :: self
+    type(h5_writer_type), intent(inout) :: w
+    integer :: n
+    n = self%n
+    call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample")
+    call w%group("ship")
+    call w%write_2d("ship/position", self%position(:, 1:n), "m", &
+                    "Ship CG position, inertial frame N (z down)")
+    call w%write_2d("ship/euler", self%euler(:, 1:n), "rad", &
+                    "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+    call w%write_2d("ship/velocity", self%velocity(:, 1:n), "m/s", &
+                    "Ship CG velocity, inertial frame N")
+    call w%write_2d("ship/angular_velocity", self%angular_velocity(:, 1:n), "rad/s", &
+                    "Ship angular velocity, ship-frame components")
+  end subroutine ship_write
+
+  pure function ship_state_name(self, k) result(name)
+    class(ship_recorder), intent(in) :: self
+    integer, intent(in) :: k
+    character(len=:), allocatable :: name
+    if (k >= 4 .and. k <= 6) then
+      name = "ship "//trim(merge("x", merge("y", "z", k == 5), k == 4))
+    else
+      name = "ship "//trim(body_names(k))
+    end if
+  end function ship_state_name
+
+end module davit_system_recorders
