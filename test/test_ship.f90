@@ -10,10 +10,15 @@ module test_ship
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
   use davit_ship_hull, only: hull_type, new_hull, hull_natural_periods
+  use davit_ship_ship_model, only: ship_system_type
+  use davit_system_ship_scene, only: build_ship_scene
+  use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
   public :: collect_ship
+
+  real(wp), parameter :: zero12(12) = 0.0_wp
 
 contains
 
@@ -24,7 +29,10 @@ contains
                    new_case("fk_long_wave_limits_A3", fk_long_wave), &
                    new_case("beam_wind_pushes_and_heels_to_port", wind_signs), &
                    new_case("section_added_mass_exact_shapes", section_exact), &
-                   new_case("hull_derived_quantities_G9_G11", hull_derived)]
+                   new_case("hull_derived_quantities_G9_G11", hull_derived), &
+                   new_case("calm_water_rest_600s", calm_rest), &
+                   new_case("free_decay_periods", free_decay), &
+                   new_case("beam_wind_motion", beam_wind_motion)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -262,5 +270,122 @@ contains
     call note(state, "roll period [s]", t(2))
     call note(state, "pitch period [s]", t(3))
   end subroutine hull_derived
+
+  !> Build the ship scene of a deck; integrate n RK4 steps of dt, sampling component k.
+  subroutine ship_run(deck, y0_offset, dt, n, k, s, final)
+    character(len=*), intent(in) :: deck
+    real(wp), intent(in) :: y0_offset(12), dt
+    integer, intent(in) :: n, k
+    real(wp), intent(out) :: s(0:n), final(12)
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(ship_system_type) :: ship
+    type(rk4_type) :: rk
+    real(wp), allocatable :: y(:)
+    real(wp) :: t
+    integer :: i
+    call parse_config("ship.nml", deck, cfg, error)
+    if (allocated(error)) error stop "ship test deck"
+    call build_ship_scene(cfg, ship, y, error)
+    y = y + y0_offset
+    call rk%init(size(y))
+    t = 0.0_wp
+    s(0) = y(k)
+    do i = 1, n
+      call rk%step(ship, t, y, dt)
+      call ship%after_step(t, y)
+      s(i) = y(k)
+    end do
+    final = y
+  end subroutine ship_run
+
+  !> Mean period of upward mean crossings.
+  real(wp) function crossing_period(s, dt) result(period)
+    real(wp), intent(in) :: s(0:), dt
+    real(wp) :: mean, first, last
+    integer :: i, nc
+    mean = sum(s)/size(s)
+    nc = 0; first = 0; last = 0
+    do i = 1, ubound(s, 1)
+      if (s(i - 1) < mean .and. s(i) >= mean) then
+        last = (i - 1 + (mean - s(i - 1))/(s(i) - s(i - 1)))*dt
+        if (nc == 0) first = last
+        nc = nc + 1
+      end if
+    end do
+    period = -1
+    if (nc >= 2) period = (last - first)/(nc - 1)
+  end function crossing_period
+
+  !> Calm water, no wind, at rest in equilibrium (with a list): nothing moves in 600 s.
+  subroutine calm_rest(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: s(0:30000), final(12)
+    call ship_run("&ship list_deg = 5 / &wind speed = 0 /", zero12, &
+                  0.02_wp, 30000, 1, s, final)
+    call check(state, maxval(abs(final(4:12))), 0.0_wp, "no drift of position and speeds", &
+               abs_tol=1e-12_wp)
+    call check(state, final(1), 5*pi/180, "the list is held", abs_tol=1e-12_wp)
+  end subroutine calm_rest
+
+  !> Undamped free decay of heave, roll and pitch: periods of the model's own mass, added
+  !> mass and restoring (2 %).
+  subroutine free_decay(state)
+    type(case_state), intent(inout) :: state
+    character(len=*), parameter :: deck = "&ship zeta_heave = 0, zeta_roll = 0, "// &
+                                          "zeta_pitch = 0, crossflow_cd = 0 / &wind speed = 0 /"
+    real(wp), parameter :: dt = 0.01_wp
+    integer, parameter :: n = 6000
+    real(wp) :: s(0:n), final(12), offset(12), expected(3)
+    type(config_type) :: cfg
+    type(hull_type) :: hull
+    type(error_type), allocatable :: error
+    integer :: mode
+    integer, parameter :: index_of(3) = [6, 1, 2]
+    character(len=5), parameter :: names(3) = ["heave", "roll ", "pitch"]
+    call parse_config("t.nml", deck, cfg, error)
+    call new_hull(hull, cfg%ship, error)
+    expected = hull_natural_periods(hull)
+    do mode = 1, 3
+      offset = 0.0_wp
+      offset(index_of(mode)) = merge(0.2_wp, 0.02_wp, mode == 1)
+      call ship_run(deck, offset, dt, n, index_of(mode), s, final)
+      call note(state, trim(names(mode))//" period simulated [s]", crossing_period(s, dt))
+      call note(state, trim(names(mode))//" period analytic [s]", expected(mode))
+      call check(state, crossing_period(s, dt), expected(mode), trim(names(mode))//" period", &
+                 rel_tol=0.02_wp)
+    end do
+  end subroutine free_decay
+
+  !> A beam wind from starboard (blowing towards -y) drives the ship to port and heels it to
+  !> port; with roll damped, the heel settles at K/C44.
+  subroutine beam_wind_motion(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: s(0:20000), final(12), heel
+    type(ship_wind_type) :: w
+    type(config_type) :: cfg
+    type(hull_type) :: hull
+    type(error_type), allocatable :: error
+    real(wp) :: load(6)
+    character(len=*), parameter :: deck = "&ship zeta_roll = 0.3 / "// &
+                                          "&wind speed = 20, direction_deg = -90 /"
+    call ship_run(deck, zero12, 0.02_wp, 20000, 1, s, final)
+    call parse_config("t.nml", deck, cfg, error)
+    call new_hull(hull, cfg%ship, error)
+    ! at steady drift the relative wind is smaller; use the recorded sway speed
+    load = ship_wind_load(hull%wind, [0.0_wp, -20.0_wp - final(11), 0.0_wp])
+    heel = load(4)/hull%c44
+    call check_true_local(final(5) < -1.0_wp, "drifted to port (y < 0)")
+    call check_true_local(final(1) < 0.0_wp, "heeled to port (roll < 0)")
+    call note(state, "steady heel [deg]", final(1)*180/pi)
+    call check(state, final(1), heel, "heel = K/C44", rel_tol=0.02_wp)
+    w = hull%wind
+  contains
+    subroutine check_true_local(c, what)
+      logical, intent(in) :: c
+      character(len=*), intent(in) :: what
+      call check(state, merge(1.0_wp, 0.0_wp, c), 1.0_wp, what)
+    end subroutine check_true_local
+  end subroutine beam_wind_motion
 
 end module test_ship
