@@ -10,6 +10,7 @@ program davit
   use davit_system_driver, only: run_simulation
   use davit_system_run_summary, only: run_summary
   use davit_system_bench, only: bench_result, run_bench
+  use davit_system_rao, only: run_rao
   implicit none
 
   interface
@@ -33,7 +34,9 @@ program davit
   case ("-V", "--version", "version")
     write (output_unit, "(a)") "davit "//davit_version
   case ("run")
-    call cmd_run()
+    call cmd_run(.false.)
+  case ("rao")
+    call cmd_run(.true.)
   case ("keys")
     call cmd_keys()
   case ("bench")
@@ -44,7 +47,9 @@ program davit
 
 contains
 
-  subroutine cmd_run()
+  !> `run` and `rao` take the same arguments: one deck and an optional output file.
+  subroutine cmd_run(rao)
+    logical, intent(in) :: rao
     character(len=:), allocatable :: deck, out, arg
     type(config_type) :: cfg
     type(error_type), allocatable :: error
@@ -61,18 +66,24 @@ contains
         out = argument(i + 1)
         i = i + 2
       case default
-        if (arg(1:1) == "-") call usage_error("unknown option '"//arg//"' for 'run'")
-        if (len(deck) > 0) call usage_error("'run' takes one deck, got '"//deck// &
-                                            "' and '"//arg//"'")
+        if (arg(1:1) == "-") call usage_error("unknown option '"//arg//"' for '"// &
+                                              argument(1)//"'")
+        if (len(deck) > 0) call usage_error("'"//argument(1)//"' takes one deck, got '"// &
+                                            deck//"' and '"//arg//"'")
         deck = arg
         i = i + 1
       end select
     end do
-    if (len(deck) == 0) call usage_error("'run' needs a deck file: davit run DECK.nml")
+    if (len(deck) == 0) call usage_error("'"//argument(1)//"' needs a deck file: davit "// &
+                                         argument(1)//" DECK.nml")
     call read_config(deck, cfg, error)
     if (allocated(error)) call fail(error)
     if (len(out) == 0) out = default_output(deck)
-    call run_simulation(cfg, out, summary, error)
+    if (rao) then
+      call run_rao(cfg, out, summary, error)
+    else
+      call run_simulation(cfg, out, summary, error)
+    end if
     if (allocated(error)) call fail(error)
     write (output_unit, "(a,i0,a,i0,a,f0.3,a)") "davit: wrote '"//out//"' (", summary%steps, &
       " steps, ", summary%rhs_evaluations, " RHS evaluations, ", summary%wall_time, " s)"
@@ -133,6 +144,7 @@ contains
       "", &
       "usage:", &
       "  davit run DECK.nml [-o OUT.h5]   run a scenario; default output out/DECK.h5", &
+      "  davit rao DECK.nml [-o OUT.h5]   ship response amplitude operators (&rao, &ship)", &
       "  davit keys                       print every deck key (Markdown tables)", &
       "  davit bench [--quick]            time the hot paths (single thread)", &
       "  davit --help | -h                this help", &
@@ -153,7 +165,7 @@ contains
   subroutine usage_error(message)
     character(len=*), intent(in) :: message
     write (error_unit, "(a)") "davit: error: "//message, &
-      "usage: davit run DECK.nml [-o OUT.h5] | davit keys | davit bench [--quick] | "// &
+      "usage: davit run|rao DECK.nml [-o OUT.h5] | davit keys | davit bench [--quick] | "// &
       "davit --help | davit --version"
     stop 2, quiet=.true.
   end subroutine usage_error

@@ -1,7 +1,8 @@
 """Command line: python -m postproc FIGURE RUN.h5 [-o OUTDIR]
 
 FIGURE is one of: trajectory, tension, acceleration (boat runs), surface (the paper's
-Fig. 6), spectrum (sea runs), or run (every figure the file supports).
+Fig. 6), spectrum (sea runs), rao (davit rao files), or run (every figure the file
+supports).
 """
 import argparse
 import os

@@ -153,8 +153,30 @@ def spectrum(run, outdir, stem):
     return _save(fig, outdir, f"{stem}_spectrum.png")
 
 
+def rao(run, outdir, stem):
+    """Heave, roll and pitch RAOs against frequency, one line per wave heading."""
+    run.require(layout.RAO, "RAO")
+    w = run.get(layout.RAO_OMEGA)
+    headings = np.degrees(run.get(layout.RAO_HEADING))
+    amp = run.get(layout.RAO_AMPLITUDE)  # h5py: (heading, omega, dof)
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.5))
+    for ax, dof, unit in zip(axes, (2, 3, 4), ("m/m", "deg/m", "deg/m")):
+        for h, heading in enumerate(headings):
+            values = amp[h, :, dof] * (1 if dof == 2 else 180 / np.pi)
+            ax.plot(w, values, marker=".", lw=1, label=f"{heading:.0f} deg")
+        ax.set(xlabel="omega [rad/s]", ylabel=f"{layout.RAO_DOFS[dof]} RAO [{unit}]",
+               title=f"{layout.RAO_DOFS[dof]}")
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(title="wave heading")
+    fig.suptitle("Ship response amplitude operators (0 = following, 90 = from port, "
+                 "180 = head sea)")
+    fig.tight_layout()
+    return _save(fig, outdir, f"{stem}_rao.png")
+
+
 RUN_FIGURES = {"trajectory": trajectory, "tension": sling_tension,
-               "acceleration": acceleration, "surface": surface, "spectrum": spectrum}
+               "acceleration": acceleration, "surface": surface, "spectrum": spectrum,
+               "rao": rao}
 
 
 def figures_for(run):
@@ -166,4 +188,6 @@ def figures_for(run):
         names.append("tension")
     if run.has(*layout.SEA):
         names += ["surface", "spectrum"]
+    if run.has(*layout.RAO):
+        names.append("rao")
     return names

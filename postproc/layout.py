@@ -27,6 +27,15 @@ SEA_DIRECTION = "sea/components/direction"
 SEA_AMPLITUDE = "sea/components/amplitude"
 SEA_PHASE = "sea/components/phase"
 
+RAO_OMEGA = "rao/omega"
+RAO_HEADING = "rao/heading"
+RAO_AMPLITUDE = "rao/amplitude"
+RAO_PHASE = "rao/phase"
+RAO = (RAO_OMEGA, RAO_HEADING, RAO_AMPLITUDE, RAO_PHASE)
+RAO_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+SHIP_POSITION = "ship/position"
+SHIP_EULER = "ship/euler"
+
 BOAT = (BOAT_POSITION, BOAT_EULER, BOAT_VELOCITY, BOAT_ANGULAR_VELOCITY, BOAT_ACCELERATION)
 SEA = (SEA_ELEVATION, SEA_PROBES, SEA_OMEGA, SEA_K, SEA_DIRECTION, SEA_AMPLITUDE, SEA_PHASE)
 ROOT_ATTRIBUTES = ("davit_version", "input_namelist", "seed", "steps", "rhs_evaluations",
@@ -82,7 +91,7 @@ def load(path):
             else:
                 group_attrs[name] = {k: _text(v) for k, v in obj.attrs.items()}
         f.visititems(visit)
-    if TIME not in datasets or "davit_version" not in attrs:
+    if "davit_version" not in attrs or (TIME not in datasets and RAO_OMEGA not in datasets):
         raise ValueError(f"{path}: not a davit output file")
     return Run(path=path, attrs=attrs, datasets=datasets, group_attrs=group_attrs)
 

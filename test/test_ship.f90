@@ -13,6 +13,7 @@ module test_ship
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
+  use davit_system_rao, only: rao_case
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -32,7 +33,8 @@ contains
                    new_case("hull_derived_quantities_G9_G11", hull_derived), &
                    new_case("calm_water_rest_600s", calm_rest), &
                    new_case("free_decay_periods", free_decay), &
-                   new_case("beam_wind_motion", beam_wind_motion)]
+                   new_case("beam_wind_motion", beam_wind_motion), &
+                   new_case("rao_long_wave_heave_and_roll_peak", rao_checks)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -387,5 +389,33 @@ contains
       call check(state, merge(1.0_wp, 0.0_wp, c), 1.0_wp, what)
     end subroutine check_true_local
   end subroutine beam_wind_motion
+
+  !> Head seas, omega -> 0: the ship follows the surface, heave RAO -> 1 (the box's long-wave
+  !> heave force -rho g zeta l B equals C33 zeta; residual 1/(1 - (w/w3)^2) = 1.5 % at
+  !> 0.1 rad/s). Beam seas: roll RAO largest at the frequency closest to the roll
+  !> natural frequency 2 pi/T44 (ten frequencies 0.55-1.0 rad/s).
+  subroutine rao_checks(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(hull_type) :: hull
+    type(error_type), allocatable :: error
+    real(wp) :: amp(6), phase(6), roll(10), w(10), wn(3)
+    integer :: i
+    call parse_config("t.nml", "&rao settle_time = 150, measure_periods = 4 /", cfg, error)
+    call rao_case(cfg, 0.1_wp, pi, amp, phase, error)
+    call note(state, "head-sea heave RAO at 0.1 rad/s", amp(3))
+    call check(state, amp(3), 1.0_wp, "heave RAO -> 1", rel_tol=0.03_wp)
+    call new_hull(hull, cfg%ship, error)
+    wn = 2*pi/hull_natural_periods(hull)
+    do i = 1, 10
+      w(i) = 0.55_wp + 0.05_wp*(i - 1)
+      call rao_case(cfg, w(i), 0.5_wp*pi, amp, phase, error)
+      roll(i) = amp(4)
+    end do
+    call note(state, "roll natural frequency [rad/s]", wn(2))
+    call note(state, "frequency of the largest roll RAO [rad/s]", w(maxloc(roll, 1)))
+    call check(state, w(maxloc(roll, 1)), wn(2), "roll RAO peak at the roll frequency", &
+               abs_tol=0.025_wp + 1e-9_wp)
+  end subroutine rao_checks
 
 end module test_ship

@@ -9,7 +9,7 @@ module davit_io_config
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
-  public :: wind_config, ship_config
+  public :: wind_config, ship_config, rao_config
   public :: read_config, parse_config, document_keys
 
   type :: simulation_config
@@ -35,7 +35,15 @@ module davit_io_config
     real(wp) :: area_front, area_lateral, wind_height, list, trim
     real(wp) :: position(3), heading
     logical :: frozen
+    character(len=:), allocatable :: wave_phase
   end type ship_config
+
+  !> Response amplitude operators of the ship (`davit rao`).
+  type :: rao_config
+    real(wp), allocatable :: omegas(:), headings(:)
+    real(wp) :: amplitude, settle_time, dt
+    integer :: measure_periods
+  end type rao_config
 
   !> Steady wind for the force models (eq. 15, 46); direction it blows towards [rad].
   type :: wind_config
@@ -64,6 +72,7 @@ module davit_io_config
     type(sea_config) :: sea
     type(wind_config) :: wind
     type(ship_config) :: ship
+    type(rao_config) :: rao
   end type config_type
 
 contains
@@ -126,7 +135,31 @@ contains
     call read_sea(r, cfg%sea)
     call read_wind(r, cfg%wind, cfg%sea)
     call read_ship(r, cfg%ship)
+    call read_rao(r, cfg%rao)
   end subroutine read_all
+
+  subroutine read_rao(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rao_config), intent(inout) :: s
+    character(len=*), parameter :: g = "rao"
+    integer :: i
+    call r%real_list(g, "omegas", s%omegas, [(0.3_wp + 0.05_wp*i, i = 0, 26)], 0.01_wp, &
+                     10.0_wp, "rad/s", "Wave frequencies of the RAO runs (default "// &
+                     "0.3 to 1.6 in steps of 0.05).", 1, 500)
+    call r%real_list(g, "headings_deg", s%headings, [0.0_wp, 45.0_wp, 90.0_wp, 135.0_wp, &
+                     180.0_wp], -360.0_wp, 360.0_wp, "deg", "Wave directions relative to "// &
+                     "the ship's heading (0 = following, 90 = from port, 180 = head).", 1, 72)
+    s%headings = s%headings*pi/180.0_wp
+    call r%real(g, "amplitude", s%amplitude, 0.5_wp, 0.0_wp, 5.0_wp, "m", &
+                "Regular-wave amplitude of each run (responses are divided by it).", &
+                lo_open=.true.)
+    call r%real(g, "settle_time", s%settle_time, 250.0_wp, 0.0_wp, 1.0e4_wp, "s", &
+                "Time after the 2-period ramp before the response is measured.")
+    call r%int(g, "measure_periods", s%measure_periods, 10, 1, 1000, "-", &
+               "Whole wave periods over which amplitude and phase are fitted.")
+    call r%real(g, "dt", s%dt, 0.05_wp, 1.0e-4_wp, 1.0_wp, "s", &
+                "RK4 step of the RAO runs (ship alone).")
+  end subroutine read_rao
 
   subroutine read_simulation(r, s)
     type(deck_reader_type), intent(inout) :: r
@@ -324,6 +357,10 @@ contains
     s%heading = s%heading*deg
     call r%logical(g, "frozen", s%frozen, .false., &
                    "Hold the ship fixed (III.A's fixed platform; or to isolate the boat).")
+    call r%choice(g, "wave_phase", s%wave_phase, "initial", &
+                  [character(len=8) :: "initial", "current"], &
+                  "Where the wave phase of the ship's wave loads is taken: at the initial "// &
+                  "position (linear seakeeping) or the current one (drift feeds back).")
   end subroutine read_ship
 
   !> Checks that involve more than one key.

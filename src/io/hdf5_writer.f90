@@ -23,6 +23,7 @@ module davit_io_hdf5_writer
     procedure :: group => writer_group
     procedure :: write_1d => writer_write_1d
     procedure :: write_2d => writer_write_2d
+    procedure :: write_3d => writer_write_3d
     procedure :: attr_str => writer_attr_str
     procedure :: attr_int => writer_attr_int
     procedure :: attr_real => writer_attr_real
@@ -106,6 +107,25 @@ contains
     call h5dclose_f(dset, hdferr)
     call h5sclose_f(space, hdferr)
   end subroutine writer_write_2d
+
+  subroutine writer_write_3d(self, name, data, units, description)
+    class(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: name, units, description
+    real(wp), intent(in) :: data(:, :, :)
+    integer(hsize_t) :: dims(3)
+    integer(hid_t) :: space, dset
+    integer :: hdferr
+    dims = shape(data, kind=hsize_t)
+    call h5screate_simple_f(3, dims, space, hdferr)
+    call h5dcreate_f(self%file, name, H5T_NATIVE_DOUBLE, space, dset, hdferr)
+    call check(self, hdferr, name)
+    if (hdferr /= 0) return
+    call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, data, dims, hdferr)
+    call check(self, hdferr, name)
+    call describe(self, dset, units, description)
+    call h5dclose_f(dset, hdferr)
+    call h5sclose_f(space, hdferr)
+  end subroutine writer_write_3d
 
   !> String attribute on the object `obj` ("/" for the root).
   subroutine writer_attr_str(self, obj, name, value)

@@ -24,7 +24,8 @@ contains
     if (allocated(error)) return
     call build_wave_field(cfg%sea, cfg%simulation%seed, 0, sea)
     call new_ship_system(ship, hull, sea, build_wind(cfg%wind), cfg%ship%frozen, &
-                         cfg%ship%position(3), cfg%ship%heading)
+                         cfg%ship%position, cfg%ship%heading, &
+                         cfg%ship%wave_phase == "initial")
     y = ship_initial_state(cfg)
   end subroutine build_ship_scene
 

@@ -1,0 +1,120 @@
+!> `davit rao`: the ship alone in regular linear waves, one run per (frequency, heading),
+!> run in parallel with OpenMP (one independent ship per thread). Each response is fitted
+!> over whole periods after the transient as x = m + R cos(w t + phi), so the amplitude
+!> R/zeta and the phase phi are relative to the wave elevation zeta cos(w t) at the ship's
+!> initial CG position. DOFs: surge, sway (inertial x, y), heave (up), roll, pitch, yaw.
+module davit_system_rao
+  use davit_kinds, only: wp, pi, i8
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_solve_rk4, only: rk4_type
+  use davit_ship_ship_model, only: ship_system_type
+  use davit_system_ship_scene, only: build_ship_scene
+  use davit_system_run_summary, only: run_summary, write_root_attributes
+  implicit none
+  private
+  public :: rao_case, run_rao
+
+contains
+
+  !> Response amplitude per unit wave amplitude and phase [rad] of the 6 DOFs at one
+  !> frequency and relative heading.
+  subroutine rao_case(base, omega, heading, amplitude, phase, error)
+    type(config_type), intent(in) :: base
+    real(wp), intent(in) :: omega, heading
+    real(wp), intent(out) :: amplitude(6), phase(6)
+    type(error_type), allocatable, intent(out) :: error
+    type(config_type) :: cfg
+    type(ship_system_type) :: ship
+    type(rk4_type) :: rk
+    real(wp), allocatable :: y(:)
+    real(wp) :: t, dt, period, t0, x(6), ca(6), sa(6), mean(6), zeta
+    integer(i8) :: i, n0, nmeas
+    cfg = base
+    period = 2.0_wp*pi/omega
+    zeta = cfg%rao%amplitude
+    cfg%sea%wave_type = "airy"
+    cfg%sea%height = 2.0_wp*zeta
+    cfg%sea%period = period
+    cfg%sea%direction = cfg%ship%heading + heading
+    ! phase such that eta = zeta cos(w t) at the initial CG position
+    cfg%sea%phase = omega**2/9.81_wp*(cfg%ship%position(1)*cos(cfg%sea%direction) + &
+                                      cfg%ship%position(2)*sin(cfg%sea%direction))
+    cfg%sea%ramp_time = 2.0_wp*period
+    cfg%wind%speed = 0.0_wp
+    call build_ship_scene(cfg, ship, y, error)
+    if (allocated(error)) return
+    ! an integer number of steps per period, so the fit spans whole periods exactly
+    dt = period/real(max(1, nint(period/cfg%rao%dt)), wp)
+    t0 = 2.0_wp*period + cfg%rao%settle_time
+    n0 = nint(t0/dt, i8)
+    nmeas = nint(cfg%rao%measure_periods*period/dt, i8)
+    call rk%init(size(y))
+    t = 0.0_wp
+    ca = 0; sa = 0; mean = 0
+    do i = 1, n0 + nmeas
+      call rk%step(ship, t, y, dt)
+      t = real(i, wp)*dt
+      call ship%after_step(t, y)
+      if (i > n0) then
+        x = [y(4), y(5), -y(6), y(1), y(2), y(3)]
+        ca = ca + x*cos(omega*t)
+        sa = sa + x*sin(omega*t)
+        mean = mean + x
+      end if
+    end do
+    ca = 2.0_wp*ca/nmeas
+    sa = 2.0_wp*sa/nmeas
+    amplitude = sqrt(ca**2 + sa**2)/zeta
+    phase = atan2(-sa, ca)
+  end subroutine rao_case
+
+  subroutine run_rao(cfg, out_path, summary, error)
+    type(config_type), intent(in) :: cfg
+    character(len=*), intent(in) :: out_path
+    type(run_summary), intent(out) :: summary
+    type(error_type), allocatable, intent(out) :: error
+    type(h5_writer_type) :: writer
+    type(error_type), allocatable :: none
+    real(wp), allocatable :: amp(:, :, :), pha(:, :, :)
+    integer :: nw, nh, c, iw, ih, failed
+    integer(i8) :: clock0, clock1, rate
+    real(wp) :: dofs(6)
+    call writer%create(out_path, error)
+    if (allocated(error)) return
+    nw = size(cfg%rao%omegas)
+    nh = size(cfg%rao%headings)
+    allocate (amp(6, nw, nh), pha(6, nw, nh))
+    failed = 0
+    call system_clock(clock0, rate)
+    !$omp parallel do schedule(dynamic) default(none) private(iw, ih, error) &
+    !$omp shared(cfg, nw, nh, amp, pha) reduction(+:failed)
+    do c = 1, nw*nh
+      iw = 1 + mod(c - 1, nw)
+      ih = 1 + (c - 1)/nw
+      call rao_case(cfg, cfg%rao%omegas(iw), cfg%rao%headings(ih), amp(:, iw, ih), &
+                    pha(:, iw, ih), error)
+      if (allocated(error)) failed = failed + 1
+    end do
+    !$omp end parallel do
+    call system_clock(clock1)
+    summary%wall_time = real(clock1 - clock0, wp)/real(rate, wp)
+    summary%complete = failed == 0
+    dofs = [1, 2, 3, 4, 5, 6]
+    call writer%group("rao")
+    call writer%write_1d("rao/omega", cfg%rao%omegas, "rad/s", "Wave frequency")
+    call writer%write_1d("rao/heading", cfg%rao%headings, "rad", &
+                         "Wave direction relative to the ship's heading (0 following, "// &
+                         "90 from port, 180 head sea)")
+    call writer%write_1d("rao/dof", dofs, "-", &
+                         "1 surge, 2 sway, 3 heave (up), 4 roll, 5 pitch, 6 yaw")
+    call writer%write_3d("rao/amplitude", amp, "m/m (DOF 1-3), rad/m (DOF 4-6)", &
+                         "Response amplitude per unit wave amplitude, (dof, omega, heading)")
+    call writer%write_3d("rao/phase", pha, "rad", &
+                         "Phase of the response relative to the wave elevation at the ship")
+    call write_root_attributes(writer, cfg, summary, "rk4", none)
+    call writer%close(error)
+  end subroutine run_rao
+
+end module davit_system_rao
