@@ -34,7 +34,8 @@ contains
                    new_case("calm_water_rest_600s", calm_rest), &
                    new_case("free_decay_periods", free_decay), &
                    new_case("beam_wind_motion", beam_wind_motion), &
-                   new_case("rao_long_wave_heave_and_roll_peak", rao_checks)]
+                   new_case("rao_long_wave_heave_and_roll_peak", rao_checks), &
+                   new_case("headway_held_straight", headway)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -417,5 +418,28 @@ contains
     call check(state, w(maxloc(roll, 1)), wn(2), "roll RAO peak at the roll frequency", &
                abs_tol=0.025_wp + 1e-9_wp)
   end subroutine rao_checks
+
+  !> 5 kn headway in calm water: the thrust holds the speed and the ship runs straight;
+  !> after a yaw-rate kick the MMG yaw damping (N'_r < 0) slows the turn faster than the
+  !> zero-speed cross-flow drag alone does.
+  subroutine headway(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: s(0:5000), final(12), kick(12), r_moving, r_still
+    call ship_run("&ship headway = 2.57 / &wind speed = 0 /", zero12, 0.02_wp, 5000, 10, &
+                  s, final)
+    call check(state, final(10), 2.57_wp, "speed held", rel_tol=1e-9_wp)
+    call check(state, maxval(abs(final([1, 2, 3, 6, 7, 8, 9, 11, 12]))), 0.0_wp, &
+               "straight and level", abs_tol=1e-12_wp)
+    call check(state, final(4), 2.57_wp*100, "distance run in 100 s", rel_tol=1e-9_wp)
+    kick = 0.0_wp
+    kick(9) = 0.01_wp
+    call ship_run("&ship headway = 2.57 / &wind speed = 0 /", kick, 0.02_wp, 1000, 9, s, final)
+    r_moving = abs(final(9))
+    call ship_run("&wind speed = 0 /", kick, 0.02_wp, 1000, 9, s, final)
+    r_still = abs(final(9))
+    call note(state, "yaw rate after 20 s, 5 kn / at rest", r_moving/r_still)
+    call check(state, merge(1.0_wp, 0.0_wp, r_moving < r_still), 1.0_wp, &
+               "yaw damped more when making way")
+  end subroutine headway
 
 end module test_ship

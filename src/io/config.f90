@@ -33,7 +33,7 @@ module davit_io_config
     real(wp) :: loa, lwl, lpp, beam, draught, depth, gm, cg_x, cg_z, cb, cwp, displacement
     real(wp) :: zeta_heave, zeta_roll, zeta_pitch, roll_quadratic, crossflow_cd
     real(wp) :: area_front, area_lateral, wind_height, list, trim
-    real(wp) :: position(3), heading
+    real(wp) :: position(3), heading, headway
     logical :: frozen
     character(len=:), allocatable :: wave_phase
   end type ship_config
@@ -355,6 +355,9 @@ contains
     call r%real(g, "heading_deg", s%heading, 0.0_wp, -360.0_wp, 360.0_wp, "deg", &
                 "Initial heading psi (s1 from N1 towards N2).")
     s%heading = s%heading*deg
+    call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 2.6_wp, "m/s", &
+                "Initial forward speed, held by a constant thrust equal to the resistance "// &
+                "(SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s).")
     call r%logical(g, "frozen", s%frozen, .false., &
                    "Hold the ship fixed (III.A's fixed platform; or to isolate the boat).")
     call r%choice(g, "wave_phase", s%wave_phase, "initial", &

@@ -29,6 +29,9 @@ module davit_ship_hull
     real(wp) :: cg_x = 0.0_wp, cg_z = 0.0_wp
     !> Equilibrium roll and pitch (static list and trim) [rad].
     real(wp) :: list = 0.0_wp, trim = 0.0_wp
+    !> Linear MMG hull derivatives (Kijima et al. 1990, review G13), non-dimensional on
+    !> 1/2 rho L_pp d U^2 (forces) and 1/2 rho L_pp^2 d U^2 (moments); v' = v/U, r' = r L/U.
+    real(wp) :: yv = 0.0_wp, yr = 0.0_wp, nv = 0.0_wp, nr = 0.0_wp
   end type hull_type
 
 contains
@@ -72,7 +75,24 @@ contains
     hull%list = s%list
     hull%trim = s%trim
     hull%wind = ship_wind_type(s%area_front, s%area_lateral, s%loa, s%wind_height)
+    call kijima(hull, s)
   end subroutine new_hull
+
+  !> Kijima's linear derivatives with k = 2d/L: Y'_beta = (pi/2) k + 1.4 C_b B/L,
+  !> (m' + m'_x) - Y'_r = 1.5 C_b B/L, N'_beta = k, N'_r = -0.54 k + k^2. With the drift
+  !> angle beta = -v', Y'_v = -Y'_beta and N'_v = -N'_beta.
+  pure subroutine kijima(hull, s)
+    type(hull_type), intent(inout) :: hull
+    type(ship_config), intent(in) :: s
+    real(wp) :: k, mp, mxp
+    k = 2.0_wp*s%draught/s%lpp
+    mp = hull%mass/(0.5_wp*rho_water*s%lpp**2*s%draught)
+    mxp = hull%added_mass(1)/(0.5_wp*rho_water*s%lpp**2*s%draught)
+    hull%yv = -(0.5_wp*pi*k + 1.4_wp*s%cb*s%beam/s%lpp)
+    hull%yr = mp + mxp - 1.5_wp*s%cb*s%beam/s%lpp
+    hull%nv = -k
+    hull%nr = -0.54_wp*k + k*k
+  end subroutine kijima
 
   !> Undamped natural periods (heave, roll, pitch) of the model's own mass, added mass and
   !> restoring [s].

@@ -38,8 +38,9 @@ module davit_ship_ship_model
     type(wave_field_type) :: sea
     type(wind_type) :: wind
     logical :: frozen = .false.
-    !> Equilibrium CG depth [m] and wetted surface [m^2].
-    real(wp) :: z_eq = 0.0_wp, wetted = 0.0_wp
+    !> Equilibrium CG depth [m], wetted surface [m^2], constant thrust [N] that holds the
+    !> initial headway against the surge resistance.
+    real(wp) :: z_eq = 0.0_wp, wetted = 0.0_wp, thrust = 0.0_wp
     !> Froude-Krylov loads about G of each component for heading psi_ref:
     !> load = fk_sin(:, i) sin(Phi_i) + fk_cos(:, i) cos(Phi_i).
     real(wp), allocatable :: fk_sin(:, :), fk_cos(:, :)
@@ -62,14 +63,14 @@ module davit_ship_ship_model
 contains
 
   subroutine new_ship_system(self, hull, sea, wind, frozen, position, heading, &
-                             phase_at_initial)
+                             phase_at_initial, headway)
     type(ship_system_type), intent(out) :: self
     type(hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: sea
     type(wind_type), intent(in) :: wind
     logical, intent(in) :: frozen, phase_at_initial
-    real(wp), intent(in) :: position(3), heading
-    real(wp) :: z_eq
+    real(wp), intent(in) :: position(3), heading, headway
+    real(wp) :: z_eq, water(6), air(6)
     z_eq = position(3)
     self%phase_at_initial = phase_at_initial
     self%origin = position(1:2) - [cos(heading), sin(heading)]*hull%cg_x
@@ -80,6 +81,11 @@ contains
     self%z_eq = z_eq
     ! Mumford's wetted surface 1.7 L d + V/d
     self%wetted = 1.7_wp*hull%lpp*hull%draught + hull%mass/rho_water/hull%draught
+    ! the engine setting that holds the headway in still air and calm water: water and air
+    ! resistance at that speed
+    water = crossflow(hull, self%wetted, [headway, 0.0_wp, 0.0_wp], 0.0_wp)
+    air = ship_wind_load(hull%wind, [-headway, 0.0_wp, 0.0_wp])
+    self%thrust = -(water(1) + air(1))
     allocate (self%fk_sin(6, sea%n), self%fk_cos(6, sea%n))
     call self%refresh_heading(heading)
   end subroutine new_ship_system
@@ -149,7 +155,8 @@ contains
       load(4) = -h%c44*(y(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
       load(5) = -h%c55*(y(2) - h%trim) - h%b55*om(2)
       load(6) = 0.0_wp
-      load = load + crossflow(h, self%wetted, v, om(3))
+      load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
+      load(1) = load(1) + self%thrust
       if (self%sea%kind /= wave_none) load = load + wave_loads(self, t, y, c)
       vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
       load = load + ship_wind_load(h%wind, vrel)
@@ -174,6 +181,21 @@ contains
     load([2, 6]) = 0.5_wp*rho_water*h%draught*h%cd*load([2, 6])
     load(1) = -0.5_wp*rho_water*wetted*surge_ct*abs(v(1))*v(1)
   end function crossflow
+
+  !> Linear MMG hull forces (Kijima), written dimensionally so they vanish smoothly as the
+  !> forward speed u -> 0 (no division by U): Y = 1/2 rho L d |u| (Y'_v v + Y'_r L r), and
+  !> N alike with one more L. The lifting-hull derivatives hold for small drift angles when
+  !> making way, so they scale with the forward speed |u|, not |V|: a ship drifting
+  !> sideways at zero headway (drift angle 90 deg) feels only the cross-flow drag.
+  pure function manoeuvring(h, v, r) result(load)
+    type(hull_type), intent(in) :: h
+    real(wp), intent(in) :: v(3), r
+    real(wp) :: load(6), q
+    load = 0.0_wp
+    q = 0.5_wp*rho_water*h%lpp*h%draught*abs(v(1))
+    load(2) = q*(h%yv*v(2) + h%yr*h%lpp*r)
+    load(6) = q*h%lpp*(h%nv*v(2) + h%nr*h%lpp*r)
+  end function manoeuvring
 
   !> Froude-Krylov loads of all components at the ship's position: the phase of each
   !> component at O' (review §1.8, "position phase").

@@ -25,7 +25,7 @@ contains
     call build_wave_field(cfg%sea, cfg%simulation%seed, 0, sea)
     call new_ship_system(ship, hull, sea, build_wind(cfg%wind), cfg%ship%frozen, &
                          cfg%ship%position, cfg%ship%heading, &
-                         cfg%ship%wave_phase == "initial")
+                         cfg%ship%wave_phase == "initial", cfg%ship%headway)
     y = ship_initial_state(cfg)
   end subroutine build_ship_scene
 
@@ -36,6 +36,7 @@ contains
     y = 0.0_wp
     y(1:3) = [cfg%ship%list, cfg%ship%trim, cfg%ship%heading]
     y(4:6) = cfg%ship%position
+    y(10) = cfg%ship%headway
   end function ship_initial_state
 
 end module davit_system_ship_scene
