@@ -51,10 +51,15 @@ module davit_ship_ship_model
     !> gains a second-order mean part and the ship drifts at ~1 m/s in 2 m beam waves.
     logical :: phase_at_initial = .true.
     real(wp) :: origin(2) = 0.0_wp
+    !> Optional soft mooring of surge, sway and yaw (stiffness and damping), used by the RAO
+    !> runs to hold the mean position and heading as a frequency-domain RAO assumes; off
+    !> (zero) in simulations. Anchored at `anchor` (x, y, yaw).
+    real(wp) :: moor_k(3) = 0.0_wp, moor_c(3) = 0.0_wp, anchor(3) = 0.0_wp
   contains
     procedure :: rhs => ship_rhs
     procedure :: refresh_heading
     procedure :: after_step => ship_after_step
+    procedure :: set_mooring
   end type ship_system_type
 
   !> Yaw drift [rad] after which the Froude-Krylov coefficients are recomputed.
@@ -112,6 +117,19 @@ contains
     self%psi_ref = psi
   end subroutine refresh_heading
 
+  !> Soft mooring with the given natural period [s] and damping ratio in surge, sway and
+  !> yaw, anchored at the current state.
+  pure subroutine set_mooring(self, period, zeta, y)
+    class(ship_system_type), intent(inout) :: self
+    real(wp), intent(in) :: period, zeta, y(:)
+    real(wp) :: inertia(3)
+    inertia = [self%hull%mass + self%hull%added_mass(1:2), &
+               self%hull%inertia(3) + self%hull%added_inertia(3)]
+    self%moor_k = inertia*(2.0_wp*pi/period)**2
+    self%moor_c = 2.0_wp*zeta*sqrt(self%moor_k*inertia)
+    self%anchor = [y(4), y(5), y(3)]
+  end subroutine set_mooring
+
   subroutine ship_after_step(self, t, y)
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
@@ -123,7 +141,7 @@ contains
     real(wp), intent(in) :: t
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
-    real(wp) :: c(3, 3), load(6), mt(3), it(3)
+    real(wp) :: c(3, 3), load(6), mt(3), it(3), ig(3)
     if (self%frozen) then
       dydt = 0.0_wp
       return
@@ -132,9 +150,14 @@ contains
     load = ship_loads(self, t, y, c)
     mt = self%hull%mass + self%hull%added_mass
     it = self%hull%inertia + self%hull%added_inertia
+    ! Gyroscopic term with the rigid-body inertia plus only the manoeuvring yaw added
+    ! inertia: the strip-theory roll and pitch added inertias are frequency-domain
+    ! quantities, not rigid-body ones, and in omega x (I omega) their product p q (A55 - A44)
+    ! made a spurious mean yaw moment of MN m that turned the ship 19 deg in 135 deg seas.
+    ig = self%hull%inertia + [0.0_wp, 0.0_wp, self%hull%added_inertia(3)]
     dydt(1:3) = euler_rates(y(1:3), y(7:9))
     dydt(4:6) = matmul(c, y(10:12))
-    dydt(7:9) = (load(4:6) - cross(y(7:9), it*y(7:9)))/it
+    dydt(7:9) = (load(4:6) - cross(y(7:9), ig*y(7:9)))/it
     dydt(10:12) = (load(1:3) - cross(y(7:9), mt*y(10:12)))/mt
   end subroutine ship_rhs
 
@@ -157,11 +180,37 @@ contains
       load(6) = 0.0_wp
       load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
       load(1) = load(1) + self%thrust
-      if (self%sea%kind /= wave_none) load = load + wave_loads(self, t, y, c)
+      if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, y, c), &
+                                                                    y(1:3), c)
       vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
       load = load + ship_wind_load(h%wind, vrel)
+      if (any(self%moor_k > 0.0_wp)) load = load + mooring(self, y, c)
     end associate
   end function ship_loads
+
+  !> Horizontal spring-dashpot on the CG (inertial x, y) and on the yaw angle.
+  pure function mooring(self, y, c) result(load)
+    class(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: y(:), c(3, 3)
+    real(wp) :: load(6), f(3), vn(3)
+    vn = matmul(c, y(10:12))
+    f(1:2) = -self%moor_k(1:2)*(y(4:5) - self%anchor(1:2)) - self%moor_c(1:2)*vn(1:2)
+    f(3) = 0.0_wp
+    load(1:3) = matmul(transpose(c), f)
+    load(4:5) = 0.0_wp
+    load(6) = -self%moor_k(3)*(y(3) - self%anchor(3)) - self%moor_c(3)*y(9)
+  end function mooring
+
+  !> The box loads are those of the upright box at the ship's heading (linear seakeeping):
+  !> they act in the yawed, level frame and are turned into the rolled and pitched ship axes,
+  !> F_b = C^T Rz(psi) F_h, so that a heeled ship does not tip its sway force into heave.
+  pure function heading_to_body(load, euler, c) result(out)
+    real(wp), intent(in) :: load(6), euler(3), c(3, 3)
+    real(wp) :: out(6), m(3, 3)
+    m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, euler(3)]))
+    out(1:3) = matmul(m, load(1:3))
+    out(4:6) = matmul(m, load(4:6))
+  end function heading_to_body
 
   !> Zero-speed cross-flow drag for sway and yaw, -1/2 rho d C_D |v + x r| (v + x r) along
   !> the hull, and surge resistance -1/2 rho S C_T |u| u (review G12).

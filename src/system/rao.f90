@@ -3,6 +3,9 @@
 !> over whole periods after the transient as x = m + R cos(w t + phi), so the amplitude
 !> R/zeta and the phase phi are relative to the wave elevation zeta cos(w t) at the ship's
 !> initial CG position. DOFs: surge, sway (inertial x, y), heave (up), roll, pitch, yaw.
+!> A soft mooring (300 s, 70 % of critical) holds the mean position and heading: a free
+!> ship at zero speed otherwise turns by tens of degrees in oblique seas during a run
+!> (26 deg in 400 s at 135 deg, 7.5 s waves), which is not what an RAO describes.
 module davit_system_rao
   use davit_kinds, only: wp, pi, i8
   use davit_error, only: error_type
@@ -15,6 +18,9 @@ module davit_system_rao
   implicit none
   private
   public :: rao_case, run_rao
+
+  !> Soft mooring of surge, sway and yaw in RAO runs: natural period [s], damping ratio.
+  real(wp), parameter :: mooring_period = 300.0_wp, mooring_zeta = 0.7_wp
 
 contains
 
@@ -45,6 +51,9 @@ contains
     cfg%wind%speed = 0.0_wp
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) return
+    ! hold the mean position and heading (frequency-domain RAO convention) with a soft,
+    ! well-damped mooring far below the wave band
+    call ship%set_mooring(mooring_period, mooring_zeta, y)
     ! an integer number of steps per period, so the fit spans whole periods exactly
     dt = period/real(max(1, nint(period/cfg%rao%dt)), wp)
     t0 = 2.0_wp*period + cfg%rao%settle_time
