@@ -35,7 +35,8 @@ contains
                    new_case("free_decay_periods", free_decay), &
                    new_case("beam_wind_motion", beam_wind_motion), &
                    new_case("rao_long_wave_heave_and_roll_peak", rao_checks), &
-                   new_case("headway_held_straight", headway)]
+                   new_case("headway_held_straight", headway), &
+                   new_case("oblique_roll_rao_follows_excitation", oblique_roll)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -441,5 +442,38 @@ contains
     call check(state, merge(1.0_wp, 0.0_wp, r_moving < r_still), 1.0_wp, &
                "yaw damped more when making way")
   end subroutine headway
+
+  !> Roll is a single-DOF response to the roll moment: the 135 deg roll RAO must equal the
+  !> beam-sea RAO times the ratio of the closed-form roll excitations at the same frequency
+  !> (same natural frequency and damping), off and at resonance. 5 %.
+  subroutine oblique_roll(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(box_type) :: box
+    real(wp) :: amp90(6), amp135(6), phase(6), k, ratio, w
+    integer :: i
+    real(wp), parameter :: omegas(2) = [0.5_wp, 0.75_wp]
+    call parse_config("t.nml", "&rao settle_time = 250, measure_periods = 10 /", cfg, error)
+    box = box_type(sqrt(cfg%ship%cb)*cfg%ship%lwl, cfg%ship%beam, cfg%ship%draught)
+    do i = 1, 2
+      w = omegas(i)
+      k = w*w/gravity
+      ratio = fk_roll(0.75_wp*pi)/fk_roll(0.5_wp*pi)
+      call rao_case(cfg, w, 0.5_wp*pi, amp90, phase, error)
+      call rao_case(cfg, w, 0.75_wp*pi, amp135, phase, error)
+      call note(state, "roll RAO 135/90 at "//trim(merge("0.50", "0.75", i == 1)), &
+                amp135(4)/amp90(4))
+      call note(state, "roll excitation ratio", ratio)
+      call check(state, amp135(4)/amp90(4), abs(ratio), "oblique roll RAO", rel_tol=0.05_wp)
+    end do
+  contains
+    real(wp) function fk_roll(chi)
+      real(wp), intent(in) :: chi
+      real(wp) :: load(6)
+      load = fk_box_load(box, 1.0_wp, k, chi, 0.5_wp*pi)
+      fk_roll = load(4)
+    end function fk_roll
+  end subroutine oblique_roll
 
 end module test_ship

@@ -117,11 +117,11 @@ contains
     self%psi_ref = psi
   end subroutine refresh_heading
 
-  !> Soft mooring with the given natural period [s] and damping ratio in surge, sway and
-  !> yaw, anchored at the current state.
+  !> Soft mooring with the given natural periods [s] (surge, sway, yaw) and damping ratio,
+  !> anchored at the current state.
   pure subroutine set_mooring(self, period, zeta, y)
     class(ship_system_type), intent(inout) :: self
-    real(wp), intent(in) :: period, zeta, y(:)
+    real(wp), intent(in) :: period(3), zeta, y(:)
     real(wp) :: inertia(3)
     inertia = [self%hull%mass + self%hull%added_mass(1:2), &
                self%hull%inertia(3) + self%hull%added_inertia(3)]
