@@ -9,6 +9,7 @@
 !> from the starboard waterline round the keel to the port waterline; the normal (tz, -ty)
 !> then points out of the body into the water.
 module davit_ship_section_added_mass
+  use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_kinds, only: wp, pi, rho_water
   use davit_error, only: error_type, fatal_error
   implicit none
@@ -25,14 +26,8 @@ module davit_ship_section_added_mass
     end subroutine dgesv
   end interface
 
-  !> Gauss-Legendre points on (-1, 1) for the off-panel integrals.
+  !> Gauss-Legendre points on (-1, 1) (davit_core_quadrature).
   integer, parameter :: ng = 8
-  real(wp), parameter :: gx(ng) = [-0.9602898564975363_wp, -0.7966664774136267_wp, &
-    -0.5255324099163290_wp, -0.1834346424956498_wp, 0.1834346424956498_wp, &
-    0.5255324099163290_wp, 0.7966664774136267_wp, 0.9602898564975363_wp]
-  real(wp), parameter :: gw(ng) = [0.1012285362903763_wp, 0.2223810344533745_wp, &
-    0.3137066458778873_wp, 0.3626837833783620_wp, 0.3626837833783620_wp, &
-    0.3137066458778873_wp, 0.2223810344533745_wp, 0.1012285362903763_wp]
 
 contains
 

@@ -8,6 +8,7 @@
 !> State y(1:12): Euler angles (roll, pitch, yaw; eq. 2), CG position in the inertial
 !> frame (the MMG convention; qdot = C v), angular velocity and velocity in ship axes.
 module davit_ship_ship_model
+  use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix, euler_rates, cross
   use davit_core_fastmath, only: fast_sincos
@@ -26,12 +27,6 @@ module davit_ship_ship_model
   real(wp), parameter :: surge_ct = 0.003_wp
   !> Gauss points along the hull for the cross-flow drag integral.
   integer, parameter :: ngauss = 8
-  real(wp), parameter :: gx(ngauss) = [-0.9602898564975363_wp, -0.7966664774136267_wp, &
-    -0.5255324099163290_wp, -0.1834346424956498_wp, 0.1834346424956498_wp, &
-    0.5255324099163290_wp, 0.7966664774136267_wp, 0.9602898564975363_wp]
-  real(wp), parameter :: gw(ngauss) = [0.1012285362903763_wp, 0.2223810344533745_wp, &
-    0.3137066458778873_wp, 0.3626837833783620_wp, 0.3626837833783620_wp, &
-    0.3137066458778873_wp, 0.2223810344533745_wp, 0.1012285362903763_wp]
 
   type, extends(ode_problem) :: ship_system_type
     type(hull_type) :: hull
