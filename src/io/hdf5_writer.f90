@@ -3,7 +3,7 @@
 !> Every dataset carries `units` and `description` attributes. Time series are (components,
 !> time) in Fortran order, which h5py shows as (time, components).
 module davit_io_hdf5_writer
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc, c_ptr
   use hdf5
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
@@ -74,58 +74,48 @@ contains
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, units, description
     real(wp), intent(in) :: data(:)
-    integer(hsize_t) :: dims(1)
-    integer(hid_t) :: space, dset
-    integer :: hdferr
-    dims = shape(data, kind=hsize_t)
-    call h5screate_simple_f(1, dims, space, hdferr)
-    call h5dcreate_f(self%file, name, H5T_NATIVE_DOUBLE, space, dset, hdferr)
-    call check(self, hdferr, name)
-    if (hdferr /= 0) return
-    call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, data, dims, hdferr)
-    call check(self, hdferr, name)
-    call describe(self, dset, units, description)
-    call h5dclose_f(dset, hdferr)
-    call h5sclose_f(space, hdferr)
+    real(wp), allocatable, target :: buf(:)
+    buf = data
+    call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description)
   end subroutine writer_write_1d
 
   subroutine writer_write_2d(self, name, data, units, description)
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, units, description
     real(wp), intent(in) :: data(:, :)
-    integer(hsize_t) :: dims(2)
-    integer(hid_t) :: space, dset
-    integer :: hdferr
-    dims = shape(data, kind=hsize_t)
-    call h5screate_simple_f(2, dims, space, hdferr)
-    call h5dcreate_f(self%file, name, H5T_NATIVE_DOUBLE, space, dset, hdferr)
-    call check(self, hdferr, name)
-    if (hdferr /= 0) return
-    call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, data, dims, hdferr)
-    call check(self, hdferr, name)
-    call describe(self, dset, units, description)
-    call h5dclose_f(dset, hdferr)
-    call h5sclose_f(space, hdferr)
+    real(wp), allocatable, target :: buf(:, :)
+    buf = data
+    call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description)
   end subroutine writer_write_2d
 
   subroutine writer_write_3d(self, name, data, units, description)
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, units, description
     real(wp), intent(in) :: data(:, :, :)
-    integer(hsize_t) :: dims(3)
+    real(wp), allocatable, target :: buf(:, :, :)
+    buf = data
+    call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description)
+  end subroutine writer_write_3d
+
+  !> One double-precision dataset of any rank from a contiguous buffer, with its
+  !> units and description.
+  subroutine write_real(self, name, dims, buf, units, description)
+    type(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: name, units, description
+    integer(hsize_t), intent(in) :: dims(:)
+    type(c_ptr), intent(in) :: buf
     integer(hid_t) :: space, dset
     integer :: hdferr
-    dims = shape(data, kind=hsize_t)
-    call h5screate_simple_f(3, dims, space, hdferr)
+    call h5screate_simple_f(size(dims), dims, space, hdferr)
     call h5dcreate_f(self%file, name, H5T_NATIVE_DOUBLE, space, dset, hdferr)
     call check(self, hdferr, name)
     if (hdferr /= 0) return
-    call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, data, dims, hdferr)
+    call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, buf, hdferr)
     call check(self, hdferr, name)
     call describe(self, dset, units, description)
     call h5dclose_f(dset, hdferr)
     call h5sclose_f(space, hdferr)
-  end subroutine writer_write_3d
+  end subroutine write_real
 
   !> String attribute on the object `obj` ("/" for the root).
   subroutine writer_attr_str(self, obj, name, value)
