@@ -174,9 +174,29 @@ def rao(run, outdir, stem):
     return _save(fig, outdir, f"{stem}_rao.png")
 
 
+def contact(run, outdir, stem):
+    """Smallest fender-to-side distance and each fender's normal force against time."""
+    run.require(layout.CONTACT, "fender contact record")
+    t = run.time
+    force = run.get(layout.CONTACT_FORCE)
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
+    top.plot(t, run.get(layout.CONTACT_CLEARANCE), lw=0.8)
+    top.axhline(0.0, color="k", lw=0.6)
+    top.set(ylabel="clearance [m]", title="Fenders against the ship's side "
+            "(clearance < 0: indentation)")
+    for k in range(force.shape[1]):
+        bottom.plot(t, force[:, k] / 1e3, lw=0.8, label=f"fender {k + 1}")
+    bottom.set(xlabel="t [s]", ylabel="normal force [kN]")
+    for ax in (top, bottom):
+        ax.grid(True, alpha=0.3)
+    bottom.legend()
+    fig.tight_layout()
+    return _save(fig, outdir, f"{stem}_contact.png")
+
+
 RUN_FIGURES = {"trajectory": trajectory, "tension": sling_tension,
                "acceleration": acceleration, "surface": surface, "spectrum": spectrum,
-               "rao": rao}
+               "rao": rao, "contact": contact}
 
 
 def figures_for(run):
@@ -186,6 +206,8 @@ def figures_for(run):
         names += ["trajectory", "acceleration"]
     if run.has(layout.SLING_TENSION):
         names.append("tension")
+    if run.has(*layout.CONTACT):
+        names.append("contact")
     if run.has(*layout.SEA):
         names += ["surface", "spectrum"]
     if run.has(*layout.RAO):

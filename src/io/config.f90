@@ -9,7 +9,7 @@ module davit_io_config
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
-  public :: wind_config, ship_config, rao_config
+  public :: wind_config, ship_config, rao_config, contact_config
   public :: read_config, parse_config, document_keys
 
   type :: simulation_config
@@ -54,12 +54,31 @@ module davit_io_config
   type :: boat_config
     real(wp) :: mass, inertia(3)
     real(wp) :: position(3), euler(3), velocity(3), angular_velocity(3)
+    !> Strip hull (review G25) and water loads (eqs. 18-25).
+    real(wp) :: length, beam, height, keel, breadth_exponent, drag_coefficients(3)
+    real(wp) :: metacentric_height, zeta(3)
+    integer :: strips
+    !> Wind on the boat (eqs. 15-16, review §1.4, G27).
+    real(wp) :: wind_areas(3), wind_drag_coefficient, lift_coefficient, lift_diameter
+    character(len=:), allocatable :: lift_form
   end type boat_config
+
+  !> Fender contact with the ship's side (eqs. 27-34, review §1.7, G16, G17).
+  type :: contact_config
+    logical :: enabled
+    character(len=:), allocatable :: law
+    real(wp) :: youngs_boat, poisson_boat, youngs_ship, poisson_ship
+    real(wp) :: radius_boat, radius_ship, restitution
+    real(wp), allocatable :: fender_x(:)
+    real(wp) :: fender_y, fender_z(2), side_y
+    integer :: fender_points
+  end type contact_config
 
   !> Two massless elastic slings from fixed anchors to the hooks (foundation rigging).
   type :: slings_config
     real(wp) :: hook_fore(3), hook_aft(3), anchor_fore(3), anchor_aft(3)
     real(wp) :: length, diameter, youngs_modulus, damping
+    logical :: attached
   end type slings_config
 
   type :: config_type
@@ -73,6 +92,7 @@ module davit_io_config
     type(wind_config) :: wind
     type(ship_config) :: ship
     type(rao_config) :: rao
+    type(contact_config) :: contact
   end type config_type
 
 contains
@@ -136,7 +156,46 @@ contains
     call read_wind(r, cfg%wind, cfg%sea)
     call read_ship(r, cfg%ship)
     call read_rao(r, cfg%rao)
+    call read_contact(r, cfg%contact, cfg%ship)
   end subroutine read_all
+
+  subroutine read_contact(r, s, ship)
+    type(deck_reader_type), intent(inout) :: r
+    type(contact_config), intent(inout) :: s
+    type(ship_config), intent(in) :: ship
+    character(len=*), parameter :: g = "contact"
+    call r%logical(g, "enabled", s%enabled, .true., &
+                   "Fender contact with the ship's side plane (eqs. 27-34).")
+    call r%choice(g, "law", s%law, "hertz_elastoplastic", [character(len=20) :: &
+                  "hertz_elastoplastic", "lankarani_nikravesh"], "Hertz compression with "// &
+                  "the corrected elastoplastic restitution (eqs. 27-28, review §1.7), or the "// &
+                  "smooth Lankarani-Nikravesh hysteresis law (accurate for e_r near 1).")
+    call r%real(g, "youngs_boat", s%youngs_boat, 55.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
+                "Young's modulus E_b of the fender (paper; see review §1.7 on 55 GPa).")
+    call r%real(g, "poisson_boat", s%poisson_boat, 0.45_wp, 0.0_wp, 0.5_wp, "-", &
+                "Poisson's ratio nu_b of the fender (paper).")
+    call r%real(g, "youngs_ship", s%youngs_ship, 200.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
+                "Young's modulus E_s of the ship's side (steel).")
+    call r%real(g, "poisson_ship", s%poisson_ship, 0.3_wp, 0.0_wp, 0.5_wp, "-", &
+                "Poisson's ratio nu_s of the ship's side (0.3; the paper's 0.6 is impossible).")
+    call r%real(g, "radius_boat", s%radius_boat, 0.15_wp, 0.0_wp, 10.0_wp, "m", &
+                "Fender radius of curvature R_b (review G16).", lo_open=.true.)
+    call r%real(g, "radius_ship", s%radius_ship, 0.0_wp, 0.0_wp, 1.0e3_wp, "m", &
+                "Radius of curvature R_s of the side; 0 = flat plate (R = R_b).")
+    call r%real(g, "restitution", s%restitution, 0.8_wp, 0.0_wp, 1.0_wp, "-", &
+                "Coefficient of restitution e_r (paper).", lo_open=.true.)
+    call r%real_list(g, "fender_x", s%fender_x, [3.0_wp, -3.0_wp], -50.0_wp, 50.0_wp, "m", &
+                     "Boat-frame x of each fender (review G16: two fenders at +-3 m).", 1, 8)
+    call r%real(g, "fender_y", s%fender_y, -1.4_wp, -50.0_wp, 50.0_wp, "m", &
+                "Boat-frame y of the fenders: the port side, facing the ship (G16).")
+    call r%real_vec(g, "fender_z", s%fender_z, [-0.8_wp, 0.2_wp], -50.0_wp, 50.0_wp, "m", &
+                    "Boat-frame z span of each fender (z down, G16).")
+    call r%int(g, "fender_points", s%fender_points, 5, 1, 100, "-", &
+               "Points n_d per fender; one contact per fender at its deepest point.")
+    call r%real(g, "side_y", s%side_y, 0.5_wp*ship%beam, -100.0_wp, 100.0_wp, "m", &
+                "Ship-frame y of the side plane (normal +s2, towards the boat); default "// &
+                "half the &ship beam.", default_text="&ship beam/2 (10.4)")
+  end subroutine read_contact
 
   subroutine read_rao(r, s)
     type(deck_reader_type), intent(inout) :: r
@@ -203,6 +262,34 @@ contains
     call r%real_vec(g, "angular_velocity", b%angular_velocity, [0.0_wp, 0.0_wp, 0.0_wp], &
                     -10.0_wp, 10.0_wp, "rad/s", &
                     "Initial angular velocity in body components (u1..u3).")
+    call r%real(g, "length", b%length, 11.5_wp, 0.1_wp, 100.0_wp, "m", &
+                "Hull length l_b of the strips and the lift cylinder (paper III.B).")
+    call r%real(g, "beam", b%beam, 2.8_wp, 0.01_wp, 50.0_wp, "m", "Hull beam B (III.B).")
+    call r%real(g, "height", b%height, 3.1_wp, 0.01_wp, 50.0_wp, "m", &
+                "Hull section height H (III.B).")
+    call r%real(g, "keel", b%keel, 1.1_wp, -50.0_wp, 50.0_wp, "m", &
+                "Keel below the CG along b3 (review G25: CG 1.1 m above the keel).")
+    call r%real(g, "breadth_exponent", b%breadth_exponent, 4.3_wp, 1.0_wp, 100.0_wp, "-", &
+                "p in b(x) = B (1 - |2x/L|^p) (G25: 4.3 gives A3 = 26.2 m^2).")
+    call r%int(g, "strips", b%strips, 20, 1, 400, "-", "Number of strips n (eq. 18, G25).")
+    call r%real_vec(g, "drag_coefficients", b%drag_coefficients, [1.2_wp, 1.2_wp, 1.2_wp], &
+                    0.0_wp, 10.0_wp, "-", "Water drag coefficients c_D1..3 (paper C_fluid).")
+    call r%real(g, "metacentric_height", b%metacentric_height, 2.0_wp, 0.0_wp, 20.0_wp, "m", &
+                "h_m of the roll restoring moment (eq. 24, paper III.B).")
+    call r%real_vec(g, "zeta", b%zeta, [0.0_wp, 0.0_wp, 0.0_wp], 0.0_wp, 2.0_wp, "-", &
+                    "Linear heave, roll, pitch damping on the water, fraction of critical "// &
+                    "(G25 suggests 0.1; the paper has none).")
+    call r%real_vec(g, "wind_areas", b%wind_areas, [8.5_wp, 26.2_wp, 26.2_wp], 0.0_wp, &
+                    1.0e4_wp, "m^2", "Projected areas normal to b1, b2, b3 (III.B).")
+    call r%real(g, "wind_drag_coefficient", b%wind_drag_coefficient, 0.5_wp, 0.0_wp, &
+                10.0_wp, "-", "Wind drag coefficient C_w (paper C_air).")
+    call r%real(g, "lift_coefficient", b%lift_coefficient, 1.2_wp, 0.0_wp, 10.0_wp, "-", &
+                "Wind lift coefficient C_L (paper).")
+    call r%real(g, "lift_diameter", b%lift_diameter, 3.29_wp, 0.0_wp, 50.0_wp, "m", &
+                "Lift cylinder diameter D_b (G27: circle of the frontal area).")
+    call r%choice(g, "lift_form", b%lift_form, "symmetric", &
+                  [character(len=9) :: "symmetric", "literal"], "Wind lift: 'symmetric' "// &
+                  "(upward, from the lateral cross-flow) or eq. 16 'literal' (review §1.4).")
   end subroutine read_boat
 
   subroutine read_slings(r, s)
@@ -226,6 +313,8 @@ contains
                 "Pa", "Young's modulus of the wire (paper III.B).")
     call r%real(g, "damping", s%damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
                 "Absolute axial dashpot per sling (review §1.6, G26); 0 = undamped.")
+    call r%logical(g, "attached", s%attached, .true., &
+                   "Hang the boat on the slings; .false. = a free boat (floating tests).")
   end subroutine read_slings
 
   subroutine read_sea(r, s)
@@ -391,6 +480,13 @@ contains
     if (size(cfg%sea%probes_x) /= size(cfg%sea%probes_y)) then
       call fatal_error(error, cfg%filename//": &sea: probes_x and probes_y must have the "// &
                        "same number of values")
+      return
+    end if
+    if (cfg%contact%fender_z(1) > cfg%contact%fender_z(2)) then
+      call fatal_error(error, cfg%filename//": &contact: fender_z = "// &
+                       fmt_real(cfg%contact%fender_z(1))//", "// &
+                       fmt_real(cfg%contact%fender_z(2))//" must be (lower, upper) with "// &
+                       "lower <= upper")
       return
     end if
     if (norm2(cfg%slings%hook_fore - cfg%slings%hook_aft) < 1.0e-6_wp) then

@@ -32,7 +32,7 @@ contains
     character(len=*), intent(in) :: out_path
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
-    type(system_type) :: boat
+    type(system_type), target :: boat
     type(ship_system_type) :: ship
     type(boat_recorder) :: brec
     type(ship_recorder) :: srec
@@ -47,7 +47,7 @@ contains
     case default
       call new_system(boat, cfg)
       y = boat%initial_state(cfg)
-      brec%sys = boat
+      brec%sys => boat
       call integrate_scene(cfg, boat, y, brec, out_path, summary, error)
     end select
   end subroutine run_simulation
@@ -55,7 +55,7 @@ contains
   !> The time loop shared by all integrated scenes.
   subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error)
     type(config_type), intent(in) :: cfg
-    class(ode_problem), intent(inout) :: problem
+    class(ode_problem), intent(inout), target :: problem
     real(wp), intent(inout) :: y(:)
     class(recorder_type), intent(inout) :: rec
     character(len=*), intent(in) :: out_path

@@ -2,9 +2,12 @@
 !>
 !> State vector y = [q; u]: q = (theta1..3, q4..6) and u = (omega_b, v_b) of the lifeboat
 !> (eqs. 3-4). The assembler only sums each force model's generalized force and forms
-!> u_dot = (F - W phi)/V (eq. 89) and q_dot from eqs. (5)-(6). Force models (gravity, the
-!> rigging) are pure functions of the state; the rigging here is the foundation's two massless
-!> slings, which the full cable-pulley rigging replaces behind the same hook-force role.
+!> u_dot = (F - W phi)/V (eq. 89) and q_dot from eqs. (5)-(6). Force models are pure
+!> functions of (t, state): gravity (eq. 13), the rigging (eq. 26; here the foundation's two
+!> massless slings, which the full cable-pulley rigging replaces behind the same hook-force
+!> role), water by strip theory (eqs. 18-25), wind (eqs. 14-17) and fender contact with the
+!> ship's side (eq. 34). The only history, the fenders' contact phases, is advanced after
+!> each accepted step (after_step), never inside the RHS.
 module davit_system_model
   use davit_kinds, only: wp, gravity
   use davit_core_rotation, only: rotation_matrix, cross
@@ -14,6 +17,18 @@ module davit_system_model
   use davit_rigging_elastic_sling, only: elastic_sling_type, sling_hook_force, sling_energy
   use davit_solve_integrator, only: ode_problem
   use davit_io_config, only: config_type
+  use davit_sea_wave_field, only: wave_field_type
+  use davit_sea_wind, only: wind_type, wind_velocity
+  use davit_sea_builder, only: build_wave_field, build_wind
+  use davit_boat_hull, only: new_boat_hull
+  use davit_boat_strip_loads, only: strip_model_type, new_strip_model, strip_loads
+  use davit_boat_wind_loads, only: boat_wind_type, boat_wind_force, lift_symmetric, &
+                                   lift_literal
+  use davit_boat_contact, only: fender_state_type, fender_update, new_contact_law, &
+                                law_hertz_elastoplastic, law_lankarani_nikravesh, &
+                                phase_compression
+  use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, &
+                                fender_probe, fender_loads
   implicit none
   private
   public :: system_type, new_system, nstate, boat_q, boat_u
@@ -28,12 +43,27 @@ module davit_system_model
     !> Hook points in the boat frame, one column per sling.
     real(wp) :: hooks(3, nslings) = 0.0_wp
     type(elastic_sling_type) :: slings(nslings)
+    logical :: slings_attached = .true.
+    type(strip_model_type) :: water
+    type(boat_wind_type) :: air
+    type(wave_field_type) :: sea
+    type(wind_type) :: wind
+    !> Hull volume (dry fraction of the wind loads) [m^3].
+    real(wp) :: hull_volume = 0.0_wp
+    logical :: contact = .false.
+    type(fender_set_type) :: fenders
+    type(side_plane_type) :: side
+    type(fender_state_type), allocatable :: fender_states(:)
+    !> Time of the first fender contact [s]; negative while there has been none.
+    real(wp) :: first_contact_time = -1.0_wp
   contains
     procedure :: rhs => system_rhs
     procedure :: initial_state
     procedure :: energy
     procedure :: sling_tensions
     procedure :: observe
+    procedure :: after_step => system_after_step
+    procedure :: contact_state
   end type system_type
 
 contains
@@ -52,7 +82,52 @@ contains
                                         cfg%slings%damping)
     self%slings(2) = elastic_sling_type(cfg%slings%anchor_aft, cfg%slings%length, ea, &
                                         cfg%slings%damping)
+    self%slings_attached = cfg%slings%attached
+    call new_boat_environment(self, cfg)
+    call new_side_contact(self, cfg)
   end subroutine new_system
+
+  !> Strip hull, water and wind loads, and the sea and wind they act in.
+  subroutine new_boat_environment(self, cfg)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    associate (b => cfg%boat)
+      self%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
+                                                 b%breadth_exponent, b%strips), &
+                                   b%drag_coefficients, b%metacentric_height, b%zeta, &
+                                   b%mass, b%inertia)
+      self%hull_volume = sum(self%water%hull%breadth)*self%water%hull%thickness*b%height
+      self%air = boat_wind_type(b%wind_areas, b%wind_drag_coefficient, b%lift_coefficient, &
+                                b%lift_diameter, b%length, &
+                                merge(lift_literal, lift_symmetric, b%lift_form == "literal"))
+    end associate
+    call build_wave_field(cfg%sea, cfg%simulation%seed, 0, self%sea)
+    self%wind = build_wind(cfg%wind)
+  end subroutine new_boat_environment
+
+  !> The ship's side plane at ship-frame y = side_y, normal +s2, for the ship at rest in its
+  !> deck attitude (list, trim, heading) and position; the fenders and their contact law.
+  subroutine new_side_contact(self, cfg)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    real(wp) :: cs(3, 3)
+    integer :: law
+    self%contact = cfg%contact%enabled
+    cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
+    self%side%origin = cfg%ship%position
+    self%side%point = cfg%ship%position + cs(:, 2)*cfg%contact%side_y
+    self%side%normal = cs(:, 2)
+    associate (k => cfg%contact)
+      law = merge(law_lankarani_nikravesh, law_hertz_elastoplastic, &
+                  k%law == "lankarani_nikravesh")
+      self%fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, &
+                                    new_contact_law(law, k%youngs_boat, k%poisson_boat, &
+                                                    k%youngs_ship, k%poisson_ship, &
+                                                    k%radius_boat, k%radius_ship, &
+                                                    k%restitution))
+      allocate (self%fender_states(size(k%fender_x)))
+    end associate
+  end subroutine new_side_contact
 
   !> Initial y from inertial position/velocity and Euler angles / body rates.
   function initial_state(self, cfg) result(y)
@@ -74,29 +149,76 @@ contains
     real(wp), intent(out) :: dydt(:)
     real(wp) :: f(6)
     associate (q => y(boat_q(1):boat_q(2)), u => y(boat_u(1):boat_u(2)))
-      f = boat_forces(self, q, u)
+      f = boat_forces(self, t, q, u)
       dydt(boat_q(1):boat_q(2)) = body_qdot(q, u)
       dydt(boat_u(1):boat_u(2)) = (f - body_w_phi(self%boat, u))/body_mass_diagonal(self%boat)
     end associate
   end subroutine system_rhs
 
-  !> Generalized active forces on the boat: gravity (eq. 13) and slings (eq. 26).
-  pure function boat_forces(self, q, u) result(f)
+  !> Generalized active forces on the boat: gravity (eq. 13), slings (eq. 26), water
+  !> (eqs. 18-25), wind (eqs. 14-17, at the CG) and fender contact (eq. 34).
+  pure function boat_forces(self, t, q, u) result(f)
     class(system_type), intent(in) :: self
-    real(wp), intent(in) :: q(6), u(6)
-    real(wp) :: f(6), c(3, 3), r(3), fh(3), tension
+    real(wp), intent(in) :: t, q(6), u(6)
+    real(wp) :: f(6), c(3, 3), r(3), fh(3), tension, fw(6), volume, force(self%fenders%nf)
     integer :: i
     c = rotation_matrix(q(1:3))
     r = matmul(c, q(4:6))
     f = body_gravity_force(self%boat, c)
-    do i = 1, nslings
-      call sling_hook_force(self%slings(i), r + matmul(c, self%hooks(:, i)), &
-                            matmul(c, body_point_velocity(u, self%hooks(:, i))), fh, tension)
-      f = f + body_point_force(self%hooks(:, i), matmul(transpose(c), fh))
-    end do
+    if (self%slings_attached) then
+      do i = 1, nslings
+        call sling_hook_force(self%slings(i), r + matmul(c, self%hooks(:, i)), &
+                              matmul(c, body_point_velocity(u, self%hooks(:, i))), fh, tension)
+        f = f + body_point_force(self%hooks(:, i), matmul(transpose(c), fh))
+      end do
+    end if
+    call strip_loads(self%water, self%sea, t, c, r, u, fw, volume)
+    f = f + fw
+    f(4:6) = f(4:6) + boat_wind_force(self%air, u(4:6) - matmul(wind_velocity(self%wind), c), &
+                                      max(0.0_wp, 1.0_wp - volume/self%hull_volume))
+    if (self%contact) then
+      call fender_loads(self%fenders, self%fender_states, self%side, c, r, u, fw, force)
+      f = f + fw
+    end if
   end function boat_forces
 
-  !> Total mechanical energy: kinetic + gravity (N3 down, so -m g z) + elastic [J].
+  !> Advance each fender's contact phase on the accepted state; note the first contact.
+  subroutine system_after_step(self, t, y)
+    class(system_type), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
+    integer :: deepest(self%fenders%nf), j
+    if (.not. self%contact) return
+    c = rotation_matrix(y(1:3))
+    call fender_probe(self%fenders, self%side, c, matmul(c, y(4:6)), y(boat_u(1):boat_u(2)), &
+                      deepest, delta, delta_dot)
+    do j = 1, self%fenders%nf
+      call fender_update(self%fenders%law, self%fender_states(j), delta(j), delta_dot(j))
+      if (self%fender_states(j)%phase == phase_compression .and. &
+          self%first_contact_time < 0.0_wp) self%first_contact_time = t
+    end do
+  end subroutine system_after_step
+
+  !> Smallest fender-to-side distance [m] (negative = penetration) and each fender's
+  !> normal force [N] at state y.
+  subroutine contact_state(self, y, clearance, force)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: clearance, force(:)
+    real(wp) :: c(3, 3), r(3), delta(self%fenders%nf), delta_dot(self%fenders%nf), f(6)
+    integer :: deepest(self%fenders%nf)
+    c = rotation_matrix(y(1:3))
+    r = matmul(c, y(4:6))
+    call fender_probe(self%fenders, self%side, c, r, y(boat_u(1):boat_u(2)), deepest, delta, &
+                      delta_dot)
+    clearance = -maxval(delta)
+    force = 0.0_wp
+    if (self%contact) call fender_loads(self%fenders, self%fender_states, self%side, c, r, &
+                                        y(boat_u(1):boat_u(2)), f, force)
+  end subroutine contact_state
+
+  !> Mechanical energy of the conservative part in air: kinetic + gravity (N3 down, so
+  !> -m g z) + elastic slings [J].
   pure function energy(self, y) result(e)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: y(:)
@@ -105,6 +227,7 @@ contains
     c = rotation_matrix(y(1:3))
     r = matmul(c, y(4:6))
     e = body_kinetic_energy(self%boat, y(boat_u(1):boat_u(2))) - self%boat%mass*gravity*r(3)
+    if (.not. self%slings_attached) return
     do i = 1, nslings
       e = e + sling_energy(self%slings(i), r + matmul(c, self%hooks(:, i)))
     end do
@@ -116,6 +239,8 @@ contains
     real(wp), intent(in) :: y(:)
     real(wp) :: tension(nslings), c(3, 3), r(3), fh(3)
     integer :: i
+    tension = 0.0_wp
+    if (.not. self%slings_attached) return
     c = rotation_matrix(y(1:3))
     r = matmul(c, y(4:6))
     do i = 1, nslings

@@ -49,10 +49,12 @@ module davit_system_recorders
 
   !> The hanging boat: CG kinematics, sling tensions, energy.
   type, extends(recorder_type) :: boat_recorder
-    type(system_type) :: sys
+    !> The integrated system itself (not a copy): its fender phases and first contact time
+    !> are history that the time loop advances.
+    type(system_type), pointer :: sys => null()
     real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
     real(wp), allocatable :: angular_velocity(:, :), acceleration(:, :), tension(:, :)
-    real(wp), allocatable :: energy(:)
+    real(wp), allocatable :: energy(:), clearance(:), contact_force(:, :)
   contains
     procedure :: init => boat_init
     procedure :: sample => boat_sample
@@ -85,7 +87,8 @@ contains
     integer, intent(in) :: nmax
     allocate (self%time(nmax), self%position(3, nmax), self%euler(3, nmax), &
               self%velocity(3, nmax), self%angular_velocity(3, nmax), &
-              self%acceleration(3, nmax), self%tension(2, nmax), self%energy(nmax))
+              self%acceleration(3, nmax), self%tension(2, nmax), self%energy(nmax), &
+              self%clearance(nmax), self%contact_force(self%sys%fenders%nf, nmax))
   end subroutine boat_init
 
   subroutine boat_sample(self, t, y)
@@ -100,6 +103,7 @@ contains
                           self%angular_velocity(:, k), self%acceleration(:, k))
     self%tension(:, k) = self%sys%sling_tensions(y)
     self%energy(k) = self%sys%energy(y)
+    call self%sys%contact_state(y, self%clearance(k), self%contact_force(:, k))
   end subroutine boat_sample
 
   subroutine boat_write(self, w)
@@ -122,9 +126,18 @@ contains
     call w%group("slings")
     call w%write_2d("slings/tension", self%tension(:, 1:n), "N", &
                     "Sling tension (fore, aft), spring plus dashpot, tension-only")
+    call w%group("contact")
+    call w%write_1d("contact/clearance", self%clearance(1:n), "m", &
+                    "Smallest fender-to-ship-side distance; negative = penetration")
+    call w%write_2d("contact/force", self%contact_force(:, 1:n), "N", &
+                    "Normal contact force of each fender (one contact per fender)")
+    call w%group("events")
+    call w%write_1d("events/first_contact_time", [self%sys%first_contact_time], "s", &
+                    "Time of the first fender contact; -1 = no contact")
     call w%group("diagnostics")
     call w%write_1d("diagnostics/energy", self%energy(1:n), "J", &
-                    "Total mechanical energy: kinetic + gravity (-m g z) + elastic")
+                    "Mechanical energy of the conservative part in air: kinetic + "// &
+                    "gravity (-m g z) + elastic slings")
   end subroutine boat_write
 
   pure function boat_state_name(self, k) result(name)

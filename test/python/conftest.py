@@ -13,6 +13,7 @@ sys.path.insert(0, str(ROOT))
 SHORT_DECK = """! short swing for the Python tests
 &simulation t_end = 2.0, dt = 1.0e-3, output_interval = 0.002 /
 &boat velocity = 0.0, 0.5, 0.0 /
+&wind speed = 0.0 /
 """
 
 

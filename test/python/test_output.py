@@ -41,5 +41,10 @@ def test_recorded_kinematics_are_consistent(short_run):
     dt = t[1] - t[0]
     dv = (p[2:] - p[:-2]) / (2 * dt)
     np.testing.assert_allclose(dv, v[1:-1], atol=2e-3)
-    # the first sample is free fall onto unstretched slings: a = g down (z down)
-    np.testing.assert_allclose(a[0], [0.0, 0.0, G], atol=1e-9)
+    # the first sample is free fall (still air) onto unstretched slings, the boat moving
+    # at 0.5 m/s to starboard: a = g down (z down) plus the air drag (eq. 15, C_w 0.5 on
+    # A2 = 26.2 m^2) and the symmetric lift (C_L 1.2, D_b 3.29 m, l_b 11.5 m, upward)
+    m, rho_air, vy = 8500.0, 1.225, 0.5
+    drag = 0.5 * rho_air * 26.2 * 0.5 * vy * vy
+    lift = 0.5 * rho_air * 3.29 * 11.5 * 1.2 * vy * vy
+    np.testing.assert_allclose(a[0], [0.0, -drag / m, G - lift / m], atol=1e-9)

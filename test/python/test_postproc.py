@@ -15,7 +15,7 @@ def test_all_run_figures(short_run, tmp_path):
     _, out = short_run
     assert cli.main(["run", str(out), "-o", str(tmp_path)]) == 0
     names = sorted(p.name for p in tmp_path.glob("*.png"))
-    assert names == ["short_acceleration.png", "short_sling_tension.png",
+    assert names == ["short_acceleration.png", "short_contact.png", "short_sling_tension.png",
                      "short_trajectory.png"]
     for name in names:
         width, height = png_size(tmp_path / name)

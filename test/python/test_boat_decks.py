@@ -1,0 +1,54 @@
+"""The lifeboat decks of input/ run and record their contact and floating physics."""
+import math
+import pathlib
+
+import numpy as np
+
+from postproc import layout
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+G = 9.81
+
+
+def _run_deck(davit, tmp_path, name, t_end=None):
+    deck = tmp_path / name
+    text = (ROOT / "input" / name).read_text()
+    if t_end is not None:
+        text = "\n".join(f"  t_end = {t_end}" if line.strip().startswith("t_end") else line
+                         for line in text.splitlines())
+    deck.write_text(text)
+    out = tmp_path / (deck.stem + ".h5")
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    return layout.load(out)
+
+
+def test_drop_test_first_contact_and_rebound(davit, tmp_path):
+    """The boat swings 0.2 m at 1 m/s onto the side on parallel 3 m slings: it translates
+    as a pendulum of length 3 m, x = v0/w sin(w t), so contact at asin(0.2 w/v0)/w; the
+    fender force peaks, the clearance dips below zero and the boat rebounds."""
+    run = _run_deck(davit, tmp_path, "boat_drop_test.nml", t_end=0.4)
+    run.require(layout.CONTACT + (layout.FIRST_CONTACT_TIME,), "contact record")
+    w = math.sqrt(G / 3.0)
+    expected = math.asin(0.2 * w / 1.0) / w
+    first = float(np.ravel(run.get(layout.FIRST_CONTACT_TIME))[0])
+    assert abs(first - expected) < 0.01 * expected, (first, expected)
+    assert run.get(layout.CONTACT_CLEARANCE).min() < 0.0
+    force = run.get(layout.CONTACT_FORCE)
+    assert force.shape == (run.time.size, 2)
+    assert force.max() > 1e5
+    v = run.get(layout.BOAT_VELOCITY)
+    assert v[-1, 1] > 0.5          # moving away from the ship after the impact
+
+
+def test_floating_boat_settles_at_archimedes_draught(davit, tmp_path):
+    """Released off equilibrium on calm water with zeta = 0.1: after 30 s the keel sits at
+    the draught T = m/(rho A_wp) (A_wp of the 20 strips) and the heel has died out."""
+    run = _run_deck(davit, tmp_path, "boat_floating.nml")
+    x = -5.75 + (np.arange(20) + 0.5) * 11.5 / 20
+    a_wp = np.sum(2.8 * (1 - np.abs(2 * x / 11.5) ** 4.3)) * 11.5 / 20
+    draught = 8500.0 / (1025.0 * a_wp)
+    z = run.get(layout.BOAT_POSITION)[:, 2]
+    assert abs((z[-1] + 1.1) - draught) < 1e-3, (z[-1] + 1.1, draught)
+    assert abs(run.get(layout.BOAT_EULER)[-1, 0]) < 1e-3
+    assert float(np.ravel(run.get(layout.FIRST_CONTACT_TIME))[0]) < 0.0   # never near the ship
