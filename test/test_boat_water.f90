@@ -8,7 +8,9 @@ module test_boat_water
   use davit_core_rotation, only: rotation_matrix
   use davit_core_body, only: body_qdot
   use davit_boat_strip_loads, only: strip_velocity, strip_partial_velocities
-  use davit_boat_contact, only: hertz_peak
+  use davit_boat_contact, only: hertz_peak, new_contact_law, law_hertz_elastoplastic
+  use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, fender_probe
+  use davit_core_rotation, only: cross
   use davit_system_model, only: system_type, new_system, nstate
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -30,7 +32,8 @@ contains
                    new_case("floating_equilibrium_60s", floating_equilibrium), &
                    new_case("floating_roll_period_h_m", roll_period), &
                    new_case("free_fall_and_terminal_velocity", free_fall), &
-                   new_case("fender_impact_in_system", fender_impact)]
+                   new_case("fender_impact_in_system", fender_impact), &
+                   new_case("approach_rate_eq33_moving_side_vs_fd", moving_side_rate)]
   end function collect_boat_water
 
   function deck_config(text) result(cfg)
@@ -289,5 +292,67 @@ contains
     call check(state, maxval(abs(y(7:9))), 0.0_wp, "no rotation", abs_tol=1e-9_wp)
     call check_true(state, clearance > 0.0_wp, "separated at the end")
   end subroutine fender_impact
+
+  !> Eq. (33) on a ship side that translates and rotates, with a moving, rotating boat: the
+  !> approach rate of the deepest point equals the central difference of its indentation
+  !> (the plane carried rigidly by the ship, the point by the boat).
+  subroutine moving_side_rate(state)
+    type(case_state), intent(inout) :: state
+    type(fender_set_type) :: fs
+    type(side_plane_type) :: plane
+    real(wp), parameter :: q(6) = [0.05_wp, -0.03_wp, 0.2_wp, 0.3_wp, 12.0_wp, -14.0_wp]
+    real(wp), parameter :: u(6) = [0.1_wp, -0.05_wp, 0.08_wp, 0.4_wp, -0.9_wp, 0.2_wp]
+    real(wp), parameter :: h = 1.0e-5_wp
+    real(wp) :: dm(2), dp(2), d(2), rate(2), unused(2)
+    integer :: deepest(2)
+    fs = new_fender_set([3.0_wp, -3.0_wp], -1.4_wp, [-0.8_wp, 0.2_wp], 1, &
+                        new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.45_wp, &
+                                        200.0e9_wp, 0.3_wp, 0.15_wp, 0.0_wp, 0.8_wp))
+    plane%origin = [1.0_wp, 0.5_wp, 2.0_wp]
+    plane%velocity = [0.3_wp, 0.7_wp, -0.2_wp]
+    plane%angular_velocity = [0.02_wp, -0.04_wp, 0.05_wp]
+    plane%point = plane%origin + [0.0_wp, 10.4_wp, 0.0_wp]
+    plane%normal = [0.0_wp, 1.0_wp, 0.0_wp]
+    call probe_at(0.0_wp, d, rate)
+    call probe_at(-h, dm, unused)
+    call probe_at(h, dp, unused)
+    call note(state, "approach rates (m/s)", rate(1))
+    call check(state, maxval(abs(rate - (dp - dm)/(2.0_wp*h))), 0.0_wp, &
+               "eq. 33 rate vs FD of the indentation", abs_tol=1e-8_wp)
+  contains
+    !> Indentations (and rates) with boat and plane advanced rigidly by time s.
+    subroutine probe_at(s, delta, delta_dot)
+      real(wp), intent(in) :: s
+      real(wp), intent(out) :: delta(2), delta_dot(2)
+      type(side_plane_type) :: moved
+      real(wp) :: qs(6), c(3, 3), rot(3, 3)
+      qs = q + s*body_qdot(q, u)
+      rot = rotation_about(plane%angular_velocity, s)
+      moved = plane
+      moved%origin = plane%origin + s*plane%velocity
+      moved%point = moved%origin + matmul(rot, plane%point - plane%origin)
+      moved%normal = matmul(rot, plane%normal)
+      c = rotation_matrix(qs(1:3))
+      call fender_probe(fs, moved, c, matmul(c, qs(4:6)), u, deepest, delta, delta_dot)
+    end subroutine probe_at
+  end subroutine moving_side_rate
+
+  !> Rotation by the angle |w| s about w (Rodrigues).
+  pure function rotation_about(w, s) result(r)
+    real(wp), intent(in) :: w(3), s
+    real(wp) :: r(3, 3), k(3, 3), a
+    integer :: i
+    a = norm2(w)*s
+    k = 0.0_wp
+    r = 0.0_wp
+    do i = 1, 3
+      r(i, i) = 1.0_wp
+    end do
+    if (a == 0.0_wp) return
+    k(1, 2) = -w(3); k(1, 3) = w(2); k(2, 1) = w(3); k(2, 3) = -w(1)
+    k(3, 1) = -w(2); k(3, 2) = w(1)
+    k = k/norm2(w)
+    r = r + sin(a)*k + (1.0_wp - cos(a))*matmul(k, k)
+  end function rotation_about
 
 end module test_boat_water
