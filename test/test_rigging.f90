@@ -50,7 +50,8 @@ contains
                    new_case("gearing_A7", gearing), &
                    new_case("energy_conservation_A8", energy_conservation), &
                    new_case("cable_length_conservation_and_payout", cable_length), &
-                   new_case("bounce_frequency_A10", bounce)]
+                   new_case("bounce_frequency_A10", bounce), &
+                   new_case("friction_while_lowering", friction)]
   end function collect_rigging
 
   ! ---------------------------------------------------------------- set-up helpers
@@ -510,5 +511,61 @@ contains
     call note(state, "bounce omega measured [rad/s] "//deck, omega)
     call note(state, "bounce omega linearised [rad/s]", omega_lin)
   end subroutine bounce_case
+
+  !> Friction while lowering (option B, steady pay-out, means over [4, 6] s):
+  !> quasi-static sheaves with ratio rho: the load side pulls the cable over each sheave,
+  !> so the block parts carry f4 = rho f3 with f3 + f4 = (W/2 + m_b g)/cos a, and the drum
+  !> pull is f1 = f3/rho^2. Rotating sheaves with bearing moment M_f: a steadily turning
+  !> sheave needs r (f_out - f_in) = M_f, so each sheave adds M_f/r (eq. 71 corrected).
+  subroutine friction(state)
+    type(case_state), intent(inout) :: state
+    type(hanging_problem) :: p
+    class(integrator_type), allocatable :: rk
+    real(wp), allocatable :: y(:), f(:), mean(:)
+    real(wp) :: res, t, dt, load, br(3, 2), drop, cosa
+    real(wp), parameter :: rho = 1.05_wp, mf = 20.0_wp
+    integer :: k, nmean, i
+    do i = 1, 2
+      if (i == 1) then
+        call setup(p, "reeving = 'b', friction_ratio = 1.05", y, state, res)
+      else
+        call setup(p, "reeving = 'b', sheaves = 'rotating', bearing_friction = 20", y, &
+                   state, res)
+      end if
+      call new_rk4(size(y), rk)
+      dt = 2.0e-4_wp
+      t = 0.0_wp
+      allocate (mean(p%rig%nseg))
+      mean = 0.0_wp
+      nmean = 0
+      do k = 1, nint(6.0_wp/dt)
+        call rk%step(p, t, y, dt)
+        if (t > 4.0_wp) then
+          f = tensions(p, t, y)
+          mean = mean + f
+          nmean = nmean + 1
+        end if
+      end do
+      mean = mean/nmean
+      br = p%rig%block_positions(y(13:))
+      drop = br(3, 1) + 20.55_wp
+      cosa = drop/hypot(drop, 0.16_wp)
+      load = (0.5_wp*weight + p%rig%block_mass*gravity)/cosa
+      call check(state, mean(3) + mean(4), load, "block parts carry the load", rel_tol=0.01_wp)
+      if (i == 1) then
+        call check(state, mean(4)/mean(3), rho, "QS: f4/f3 = rho", rel_tol=1.0e-3_wp)
+        call check(state, mean(1)/mean(3), 1.0_wp/rho**2, "QS: drum pull", rel_tol=1.0e-3_wp)
+        call note(state, "QS drum pull / load-side part", mean(1)/mean(4))
+      else
+        call check(state, mean(4) - mean(3), mf/p%rig%sheave_radius, "block sheave M_f/r", &
+                   rel_tol=0.02_wp)
+        call check(state, mean(2) - mean(1), mf/p%rig%sheave_radius, "guide sheave M_f/r", &
+                   rel_tol=0.02_wp)
+        call note(state, "rotating: f4 - f3 [N]", mean(4) - mean(3))
+        call note(state, "M_f/r [N]", mf/p%rig%sheave_radius)
+      end if
+      deallocate (mean)
+    end do
+  end subroutine friction
 
 end module test_rigging
