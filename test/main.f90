@@ -16,8 +16,8 @@ program main
 
   filter = ""
   if (command_argument_count() > 0) call get_command_argument(1, filter)
-  suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), collect_ship(), collect_boat(), &
-            collect_rigging()]
+  suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
+            collect_ship(), collect_boat(), collect_rigging()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

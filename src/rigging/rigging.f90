@@ -324,7 +324,7 @@ contains
     il = self%ilr + 3*n*(a - 1)
     do k = 1, n + 1
       fk = f_hook - real(k - 1, wp)*self%sling%m_lump*gravity*ez
-      if (unstretched) then
+      if (unstretched .or. norm2(fk) <= 0.0_wp) then
         node = node + self%sling%l0_seg*up
       else
         node = node + (self%sling%l0_seg + norm2(fk)/self%sling%k_seg)*fk/norm2(fk)
