@@ -1,0 +1,144 @@
+!> Deck keys of the rigging (group "rigging"): lumped-mass slings (paper §II.D, eqs. 47-65),
+!> the cable-pulley system (§II.E, eqs. 66-82) and the winch. Defaults follow the review's
+!> gaps G4-G8 and G26 and its baseline plan (§4.4: n = 0 lumps, quasi-static sheaves).
+!> Positions of the davit hardware are in the ship frame s (x fwd, y stbd, z down, origin at
+!> the ship CG); with the ship at rest at the origin they equal inertial positions.
+module davit_io_rigging_keys
+  use davit_kinds, only: wp
+  use davit_io_deck_reader, only: deck_reader_type
+  implicit none
+  private
+  public :: rigging_config, read_rigging
+
+  type :: rigging_config
+    !> 'a' = one continuous cable over both falls (paper Fig. 8); 'b' = one wire per fall.
+    character(len=:), allocatable :: reeving
+    !> 'rotating' (sheave DOFs, eq. 71 corrected) or 'quasi_static' (one tension per cable).
+    character(len=:), allocatable :: sheaves
+    !> 'drum' (drum_speed is the rope speed) or 'boat' (lowering_speed is the boat's).
+    character(len=:), allocatable :: winch_mode
+    !> 'equilibrium' (pre-stretched, static) or 'unstretched' (Fig. 13 transient).
+    character(len=:), allocatable :: initial
+    integer :: lumps
+    real(wp) :: sling_length, sling_mass_per_length, wire_diameter, youngs_modulus
+    real(wp) :: sling_damping, cable_damping
+    real(wp) :: head_fore(3), head_aft(3), head_spacing, lead_sheave(3), drum_position(3)
+    real(wp) :: sheave_radius, sheave_inertia, block_mass, drum_radius
+    real(wp) :: drum_speed, lowering_speed, winch_start, ramp_time, stop_time, brake_time
+    real(wp) :: bearing_friction, friction_ratio
+  end type rigging_config
+
+contains
+
+  subroutine read_rigging(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rigging_config), intent(inout) :: s
+    call read_topology(r, s)
+    call read_wire(r, s)
+    call read_geometry(r, s)
+    call read_hardware(r, s)
+    call read_winch(r, s)
+  end subroutine read_rigging
+
+  subroutine read_topology(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rigging_config), intent(inout) :: s
+    character(len=*), parameter :: g = "rigging"
+    call r%choice(g, "reeving", s%reeving, "a", [character(len=1) :: "a", "b"], &
+                  "'a': one cable drum-lead-fore head-block 1-aft head-block 2-dead end "// &
+                  "(paper Fig. 8, boat speed = drum/4); 'b': one wire per fall (drum/2), G6.")
+    call r%choice(g, "sheaves", s%sheaves, "quasi_static", &
+                  [character(len=12) :: "rotating", "quasi_static"], &
+                  "'rotating': sheave DOFs with torque r (f_out - f_in) (eq. 71, c_gamma = 1); "// &
+                  "'quasi_static': one tension per cable, no sheave DOFs (review §4.3 item 3).")
+    call r%int(g, "lumps", s%lumps, 0, 0, 20, "-", &
+               "Lumped masses per sling; 0 = massless tension-only spring (review §4.3, §4.4).")
+    call r%choice(g, "initial", s%initial, "equilibrium", &
+                  [character(len=11) :: "equilibrium", "unstretched"], &
+                  "Initial rigging: static equilibrium for the hanging boat, or unstretched "// &
+                  "(gives the Fig. 13 tension transient).")
+  end subroutine read_topology
+
+  subroutine read_wire(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rigging_config), intent(inout) :: s
+    character(len=*), parameter :: g = "rigging"
+    call r%real(g, "sling_length", s%sling_length, 1.0_wp, 0.01_wp, 100.0_wp, "m", &
+                "Unstretched sling length, block to hook (review G5).")
+    call r%real(g, "sling_mass_per_length", s%sling_mass_per_length, 1.6_wp, 0.0_wp, &
+                100.0_wp, "kg/m", "Sling mass per metre, shared by the lumps (20 mm 6x36, G5).")
+    call r%real(g, "wire_diameter", s%wire_diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", &
+                "Wire diameter of slings and cable; EA = E pi d^2/4 (paper III.B).", &
+                lo_open=.true.)
+    call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
+                "Pa", "Young's modulus of slings and cable (paper III.B).")
+    ! The bounce mode is damped in the cable, not the sling: the 1 m sling is ~8x stiffer
+    ! than the falls, so a sling dashpot sees little motion, and on light lumps it
+    ! collapses the RK4 step (review §4.1). 1e4 N s/m per cable segment gives zeta ~ 0.02.
+    call r%real(g, "sling_damping", s%sling_damping, 0.0_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
+                "Absolute axial dashpot of a whole sling (corrected eq. 63); each of "// &
+                "the lumps+1 segments gets (lumps+1) times this.")
+    call r%real(g, "cable_damping", s%cable_damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
+                "Absolute axial dashpot of each cable segment on its stretch rate (§1.10, "// &
+                "G26: bounce zeta ~ 0.02).")
+  end subroutine read_wire
+
+  subroutine read_geometry(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rigging_config), intent(inout) :: s
+    character(len=*), parameter :: g = "rigging"
+    call r%real_vec(g, "head_fore", s%head_fore, [4.6_wp, 13.3_wp, -20.55_wp], -1.0e3_wp, &
+                    1.0e3_wp, "m", "Fore davit head, midway between its sheave pair (A) or "// &
+                    "head sheave and dead end (B), ship frame; 3 m above the block (G4, G6).")
+    call r%real_vec(g, "head_aft", s%head_aft, [-4.6_wp, 13.3_wp, -20.55_wp], -1.0e3_wp, &
+                    1.0e3_wp, "m", "Aft davit head, as head_fore.")
+    call r%real(g, "head_spacing", s%head_spacing, 0.32_wp, 0.0_wp, 10.0_wp, "m", &
+                "Distance along x between the two cable nodes at each head (2 sheave radii).")
+    call r%real_vec(g, "lead_sheave", s%lead_sheave, [0.0_wp, 11.5_wp, -21.0_wp], -1.0e3_wp, &
+                    1.0e3_wp, "m", "Lead sheave, ship frame; in option B each wire's guide "// &
+                    "sheave is here with x set to its head's x.")
+    call r%real_vec(g, "drum_position", s%drum_position, [0.0_wp, 8.0_wp, -16.5_wp], &
+                    -1.0e3_wp, 1.0e3_wp, "m", "Drum (cable leaves here), ship frame; in "// &
+                    "option B each wire leaves the barrel at its head's x.")
+  end subroutine read_geometry
+
+  subroutine read_hardware(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rigging_config), intent(inout) :: s
+    character(len=*), parameter :: g = "rigging"
+    call r%real(g, "sheave_radius", s%sheave_radius, 0.16_wp, 0.01_wp, 5.0_wp, "m", &
+                "Radius of every sheave, fixed and movable (D/d = 16, G7).")
+    call r%real(g, "sheave_inertia", s%sheave_inertia, 0.19_wp, 1.0e-4_wp, 1.0e4_wp, &
+                "kg m^2", "Polar inertia of every sheave (15 kg disc, G7).")
+    call r%real(g, "block_mass", s%block_mass, 50.0_wp, 0.01_wp, 1.0e4_wp, "kg", &
+                "Translational mass of each movable block, sheave included (G7).")
+    call r%real(g, "drum_radius", s%drum_radius, 0.25_wp, 0.01_wp, 5.0_wp, "m", &
+                "Drum radius; only for the drum angle s/r_d (speed-controlled drum, G8).")
+    call r%real(g, "bearing_friction", s%bearing_friction, 0.0_wp, 0.0_wp, 1.0e4_wp, "N m", &
+                "Coulomb bearing moment of each rotating sheave (eq. 71, G7); 0 = none.")
+    call r%real(g, "friction_ratio", s%friction_ratio, 1.0_wp, 1.0_wp, 2.0_wp, "-", &
+                "Quasi-static sheaves: T_out/T_in over each sheave in the running direction.")
+  end subroutine read_hardware
+
+  subroutine read_winch(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(rigging_config), intent(inout) :: s
+    character(len=*), parameter :: g = "rigging"
+    call r%choice(g, "winch_mode", s%winch_mode, "drum", [character(len=4) :: "drum", "boat"], &
+                  "'drum': drum_speed is the rope pay-out speed (paper text); 'boat': "// &
+                  "lowering_speed is the boat's and the drum runs 4x (A) or 2x (B) (§1.12).")
+    call r%real(g, "drum_speed", s%drum_speed, 0.7_wp, 0.0_wp, 10.0_wp, "m/s", &
+                "Steady rope pay-out speed at the drum (paper III.B, G8).")
+    call r%real(g, "lowering_speed", s%lowering_speed, 0.7_wp, 0.0_wp, 10.0_wp, "m/s", &
+                "Steady boat lowering speed when winch_mode = 'boat' (SOLAS 0.4 + 0.02 H).")
+    call r%real(g, "winch_start", s%winch_start, 0.0_wp, 0.0_wp, 1.0e5_wp, "s", &
+                "Time at which the drum starts paying out.")
+    call r%real(g, "ramp_time", s%ramp_time, 1.0_wp, 0.0_wp, 100.0_wp, "s", &
+                "Linear ramp of the pay-out speed from 0 to full (G8).")
+    call r%real(g, "stop_time", s%stop_time, 1.0e5_wp, 0.0_wp, 1.0e5_wp, "s", &
+                "Time at which the brake starts to stop the drum.")
+    call r%real(g, "brake_time", s%brake_time, 0.5_wp, 0.0_wp, 100.0_wp, "s", &
+                "Linear ramp of the pay-out speed from full to 0 once braking.")
+  end subroutine read_winch
+
+end module davit_io_rigging_keys

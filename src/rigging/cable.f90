@@ -1,0 +1,189 @@
+!> One continuous cable over drum, sheaves and movable blocks to a dead end (paper §II.E,
+!> eqs. 66-82, Figs. 8-10; review §1.10). Nodes 1..n: node 1 is the drum, node n the dead
+!> end, interior nodes are sheaves (fixed in the ship frame, or the sheave of a movable
+!> block). Segment i joins node i and node i+1 along the current chord (eq. 69, lambda is a
+!> unit vector of current positions).
+!>
+!> Passage s_i (review §1.10): cable length that has passed node i towards node n, measured
+!> in unstretched cable; s_1 = drum pay-out, s_n = 0, s_i = r theta_i on a sheave. Unstretched
+!> lengths L0_i = L0_i(0) + s_i - s_(i+1) (eqs. 66-67 read as in §1.10) and k_i = EA/L0_i.
+module davit_rigging_cable
+  use davit_kinds, only: wp
+  use davit_core_rotation, only: cross
+  implicit none
+  private
+  public :: cable_type, max_nodes, node_drum, node_fixed, node_block, node_dead
+  public :: cable_node_kinematics, cable_passages, cable_tensions_rotating
+  public :: cable_tension_quasi_static, cable_node_forces, cable_energy_rotating
+  public :: cable_geometry
+
+  integer, parameter :: max_nodes = 8
+  integer, parameter :: node_drum = 1, node_fixed = 2, node_block = 3, node_dead = 4
+  !> Shortest unstretched length a segment may reach before the model is meaningless [m].
+  real(wp), parameter :: l0_floor = 1.0e-6_wp
+
+  type :: cable_type
+    integer :: nnode = 0
+    integer :: kind(max_nodes) = 0
+    !> Ship-frame position of drum, fixed-sheave and dead-end nodes [m].
+    real(wp) :: p_ship(3, max_nodes) = 0.0_wp
+    !> Block (1 or 2) of a block node; sheave index (in the rigging's list, 0 = none).
+    integer :: block(max_nodes) = 0
+    integer :: sheave(max_nodes) = 0
+    !> Unstretched segment lengths at zero passage L0_i(0) [m].
+    real(wp) :: l0_init(max_nodes - 1) = 0.0_wp
+    !> Axial stiffness EA [N] and per-segment absolute dashpot [N s/m].
+    real(wp) :: ea = 0.0_wp, damping = 0.0_wp
+  end type cable_type
+
+contains
+
+  !> Inertial node positions and velocities: ship-fixed nodes p = r_s + C_s p_ship,
+  !> v = v_s + w_s x (C_s p_ship) (w_s inertial components); block nodes from the blocks.
+  pure subroutine cable_node_kinematics(cab, ship_r, ship_c, ship_v, ship_w, block_r, &
+                                        block_v, p, v)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
+    real(wp), intent(in) :: block_r(3, 2), block_v(3, 2)
+    real(wp), intent(out) :: p(3, max_nodes), v(3, max_nodes)
+    real(wp) :: arm(3)
+    integer :: i
+    p = 0.0_wp
+    v = 0.0_wp
+    do i = 1, cab%nnode
+      if (cab%kind(i) == node_block) then
+        p(:, i) = block_r(:, cab%block(i))
+        v(:, i) = block_v(:, cab%block(i))
+      else
+        arm = matmul(ship_c, cab%p_ship(:, i))
+        p(:, i) = ship_r + arm
+        v(:, i) = ship_v + cross(ship_w, arm)
+      end if
+    end do
+  end subroutine cable_node_kinematics
+
+  !> Passages s_i and rates: drum from the winch, dead end 0, sheaves r theta (no slip).
+  pure subroutine cable_passages(cab, s_drum, v_drum, radius, theta, omega, s, sdot)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: s_drum, v_drum, radius, theta(:), omega(:)
+    real(wp), intent(out) :: s(max_nodes), sdot(max_nodes)
+    integer :: i
+    s = 0.0_wp
+    sdot = 0.0_wp
+    do i = 1, cab%nnode
+      if (cab%kind(i) == node_drum) then
+        s(i) = s_drum
+        sdot(i) = v_drum
+      else if (cab%sheave(i) > 0) then
+        s(i) = radius*theta(cab%sheave(i))
+        sdot(i) = radius*omega(cab%sheave(i))
+      end if
+    end do
+  end subroutine cable_passages
+
+  !> Chord unit vectors lam, chord lengths l and their rates for every segment.
+  pure subroutine cable_geometry(cab, p, v, lam, l, ldot)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: p(3, max_nodes), v(3, max_nodes)
+    real(wp), intent(out) :: lam(3, max_nodes - 1), l(max_nodes - 1), ldot(max_nodes - 1)
+    real(wp) :: d(3)
+    integer :: i
+    lam = 0.0_wp
+    l = 0.0_wp
+    ldot = 0.0_wp
+    do i = 1, cab%nnode - 1
+      d = p(:, i + 1) - p(:, i)
+      l(i) = max(norm2(d), tiny(1.0_wp))
+      lam(:, i) = d/l(i)
+      ldot(i) = dot_product(v(:, i + 1) - v(:, i), lam(:, i))
+    end do
+  end subroutine cable_geometry
+
+  !> Rotating sheaves: per-segment tension f = max(0, EA e/L0 + c de/dt) when e > 0, else 0
+  !> (tension-only, §1.10), with e = l - L0. g = -dV/dL0 = f + f_el^2/(2 EA) is the tension
+  !> that drives the sheaves: with k = EA/L0 updated, V = EA e^2/(2 L0) also depends on L0,
+  !> and using g (not f) in the torque keeps the discrete model exactly conservative.
+  !> The difference is O(strain) ~ 3e-4 of f.
+  pure subroutine cable_tensions_rotating(cab, l, ldot, s, sdot, f, g)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: l(max_nodes - 1), ldot(max_nodes - 1)
+    real(wp), intent(in) :: s(max_nodes), sdot(max_nodes)
+    real(wp), intent(out) :: f(max_nodes - 1), g(max_nodes - 1)
+    real(wp) :: l0, e, fel, edot
+    integer :: i
+    f = 0.0_wp
+    g = 0.0_wp
+    do i = 1, cab%nnode - 1
+      l0 = max(cab%l0_init(i) + s(i) - s(i + 1), l0_floor)
+      e = l(i) - l0
+      if (e <= 0.0_wp) cycle
+      fel = cab%ea*e/l0
+      edot = ldot(i) - (sdot(i) - sdot(i + 1))
+      f(i) = max(0.0_wp, fel + cab%damping*edot)
+      g(i) = f(i) + fel**2/(2.0_wp*cab%ea)
+    end do
+  end subroutine cable_tensions_rotating
+
+  !> Quasi-static (massless, frictionless-bearing) sheaves, review §4.3 item 3: one tension
+  !> T = EA (L_geom - L0_tot)/L0_tot along the whole cable, L0_tot(t) = L0_tot(0) + s_drum.
+  !> With a friction ratio rho, segment i carries T rho^(dir (i-1)) (dir = +1 when paying
+  !> out: the load side pulls the cable over each sheave against friction). The n-1 segment
+  !> dashpots act in series, so the cable dashpot is c/(n-1) on dL/dt - v_drum.
+  pure subroutine cable_tension_quasi_static(cab, l, ldot, l0_total, v_drum, ratio, f)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: l(max_nodes - 1), ldot(max_nodes - 1)
+    real(wp), intent(in) :: l0_total, v_drum, ratio
+    real(wp), intent(out) :: f(max_nodes - 1)
+    real(wp) :: w(max_nodes - 1), stretch, total, lengths, t
+    integer :: i, nseg
+    nseg = cab%nnode - 1
+    f = 0.0_wp
+    w = 1.0_wp
+    if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
+      do i = 1, nseg
+        w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
+      end do
+    end if
+    total = sum(l(1:nseg))
+    stretch = total - l0_total
+    if (stretch <= 0.0_wp) return
+    ! sum_i w_i T L0_i/EA = stretch, with L0_i = l_i L0_tot/L_geom
+    lengths = sum(w(1:nseg)*l(1:nseg))*l0_total/total
+    t = cab%ea*stretch/lengths + cab%damping*(sum(ldot(1:nseg)) - v_drum)/sum(w(1:nseg))
+    f(1:nseg) = max(0.0_wp, t)*w(1:nseg)
+  end subroutine cable_tension_quasi_static
+
+  !> Eq. (79) corrected: node i receives f_i lam_i - f_(i-1) lam_(i-1); block nodes add it to
+  !> their block. Sheave torques r (g_out - g_in) (eq. 71, corrected, c_gamma = 1).
+  pure subroutine cable_node_forces(cab, lam, f, g, radius, block_f, torque)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: lam(3, max_nodes - 1), f(max_nodes - 1), g(max_nodes - 1)
+    real(wp), intent(in) :: radius
+    real(wp), intent(inout) :: block_f(3, 2), torque(:)
+    integer :: i
+    do i = 2, cab%nnode - 1
+      if (cab%kind(i) == node_block) then
+        block_f(:, cab%block(i)) = block_f(:, cab%block(i)) + f(i)*lam(:, i) - &
+                                   f(i - 1)*lam(:, i - 1)
+      end if
+      if (cab%sheave(i) > 0) then
+        torque(cab%sheave(i)) = torque(cab%sheave(i)) + radius*(g(i) - g(i - 1))
+      end if
+    end do
+  end subroutine cable_node_forces
+
+  !> Elastic energy sum EA e^2/(2 L0) over taut segments [J] (rotating sheaves).
+  pure function cable_energy_rotating(cab, l, s) result(en)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: l(max_nodes - 1), s(max_nodes)
+    real(wp) :: en, l0, e
+    integer :: i
+    en = 0.0_wp
+    do i = 1, cab%nnode - 1
+      l0 = max(cab%l0_init(i) + s(i) - s(i + 1), l0_floor)
+      e = max(0.0_wp, l(i) - l0)
+      en = en + 0.5_wp*cab%ea*e**2/l0
+    end do
+  end function cable_energy_rotating
+
+end module davit_rigging_cable

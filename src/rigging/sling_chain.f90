@@ -1,0 +1,103 @@
+!> Lumped-mass sling (paper §II.D, eqs. 47-65, 80-81; review §1.6): n particles between the
+!> boat hook (node 0) and the movable block (node n+1), joined by n+1 tension-only
+!> spring-dashpot segments. Positions and velocities are inertial (N: z down), which the
+!> design allows instead of the paper's boat-frame components; accelerations are then plain
+!> F/m with gravity +m g N3 (corrected eq. 54). n = 0 gives a massless spring hook-block.
+module davit_rigging_sling_chain
+  use davit_kinds, only: wp, gravity
+  implicit none
+  private
+  public :: sling_chain_type, max_lumps, chain_forces, chain_energy, new_sling_chain
+
+  integer, parameter :: max_lumps = 20
+
+  type :: sling_chain_type
+    integer :: nlump = 0
+    !> Unstretched segment length l/(n+1) [m], its stiffness EA (n+1)/l [N/m] and its
+    !> absolute dashpot [N s/m]; lump mass mu l/(n+1) [kg].
+    real(wp) :: l0_seg = 1.0_wp, k_seg = 0.0_wp, c_seg = 0.0_wp, m_lump = 0.0_wp
+  end type sling_chain_type
+
+contains
+
+  !> A sling of unstretched length l, axial stiffness ea, whole-sling dashpot c (segments in
+  !> series, so each gets (n+1) c) and mass mu per metre, split over n lumps.
+  pure function new_sling_chain(nlump, length, ea, c, mu) result(ch)
+    integer, intent(in) :: nlump
+    real(wp), intent(in) :: length, ea, c, mu
+    type(sling_chain_type) :: ch
+    ch%nlump = nlump
+    ch%l0_seg = length/real(nlump + 1, wp)
+    ch%k_seg = ea/ch%l0_seg
+    ch%c_seg = c*real(nlump + 1, wp)
+    ch%m_lump = mu*ch%l0_seg
+  end function new_sling_chain
+
+  !> Tension of one segment (lower node a, upper node b): spring k (D - l0) plus absolute
+  !> dashpot c dD/dt (corrected eq. 63, never divided by the stretch), zero when slack and
+  !> clipped at >= 0 (corrected eq. 58). e is the unit vector a -> b.
+  pure subroutine segment(ch, ra, va, rb, vb, f, e)
+    type(sling_chain_type), intent(in) :: ch
+    real(wp), intent(in) :: ra(3), va(3), rb(3), vb(3)
+    real(wp), intent(out) :: f, e(3)
+    real(wp) :: d(3), dist
+    d = rb - ra
+    dist = norm2(d)
+    f = 0.0_wp
+    e = 0.0_wp
+    if (dist <= ch%l0_seg) return
+    e = d/dist
+    f = max(0.0_wp, ch%k_seg*(dist - ch%l0_seg) + ch%c_seg*dot_product(vb - va, e))
+  end subroutine segment
+
+  !> Accelerations of the lumps, forces on the top (block) and on the hook, and the segment
+  !> tensions (segment k joins node k-1 and node k; node 0 = hook, n+1 = top), eqs. 59-65.
+  pure subroutine chain_forces(ch, r_hook, v_hook, r_lump, v_lump, r_top, v_top, a_lump, &
+                               f_top, f_hook, tension)
+    type(sling_chain_type), intent(in) :: ch
+    real(wp), intent(in) :: r_hook(3), v_hook(3), r_top(3), v_top(3)
+    real(wp), intent(in) :: r_lump(3, ch%nlump), v_lump(3, ch%nlump)
+    real(wp), intent(out) :: a_lump(3, ch%nlump), f_top(3), f_hook(3)
+    real(wp), intent(out) :: tension(ch%nlump + 1)
+    real(wp) :: r(3, 0:max_lumps + 1), v(3, 0:max_lumps + 1), fn(3, 0:max_lumps + 1), e(3)
+    integer :: k, n
+    n = ch%nlump
+    r(:, 0) = r_hook
+    v(:, 0) = v_hook
+    r(:, 1:n) = r_lump
+    v(:, 1:n) = v_lump
+    r(:, n + 1) = r_top
+    v(:, n + 1) = v_top
+    fn(:, 0:n + 1) = 0.0_wp
+    do k = 1, n + 1
+      call segment(ch, r(:, k - 1), v(:, k - 1), r(:, k), v(:, k), tension(k), e)
+      fn(:, k - 1) = fn(:, k - 1) + tension(k)*e
+      fn(:, k) = fn(:, k) - tension(k)*e
+    end do
+    f_hook = fn(:, 0)
+    f_top = fn(:, n + 1)
+    do k = 1, n
+      a_lump(:, k) = fn(:, k)/ch%m_lump
+      a_lump(3, k) = a_lump(3, k) + gravity
+    end do
+  end subroutine chain_forces
+
+  !> Kinetic + gravity (z down: -m g z) + elastic energy of the lumps and segments [J].
+  pure function chain_energy(ch, r_hook, r_lump, v_lump, r_top) result(en)
+    type(sling_chain_type), intent(in) :: ch
+    real(wp), intent(in) :: r_hook(3), r_top(3)
+    real(wp), intent(in) :: r_lump(3, ch%nlump), v_lump(3, ch%nlump)
+    real(wp) :: en, r(3, 0:max_lumps + 1), stretch
+    integer :: k, n
+    n = ch%nlump
+    r(:, 0) = r_hook
+    r(:, 1:n) = r_lump
+    r(:, n + 1) = r_top
+    en = 0.5_wp*ch%m_lump*sum(v_lump**2) - ch%m_lump*gravity*sum(r_lump(3, :))
+    do k = 1, n + 1
+      stretch = max(0.0_wp, norm2(r(:, k) - r(:, k - 1)) - ch%l0_seg)
+      en = en + 0.5_wp*ch%k_seg*stretch**2
+    end do
+  end function chain_energy
+
+end module davit_rigging_sling_chain

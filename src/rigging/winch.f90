@@ -1,0 +1,59 @@
+!> Speed-controlled winch drum (paper §III.B: "only needs to control the speed of the drum";
+!> review §1.10, G8). The drum is not a dynamic DOF: its pay-out speed is prescribed, ramped
+!> up linearly from winch_start over ramp_time and down to rest over brake_time from
+!> stop_time; the passage s_drum = int v dt is carried as a state by the rigging.
+module davit_rigging_winch
+  use davit_kinds, only: wp
+  implicit none
+  private
+  public :: winch_type, winch_speed, winch_passage
+
+  type :: winch_type
+    !> Full rope pay-out speed at the drum [m/s] (positive = lowering).
+    real(wp) :: speed = 0.0_wp
+    !> Start, ramp length, brake start and brake length [s].
+    real(wp) :: t_start = 0.0_wp, t_ramp = 1.0_wp, t_stop = huge(1.0_wp), t_brake = 0.5_wp
+  end type winch_type
+
+contains
+
+  !> Pay-out speed v(t) = speed * ramp(t) * brake(t) [m/s].
+  pure function winch_speed(w, t) result(v)
+    type(winch_type), intent(in) :: w
+    real(wp), intent(in) :: t
+    real(wp) :: v, ramp, brake
+    if (t <= w%t_start) then
+      v = 0.0_wp
+      return
+    end if
+    ramp = 1.0_wp
+    if (w%t_ramp > 0.0_wp) ramp = min(1.0_wp, (t - w%t_start)/w%t_ramp)
+    brake = 1.0_wp
+    if (t >= w%t_stop) then
+      brake = 0.0_wp
+      if (w%t_brake > 0.0_wp) brake = max(0.0_wp, 1.0_wp - (t - w%t_stop)/w%t_brake)
+    end if
+    v = w%speed*ramp*brake
+  end function winch_speed
+
+  !> Paid-out length int_0^t v dt [m], closed form. Exact when the brake starts after the
+  !> ramp has finished (t_stop >= t_start + t_ramp), which is the case it is used for.
+  pure function winch_passage(w, t) result(s)
+    type(winch_type), intent(in) :: w
+    real(wp), intent(in) :: t
+    real(wp) :: s, tau, dt
+    s = 0.0_wp
+    if (t <= w%t_start) return
+    tau = min(t, w%t_stop) - w%t_start
+    if (tau <= w%t_ramp) then
+      s = w%speed*tau**2/(2.0_wp*max(w%t_ramp, tiny(1.0_wp)))
+    else
+      s = w%speed*(tau - 0.5_wp*w%t_ramp)
+    end if
+    if (t > w%t_stop .and. w%t_brake > 0.0_wp) then
+      dt = min(t - w%t_stop, w%t_brake)
+      s = s + w%speed*(dt - dt**2/(2.0_wp*w%t_brake))
+    end if
+  end function winch_passage
+
+end module davit_rigging_winch
