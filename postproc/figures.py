@@ -174,6 +174,22 @@ def rao(run, outdir, stem):
     return _save(fig, outdir, f"{stem}_rao.png")
 
 
+def segment_tension(run, outdir, stem, mass=8500.0):
+    """Cable segment tensions against time with the static share W/4 (the paper's Fig. 13)."""
+    run.require([layout.RIGGING_SEGMENT_TENSION], "cable segment tensions")
+    tension = run.get(layout.RIGGING_SEGMENT_TENSION)
+    t = run.time
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    for k in range(tension.shape[1]):
+        ax.plot(t, tension[:, k] / 1e3, lw=0.7, label=f"segment {k + 1}")
+    ax.axhline(mass * layout.GRAVITY / 4e3, color="k", ls="--", lw=0.8, label="W/4")
+    ax.set(xlabel="t [s]", ylabel="tension [kN]", title="Cable segment tension (Fig. 13)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    return _save(fig, outdir, f"{stem}_segment_tension.png")
+
+
 def contact(run, outdir, stem):
     """Smallest fender-to-side distance and each fender's normal force against time."""
     run.require(layout.CONTACT, "fender contact record")
@@ -196,7 +212,7 @@ def contact(run, outdir, stem):
 
 RUN_FIGURES = {"trajectory": trajectory, "tension": sling_tension,
                "acceleration": acceleration, "surface": surface, "spectrum": spectrum,
-               "rao": rao, "contact": contact}
+               "rao": rao, "contact": contact, "segment_tension": segment_tension}
 
 
 def figures_for(run):
@@ -206,6 +222,8 @@ def figures_for(run):
         names += ["trajectory", "acceleration"]
     if run.has(layout.SLING_TENSION):
         names.append("tension")
+    if run.has(layout.RIGGING_SEGMENT_TENSION):
+        names.append("segment_tension")
     if run.has(*layout.CONTACT):
         names.append("contact")
     if run.has(*layout.SEA):

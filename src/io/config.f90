@@ -6,10 +6,11 @@ module davit_io_config
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
+  use davit_io_rigging_keys, only: rigging_config, read_rigging
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
-  public :: wind_config, ship_config, rao_config, contact_config
+  public :: wind_config, ship_config, rao_config, contact_config, rigging_config
   public :: read_config, parse_config, document_keys
 
   type :: simulation_config
@@ -93,6 +94,7 @@ module davit_io_config
     type(ship_config) :: ship
     type(rao_config) :: rao
     type(contact_config) :: contact
+    type(rigging_config) :: rigging
   end type config_type
 
 contains
@@ -157,6 +159,7 @@ contains
     call read_ship(r, cfg%ship)
     call read_rao(r, cfg%rao)
     call read_contact(r, cfg%contact, cfg%ship)
+    call read_rigging(r, cfg%rigging)
   end subroutine read_all
 
   subroutine read_contact(r, s, ship)
@@ -229,10 +232,11 @@ contains
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
     call r%choice(g, "scene", s%scene, "hanging_boat", &
-                  [character(len=16) :: "hanging_boat", "sea", "ship"], &
+                  [character(len=16) :: "hanging_boat", "lowering", "sea", "ship"], &
                   "What to simulate: 'hanging_boat' (boat on two slings from fixed points), "// &
-                  "'sea' (the wave field alone, recorded at &sea probes) or 'ship' (the "// &
-                  "ship alone in the sea and wind).")
+                  "'lowering' (boat on the full &rigging from the davit of the ship at "// &
+                  "rest in its &ship pose), 'sea' (the wave field alone, recorded at &sea "// &
+                  "probes) or 'ship' (the ship alone in the sea and wind).")
     call r%choice(g, "integrator", s%integrator, "rk4", [character(len=8) :: "rk4"], &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's).")
     call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &

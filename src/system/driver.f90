@@ -11,7 +11,7 @@ module davit_system_driver
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_solve_integrator, only: integrator_type, ode_problem
   use davit_solve_factory, only: new_integrator
-  use davit_system_model, only: system_type, new_system, nstate
+  use davit_system_model, only: system_type, new_system
   use davit_system_run_summary, only: run_summary, write_root_attributes
   use davit_system_sea_run, only: run_sea
   use davit_system_recorders, only: recorder_type, boat_recorder, ship_recorder
@@ -45,7 +45,8 @@ contains
       if (allocated(error)) return
       call integrate_scene(cfg, ship, y, srec, out_path, summary, error)
     case default
-      call new_system(boat, cfg)
+      call new_system(boat, cfg, error)
+      if (allocated(error)) return
       y = boat%initial_state(cfg)
       brec%sys => boat
       call integrate_scene(cfg, boat, y, brec, out_path, summary, error)

@@ -29,10 +29,13 @@ module davit_system_model
                                 phase_compression
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, &
                                 fender_probe, fender_loads
+  use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_error, only: error_type
   implicit none
   private
   public :: system_type, new_system, nstate, boat_q, boat_u
 
+  !> States of the boat; the full rigging's follow them (y(nstate+1:)).
   integer, parameter :: nstate = 12
   !> Index ranges of the boat's coordinates and speeds in y.
   integer, parameter :: boat_q(2) = [1, 6], boat_u(2) = [7, 12]
@@ -56,6 +59,14 @@ module davit_system_model
     type(fender_state_type), allocatable :: fender_states(:)
     !> Time of the first fender contact [s]; negative while there has been none.
     real(wp) :: first_contact_time = -1.0_wp
+    !> The full davit rigging (the 'lowering' scene) in place of the foundation slings,
+    !> and the pose of the ship carrying it: CG, rotation (ship -> N), velocity and angular
+    !> velocity (inertial); total state length n.
+    logical :: on_davit = .false.
+    type(rigging_type) :: rig
+    integer :: n = nstate
+    real(wp) :: ship_r(3) = 0.0_wp, ship_c(3, 3) = 0.0_wp, ship_v(3) = 0.0_wp
+    real(wp) :: ship_w(3) = 0.0_wp
   contains
     procedure :: rhs => system_rhs
     procedure :: initial_state
@@ -64,14 +75,18 @@ module davit_system_model
     procedure :: observe
     procedure :: after_step => system_after_step
     procedure :: contact_state
+    procedure :: hook_kinematics
+    procedure :: rigging_state
   end type system_type
 
 contains
 
   !> Build the system from a validated configuration.
-  subroutine new_system(self, cfg)
+  subroutine new_system(self, cfg, error)
     type(system_type), intent(out) :: self
     type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out), optional :: error
+    type(error_type), allocatable :: rig_error
     real(wp) :: ea
     self%boat%mass = cfg%boat%mass
     self%boat%inertia = cfg%boat%inertia
@@ -82,9 +97,18 @@ contains
                                         cfg%slings%damping)
     self%slings(2) = elastic_sling_type(cfg%slings%anchor_aft, cfg%slings%length, ea, &
                                         cfg%slings%damping)
-    self%slings_attached = cfg%slings%attached
+    self%on_davit = cfg%simulation%scene == "lowering"
+    self%slings_attached = cfg%slings%attached .and. .not. self%on_davit
     call new_boat_environment(self, cfg)
     call new_side_contact(self, cfg)
+    if (self%on_davit) then
+      call new_rigging(self%rig, cfg%rigging, rig_error)
+      if (allocated(rig_error)) then
+        if (present(error)) call move_alloc(rig_error, error)
+        return
+      end if
+      self%n = nstate + self%rig%nstate
+    end if
   end subroutine new_system
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
@@ -114,6 +138,8 @@ contains
     integer :: law
     self%contact = cfg%contact%enabled
     cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
+    self%ship_r = cfg%ship%position
+    self%ship_c = cs
     self%side%origin = cfg%ship%position
     self%side%point = cfg%ship%position + cs(:, 2)*cfg%contact%side_y
     self%side%normal = cs(:, 2)
@@ -129,17 +155,41 @@ contains
     end associate
   end subroutine new_side_contact
 
-  !> Initial y from inertial position/velocity and Euler angles / body rates.
+  !> Initial y from inertial position/velocity and Euler angles / body rates; on the davit,
+  !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as
+  !> &rigging initial says).
   function initial_state(self, cfg) result(y)
-    class(system_type), intent(in) :: self
+    class(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
-    real(wp) :: y(nstate), c(3, 3)
+    real(wp), allocatable :: y(:)
+    real(wp) :: c(3, 3), hook_pos(3, 2), hook_vel(3, 2), residual
+    allocate (y(self%n))
     c = rotation_matrix(cfg%boat%euler)
     y(1:3) = cfg%boat%euler
     y(4:6) = matmul(transpose(c), cfg%boat%position)
     y(7:9) = cfg%boat%angular_velocity
     y(10:12) = matmul(transpose(c), cfg%boat%velocity)
+    if (.not. self%on_davit) return
+    call self%hook_kinematics(y, hook_pos, hook_vel)
+    call self%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
+                                -0.5_wp*self%boat%mass*gravity], 2, 2), self%ship_r, &
+                                self%ship_c, y(nstate + 1:), residual)
   end function initial_state
+
+  !> Inertial positions and velocities of the two hooks at state y.
+  pure subroutine hook_kinematics(self, y, hook_pos, hook_vel)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: hook_pos(3, 2), hook_vel(3, 2)
+    real(wp) :: c(3, 3), r(3)
+    integer :: i
+    c = rotation_matrix(y(1:3))
+    r = matmul(c, y(4:6))
+    do i = 1, nslings
+      hook_pos(:, i) = r + matmul(c, self%hooks(:, i))
+      hook_vel(:, i) = matmul(c, body_point_velocity(y(boat_u(1):boat_u(2)), self%hooks(:, i)))
+    end do
+  end subroutine hook_kinematics
 
   !> Kane's equations: y' = (q_dot, (F - W phi)/V).
   subroutine system_rhs(self, t, y, dydt)
@@ -147,9 +197,20 @@ contains
     real(wp), intent(in) :: t
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
-    real(wp) :: f(6)
+    real(wp) :: f(6), hook_pos(3, 2), hook_vel(3, 2), hook_force(3, 2), c(3, 3)
+    integer :: i
     associate (q => y(boat_q(1):boat_q(2)), u => y(boat_u(1):boat_u(2)))
       f = boat_forces(self, t, q, u)
+      if (self%on_davit) then
+        ! Eq. (26): the rigging's hook forces through the hooks' partial velocities.
+        call self%hook_kinematics(y, hook_pos, hook_vel)
+        call self%rig%rhs(t, y(nstate + 1:), hook_pos, hook_vel, self%ship_r, self%ship_c, &
+                          self%ship_v, self%ship_w, dydt(nstate + 1:), hook_force)
+        c = rotation_matrix(q(1:3))
+        do i = 1, nslings
+          f = f + body_point_force(self%hooks(:, i), matmul(hook_force(:, i), c))
+        end do
+      end if
       dydt(boat_q(1):boat_q(2)) = body_qdot(q, u)
       dydt(boat_u(1):boat_u(2)) = (f - body_w_phi(self%boat, u))/body_mass_diagonal(self%boat)
     end associate
@@ -227,13 +288,32 @@ contains
     c = rotation_matrix(y(1:3))
     r = matmul(c, y(4:6))
     e = body_kinetic_energy(self%boat, y(boat_u(1):boat_u(2))) - self%boat%mass*gravity*r(3)
+    if (self%on_davit) then
+      e = e + self%rig%energy(y(nstate + 1:), spread(r, 2, 2) + matmul(c, self%hooks), &
+                              self%ship_r, self%ship_c)
+    end if
     if (.not. self%slings_attached) return
     do i = 1, nslings
       e = e + sling_energy(self%slings(i), r + matmul(c, self%hooks(:, i)))
     end do
   end function energy
 
-  !> Sling tensions [N] at state y.
+  !> Rigging observables at state y: cable segment tensions [N], sling segment tensions
+  !> (row 1 at the hook) [N], paid-out length [m] and lump positions (inertial) [m].
+  pure subroutine rigging_state(self, t, y, seg, sling, paid, lumps)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
+    real(wp) :: hook_pos(3, 2), hook_vel(3, 2)
+    call self%hook_kinematics(y, hook_pos, hook_vel)
+    call self%rig%observe(t, y(nstate + 1:), hook_pos, hook_vel, self%ship_r, self%ship_c, &
+                          self%ship_v, self%ship_w, seg, sling)
+    paid = self%rig%paid_out(y(nstate + 1:))
+    if (self%rig%nlump > 0) lumps = self%rig%lump_positions(y(nstate + 1:))
+  end subroutine rigging_state
+
+  !> Tensions [N] of the foundation slings at state y (zero when detached or on the davit,
+  !> where rigging_state gives the sling tensions).
   pure function sling_tensions(self, y) result(tension)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: y(:)
@@ -257,7 +337,7 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(out) :: position(3), euler(3), velocity(3), angular_velocity(3)
     real(wp), intent(out) :: acceleration(3)
-    real(wp) :: c(3, 3), dydt(nstate)
+    real(wp) :: c(3, 3), dydt(self%n)
     associate (u => y(boat_u(1):boat_u(2)))
       call self%rhs(t, y, dydt)
       c = rotation_matrix(y(1:3))

@@ -4,7 +4,7 @@ module davit_system_recorders
   use davit_kinds, only: wp
   use davit_core_rotation, only: rotation_matrix
   use davit_io_hdf5_writer, only: h5_writer_type
-  use davit_system_model, only: system_type
+  use davit_system_model, only: system_type, nstate
   implicit none
   private
   public :: recorder_type, boat_recorder, ship_recorder
@@ -55,6 +55,9 @@ module davit_system_recorders
     real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
     real(wp), allocatable :: angular_velocity(:, :), acceleration(:, :), tension(:, :)
     real(wp), allocatable :: energy(:), clearance(:), contact_force(:, :)
+    !> Full rigging only: cable segment tensions, paid-out length, sheave angles, lumps.
+    real(wp), allocatable :: segment_tension(:, :), paid_out(:), pulley_angle(:, :)
+    real(wp), allocatable :: lumps(:, :, :)
   contains
     procedure :: init => boat_init
     procedure :: sample => boat_sample
@@ -89,6 +92,12 @@ contains
               self%velocity(3, nmax), self%angular_velocity(3, nmax), &
               self%acceleration(3, nmax), self%tension(2, nmax), self%energy(nmax), &
               self%clearance(nmax), self%contact_force(self%sys%fenders%nf, nmax))
+    if (self%sys%on_davit) then
+      associate (rig => self%sys%rig)
+        allocate (self%segment_tension(rig%nseg, nmax), self%paid_out(nmax), &
+                  self%pulley_angle(rig%nsheave, nmax), self%lumps(3, 2*rig%nlump, nmax))
+      end associate
+    end if
   end subroutine boat_init
 
   subroutine boat_sample(self, t, y)
@@ -102,9 +111,23 @@ contains
     call self%sys%observe(t, y, self%position(:, k), self%euler(:, k), self%velocity(:, k), &
                           self%angular_velocity(:, k), self%acceleration(:, k))
     self%tension(:, k) = self%sys%sling_tensions(y)
+    if (self%sys%on_davit) call sample_rigging(self, t, y, k)
     self%energy(k) = self%sys%energy(y)
     call self%sys%contact_state(y, self%clearance(k), self%contact_force(:, k))
   end subroutine boat_sample
+
+  !> Rigging observables of sample k; the slings' tension is that of their hook segment.
+  subroutine sample_rigging(self, t, y, k)
+    class(boat_recorder), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(in) :: k
+    real(wp) :: sling(self%sys%rig%nlump + 1, 2), lumps(3, self%sys%rig%nlump, 2)
+    call self%sys%rigging_state(t, y, self%segment_tension(:, k), sling, self%paid_out(k), &
+                                lumps)
+    self%tension(:, k) = sling(1, :)
+    self%pulley_angle(:, k) = self%sys%rig%sheave_angles(y(nstate + 1:))
+    self%lumps(:, :, k) = reshape(lumps, [3, 2*self%sys%rig%nlump])
+  end subroutine sample_rigging
 
   subroutine boat_write(self, w)
     class(boat_recorder), intent(in) :: self
@@ -126,6 +149,7 @@ contains
     call w%group("slings")
     call w%write_2d("slings/tension", self%tension(:, 1:n), "N", &
                     "Sling tension (fore, aft), spring plus dashpot, tension-only")
+    if (self%sys%on_davit) call write_rigging(self, w)
     call w%group("contact")
     call w%write_1d("contact/clearance", self%clearance(1:n), "m", &
                     "Smallest fender-to-ship-side distance; negative = penetration")
@@ -140,11 +164,38 @@ contains
                     "gravity (-m g z) + elastic slings")
   end subroutine boat_write
 
+  subroutine write_rigging(self, w)
+    class(boat_recorder), intent(in) :: self
+    type(h5_writer_type), intent(inout) :: w
+    integer :: n
+    n = self%n
+    call w%group("rigging")
+    call w%write_2d("rigging/segment_tension", self%segment_tension(:, 1:n), "N", &
+                    "Cable segment tensions from the drum (cable 1, then cable 2 for "// &
+                    "reeving B), tension-only")
+    call w%write_1d("rigging/paid_out", self%paid_out(1:n), "m", &
+                    "Cable paid out by the drum since t = 0")
+    if (self%sys%rig%nsheave > 0) then
+      call w%write_2d("rigging/pulley_angle", self%pulley_angle(:, 1:n), "rad", &
+                      "Rotation of each rotating sheave since t = 0")
+    end if
+    if (self%sys%rig%nlump > 0) then
+      call w%write_3d("slings/lump_position", self%lumps(:, :, 1:n), "m", &
+                      "Sling lump positions, inertial (fore sling lumps from the hook up, "// &
+                      "then aft)")
+    end if
+  end subroutine write_rigging
+
   pure function boat_state_name(self, k) result(name)
     class(boat_recorder), intent(in) :: self
     integer, intent(in) :: k
     character(len=:), allocatable :: name
-    name = "boat "//trim(body_names(k))
+    if (k > size(body_names)) then
+      name = "rigging state "//char(48 + mod(k/100, 10))//char(48 + mod(k/10, 10))// &
+             char(48 + mod(k, 10))
+    else
+      name = "boat "//trim(body_names(k))
+    end if
   end function boat_state_name
 
   subroutine ship_init(self, nmax)

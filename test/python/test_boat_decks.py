@@ -52,3 +52,22 @@ def test_floating_boat_settles_at_archimedes_draught(davit, tmp_path):
     assert abs((z[-1] + 1.1) - draught) < 1e-3, (z[-1] + 1.1, draught)
     assert abs(run.get(layout.BOAT_EULER)[-1, 0]) < 1e-3
     assert float(np.ravel(run.get(layout.FIRST_CONTACT_TIME))[0]) < 0.0   # never near the ship
+
+
+def test_lowering_scene_statics_gearing_and_rigging_record(davit, tmp_path):
+    """The boat on the full davit rigging (reeving A, quasi-static sheaves): each hook
+    carries W/2 at the equilibrium start (A6), the boat comes down at drum speed / 4 (A7),
+    and the rigging datasets are written with their shapes."""
+    run = _run_deck(davit, tmp_path, "lowering.nml", t_end=10.0)
+    run.require((layout.RIGGING_SEGMENT_TENSION, layout.RIGGING_PAID_OUT), "rigging record")
+    t = run.time
+    hook = run.get(layout.SLING_TENSION)
+    np.testing.assert_allclose(hook[0], [8500.0 * G / 2] * 2, rtol=1e-6)
+    z = run.get(layout.BOAT_POSITION)[:, 2]
+    i5, i10 = np.searchsorted(t, 5.0), t.size - 1
+    speed = (z[i10] - z[i5]) / (t[i10] - t[i5])
+    assert abs(speed - 0.7 / 4) < 0.01 * 0.7 / 4, speed
+    paid = run.get(layout.RIGGING_PAID_OUT)
+    # ramp 1 s to 0.7 m/s: paid out = 0.7 (t - 0.5) after the ramp
+    assert abs(paid[-1] - 0.7 * (t[-1] - 0.5)) < 1e-6
+    assert run.get(layout.RIGGING_SEGMENT_TENSION).shape[0] == t.size
