@@ -232,10 +232,11 @@ contains
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
     call r%choice(g, "scene", s%scene, "hanging_boat", &
-                  [character(len=16) :: "hanging_boat", "lowering", "sea", "ship"], &
+                  [character(len=16) :: "hanging_boat", "lowering", "launch", "sea", "ship"], &
                   "What to simulate: 'hanging_boat' (boat on two slings from fixed points), "// &
                   "'lowering' (boat on the full &rigging from the davit of the ship at "// &
-                  "rest in its &ship pose), 'sea' (the wave field alone, recorded at &sea "// &
+                  "rest in its &ship pose), 'launch' (the same from the 6-DOF ship moving "// &
+                  "in the &sea and &wind), 'sea' (the wave field alone, recorded at &sea "// &
                   "probes) or 'ship' (the ship alone in the sea and wind).")
     call r%choice(g, "integrator", s%integrator, "rk4", [character(len=8) :: "rk4"], &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's).")

@@ -31,6 +31,8 @@ module davit_system_model
                                 fender_probe, fender_loads
   use davit_rigging_rigging, only: rigging_type, new_rigging
   use davit_error, only: error_type
+  use davit_ship_hull, only: hull_type, new_hull
+  use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_nstate
   implicit none
   private
   public :: system_type, new_system, nstate, boat_q, boat_u
@@ -40,6 +42,11 @@ module davit_system_model
   !> Index ranges of the boat's coordinates and speeds in y.
   integer, parameter :: boat_q(2) = [1, 6], boat_u(2) = [7, 12]
   integer, parameter :: nslings = 2
+
+  !> Where the ship is: CG, rotation (ship -> N), velocity and angular velocity (inertial).
+  type :: ship_pose_type
+    real(wp) :: r(3) = 0.0_wp, c(3, 3) = 0.0_wp, v(3) = 0.0_wp, w(3) = 0.0_wp
+  end type ship_pose_type
 
   type, extends(ode_problem) :: system_type
     type(rigid_body_type) :: boat
@@ -59,14 +66,20 @@ module davit_system_model
     type(fender_state_type), allocatable :: fender_states(:)
     !> Time of the first fender contact [s]; negative while there has been none.
     real(wp) :: first_contact_time = -1.0_wp
-    !> The full davit rigging (the 'lowering' scene) in place of the foundation slings,
-    !> and the pose of the ship carrying it: CG, rotation (ship -> N), velocity and angular
-    !> velocity (inertial); total state length n.
+    !> The full davit rigging ('lowering' and 'launch' scenes) in place of the foundation
+    !> slings; total state length n.
     logical :: on_davit = .false.
     type(rigging_type) :: rig
     integer :: n = nstate
-    real(wp) :: ship_r(3) = 0.0_wp, ship_c(3, 3) = 0.0_wp, ship_v(3) = 0.0_wp
-    real(wp) :: ship_w(3) = 0.0_wp
+    !> The ship carrying the davit and the side plane: at rest in its deck pose, or
+    !> ('launch') a 6-DOF ship in the sea and wind whose 12 states start at y(iship),
+    !> one-way coupled as in the paper (the davit loads do not act on it).
+    type(ship_pose_type) :: ship_rest
+    logical :: with_ship = .false.
+    type(ship_system_type) :: ship
+    integer :: iship = 0
+    !> Ship-frame y of the side plane [m].
+    real(wp) :: side_y = 0.0_wp
   contains
     procedure :: rhs => system_rhs
     procedure :: initial_state
@@ -97,7 +110,7 @@ contains
                                         cfg%slings%damping)
     self%slings(2) = elastic_sling_type(cfg%slings%anchor_aft, cfg%slings%length, ea, &
                                         cfg%slings%damping)
-    self%on_davit = cfg%simulation%scene == "lowering"
+    self%on_davit = cfg%simulation%scene == "lowering" .or. cfg%simulation%scene == "launch"
     self%slings_attached = cfg%slings%attached .and. .not. self%on_davit
     call new_boat_environment(self, cfg)
     call new_side_contact(self, cfg)
@@ -109,7 +122,30 @@ contains
       end if
       self%n = nstate + self%rig%nstate
     end if
+    if (cfg%simulation%scene == "launch") then
+      call new_moving_ship(self, cfg, error)
+    end if
   end subroutine new_system
+
+  !> The 6-DOF ship of the 'ship' scene, in the same sea and wind as the boat.
+  subroutine new_moving_ship(self, cfg, error)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out), optional :: error
+    type(error_type), allocatable :: hull_error
+    type(hull_type) :: hull
+    call new_hull(hull, cfg%ship, hull_error)
+    if (allocated(hull_error)) then
+      if (present(error)) call move_alloc(hull_error, error)
+      return
+    end if
+    call new_ship_system(self%ship, hull, self%sea, self%wind, cfg%ship%frozen, &
+                         cfg%ship%position, cfg%ship%heading, &
+                         cfg%ship%wave_phase == "initial", cfg%ship%headway)
+    self%with_ship = .true.
+    self%iship = self%n + 1
+    self%n = self%n + ship_nstate
+  end subroutine new_moving_ship
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
   subroutine new_boat_environment(self, cfg)
@@ -138,11 +174,10 @@ contains
     integer :: law
     self%contact = cfg%contact%enabled
     cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
-    self%ship_r = cfg%ship%position
-    self%ship_c = cs
-    self%side%origin = cfg%ship%position
-    self%side%point = cfg%ship%position + cs(:, 2)*cfg%contact%side_y
-    self%side%normal = cs(:, 2)
+    self%ship_rest%r = cfg%ship%position
+    self%ship_rest%c = cs
+    self%ship_rest%v = matmul(cs, [cfg%ship%headway, 0.0_wp, 0.0_wp])
+    self%side_y = cfg%contact%side_y
     associate (k => cfg%contact)
       law = merge(law_lankarani_nikravesh, law_hertz_elastoplastic, &
                   k%law == "lankarani_nikravesh")
@@ -163,7 +198,9 @@ contains
     type(config_type), intent(in) :: cfg
     real(wp), allocatable :: y(:)
     real(wp) :: c(3, 3), hook_pos(3, 2), hook_vel(3, 2), residual
+    type(ship_pose_type) :: pose
     allocate (y(self%n))
+    if (self%with_ship) y(self%iship:self%iship + ship_nstate - 1) = ship_initial_state(cfg)
     c = rotation_matrix(cfg%boat%euler)
     y(1:3) = cfg%boat%euler
     y(4:6) = matmul(transpose(c), cfg%boat%position)
@@ -171,10 +208,50 @@ contains
     y(10:12) = matmul(transpose(c), cfg%boat%velocity)
     if (.not. self%on_davit) return
     call self%hook_kinematics(y, hook_pos, hook_vel)
+    pose = ship_pose(self, y)
     call self%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
-                                -0.5_wp*self%boat%mass*gravity], 2, 2), self%ship_r, &
-                                self%ship_c, y(nstate + 1:), residual)
+                                -0.5_wp*self%boat%mass*gravity], 2, 2), pose%r, pose%c, &
+                                y(nstate + 1:nstate + self%rig%nstate), residual)
   end function initial_state
+
+  !> At rest in its equilibrium attitude: list, trim, heading; CG at the deck's position.
+  pure function ship_initial_state(cfg) result(y)
+    type(config_type), intent(in) :: cfg
+    real(wp) :: y(ship_nstate)
+    y = 0.0_wp
+    y(1:3) = [cfg%ship%list, cfg%ship%trim, cfg%ship%heading]
+    y(4:6) = cfg%ship%position
+    y(10) = cfg%ship%headway
+  end function ship_initial_state
+
+  !> The ship's pose at state y.
+  pure function ship_pose(self, y) result(pose)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: y(:)
+    type(ship_pose_type) :: pose
+    if (.not. self%with_ship) then
+      pose = self%ship_rest
+      return
+    end if
+    associate (ys => y(self%iship:self%iship + ship_nstate - 1))
+      pose%c = rotation_matrix(ys(1:3))
+      pose%r = ys(4:6)
+      pose%v = matmul(pose%c, ys(10:12))
+      pose%w = matmul(pose%c, ys(7:9))
+    end associate
+  end function ship_pose
+
+  !> The ship's side plane (ship-frame y = side_y, normal +s2) carried by the ship.
+  pure function side_plane(self, pose) result(plane)
+    class(system_type), intent(in) :: self
+    type(ship_pose_type), intent(in) :: pose
+    type(side_plane_type) :: plane
+    plane%origin = pose%r
+    plane%point = pose%r + pose%c(:, 2)*self%side_y
+    plane%normal = pose%c(:, 2)
+    plane%velocity = pose%v
+    plane%angular_velocity = pose%w
+  end function side_plane
 
   !> Inertial positions and velocities of the two hooks at state y.
   pure subroutine hook_kinematics(self, y, hook_pos, hook_vel)
@@ -198,14 +275,21 @@ contains
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
     real(wp) :: f(6), hook_pos(3, 2), hook_vel(3, 2), hook_force(3, 2), c(3, 3)
-    integer :: i
+    type(ship_pose_type) :: pose
+    integer :: i, j
+    pose = ship_pose(self, y)
+    if (self%with_ship) then
+      j = self%iship
+      call self%ship%rhs(t, y(j:j + ship_nstate - 1), dydt(j:j + ship_nstate - 1))
+    end if
     associate (q => y(boat_q(1):boat_q(2)), u => y(boat_u(1):boat_u(2)))
-      f = boat_forces(self, t, q, u)
+      f = boat_forces(self, t, q, u, side_plane(self, pose))
       if (self%on_davit) then
         ! Eq. (26): the rigging's hook forces through the hooks' partial velocities.
         call self%hook_kinematics(y, hook_pos, hook_vel)
-        call self%rig%rhs(t, y(nstate + 1:), hook_pos, hook_vel, self%ship_r, self%ship_c, &
-                          self%ship_v, self%ship_w, dydt(nstate + 1:), hook_force)
+        j = nstate + self%rig%nstate
+        call self%rig%rhs(t, y(nstate + 1:j), hook_pos, hook_vel, pose%r, pose%c, pose%v, &
+                          pose%w, dydt(nstate + 1:j), hook_force)
         c = rotation_matrix(q(1:3))
         do i = 1, nslings
           f = f + body_point_force(self%hooks(:, i), matmul(hook_force(:, i), c))
@@ -218,9 +302,10 @@ contains
 
   !> Generalized active forces on the boat: gravity (eq. 13), slings (eq. 26), water
   !> (eqs. 18-25), wind (eqs. 14-17, at the CG) and fender contact (eq. 34).
-  pure function boat_forces(self, t, q, u) result(f)
+  pure function boat_forces(self, t, q, u, side) result(f)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: t, q(6), u(6)
+    type(side_plane_type), intent(in) :: side
     real(wp) :: f(6), c(3, 3), r(3), fh(3), tension, fw(6), volume, force(self%fenders%nf)
     integer :: i
     c = rotation_matrix(q(1:3))
@@ -238,7 +323,7 @@ contains
     f(4:6) = f(4:6) + boat_wind_force(self%air, u(4:6) - matmul(wind_velocity(self%wind), c), &
                                       max(0.0_wp, 1.0_wp - volume/self%hull_volume))
     if (self%contact) then
-      call fender_loads(self%fenders, self%fender_states, self%side, c, r, u, fw, force)
+      call fender_loads(self%fenders, self%fender_states, side, c, r, u, fw, force)
       f = f + fw
     end if
   end function boat_forces
@@ -249,10 +334,11 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
     integer :: deepest(self%fenders%nf), j
+    if (self%with_ship) call self%ship%after_step(t, y(self%iship:self%iship + ship_nstate - 1))
     if (.not. self%contact) return
     c = rotation_matrix(y(1:3))
-    call fender_probe(self%fenders, self%side, c, matmul(c, y(4:6)), y(boat_u(1):boat_u(2)), &
-                      deepest, delta, delta_dot)
+    call fender_probe(self%fenders, side_plane(self, ship_pose(self, y)), c, &
+                      matmul(c, y(4:6)), y(boat_u(1):boat_u(2)), deepest, delta, delta_dot)
     do j = 1, self%fenders%nf
       call fender_update(self%fenders%law, self%fender_states(j), delta(j), delta_dot(j))
       if (self%fender_states(j)%phase == phase_compression .and. &
@@ -268,13 +354,15 @@ contains
     real(wp), intent(out) :: clearance, force(:)
     real(wp) :: c(3, 3), r(3), delta(self%fenders%nf), delta_dot(self%fenders%nf), f(6)
     integer :: deepest(self%fenders%nf)
+    type(side_plane_type) :: plane
     c = rotation_matrix(y(1:3))
     r = matmul(c, y(4:6))
-    call fender_probe(self%fenders, self%side, c, r, y(boat_u(1):boat_u(2)), deepest, delta, &
+    plane = side_plane(self, ship_pose(self, y))
+    call fender_probe(self%fenders, plane, c, r, y(boat_u(1):boat_u(2)), deepest, delta, &
                       delta_dot)
     clearance = -maxval(delta)
     force = 0.0_wp
-    if (self%contact) call fender_loads(self%fenders, self%fender_states, self%side, c, r, &
+    if (self%contact) call fender_loads(self%fenders, self%fender_states, plane, c, r, &
                                         y(boat_u(1):boat_u(2)), f, force)
   end subroutine contact_state
 
@@ -284,13 +372,15 @@ contains
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: y(:)
     real(wp) :: e, c(3, 3), r(3)
+    type(ship_pose_type) :: pose
     integer :: i
     c = rotation_matrix(y(1:3))
     r = matmul(c, y(4:6))
     e = body_kinetic_energy(self%boat, y(boat_u(1):boat_u(2))) - self%boat%mass*gravity*r(3)
     if (self%on_davit) then
-      e = e + self%rig%energy(y(nstate + 1:), spread(r, 2, 2) + matmul(c, self%hooks), &
-                              self%ship_r, self%ship_c)
+      pose = ship_pose(self, y)
+      e = e + self%rig%energy(y(nstate + 1:nstate + self%rig%nstate), spread(r, 2, 2) + &
+                              matmul(c, self%hooks), pose%r, pose%c)
     end if
     if (.not. self%slings_attached) return
     do i = 1, nslings
@@ -305,11 +395,15 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
     real(wp) :: hook_pos(3, 2), hook_vel(3, 2)
+    type(ship_pose_type) :: pose
     call self%hook_kinematics(y, hook_pos, hook_vel)
-    call self%rig%observe(t, y(nstate + 1:), hook_pos, hook_vel, self%ship_r, self%ship_c, &
-                          self%ship_v, self%ship_w, seg, sling)
-    paid = self%rig%paid_out(y(nstate + 1:))
-    if (self%rig%nlump > 0) lumps = self%rig%lump_positions(y(nstate + 1:))
+    pose = ship_pose(self, y)
+    associate (yr => y(nstate + 1:nstate + self%rig%nstate))
+      call self%rig%observe(t, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
+                            sling)
+      paid = self%rig%paid_out(yr)
+      if (self%rig%nlump > 0) lumps = self%rig%lump_positions(yr)
+    end associate
   end subroutine rigging_state
 
   !> Tensions [N] of the foundation slings at state y (zero when detached or on the davit,

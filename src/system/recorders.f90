@@ -58,6 +58,8 @@ module davit_system_recorders
     !> Full rigging only: cable segment tensions, paid-out length, sheave angles, lumps.
     real(wp), allocatable :: segment_tension(:, :), paid_out(:), pulley_angle(:, :)
     real(wp), allocatable :: lumps(:, :, :)
+    !> Moving ship only: its CG position and Euler angles.
+    real(wp), allocatable :: ship_position(:, :), ship_euler(:, :)
   contains
     procedure :: init => boat_init
     procedure :: sample => boat_sample
@@ -98,6 +100,7 @@ contains
                   self%pulley_angle(rig%nsheave, nmax), self%lumps(3, 2*rig%nlump, nmax))
       end associate
     end if
+    if (self%sys%with_ship) allocate (self%ship_position(3, nmax), self%ship_euler(3, nmax))
   end subroutine boat_init
 
   subroutine boat_sample(self, t, y)
@@ -112,6 +115,10 @@ contains
                           self%angular_velocity(:, k), self%acceleration(:, k))
     self%tension(:, k) = self%sys%sling_tensions(y)
     if (self%sys%on_davit) call sample_rigging(self, t, y, k)
+    if (self%sys%with_ship) then
+      self%ship_euler(:, k) = y(self%sys%iship:self%sys%iship + 2)
+      self%ship_position(:, k) = y(self%sys%iship + 3:self%sys%iship + 5)
+    end if
     self%energy(k) = self%sys%energy(y)
     call self%sys%contact_state(y, self%clearance(k), self%contact_force(:, k))
   end subroutine boat_sample
@@ -150,6 +157,13 @@ contains
     call w%write_2d("slings/tension", self%tension(:, 1:n), "N", &
                     "Sling tension (fore, aft), spring plus dashpot, tension-only")
     if (self%sys%on_davit) call write_rigging(self, w)
+    if (self%sys%with_ship) then
+      call w%group("ship")
+      call w%write_2d("ship/position", self%ship_position(:, 1:n), "m", &
+                      "Ship CG position, inertial frame N (z down)")
+      call w%write_2d("ship/euler", self%ship_euler(:, 1:n), "rad", &
+                      "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+    end if
     call w%group("contact")
     call w%write_1d("contact/clearance", self%clearance(1:n), "m", &
                     "Smallest fender-to-ship-side distance; negative = penetration")

@@ -71,3 +71,21 @@ def test_lowering_scene_statics_gearing_and_rigging_record(davit, tmp_path):
     # ramp 1 s to 0.7 m/s: paid out = 0.7 (t - 0.5) after the ramp
     assert abs(paid[-1] - 0.7 * (t[-1] - 0.5)) < 1e-6
     assert run.get(layout.RIGGING_SEGMENT_TENSION).shape[0] == t.size
+
+
+def test_launch_with_frozen_ship_reproduces_lowering(davit, tmp_path):
+    """Coupling regression: the 'launch' scene with the ship frozen at rest is the
+    'lowering' scene (same boat trajectory and cable tensions, bitwise)."""
+    low = _run_deck(davit, tmp_path, "lowering.nml", t_end=3.0)
+    deck = tmp_path / "launch.nml"
+    text = (ROOT / "input" / "lowering.nml").read_text()
+    text = text.replace("scene = 'lowering'", "scene = 'launch'").replace(
+        "t_end = 100.0", "t_end = 3.0") + "&ship\n  frozen = .true.\n/\n"
+    deck.write_text(text)
+    out = tmp_path / "launch.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    launch = layout.load(out)
+    for name in (layout.BOAT_POSITION, layout.RIGGING_SEGMENT_TENSION):
+        np.testing.assert_array_equal(launch.get(name), low.get(name))
+    assert launch.has(layout.SHIP_POSITION, layout.SHIP_EULER)
