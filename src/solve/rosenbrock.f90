@@ -8,6 +8,8 @@
 !>                           + h gamma_i df/dt,
 !>   y_new = y + sum_i m_i K_i,   error = sum_i e_i K_i.
 !> J and df/dt are forward differences of the RHS (n + 1 evaluations), LU by LAPACK.
+!> Stability function (evaluated from these coefficients): |R(iw)| <= 1 for all w,
+!> R(z) ~ 8/(3z) -> 0 as z -> -inf (|R(-1e8)| = 2.7e-8), local error ~ z^4 (order 3).
 !>
 !> Contract as for dopri5: step(problem, t, y, dt) advances exactly from t to t + dt with
 !> adaptive internal steps; the proposed step persists between calls. J is recomputed at
