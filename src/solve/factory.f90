@@ -1,27 +1,58 @@
 !> Integrator selection by name (the `&simulation integrator` key).
 module davit_solve_factory
+  use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_solve_integrator, only: integrator_type
   use davit_solve_rk4, only: rk4_type
+  use davit_solve_dopri5, only: dopri5_type
+  use davit_solve_rosenbrock, only: rosenbrock_type
   implicit none
   private
   public :: new_integrator
 
 contains
 
-  subroutine new_integrator(name, n, integrator, error)
+  !> Allocate and initialise the integrator `name` ("rk4", "dopri5", "rosenbrock") for a
+  !> state of size n. rtol/atol set the adaptive methods' tolerances (defaults 1e-6, 1e-9);
+  !> rk4 has no error control and ignores them.
+  subroutine new_integrator(name, n, integrator, error, rtol, atol)
     character(len=*), intent(in) :: name
     integer, intent(in) :: n
     class(integrator_type), allocatable, intent(out) :: integrator
     type(error_type), allocatable, intent(out) :: error
+    real(wp), intent(in), optional :: rtol, atol
+    if (present(rtol)) then
+      if (.not. rtol > 0.0_wp) then
+        call fatal_error(error, "integrator rtol must be > 0")
+        return
+      end if
+    end if
+    if (present(atol)) then
+      if (.not. atol >= 0.0_wp) then
+        call fatal_error(error, "integrator atol must be >= 0")
+        return
+      end if
+    end if
     select case (name)
     case ("rk4")
       allocate (rk4_type :: integrator)
+    case ("dopri5")
+      allocate (dopri5_type :: integrator)
+    case ("rosenbrock")
+      allocate (rosenbrock_type :: integrator)
     case default
-      call fatal_error(error, "unknown integrator '"//name//"'")
+      call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock)")
       return
     end select
     call integrator%init(n)
+    select type (integrator)
+    type is (dopri5_type)
+      if (present(rtol)) integrator%rtol = rtol
+      if (present(atol)) integrator%atol = atol
+    type is (rosenbrock_type)
+      if (present(rtol)) integrator%rtol = rtol
+      if (present(atol)) integrator%atol = atol
+    end select
   end subroutine new_integrator
 
 end module davit_solve_factory

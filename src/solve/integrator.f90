@@ -30,6 +30,10 @@ module davit_solve_integrator
   type, abstract :: integrator_type
     integer(i8) :: steps = 0
     integer(i8) :: rhs_evaluations = 0
+    !> Set (and `failure` explained: time, step size, reason) when an adaptive integrator
+    !> cannot complete a step; y is then left at the last accepted state. Never stops.
+    logical :: failed = .false.
+    character(len=:), allocatable :: failure
   contains
     procedure(init_interface), deferred :: init
     procedure(step_interface), deferred :: step
