@@ -17,6 +17,7 @@ module davit_io_config
     real(wp) :: t_end, dt, output_interval
     character(len=:), allocatable :: integrator, scene
     integer :: seed
+    real(wp) :: rtol, atol
   end type simulation_config
 
   !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
@@ -238,8 +239,16 @@ contains
                   "rest in its &ship pose), 'launch' (the same from the 6-DOF ship moving "// &
                   "in the &sea and &wind), 'sea' (the wave field alone, recorded at &sea "// &
                   "probes) or 'ship' (the ship alone in the sea and wind).")
-    call r%choice(g, "integrator", s%integrator, "rk4", [character(len=8) :: "rk4"], &
-                  "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's).")
+    call r%choice(g, "integrator", s%integrator, "rk4", &
+                  [character(len=10) :: "rk4", "dopri5", "rosenbrock"], &
+                  "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's), "// &
+                  "adaptive Dormand-Prince 5(4) or the linearly implicit, L-stable "// &
+                  "Rosenbrock RODAS3 (step set by accuracy, not by the stiff springs); the "// &
+                  "adaptive ones take substeps inside each dt.")
+    call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
+                "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
+    call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &
+                "Absolute error tolerance of the adaptive integrators (state units).")
     call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &
                 "Interval between recorded samples; rounded to a whole number of steps.", &
                 lo_open=.true.)

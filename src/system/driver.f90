@@ -69,7 +69,8 @@ contains
     integer(i8) :: nsteps, every, i, clock0, clock1, rate
     integer :: bad
 
-    call new_integrator(cfg%simulation%integrator, size(y), integ, error)
+    call new_integrator(cfg%simulation%integrator, size(y), integ, error, &
+                        cfg%simulation%rtol, cfg%simulation%atol)
     if (allocated(error)) return
     call writer%create(out_path, error)
     if (allocated(error)) return
@@ -82,6 +83,10 @@ contains
     call system_clock(clock0, rate)
     do i = 1, nsteps
       call integ%step(problem, t, y, dt)
+      if (integ%failed) then
+        call fatal_error(run_error, "run stopped: "//integ%failure)
+        exit
+      end if
       t = real(i, wp)*dt
       bad = first_bad(y, rec%speed_range())
       if (bad > 0) then
