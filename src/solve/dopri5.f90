@@ -11,8 +11,8 @@
 module davit_solve_dopri5
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem, integrator_type
-  use davit_solve_step_control, only: error_norm, initial_step, record_failure, &
-                                      is_finite_real
+  use davit_solve_step_control, only: error_norm, initial_step, &
+                                      is_finite_real, substep_allowed
   implicit none
   private
   public :: dopri5_type
@@ -139,15 +139,7 @@ contains
       last = 1.01_wp*self%h >= t_end - tc
       h = merge(t_end - tc, self%h, last)
       tries = tries + 1
-      if (tries > self%max_substeps) then
-        call record_failure(self, tc, h, "more than max_substeps internal steps in one "// &
-                            "macro step")
-        exit
-      end if
-      if (h < self%h_min*max(1.0_wp, abs(tc))) then
-        call record_failure(self, tc, h, "step size collapsed below h_min")
-        exit
-      end if
+      if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
       call self%attempt(problem, tc, y, h, .true.)
       err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
       if (.not. is_finite_real(err)) then

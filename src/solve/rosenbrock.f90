@@ -19,7 +19,7 @@ module davit_solve_rosenbrock
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_step_control, only: error_norm, initial_step, record_failure, &
-                                      is_finite_real
+                                      is_finite_real, substep_allowed
   implicit none
   private
   public :: rosenbrock_type
@@ -232,15 +232,7 @@ contains
       last = 1.01_wp*self%h >= t_end - tc
       h = merge(t_end - tc, self%h, last)
       tries = tries + 1
-      if (tries > self%max_substeps) then
-        call record_failure(self, tc, h, "more than max_substeps internal steps in one "// &
-                            "macro step")
-        exit
-      end if
-      if (h < self%h_min*max(1.0_wp, abs(tc))) then
-        call record_failure(self, tc, h, "step size collapsed below h_min")
-        exit
-      end if
+      if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
       call self%factor(h, info)
       if (info /= 0) then
         self%h = 0.5_wp*h

@@ -7,7 +7,7 @@ module davit_solve_step_control
   use davit_solve_integrator, only: ode_problem, integrator_type
   implicit none
   private
-  public :: error_norm, initial_step, record_failure, is_finite_real
+  public :: error_norm, initial_step, record_failure, is_finite_real, substep_allowed
 
 contains
 
@@ -71,5 +71,23 @@ contains
     self%failure = self%name()//": "//reason//trim(buf)//" s; y kept at the last "// &
                    "accepted state"
   end subroutine record_failure
+
+  !> The guard of every adaptive substep: false, with the failure recorded, after more
+  !> than max_substeps tries in one macro step or when h has collapsed below
+  !> h_min max(1, |t|).
+  logical function substep_allowed(self, tries, max_substeps, t, h, h_min) result(ok)
+    class(integrator_type), intent(inout) :: self
+    integer, intent(in) :: tries, max_substeps
+    real(wp), intent(in) :: t, h, h_min
+    ok = .false.
+    if (tries > max_substeps) then
+      call record_failure(self, t, h, "more than max_substeps internal steps in one "// &
+                          "macro step")
+    else if (h < h_min*max(1.0_wp, abs(t))) then
+      call record_failure(self, t, h, "step size collapsed below h_min")
+    else
+      ok = .true.
+    end if
+  end function substep_allowed
 
 end module davit_solve_step_control

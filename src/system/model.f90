@@ -33,6 +33,7 @@ module davit_system_model
   use davit_error, only: error_type
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_nstate
+  use davit_system_ship_scene, only: ship_initial_state
   implicit none
   private
   public :: system_type, new_system, nstate, boat_q, boat_u
@@ -213,16 +214,6 @@ contains
                                 -0.5_wp*self%boat%mass*gravity], 2, 2), pose%r, pose%c, &
                                 y(nstate + 1:nstate + self%rig%nstate), residual)
   end function initial_state
-
-  !> At rest in its equilibrium attitude: list, trim, heading; CG at the deck's position.
-  pure function ship_initial_state(cfg) result(y)
-    type(config_type), intent(in) :: cfg
-    real(wp) :: y(ship_nstate)
-    y = 0.0_wp
-    y(1:3) = [cfg%ship%list, cfg%ship%trim, cfg%ship%heading]
-    y(4:6) = cfg%ship%position
-    y(10) = cfg%ship%headway
-  end function ship_initial_state
 
   !> The ship's pose at state y.
   pure function ship_pose(self, y) result(pose)
