@@ -10,7 +10,7 @@ cd "$(dirname "$0")"
 
 APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config python3)
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest)
-DEFAULT_DECK=input/hanging_boat.nml
+DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
 # 3x better than with the x86-64 baseline (davit bench).
 FPM_FLAGS=(--profile release --flag "-march=native")
