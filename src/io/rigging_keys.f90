@@ -26,6 +26,9 @@ module davit_io_rigging_keys
     real(wp) :: sheave_radius, sheave_inertia, block_mass, drum_radius
     real(wp) :: drum_speed, lowering_speed, winch_start, ramp_time, stop_time, brake_time
     real(wp) :: bearing_friction, friction_ratio
+    !> Hook release once waterborne (SOLAS: both hooks at once), after release_delay [s].
+    logical :: release
+    real(wp) :: release_delay
   end type rigging_config
 
 contains
@@ -139,6 +142,10 @@ contains
                 "Time at which the brake starts to stop the drum.")
     call r%real(g, "brake_time", s%brake_time, 0.5_wp, 0.0_wp, 100.0_wp, "s", &
                 "Linear ramp of the pay-out speed from full to 0 once braking.")
+    call r%logical(g, "release", s%release, .true., "Release both hooks at once (SOLAS) "// &
+                   "release_delay after the boat is waterborne (review G24).")
+    call r%real(g, "release_delay", s%release_delay, 0.0_wp, 0.0_wp, 1.0e4_wp, "s", &
+                "Delay between waterborne and hook release.")
   end subroutine read_winch
 
 end module davit_io_rigging_keys

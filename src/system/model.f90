@@ -9,7 +9,7 @@
 !> ship's side (eq. 34). The only history, the fenders' contact phases, is advanced after
 !> each accepted step (after_step), never inside the RHS.
 module davit_system_model
-  use davit_kinds, only: wp, gravity
+  use davit_kinds, only: wp, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix, cross
   use davit_core_body, only: rigid_body_type, body_mass_diagonal, body_w_phi, body_qdot, &
                              body_gravity_force, body_point_force, body_point_velocity, &
@@ -81,6 +81,13 @@ module davit_system_model
     integer :: iship = 0
     !> Ship-frame y of the side plane [m].
     real(wp) :: side_y = 0.0_wp
+    !> Events on the davit (review G24) [s], negative until they happen: waterborne (the
+    !> buoyancy carries the weight, or the hooks carry < 1 % of it, for 1 s; the time the
+    !> condition began) and hook release; after release the falls no longer act on the boat
+    !> and their states are frozen.
+    real(wp) :: waterborne_time = -1.0_wp, release_time = -1.0_wp, afloat_since = -1.0_wp
+    logical :: release = .true.
+    real(wp) :: release_delay = 0.0_wp
   contains
     procedure :: rhs => system_rhs
     procedure :: initial_state
@@ -122,6 +129,8 @@ contains
         return
       end if
       self%n = nstate + self%rig%nstate
+      self%release = cfg%rigging%release
+      self%release_delay = cfg%rigging%release_delay
     end if
     if (cfg%simulation%scene == "launch") then
       call new_moving_ship(self, cfg, error)
@@ -275,7 +284,9 @@ contains
     end if
     associate (q => y(boat_q(1):boat_q(2)), u => y(boat_u(1):boat_u(2)))
       f = boat_forces(self, t, q, u, side_plane(self, pose))
-      if (self%on_davit) then
+      if (self%on_davit .and. self%release_time >= 0.0_wp) then
+        dydt(nstate + 1:nstate + self%rig%nstate) = 0.0_wp
+      else if (self%on_davit) then
         ! Eq. (26): the rigging's hook forces through the hooks' partial velocities.
         call self%hook_kinematics(y, hook_pos, hook_vel)
         j = nstate + self%rig%nstate
@@ -319,13 +330,15 @@ contains
     end if
   end function boat_forces
 
-  !> Advance each fender's contact phase on the accepted state; note the first contact.
+  !> Advance each fender's contact phase on the accepted state; note the first contact;
+  !> on the davit, watch for waterborne and release the hooks.
   subroutine system_after_step(self, t, y)
     class(system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
     integer :: deepest(self%fenders%nf), j
     if (self%with_ship) call self%ship%after_step(t, y(self%iship:self%iship + ship_nstate - 1))
+    if (self%on_davit .and. self%release_time < 0.0_wp) call watch_waterborne(self, t, y)
     if (.not. self%contact) return
     c = rotation_matrix(y(1:3))
     call fender_probe(self%fenders, side_plane(self, ship_pose(self, y)), c, &
@@ -336,6 +349,37 @@ contains
           self%first_contact_time < 0.0_wp) self%first_contact_time = t
     end do
   end subroutine system_after_step
+
+  !> Waterborne when rho g V >= W or the hooks carry < 1 % of W, held for 1 s; the hooks
+  !> open release_delay later. Checked only when the keel can reach the water (CG less
+  !> than 10 m above the still water), so the hanging phase costs nothing.
+  subroutine watch_waterborne(self, t, y)
+    type(system_type), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), parameter :: hold = 1.0_wp, hook_fraction = 0.01_wp
+    real(wp) :: c(3, 3), r(3), fw(6), volume, weight
+    real(wp) :: seg(self%rig%nseg), sling(self%rig%nlump + 1, 2), paid
+    real(wp) :: lumps(3, self%rig%nlump, 2)
+    logical :: afloat
+    c = rotation_matrix(y(1:3))
+    r = matmul(c, y(4:6))
+    if (r(3) < -10.0_wp) return
+    if (self%waterborne_time < 0.0_wp) then
+      weight = self%boat%mass*gravity
+      call strip_loads(self%water, self%sea, t, c, r, y(boat_u(1):boat_u(2)), fw, volume)
+      call self%rigging_state(t, y, seg, sling, paid, lumps)
+      afloat = rho_water*gravity*volume >= weight .or. sum(sling(1, :)) < hook_fraction*weight
+      if (.not. afloat) then
+        self%afloat_since = -1.0_wp
+      else if (self%afloat_since < 0.0_wp) then
+        self%afloat_since = t
+      else if (t - self%afloat_since >= hold) then
+        self%waterborne_time = self%afloat_since
+      end if
+    end if
+    if (self%release .and. self%waterborne_time >= 0.0_wp .and. &
+        t >= self%waterborne_time + hold + self%release_delay) self%release_time = t
+  end subroutine watch_waterborne
 
   !> Smallest fender-to-side distance [m] (negative = penetration) and each fender's
   !> normal force [N] at state y.

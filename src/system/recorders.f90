@@ -172,6 +172,17 @@ contains
     call w%group("events")
     call w%write_1d("events/first_contact_time", [self%sys%first_contact_time], "s", &
                     "Time of the first fender contact; -1 = no contact")
+    if (self%sys%on_davit) then
+      call w%write_1d("events/lowering_start_time", [self%sys%rig%winch%t_start], "s", &
+                      "Time the drum starts paying out")
+      call w%write_1d("events/waterborne_time", [self%sys%waterborne_time], "s", &
+                      "Time the boat became waterborne (buoyancy >= weight or hooks < 1 % "// &
+                      "of it, held 1 s); -1 = never")
+      call w%write_1d("events/release_time", [self%sys%release_time], "s", &
+                      "Time both hooks were released; -1 = never")
+    end if
+    call w%write_1d("events/end_time", [self%time(max(n, 1))], "s", &
+                    "Time of the last sample (the end of the run, or where it stopped)")
     call w%group("diagnostics")
     call w%write_1d("diagnostics/energy", self%energy(1:n), "J", &
                     "Mechanical energy of the conservative part in air: kinetic + "// &
