@@ -137,3 +137,20 @@ def test_lowering_events_waterborne_and_release(davit, tmp_path):
     assert events["lowering_start_time"] == 0.0 and events["end_time"] == 100.0
     z = run.get(layout.BOAT_POSITION)[:, 2]
     assert abs(z[-1] - (draught - 1.1)) < 1e-3
+
+
+def test_f2_tension_settles_on_coupled_model(davit, tmp_path):
+    """Paper fact F2 on the coupled 'launch' model (iiib_level5_090, drum held): from
+    unstretched falls the cable tension settles to its static value (the equilibrium start,
+    W/4 plus block weights over the parts' angle) within 5 % after 3 s."""
+    base = (ROOT / "input" / "iiib_level5_090.nml").read_text().replace(
+        "t_end = 100.0", "t_end = 5.0").replace("drum_speed = 0.7", "drum_speed = 0.0")
+    static = _run_text(davit, tmp_path, "f2_eq.nml", base)
+    loose = _run_text(davit, tmp_path, "f2_loose.nml",
+                      base.replace("reeving = 'a'", "reeving = 'a'\n  initial = 'unstretched'"))
+    t = loose.time
+    ref = static.get(layout.RIGGING_SEGMENT_TENSION)[0].mean()
+    assert abs(ref / (8500.0 * G / 4) - 1) < 0.02        # W/4 plus the block weights
+    late = loose.get(layout.RIGGING_SEGMENT_TENSION)[t >= 3.0].mean()
+    assert abs(late / ref - 1) < 0.05, (late, ref)
+    assert loose.get(layout.RIGGING_SEGMENT_TENSION)[t < 1.0].max() > 1.3 * ref  # the snatch
