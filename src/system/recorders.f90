@@ -4,6 +4,7 @@ module davit_system_recorders
   use davit_kinds, only: wp
   use davit_core_rotation, only: rotation_matrix
   use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_namelist, only: int_to_str
   use davit_system_model, only: system_type, nstate
   implicit none
   private
@@ -215,13 +216,16 @@ contains
     class(boat_recorder), intent(in) :: self
     integer, intent(in) :: k
     character(len=:), allocatable :: name
-    if (k > size(body_names)) then
-      name = "rigging state "//char(48 + mod(k/100, 10))//char(48 + mod(k/10, 10))// &
-             char(48 + mod(k, 10))
+    if (self%sys%with_ship .and. k >= self%sys%iship) then
+      name = "ship "//trim(body_names(k - self%sys%iship + 1))
+    else if (k > size(body_names)) then
+      name = "rigging state "//int_to_str(k - size(body_names))//" of "// &
+             int_to_str(self%sys%rig%nstate)
     else
       name = "boat "//trim(body_names(k))
     end if
   end function boat_state_name
+
 
   subroutine ship_init(self, nmax)
     class(ship_recorder), intent(inout) :: self

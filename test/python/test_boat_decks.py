@@ -1,5 +1,6 @@
 """The lifeboat decks of input/ run and record their contact and floating physics."""
 import math
+import re
 import pathlib
 
 import numpy as np
@@ -154,3 +155,20 @@ def test_f2_tension_settles_on_coupled_model(davit, tmp_path):
     late = loose.get(layout.RIGGING_SEGMENT_TENSION)[t >= 3.0].mean()
     assert abs(late / ref - 1) < 0.05, (late, ref)
     assert loose.get(layout.RIGGING_SEGMENT_TENSION)[t < 1.0].max() > 1.3 * ref  # the snatch
+
+
+def test_lowering_divergence_is_caught_with_partial_output(davit, tmp_path):
+    """RK4 at dt = 4e-3 s is beyond the stability limit of the block on its sling
+    (2.83/1500 rad/s = 1.9e-3 s): the run stops with a message naming the time, the
+    subsystem and the quantity, exits 1 and keeps its partial output marked incomplete."""
+    text = (ROOT / "input" / "lowering.nml").read_text().replace(
+        "t_end = 100.0", "t_end = 5.0").replace("dt = 2.0e-4", "dt = 4.0e-3")
+    deck = tmp_path / "diverge.nml"
+    deck.write_text(text)
+    out = tmp_path / "diverge.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 1
+    assert re.search(r"diverged at t = [0-9.]+ s: (boat|rigging state|ship) ", result.stderr), \
+        result.stderr
+    run = layout.load(out)
+    assert not run.complete and 0 < run.time[-1] < 5.0
