@@ -172,3 +172,19 @@ def test_lowering_divergence_is_caught_with_partial_output(davit, tmp_path):
         result.stderr
     run = layout.load(out)
     assert not run.complete and 0 < run.time[-1] < 5.0
+
+
+def test_rk4_fourth_order_on_coupled_launch(davit, tmp_path):
+    """Self-convergence of RK4 on the coupled launch (iiib_level5_090, first 2 s: ship in
+    the ramping waves, boat on the falls, no contact): halving dt divides the change of the
+    end state (boat CG, attitude, cable tensions / 1e4 N) by 2^4 = 16 (± 20 %)."""
+    base = (ROOT / "input" / "iiib_level5_090.nml").read_text().replace(
+        "t_end = 100.0", "t_end = 2.0").replace("output_interval = 0.02", "output_interval = 0.4")
+    ends = []
+    for dt in ("8.0e-4", "4.0e-4", "2.0e-4"):
+        run = _run_text(davit, tmp_path, f"order_{dt}.nml", base.replace("dt = 2.0e-4", f"dt = {dt}"))
+        ends.append(np.concatenate([run.get(layout.BOAT_POSITION)[-1],
+                                    run.get(layout.BOAT_EULER)[-1],
+                                    run.get(layout.RIGGING_SEGMENT_TENSION)[-1] / 1e4]))
+    ratio = np.abs(ends[0] - ends[1]).max() / np.abs(ends[1] - ends[2]).max()
+    assert 12.8 < ratio < 19.2, ratio
