@@ -6,18 +6,13 @@ module test_hanging
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
   use davit_system_model, only: system_type, new_system, nstate
-  use davit_solve_integrator, only: ode_problem
   use davit_solve_rk4, only: rk4_type
+  use test_problems, only: oscillator
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
   public :: collect_hanging
 
-  !> y'' = -y, y(0) = 1, y'(0) = 0: an analytic reference for the integrator alone.
-  type, extends(ode_problem) :: oscillator
-  contains
-    procedure :: rhs => oscillator_rhs
-  end type oscillator
 
   real(wp), parameter :: hook_height = 1.55_wp
 
@@ -34,15 +29,6 @@ contains
                    new_case("rk4_order_oscillator", rk4_order_oscillator), &
                    new_case("rk4_order_swinging_boat", rk4_order_boat)]
   end function collect_hanging
-
-  subroutine oscillator_rhs(self, t, y, dydt)
-    class(oscillator), intent(in) :: self
-    real(wp), intent(in) :: t
-    real(wp), intent(in) :: y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = y(2)
-    dydt(2) = -y(1)
-  end subroutine oscillator_rhs
 
   !> Default configuration (III.B boat, 3 m slings), with anchors placed `fall` above the
   !> hooks and unstretched length chosen so the slings are at static equilibrium at t = 0

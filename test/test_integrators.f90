@@ -11,16 +11,11 @@ module test_integrators
   use davit_solve_dopri5, only: dopri5_type
   use davit_solve_rosenbrock, only: rosenbrock_type
   use davit_solve_factory, only: new_integrator
+  use test_problems, only: oscillator
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
   public :: collect_integrators
-
-  !> x'' = -x as y = (x, v): x = cos t.
-  type, extends(ode_problem) :: oscillator
-  contains
-    procedure :: rhs => oscillator_rhs
-  end type oscillator
 
   !> y' = -50 (y - cos t), y(0) = 0 (HNW II's mildly stiff example).
   type, extends(ode_problem) :: relaxation
@@ -69,15 +64,6 @@ contains
   end function collect_integrators
 
   ! ---------------------------------------------------------------- problems
-
-  subroutine oscillator_rhs(self, t, y, dydt)
-    class(oscillator), intent(in) :: self
-    real(wp), intent(in) :: t
-    real(wp), intent(in) :: y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = y(2)
-    dydt(2) = -y(1)
-  end subroutine oscillator_rhs
 
   subroutine relaxation_rhs(self, t, y, dydt)
     class(relaxation), intent(in) :: self
