@@ -367,8 +367,11 @@ contains
     if (self%waterborne_time < 0.0_wp) then
       weight = self%boat%mass*gravity
       call strip_loads(self%water, self%sea, t, c, r, y(boat_u(1):boat_u(2)), fw, volume)
-      call self%rigging_state(t, y, seg, sling, paid, lumps)
-      afloat = rho_water*gravity*volume >= weight .or. sum(sling(1, :)) < hook_fraction*weight
+      afloat = rho_water*gravity*volume >= weight
+      if (.not. afloat) then
+        call self%rigging_state(t, y, seg, sling, paid, lumps)
+        afloat = sum(sling(1, :)) < hook_fraction*weight
+      end if
       if (.not. afloat) then
         self%afloat_since = -1.0_wp
       else if (self%afloat_since < 0.0_wp) then
