@@ -3,7 +3,7 @@
 program davit
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-  use davit_kinds, only: davit_version
+  use davit_kinds, only: wp, davit_version
   use davit_error, only: error_type
   use davit_io_config, only: config_type, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
@@ -11,6 +11,9 @@ program davit
   use davit_system_run_summary, only: run_summary
   use davit_system_bench, only: bench_result, run_bench
   use davit_system_rao, only: run_rao
+  use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
+  use davit_sweep_cases, only: sweep_case
+  use davit_sweep_driver, only: sweep_options, sweep_outcome, run_sweep, prepare_cases
   implicit none
 
   interface
@@ -37,6 +40,8 @@ program davit
     call cmd_run(.false.)
   case ("rao")
     call cmd_run(.true.)
+  case ("sweep")
+    call cmd_sweep()
   case ("keys")
     call cmd_keys()
   case ("bench")
@@ -89,6 +94,104 @@ contains
       " steps, ", summary%rhs_evaluations, " RHS evaluations, ", summary%wall_time, " s)"
   end subroutine cmd_run
 
+  !> `sweep SWEEP.nml [-o SUMMARY.h5] [--threads N] [--resume] [--quiet] [--series DIR]
+  !> [--max-cases K] [--checkpoint S] [--dry-run]`
+  subroutine cmd_sweep()
+    character(len=:), allocatable :: deck, out, arg
+    type(sweep_config) :: sweep
+    type(sweep_options) :: opts
+    type(sweep_outcome) :: outcome
+    type(error_type), allocatable :: error
+    logical :: dry_run
+    integer :: i, seconds
+    deck = ""
+    out = ""
+    dry_run = .false.
+    i = 2
+    do while (i <= nargs)
+      arg = argument(i)
+      select case (arg)
+      case ("-o", "--output")
+        call take_value(i, out)
+      case ("--threads")
+        call take_int(i, 1, opts%threads)
+      case ("--series")
+        call take_value(i, opts%series_dir)
+      case ("--max-cases")
+        call take_int(i, 1, opts%max_cases)
+      case ("--checkpoint")
+        call take_int(i, 0, seconds)
+        opts%checkpoint_interval = real(seconds, wp)
+      case ("--resume", "--quiet", "--dry-run")
+        if (arg == "--resume") opts%resume = .true.
+        if (arg == "--quiet") opts%quiet = .true.
+        if (arg == "--dry-run") dry_run = .true.
+        i = i + 1
+      case default
+        if (arg(1:1) == "-") call usage_error("unknown option '"//arg//"' for 'sweep'")
+        if (len(deck) > 0) call usage_error("'sweep' takes one deck, got '"//deck// &
+                                            "' and '"//arg//"'")
+        deck = arg
+        i = i + 1
+      end select
+    end do
+    if (len(deck) == 0) call usage_error("'sweep' needs a sweep deck: davit sweep SWEEP.nml")
+    call read_sweep(deck, sweep, error)
+    if (allocated(error)) call fail(error)
+    if (dry_run) then
+      call sweep_dry_run(sweep)
+      return
+    end if
+    if (len(out) == 0) out = default_output(deck)
+    call run_sweep(sweep, opts, out, outcome, error)
+    if (allocated(error)) call fail(error)
+    write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,f0.1,a,i0,a)") "davit: wrote '"//out// &
+      "' (", outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
+      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, " threads)"
+  end subroutine cmd_sweep
+
+  !> The value of option i (the next argument); advances i past both.
+  subroutine take_value(i, v)
+    integer, intent(inout) :: i
+    character(len=:), allocatable, intent(out) :: v
+    if (i == nargs) call usage_error("option "//argument(i)//" needs a value")
+    v = argument(i + 1)
+    i = i + 2
+  end subroutine take_value
+
+  !> The integer value (>= lowest) of option i; advances i past both.
+  subroutine take_int(i, lowest, n)
+    integer, intent(inout) :: i
+    integer, intent(in) :: lowest
+    integer, intent(out) :: n
+    character(len=:), allocatable :: name, v
+    integer :: ios
+    name = argument(i)
+    call take_value(i, v)
+    read (v, *, iostat=ios) n
+    if (ios /= 0 .or. verify(v, "0123456789") /= 0) n = lowest - 1
+    if (n < lowest) call usage_error("option "//name//" needs an integer >= "// &
+                                     trim(int_text(lowest))//", got '"//v//"'")
+  end subroutine take_int
+
+  !> Check the decks and print the number of cases, without running any.
+  subroutine sweep_dry_run(sweep)
+    type(sweep_config), intent(in) :: sweep
+    type(sweep_case), allocatable :: cases(:)
+    type(error_type), allocatable :: error
+    real(wp) :: clearance0
+    call prepare_cases(sweep, cases, clearance0, error)
+    if (allocated(error)) call fail(error)
+    write (output_unit, "(a,i0,a,f0.4,a)") "davit: '"//sweep%filename//"': ", size(cases), &
+      " cases on base deck '"//sweep%base_deck//"' (its initial clearance ", clearance0, " m)"
+  end subroutine sweep_dry_run
+
+  pure function int_text(n) result(s)
+    integer, intent(in) :: n
+    character(len=12) :: s
+    write (s, "(i0)") n
+  end function int_text
+
   subroutine cmd_bench()
     type(bench_result), allocatable :: results(:)
     logical :: quick
@@ -107,11 +210,13 @@ contains
 
   !> Print every deck key as a Markdown table per group (the README tables).
   subroutine cmd_keys()
-    type(key_doc), allocatable :: docs(:)
+    type(key_doc), allocatable :: docs(:), sweep_docs(:)
     character(len=:), allocatable :: group
     integer :: i
     if (nargs > 1) call usage_error("'keys' takes no arguments")
     call document_keys(docs)
+    call document_sweep_keys(sweep_docs)
+    docs = [docs, sweep_docs]
     group = ""
     do i = 1, size(docs)
       if (docs(i)%group /= group) then
@@ -145,6 +250,10 @@ contains
       "usage:", &
       "  davit run DECK.nml [-o OUT.h5]   run a scenario; default output out/DECK.h5", &
       "  davit rao DECK.nml [-o OUT.h5]   ship response amplitude operators (&rao, &ship)", &
+      "  davit sweep SWEEP.nml [-o SUMMARY.h5] [--threads N] [--resume] [--quiet]", &
+      "              [--series DIR] [--max-cases K] [--checkpoint S] [--dry-run]", &
+      "                                   run every case of a sweep deck (&sweep) in", &
+      "                                   parallel; default summary out/SWEEP.h5", &
       "  davit keys                       print every deck key (Markdown tables)", &
       "  davit bench [--quick]            time the hot paths (single thread)", &
       "  davit --help | -h                this help", &
@@ -165,8 +274,8 @@ contains
   subroutine usage_error(message)
     character(len=*), intent(in) :: message
     write (error_unit, "(a)") "davit: error: "//message, &
-      "usage: davit run|rao DECK.nml [-o OUT.h5] | davit keys | davit bench [--quick] | "// &
-      "davit --help | davit --version"
+      "usage: davit run|rao DECK.nml [-o OUT.h5] | davit sweep SWEEP.nml [options] | "// &
+      "davit keys | davit bench [--quick] | davit --help | davit --version"
     stop 2, quiet=.true.
   end subroutine usage_error
 

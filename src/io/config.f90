@@ -12,6 +12,7 @@ module davit_io_config
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
   public :: wind_config, ship_config, rao_config, contact_config, rigging_config
   public :: read_config, parse_config, document_keys
+  public :: level_wave_height, level_wind_speed
 
   type :: simulation_config
     real(wp) :: t_end, dt, output_interval
@@ -339,7 +340,7 @@ contains
     deg = pi/180.0_wp
     call r%int(g, "level", s%level, 5, 4, 5, "-", &
                "Sea-state preset (review G19): 4 = H 2.5 m, wind 8 m/s; 5 = H 4 m, wind 10 m/s.")
-    preset_height = merge(2.5_wp, 4.0_wp, s%level == 4)
+    preset_height = level_wave_height(s%level)
     call r%choice(g, "wave_type", s%wave_type, "calm", &
                   [character(len=10) :: "calm", "airy", "stokes2", "irregular"], &
                   "'calm', regular 'airy' (linear) or 'stokes2' (second order), or "// &
@@ -393,7 +394,7 @@ contains
     type(wind_config), intent(inout) :: w
     type(sea_config), intent(in) :: sea
     character(len=*), parameter :: g = "wind"
-    call r%real(g, "speed", w%speed, merge(8.0_wp, 10.0_wp, sea%level == 4), 0.0_wp, &
+    call r%real(g, "speed", w%speed, level_wind_speed(sea%level), 0.0_wp, &
                 80.0_wp, "m/s", "Steady wind speed for the force models (not the "// &
                 "spectrum's U = 6.28 sqrt(H)).", default_text="level preset (10)")
     call r%real(g, "direction_deg", w%direction, sea%direction*180.0_wp/pi, -360.0_wp, &
@@ -468,6 +469,18 @@ contains
                   "Where the wave phase of the ship's wave loads is taken: at the initial "// &
                   "position (linear seakeeping) or the current one (drift feeds back).")
   end subroutine read_ship
+
+  !> Wave height H of a sea-state level's preset [m] (review G19: upper bounds of the level).
+  pure real(wp) function level_wave_height(level)
+    integer, intent(in) :: level
+    level_wave_height = merge(2.5_wp, 4.0_wp, level == 4)
+  end function level_wave_height
+
+  !> Wind speed of a sea-state level's preset [m/s] (review G19).
+  pure real(wp) function level_wind_speed(level)
+    integer, intent(in) :: level
+    level_wind_speed = merge(8.0_wp, 10.0_wp, level == 4)
+  end function level_wind_speed
 
   !> Checks that involve more than one key.
   subroutine check_consistency(cfg, error)

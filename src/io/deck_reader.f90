@@ -28,6 +28,11 @@ module davit_io_deck_reader
     procedure :: int => get_int
     procedure :: logical => get_logical
     procedure :: choice => get_choice
+    procedure :: string => get_string
+    procedure :: int_list => get_int_list
+    procedure :: logical_list => get_logical_list
+    procedure :: choice_list => get_choice_list
+    procedure :: has => reader_has
     procedure :: fail => reader_fail
     procedure :: finish => reader_finish
   end type deck_reader_type
@@ -60,18 +65,20 @@ contains
 
   !> Real list of min_count..max_count values, each in the range.
   subroutine get_real_list(self, group, key, x, default, lo, hi, units, description, &
-                           min_count, max_count)
+                           min_count, max_count, default_text)
     class(deck_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: group, key, units, description
     real(wp), allocatable, intent(out) :: x(:)
     real(wp), intent(in) :: default(:), lo, hi
     integer, intent(in) :: min_count, max_count
+    character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: value, items(:)
     integer :: line, n
     x = default
     if (.not. lookup(self, group, key, value, line)) then
       call get_real_vec(self, group, key, x, default, lo, hi, units, description, &
-                        count_text=int_to_str(min_count)//"-"//int_to_str(max_count))
+                        count_text=int_to_str(min_count)//"-"//int_to_str(max_count), &
+                        default_text=default_text)
       return
     end if
     call split_items(value, items)
@@ -86,7 +93,8 @@ contains
     deallocate (x)
     allocate (x(n))
     call get_real_vec(self, group, key, x, [(default(1), line = 1, n)], lo, hi, units, &
-                      description, count_text=int_to_str(min_count)//"-"//int_to_str(max_count))
+                      description, count_text=int_to_str(min_count)//"-"//int_to_str(max_count), &
+                      default_text=default_text)
   end subroutine get_real_list
 
   !> Real vector of fixed size(x); every component must be in the range.
@@ -215,6 +223,200 @@ contains
     end do
     call self%fail(line, group, key, value, "unknown choice", allowed, "-")
   end subroutine get_choice
+
+  !> Free text (quotes optional), e.g. a file name; must not be empty.
+  subroutine get_string(self, group, key, s, default, description)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, default, description
+    character(len=:), allocatable, intent(out) :: s
+    character(len=:), allocatable :: value
+    integer :: line
+    call self_doc(self, group, key, "'"//default//"'", "text", "-", description)
+    s = default
+    if (.not. lookup(self, group, key, value, line)) return
+    s = unquote(value)
+    if (len_trim(s) == 0) call self%fail(line, group, key, value, "must not be empty", &
+                                         "text", "-")
+  end subroutine get_string
+
+  !> Integer list of min_count..max_count values, each in lo..hi.
+  subroutine get_int_list(self, group, key, x, default, lo, hi, units, description, &
+                          min_count, max_count, default_text)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, units, description
+    integer, allocatable, intent(out) :: x(:)
+    integer, intent(in) :: default(:), lo, hi, min_count, max_count
+    character(len=*), intent(in), optional :: default_text
+    character(len=:), allocatable :: allowed, value, items(:)
+    integer :: i, ios, line
+    allowed = int_to_str(lo)//" <= "//key//" <= "//int_to_str(hi)//" (integers, "// &
+              count_range(min_count, max_count)//" values)"
+    call self_doc(self, group, key, optional_text(default_text, join_ints(default)), &
+                  allowed, units, description)
+    x = default
+    if (.not. list_items(self, group, key, min_count, max_count, allowed, units, value, &
+                         items, line)) return
+    deallocate (x)
+    allocate (x(size(items)))
+    do i = 1, size(items)
+      read (items(i), *, iostat=ios) x(i)
+      if (ios /= 0 .or. verify(trim(items(i)), "+-0123456789") /= 0) then
+        call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
+                       trim(items(i))//"') is not an integer", allowed, units)
+        return
+      end if
+      if (x(i) < lo .or. x(i) > hi) then
+        call self%fail(line, group, key, value, "out of range", allowed, units)
+        return
+      end if
+    end do
+  end subroutine get_int_list
+
+  !> Logical list of min_count..max_count values.
+  subroutine get_logical_list(self, group, key, x, default, description, min_count, &
+                              max_count, default_text)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, description
+    logical, allocatable, intent(out) :: x(:)
+    logical, intent(in) :: default(:)
+    integer, intent(in) :: min_count, max_count
+    character(len=*), intent(in), optional :: default_text
+    character(len=:), allocatable :: allowed, value, items(:)
+    integer :: i, line
+    allowed = ".true. or .false. ("//count_range(min_count, max_count)//" values)"
+    call self_doc(self, group, key, optional_text(default_text, join_logicals(default)), &
+                  allowed, "-", description)
+    x = default
+    if (.not. list_items(self, group, key, min_count, max_count, allowed, "-", value, &
+                         items, line)) return
+    deallocate (x)
+    allocate (x(size(items)))
+    do i = 1, size(items)
+      select case (to_lower(trim(items(i))))
+      case (".true.", "t", ".t.", "true")
+        x(i) = .true.
+      case (".false.", "f", ".f.", "false")
+        x(i) = .false.
+      case default
+        call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
+                       trim(items(i))//"') is not a logical", allowed, "-")
+        return
+      end select
+    end do
+  end subroutine get_logical_list
+
+  !> List of min_count..max_count strings, each one of `choices` (case-insensitive, quotes
+  !> optional).
+  subroutine get_choice_list(self, group, key, s, default, choices, description, min_count, &
+                             max_count, default_text)
+    class(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, description
+    character(len=*), intent(in) :: default(:), choices(:)
+    character(len=len(choices)), allocatable, intent(out) :: s(:)
+    integer, intent(in) :: min_count, max_count
+    character(len=*), intent(in), optional :: default_text
+    character(len=:), allocatable :: allowed, value, items(:), defaults, item
+    integer :: i, line
+    allowed = "each one of"
+    do i = 1, size(choices)
+      allowed = allowed//" '"//trim(choices(i))//"'"
+    end do
+    allowed = allowed//" ("//count_range(min_count, max_count)//" values)"
+    defaults = ""
+    do i = 1, size(default)
+      defaults = defaults//trim(merge(", ", "  ", i > 1))//" '"//trim(default(i))//"'"
+    end do
+    call self_doc(self, group, key, optional_text(default_text, adjustl(defaults)), allowed, &
+                  "-", description)
+    allocate (s(size(default)))
+    s = default
+    if (.not. list_items(self, group, key, min_count, max_count, allowed, "-", value, &
+                         items, line)) return
+    deallocate (s)
+    allocate (s(size(items)))
+    do i = 1, size(items)
+      item = to_lower(unquote(items(i)))
+      s(i) = item
+      if (.not. any(choices == item)) then
+        call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
+                       trim(items(i))//"') is an unknown choice", allowed, "-")
+        return
+      end if
+    end do
+  end subroutine get_choice_list
+
+  !> Whether the deck sets group/key (without marking it used).
+  logical function reader_has(self, group, key) result(found)
+    class(deck_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: group, key
+    integer :: i
+    found = .false.
+    do i = 1, size(self%deck%entries)
+      if (self%deck%entries(i)%group == group .and. self%deck%entries(i)%key == key) then
+        found = .true.
+        return
+      end if
+    end do
+  end function reader_has
+
+  !> The items of a list key if the deck sets it with an allowed count; false if it is
+  !> absent or the count is wrong (then the error is recorded).
+  logical function list_items(self, group, key, min_count, max_count, allowed, units, value, &
+                              items, line) result(found)
+    type(deck_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: group, key, allowed, units
+    integer, intent(in) :: min_count, max_count
+    character(len=:), allocatable, intent(out) :: value, items(:)
+    integer, intent(out) :: line
+    found = lookup(self, group, key, value, line)
+    if (.not. found) return
+    call split_items(value, items)
+    if (size(items) < min_count .or. size(items) > max_count) then
+      call self%fail(line, group, key, value, "expects "//int_to_str(min_count)//" to "// &
+                     int_to_str(max_count)//" values, got "//int_to_str(size(items)), &
+                     allowed, units)
+      found = .false.
+    end if
+  end function list_items
+
+  pure function count_range(min_count, max_count) result(s)
+    integer, intent(in) :: min_count, max_count
+    character(len=:), allocatable :: s
+    s = int_to_str(min_count)//"-"//int_to_str(max_count)
+  end function count_range
+
+  pure function optional_text(text, fallback) result(s)
+    character(len=*), intent(in), optional :: text
+    character(len=*), intent(in) :: fallback
+    character(len=:), allocatable :: s
+    if (present(text)) then
+      s = text
+    else
+      s = fallback
+    end if
+  end function optional_text
+
+  pure function join_ints(x) result(s)
+    integer, intent(in) :: x(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ""
+    do i = 1, size(x)
+      if (i > 1) s = s//", "
+      s = s//int_to_str(x(i))
+    end do
+  end function join_ints
+
+  pure function join_logicals(x) result(s)
+    logical, intent(in) :: x(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ""
+    do i = 1, size(x)
+      if (i > 1) s = s//", "
+      s = s//trim(merge(".true. ", ".false.", x(i)))
+    end do
+  end function join_logicals
 
   !> Record the first error with file, line, group and key.
   subroutine reader_fail(self, line, group, key, value, problem, allowed, units)

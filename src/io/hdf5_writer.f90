@@ -24,6 +24,8 @@ module davit_io_hdf5_writer
     procedure :: write_1d => writer_write_1d
     procedure :: write_2d => writer_write_2d
     procedure :: write_3d => writer_write_3d
+    procedure :: write_1d_int => writer_write_1d_int
+    procedure :: write_strings => writer_write_strings
     procedure :: attr_str => writer_attr_str
     procedure :: attr_int => writer_attr_int
     procedure :: attr_real => writer_attr_real
@@ -96,6 +98,60 @@ contains
     buf = data
     call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description)
   end subroutine writer_write_3d
+
+  !> 64-bit integer dataset (codes, counts, flags), with its units and description.
+  subroutine writer_write_1d_int(self, name, data, units, description)
+    class(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: name, units, description
+    integer(i8), intent(in) :: data(:)
+    integer(i8), allocatable, target :: buf(:)
+    integer(hid_t) :: space, dset
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr
+    buf = data
+    dims = size(data, kind=hsize_t)
+    call h5screate_simple_f(1, dims, space, hdferr)
+    call h5dcreate_f(self%file, name, H5T_STD_I64LE, space, dset, hdferr)
+    call check(self, hdferr, name)
+    if (hdferr /= 0) return
+    call h5dwrite_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(buf), hdferr)
+    call check(self, hdferr, name)
+    call describe(self, dset, units, description)
+    call h5dclose_f(dset, hdferr)
+    call h5sclose_f(space, hdferr)
+  end subroutine writer_write_1d_int
+
+  !> Fixed-length string dataset (blank-padded to the longest entry, at least 1 character).
+  subroutine writer_write_strings(self, name, data, units, description)
+    class(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: name, data(:), units, description
+    character(len=:), allocatable, target :: buf(:)
+    integer(hid_t) :: atype, space, dset
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr, width, i
+    width = 1
+    do i = 1, size(data)
+      width = max(width, len_trim(data(i)))
+    end do
+    allocate (character(len=width) :: buf(size(data)))
+    do i = 1, size(data)
+      buf(i) = data(i)
+    end do
+    dims = size(data, kind=hsize_t)
+    call h5tcopy_f(H5T_FORTRAN_S1, atype, hdferr)
+    call h5tset_size_f(atype, int(width, size_t), hdferr)
+    call h5screate_simple_f(1, dims, space, hdferr)
+    call h5dcreate_f(self%file, name, atype, space, dset, hdferr)
+    call check(self, hdferr, name)
+    if (hdferr == 0) then
+      if (size(data) > 0) call h5dwrite_f(dset, atype, c_loc(buf), hdferr)
+      call check(self, hdferr, name)
+      call describe(self, dset, units, description)
+      call h5dclose_f(dset, hdferr)
+    end if
+    call h5sclose_f(space, hdferr)
+    call h5tclose_f(atype, hdferr)
+  end subroutine writer_write_strings
 
   !> One double-precision dataset of any rank from a contiguous buffer, with its
   !> units and description.

@@ -16,10 +16,11 @@ module davit_system_driver
   use davit_system_sea_run, only: run_sea
   use davit_system_recorders, only: recorder_type, boat_recorder, ship_recorder
   use davit_system_ship_scene, only: build_ship_scene
+  use davit_system_step_monitor, only: step_monitor
   use davit_ship_ship_model, only: ship_system_type, ship_nstate
   implicit none
   private
-  public :: run_simulation
+  public :: run_simulation, integrate
 
   !> Speeds beyond this (m/s, rad/s) are a numerical blow-up, not a lifeboat or a ship.
   real(wp), parameter :: speed_limit = 1.0e3_wp
@@ -53,7 +54,7 @@ contains
     end select
   end subroutine run_simulation
 
-  !> The time loop shared by all integrated scenes.
+  !> Integrate a scene into its recorder and write `out_path`.
   subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error)
     type(config_type), intent(in) :: cfg
     class(ode_problem), intent(inout), target :: problem
@@ -62,17 +63,48 @@ contains
     character(len=*), intent(in) :: out_path
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
-    class(integrator_type), allocatable :: integ
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: run_error, io_error
+
+    call writer%create(out_path, error)
+    if (allocated(error)) return
+    call integrate(cfg, problem, y, rec, summary, run_error, error)
+    if (allocated(error)) then
+      call writer%discard()
+      return
+    end if
+    call rec%write(writer)
+    call write_root_attributes(writer, cfg, summary, cfg%simulation%integrator, run_error)
+    call writer%close(io_error)
+    if (allocated(run_error)) then
+      call move_alloc(run_error, error)
+      error%message = error%message//"; partial output kept in '"//out_path// &
+                      "' (attribute complete = 0)"
+    else if (allocated(io_error)) then
+      call move_alloc(io_error, error)
+    end if
+  end subroutine integrate_scene
+
+  !> The time loop shared by all integrated scenes: from t = 0 to t_end in steps of dt, or
+  !> until the monitor ends the run, sampling `rec` at the output interval (in memory). A
+  !> divergence or a failed step ends the loop with its message in run_error and the record
+  !> so far kept; `error` reports a set-up failure only.
+  subroutine integrate(cfg, problem, y, rec, summary, run_error, error, monitor)
+    type(config_type), intent(in) :: cfg
+    class(ode_problem), intent(inout), target :: problem
+    real(wp), intent(inout) :: y(:)
+    class(recorder_type), intent(inout) :: rec
+    type(run_summary), intent(out) :: summary
+    type(error_type), allocatable, intent(out) :: run_error, error
+    class(step_monitor), intent(inout), optional :: monitor
+    class(integrator_type), allocatable :: integ
     real(wp) :: t, dt
     integer(i8) :: nsteps, every, i, clock0, clock1, rate
     integer :: bad
+    logical :: done
 
     call new_integrator(cfg%simulation%integrator, size(y), integ, error, &
                         cfg%simulation%rtol, cfg%simulation%atol)
-    if (allocated(error)) return
-    call writer%create(out_path, error)
     if (allocated(error)) return
     dt = cfg%simulation%dt
     nsteps = nint(cfg%simulation%t_end/dt, i8)
@@ -80,8 +112,11 @@ contains
     call rec%init(int(nsteps/every) + 1)
     t = 0.0_wp
     call rec%sample(t, y)
+    done = .false.
+    if (present(monitor)) call monitor%watch(t, y, done)
     call system_clock(clock0, rate)
     do i = 1, nsteps
+      if (done) exit
       call integ%step(problem, t, y, dt)
       if (integ%failed) then
         call fatal_error(run_error, "run stopped: "//integ%failure)
@@ -97,7 +132,9 @@ contains
         exit
       end if
       call problem%after_step(t, y)
-      if (mod(i, every) == 0) call rec%sample(t, y)
+      if (present(monitor)) call monitor%watch(t, y, done)
+      ! a run the monitor ends between samples still records its last state
+      if (mod(i, every) == 0 .or. done) call rec%sample(t, y)
     end do
     call system_clock(clock1)
     summary%steps = integ%steps
@@ -105,18 +142,7 @@ contains
     summary%wall_time = real(clock1 - clock0, wp)/real(rate, wp)
     summary%samples = rec%n
     summary%complete = .not. allocated(run_error)
-
-    call rec%write(writer)
-    call write_root_attributes(writer, cfg, summary, integ%name(), run_error)
-    call writer%close(io_error)
-    if (allocated(run_error)) then
-      call move_alloc(run_error, error)
-      error%message = error%message//"; partial output kept in '"//out_path// &
-                      "' (attribute complete = 0)"
-    else if (allocated(io_error)) then
-      call move_alloc(io_error, error)
-    end if
-  end subroutine integrate_scene
+  end subroutine integrate
 
   !> Index of the first non-finite state component, or of a speed (indices in
   !> speeds(1):speeds(2)) beyond any physical value, which marks a blow-up early.

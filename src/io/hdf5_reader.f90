@@ -1,0 +1,193 @@
+!> Reading back what davit_io_hdf5_writer wrote: 1-D real, integer and fixed-length string
+!> datasets and root string and integer attributes (a sweep resumes from its summary).
+!> Every failure names the file and the dataset or attribute. Not thread-safe (Debian's
+!> HDF5 is built without locking): call it from one thread at a time.
+module davit_io_hdf5_reader
+  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
+  use hdf5
+  use davit_kinds, only: wp, i8
+  use davit_error, only: error_type, fatal_error
+  implicit none
+  private
+  public :: h5_reader_type
+
+  type :: h5_reader_type
+    integer(hid_t) :: file = -1
+    character(len=:), allocatable :: path
+    logical :: is_open = .false.
+  contains
+    procedure :: open => reader_open
+    procedure :: close => reader_close
+    procedure :: read_1d => reader_read_1d
+    procedure :: read_1d_int => reader_read_1d_int
+    procedure :: read_strings => reader_read_strings
+    procedure :: attr_str => reader_attr_str
+    procedure :: attr_int => reader_attr_int
+  end type h5_reader_type
+
+contains
+
+  subroutine reader_open(self, path, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: path
+    type(error_type), allocatable, intent(out) :: error
+    integer :: hdferr
+    self%path = path
+    call h5open_f(hdferr)
+    call h5eset_auto_f(0, hdferr)
+    call h5fopen_f(path, H5F_ACC_RDONLY_F, self%file, hdferr)
+    if (hdferr /= 0) then
+      call fatal_error(error, "cannot open '"//path//"' as an HDF5 file")
+      return
+    end if
+    self%is_open = .true.
+  end subroutine reader_open
+
+  subroutine reader_close(self)
+    class(h5_reader_type), intent(inout) :: self
+    integer :: hdferr
+    if (.not. self%is_open) return
+    call h5fclose_f(self%file, hdferr)
+    self%is_open = .false.
+  end subroutine reader_close
+
+  !> Open 1-D dataset `name` and return its length.
+  subroutine open_1d(self, name, dset, n, error)
+    type(h5_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(out) :: dset
+    integer, intent(out) :: n
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: space
+    integer(hsize_t) :: dims(1), maxdims(1)
+    integer :: hdferr, rank
+    n = 0
+    call h5dopen_f(self%file, name, dset, hdferr)
+    if (hdferr /= 0) then
+      call fatal_error(error, "'"//self%path//"': no dataset /"//name)
+      return
+    end if
+    call h5dget_space_f(dset, space, hdferr)
+    call h5sget_simple_extent_ndims_f(space, rank, hdferr)
+    if (rank /= 1) then
+      call h5sclose_f(space, hdferr)
+      call h5dclose_f(dset, hdferr)
+      call fatal_error(error, "'"//self%path//"': dataset /"//name//" is not 1-D")
+      return
+    end if
+    call h5sget_simple_extent_dims_f(space, dims, maxdims, hdferr)
+    call h5sclose_f(space, hdferr)
+    n = int(dims(1))
+  end subroutine open_1d
+
+  subroutine reader_read_1d(self, name, x, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    real(wp), allocatable, target, intent(out) :: x(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: dset
+    type(c_ptr) :: buf
+    integer :: n, hdferr
+    call open_1d(self, name, dset, n, error)
+    if (allocated(error)) return
+    allocate (x(n))
+    buf = c_loc(x)
+    if (n > 0) call h5dread_f(dset, H5T_NATIVE_DOUBLE, buf, hdferr)
+    call h5dclose_f(dset, hdferr)
+    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+  end subroutine reader_read_1d
+
+  subroutine reader_read_1d_int(self, name, x, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    integer(i8), allocatable, target, intent(out) :: x(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: dset
+    type(c_ptr) :: buf
+    integer :: n, hdferr
+    call open_1d(self, name, dset, n, error)
+    if (allocated(error)) return
+    allocate (x(n))
+    buf = c_loc(x)
+    if (n > 0) call h5dread_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), buf, hdferr)
+    call h5dclose_f(dset, hdferr)
+    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+  end subroutine reader_read_1d_int
+
+  !> A fixed-length string dataset, returned blank-padded to its stored width.
+  subroutine reader_read_strings(self, name, x, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable, target, intent(out) :: x(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: dset, ftype, mtype
+    integer(size_t) :: width
+    type(c_ptr) :: buf
+    integer :: n, hdferr
+    call open_1d(self, name, dset, n, error)
+    if (allocated(error)) return
+    call h5dget_type_f(dset, ftype, hdferr)
+    call h5tget_size_f(ftype, width, hdferr)
+    call h5tclose_f(ftype, hdferr)
+    allocate (character(len=int(width)) :: x(n))
+    call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
+    call h5tset_size_f(mtype, width, hdferr)
+    buf = c_loc(x)
+    if (n > 0) call h5dread_f(dset, mtype, buf, hdferr)
+    call h5tclose_f(mtype, hdferr)
+    call h5dclose_f(dset, hdferr)
+    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+  end subroutine reader_read_strings
+
+  !> Scalar string attribute `name` of the root group.
+  subroutine reader_attr_str(self, name, value, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable, intent(out) :: value
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: attr, ftype, mtype
+    integer(size_t) :: width
+    integer(hsize_t) :: dims(1)
+    integer :: hdferr
+    value = ""
+    call h5aopen_by_name_f(self%file, "/", name, attr, hdferr)
+    if (hdferr /= 0) then
+      call fatal_error(error, "'"//self%path//"': no root attribute "//name)
+      return
+    end if
+    call h5aget_type_f(attr, ftype, hdferr)
+    call h5tget_size_f(ftype, width, hdferr)
+    call h5tclose_f(ftype, hdferr)
+    deallocate (value)
+    allocate (character(len=int(width)) :: value)
+    call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
+    call h5tset_size_f(mtype, width, hdferr)
+    dims = 1
+    call h5aread_f(attr, mtype, value, dims, hdferr)
+    call h5tclose_f(mtype, hdferr)
+    call h5aclose_f(attr, hdferr)
+    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read attribute "//name)
+  end subroutine reader_attr_str
+
+  !> Scalar integer attribute `name` of the root group.
+  subroutine reader_attr_int(self, name, value, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    integer(i8), target, intent(out) :: value
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: attr
+    type(c_ptr) :: buf
+    integer :: hdferr
+    value = 0
+    call h5aopen_by_name_f(self%file, "/", name, attr, hdferr)
+    if (hdferr /= 0) then
+      call fatal_error(error, "'"//self%path//"': no root attribute "//name)
+      return
+    end if
+    buf = c_loc(value)
+    call h5aread_f(attr, h5kind_to_type(i8, H5_INTEGER_KIND), buf, hdferr)
+    call h5aclose_f(attr, hdferr)
+    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read attribute "//name)
+  end subroutine reader_attr_int
+
+end module davit_io_hdf5_reader

@@ -1,0 +1,361 @@
+!> `davit sweep`: every case of a sweep deck, run in parallel with OpenMP over cases
+!> (dynamic schedule: cases differ in cost). Each case builds its own system from its own
+!> copy of the configuration inside the thread, so nothing mutable is shared; the one
+!> critical section (store_case) stores a finished row, reports progress and does all
+!> HDF5 output during the loop (Debian's HDF5 is not thread-safe). A case that fails
+!> (diverges) is recorded with its message and the sweep goes on. The summary is written
+!> whole at the start, at checkpoints and at the end, so an interrupted sweep leaves a
+!> valid summary that --resume completes without recomputing finished cases.
+module davit_sweep_driver
+  !$ use omp_lib, only: omp_get_max_threads
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use davit_kinds, only: wp, i8
+  use davit_error, only: error_type, fatal_error
+  use davit_io_config, only: config_type
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_namelist, only: int_to_str
+  use davit_io_deck_reader, only: fmt_real
+  use davit_system_model, only: system_type, new_system
+  use davit_system_recorders, only: boat_recorder
+  use davit_system_run_summary, only: run_summary, write_root_attributes
+  use davit_system_driver, only: integrate
+  use davit_sweep_keys, only: sweep_config
+  use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
+  use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
+                                 status_failed, not_run_result
+  use davit_sweep_summary, only: write_summary, read_results
+  implicit none
+  private
+  public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case
+
+  type :: sweep_options
+    !> OpenMP threads; 0 = OMP_NUM_THREADS (or the runtime's default).
+    integer :: threads = 0
+    !> Keep the finished cases of an existing summary of the same sweep.
+    logical :: resume = .false.
+    !> No progress lines on stderr.
+    logical :: quiet = .false.
+    !> Folder for one time-series file per case (empty = none).
+    character(len=:), allocatable :: series_dir
+    !> Stop after this many newly finished cases (0 = all), leaving a resumable summary.
+    integer :: max_cases = 0
+    !> Seconds between rewrites of the summary while the sweep runs.
+    real(wp) :: checkpoint_interval = 30.0_wp
+    !> Seconds between progress lines.
+    real(wp) :: progress_interval = 5.0_wp
+  end type sweep_options
+
+  type :: sweep_outcome
+    integer :: ncase = 0, ok = 0, failed = 0, not_run = 0, ran = 0, threads = 1
+    real(wp) :: wall_time = 0.0_wp
+  end type sweep_outcome
+
+  !> What the critical section shares: the rows, counters, clocks of the last progress line
+  !> and checkpoint, and the first I/O failure.
+  type :: sweep_state
+    type(case_result), allocatable :: results(:)
+    integer :: done = 0, failed = 0, todo = 0, threads = 1
+    integer(i8) :: clock0 = 0, rate = 1, last_progress = 0, last_checkpoint = 0
+    type(error_type), allocatable :: io_error
+  end type sweep_state
+
+  interface
+    function c_mkdir(path, mode) bind(C, name="mkdir") result(status)
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_int), value :: mode
+      integer(c_int) :: status
+    end function c_mkdir
+  end interface
+
+contains
+
+  !> Run (or resume) the sweep and write the summary `out_path`.
+  subroutine run_sweep(s, opts, out_path, outcome, error)
+    type(sweep_config), intent(in) :: s
+    type(sweep_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path
+    type(sweep_outcome), intent(out) :: outcome
+    type(error_type), allocatable, intent(out) :: error
+    type(sweep_case), allocatable :: cases(:)
+    type(sweep_state), target :: state
+    integer, allocatable :: pending(:)
+    real(wp) :: clearance0
+    integer :: k, claimed, slot, nthreads
+    logical :: exists
+
+    call prepare_cases(s, cases, clearance0, error)
+    if (allocated(error)) return
+    allocate (state%results(size(cases)))
+    state%results = not_run_result()
+    inquire (file=out_path, exist=exists)
+    if (opts%resume .and. exists) then
+      call read_results(out_path, s, size(cases), state%results, error)
+      if (allocated(error)) return
+    end if
+    pending = pack([(k, k = 1, size(cases))], state%results%status == status_not_run)
+    nthreads = thread_count(opts%threads)
+    state%threads = nthreads
+    state%todo = size(pending)
+    if (opts%max_cases > 0) state%todo = min(state%todo, opts%max_cases)
+    ! a valid summary from the start (also checks that the path is writable)
+    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), error)
+    if (allocated(error)) return
+    if (len(series(opts)) > 0) call make_folder(series(opts), error)
+    if (allocated(error)) return
+    call system_clock(state%clock0, state%rate)
+    state%last_progress = state%clock0
+    state%last_checkpoint = state%clock0
+    if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: "// &
+      int_to_str(state%todo)//" of "//int_to_str(size(cases))//" cases to run on "// &
+      int_to_str(nthreads)//" thread(s)"
+    claimed = 0
+
+    !$omp parallel do schedule(dynamic, 1) num_threads(nthreads) default(none) &
+    !$omp shared(s, cases, pending, clearance0, opts, state, out_path) &
+    !$omp private(slot) shared(claimed)
+    do k = 1, size(pending)
+      !$omp atomic capture
+      claimed = claimed + 1
+      slot = claimed
+      !$omp end atomic
+      if (slot > state%todo) cycle
+      call run_and_store(s, cases, pending(k), clearance0, opts, state, out_path)
+    end do
+    !$omp end parallel do
+
+    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), error)
+    if (.not. allocated(error) .and. allocated(state%io_error)) &
+      call move_alloc(state%io_error, error)
+    outcome%ncase = size(cases)
+    outcome%ok = count(state%results%status == status_ok)
+    outcome%failed = count(state%results%status == status_failed)
+    outcome%not_run = count(state%results%status == status_not_run)
+    outcome%ran = state%done
+    outcome%threads = nthreads
+    outcome%wall_time = seconds_since(state, state%clock0)
+  end subroutine run_sweep
+
+  !> The cases of the sweep and the base deck's initial clearance [m].
+  subroutine prepare_cases(s, cases, clearance0, error)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), allocatable, intent(out) :: cases(:)
+    real(wp), intent(out) :: clearance0
+    type(error_type), allocatable, intent(out) :: error
+    call initial_clearance(s%base, clearance0, error)
+    if (allocated(error)) return
+    call build_cases(s, clearance0, cases)
+  end subroutine prepare_cases
+
+  !> One case on this thread, then its row (and series file) in the critical section.
+  subroutine run_and_store(s, cases, c, clearance0, opts, state, out_path)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: cases(:)
+    integer, intent(in) :: c
+    real(wp), intent(in) :: clearance0
+    type(sweep_options), intent(in) :: opts
+    type(sweep_state), intent(inout) :: state
+    character(len=*), intent(in) :: out_path
+    type(config_type) :: cfg
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(case_result) :: row
+    type(error_type), allocatable :: run_error
+    call case_config(s, cases(c), clearance0, cfg)
+    call run_case(cfg, s%stop_at_release, sys, rec, row, run_error)
+    !$omp critical (davit_sweep_io)
+    call store_case(s, cases, c, row, opts, state, out_path)
+    if (len(series(opts)) > 0 .and. allocated(rec%time)) &
+      call write_series(series_path(opts, c), cfg, rec, row, run_error, state)
+    !$omp end critical (davit_sweep_io)
+  end subroutine run_and_store
+
+  !> Run one case: build its system, integrate with the launch metrics watching every step,
+  !> return its row. A failed run gives a row of status failed with the message.
+  subroutine run_case(cfg, stop_at_release, sys, rec, row, run_error)
+    type(config_type), intent(in) :: cfg
+    logical, intent(in) :: stop_at_release
+    type(system_type), intent(out), target :: sys
+    type(boat_recorder), intent(out) :: rec
+    type(case_result), intent(out) :: row
+    type(error_type), allocatable, intent(out) :: run_error
+    type(launch_metrics) :: metrics
+    type(run_summary) :: summary
+    type(error_type), allocatable :: error
+    real(wp), allocatable :: y(:)
+    integer(i8) :: clock0, clock1, rate
+    call system_clock(clock0, rate)
+    call new_system(sys, cfg, error)
+    if (.not. allocated(error)) then
+      y = sys%initial_state(cfg)
+      rec%sys => sys
+      metrics%sys => sys
+      metrics%stop_at_release = stop_at_release
+      call integrate(cfg, sys, y, rec, summary, run_error, error, metrics)
+    end if
+    if (allocated(error)) call move_alloc(error, run_error)
+    if (allocated(run_error)) then
+      row = not_run_result()
+      row%status = status_failed
+      row%message = run_error%message
+    else
+      row = metrics%result()
+    end if
+    row%steps = summary%steps
+    row%rhs_evaluations = summary%rhs_evaluations
+    call system_clock(clock1)
+    row%wall_time = real(clock1 - clock0, wp)/real(rate, wp)
+  end subroutine run_case
+
+  !> Inside the critical section: store row c, report progress, checkpoint when due.
+  subroutine store_case(s, cases, c, row, opts, state, out_path)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: cases(:)
+    integer, intent(in) :: c
+    type(case_result), intent(in) :: row
+    type(sweep_options), intent(in) :: opts
+    type(sweep_state), intent(inout) :: state
+    character(len=*), intent(in) :: out_path
+    type(error_type), allocatable :: error
+    integer(i8) :: now
+    state%results(c) = row
+    state%done = state%done + 1
+    if (row%status == status_failed) then
+      state%failed = state%failed + 1
+      if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: case "// &
+        int_to_str(c)//" failed: "//row%message
+    end if
+    call system_clock(now)
+    if (.not. opts%quiet .and. (state%done == state%todo .or. &
+        seconds_since(state, state%last_progress) >= opts%progress_interval)) then
+      call report_progress(state)
+      state%last_progress = now
+    end if
+    if (state%done < state%todo .and. &
+        seconds_since(state, state%last_checkpoint) >= opts%checkpoint_interval) then
+      call write_summary(out_path, s, cases, state%results, state%threads, series(opts), &
+                         error)
+      if (allocated(error) .and. .not. allocated(state%io_error)) &
+        call move_alloc(error, state%io_error)
+      state%last_checkpoint = now
+    end if
+  end subroutine store_case
+
+  !> "davit sweep: 12/80 cases (1 failed), 0.41 cases/s, ETA 2 min 21 s" on stderr.
+  subroutine report_progress(state)
+    type(sweep_state), intent(in) :: state
+    real(wp) :: elapsed, rate
+    character(len=:), allocatable :: line
+    elapsed = seconds_since(state, state%clock0)
+    rate = real(state%done, wp)/max(elapsed, 1.0e-9_wp)
+    line = "davit sweep: "//int_to_str(state%done)//"/"//int_to_str(state%todo)// &
+           " cases ("//int_to_str(state%failed)//" failed), "//fmt_rate(rate)//" cases/s"
+    if (state%done < state%todo) then
+      line = line//", ETA "//fmt_duration(real(state%todo - state%done, wp)/rate)
+    else
+      line = line//", "//fmt_duration(elapsed)
+    end if
+    write (error_unit, "(a)") line
+    flush (error_unit)
+  end subroutine report_progress
+
+  !> The case's time series (the run file layout) under the series folder; inside the
+  !> critical section.
+  subroutine write_series(path, cfg, rec, row, run_error, state)
+    character(len=*), intent(in) :: path
+    type(config_type), intent(in) :: cfg
+    type(boat_recorder), intent(in) :: rec
+    type(case_result), intent(in) :: row
+    type(error_type), allocatable, intent(in) :: run_error
+    type(sweep_state), intent(inout) :: state
+    type(h5_writer_type) :: w
+    type(run_summary) :: summary
+    type(error_type), allocatable :: error
+    call w%create(path, error)
+    if (.not. allocated(error)) then
+      summary%steps = row%steps
+      summary%rhs_evaluations = row%rhs_evaluations
+      summary%wall_time = row%wall_time
+      summary%samples = rec%n
+      summary%complete = row%status == status_ok
+      call rec%write(w)
+      call write_root_attributes(w, cfg, summary, cfg%simulation%integrator, run_error)
+      call w%close(error)
+    end if
+    if (allocated(error) .and. .not. allocated(state%io_error)) &
+      call move_alloc(error, state%io_error)
+  end subroutine write_series
+
+  function series(opts) result(dir)
+    type(sweep_options), intent(in) :: opts
+    character(len=:), allocatable :: dir
+    dir = ""
+    if (allocated(opts%series_dir)) dir = opts%series_dir
+  end function series
+
+  !> SERIES_DIR/case_000017.h5
+  function series_path(opts, c) result(path)
+    type(sweep_options), intent(in) :: opts
+    integer, intent(in) :: c
+    character(len=:), allocatable :: path
+    character(len=12) :: name
+    write (name, "(a,i6.6)") "case_", c
+    path = series(opts)//"/"//trim(name)//".h5"
+  end function series_path
+
+  !> Create folder `path` if needed (its parent must exist) and check that files can be
+  !> written there, before any case runs.
+  subroutine make_folder(path, error)
+    character(len=*), intent(in) :: path
+    type(error_type), allocatable, intent(out) :: error
+    integer :: status, unit
+    status = c_mkdir(path//c_null_char, int(o'755', c_int))
+    open (newunit=unit, file=path//"/.davit_write_test", status="replace", iostat=status)
+    if (status /= 0) then
+      call fatal_error(error, "cannot write into the series folder '"//path//"'")
+      return
+    end if
+    close (unit, status="delete")
+  end subroutine make_folder
+
+  integer function thread_count(requested) result(n)
+    integer, intent(in) :: requested
+    n = 1
+    !$ n = omp_get_max_threads()
+    if (requested > 0) n = requested
+  end function thread_count
+
+  real(wp) function seconds_since(state, clock) result(dt)
+    type(sweep_state), intent(in) :: state
+    integer(i8), intent(in) :: clock
+    integer(i8) :: now
+    call system_clock(now)
+    dt = real(now - clock, wp)/real(state%rate, wp)
+  end function seconds_since
+
+  function fmt_rate(x) result(s)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write (buf, "(f0.3)") x
+    s = trim(buf)
+    if (s(1:1) == ".") s = "0"//s
+  end function fmt_rate
+
+  !> "2 h 5 min", "3 min 21 s" or "42 s".
+  function fmt_duration(seconds) result(s)
+    real(wp), intent(in) :: seconds
+    character(len=:), allocatable :: s
+    integer :: t
+    t = nint(max(seconds, 0.0_wp))
+    if (t >= 3600) then
+      s = int_to_str(t/3600)//" h "//int_to_str(mod(t, 3600)/60)//" min"
+    else if (t >= 60) then
+      s = int_to_str(t/60)//" min "//int_to_str(mod(t, 60))//" s"
+    else
+      s = int_to_str(t)//" s"
+    end if
+  end function fmt_duration
+
+end module davit_sweep_driver

@@ -1,0 +1,215 @@
+!> The sweep deck: one `&sweep` group that names a base run deck and lists values for the
+!> swept inputs (`davit sweep`). The base deck gives every other key. A list left out keeps
+!> the base deck's value, so an empty list never means "no cases".
+!>
+!> The sweep owns the sea state: when `levels` is given, each case takes the level's preset
+!> wave height and wind speed (review G19) and the peak period of that height (G18);
+!> `heights` and `periods` override the height and the period. When `angles_deg` is given
+!> the wind blows along the waves (paper III.B). Keys are read and range-checked by the same
+!> deck reader as run decks, so errors name the file, line, group, key and allowed range.
+module davit_sweep_keys
+  use davit_kinds, only: wp
+  use davit_error, only: error_type, fatal_error
+  use davit_io_namelist, only: nml_deck, read_deck, parse_deck
+  use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
+  use davit_io_config, only: config_type, read_config
+  implicit none
+  private
+  public :: sweep_config, read_sweep, parse_sweep, document_sweep_keys, wave_type_names
+
+  !> Wave types a sweep may list; their position minus one is the summary's code
+  !> (0 calm, 1 airy, 2 stokes2, 3 irregular).
+  character(len=9), parameter :: wave_type_names(0:3) = [character(len=9) :: "calm", &
+    "airy", "stokes2", "irregular"]
+  integer, parameter :: max_values = 1000
+
+  type :: sweep_config
+    !> The sweep deck and its text (stored in the summary; a resume checks it).
+    character(len=:), allocatable :: filename, deck_text
+    !> The base deck as written in the sweep deck, and as opened (relative to the sweep
+    !> deck's folder unless absolute).
+    character(len=:), allocatable :: base_deck, base_path
+    type(config_type) :: base
+    !> Swept values; `has_*` tells whether the deck lists them (else the base deck's).
+    integer, allocatable :: levels(:)
+    real(wp), allocatable :: heights(:), periods(:), angles_deg(:), clearances_b(:), dts(:)
+    logical, allocatable :: winds(:)
+    character(len=9), allocatable :: wave_types(:)
+    logical :: has_levels = .false., has_heights = .false., has_periods = .false.
+    logical :: has_angles = .false., has_clearances = .false.
+    integer :: realisations = 1, base_seed = 0
+    logical :: random_phase = .true., stop_at_release = .true.
+  end type sweep_config
+
+contains
+
+  !> Read and validate sweep deck `filename` and its base deck.
+  subroutine read_sweep(filename, sweep, error)
+    character(len=*), intent(in) :: filename
+    type(sweep_config), intent(out) :: sweep
+    type(error_type), allocatable, intent(out) :: error
+    type(nml_deck) :: deck
+    call read_deck(filename, deck, error)
+    if (allocated(error)) return
+    call sweep_from_deck(deck, sweep, error)
+  end subroutine read_sweep
+
+  !> Same as read_sweep for sweep deck text in memory (tests); the base deck is a file.
+  subroutine parse_sweep(filename, text, sweep, error)
+    character(len=*), intent(in) :: filename, text
+    type(sweep_config), intent(out) :: sweep
+    type(error_type), allocatable, intent(out) :: error
+    type(nml_deck) :: deck
+    call parse_deck(filename, text, deck, error)
+    if (allocated(error)) return
+    call sweep_from_deck(deck, sweep, error)
+  end subroutine parse_sweep
+
+  !> The documentation of every &sweep key (`davit keys`, README).
+  subroutine document_sweep_keys(docs)
+    type(key_doc), allocatable, intent(out) :: docs(:)
+    type(nml_deck) :: deck
+    type(deck_reader_type) :: reader
+    type(sweep_config) :: sweep
+    type(error_type), allocatable :: error
+    call parse_deck("(defaults)", "", deck, error)
+    call reader%init(deck)
+    call read_keys(reader, sweep)
+    docs = reader%docs
+  end subroutine document_sweep_keys
+
+  subroutine sweep_from_deck(deck, sweep, error)
+    type(nml_deck), intent(in) :: deck
+    type(sweep_config), intent(inout) :: sweep
+    type(error_type), allocatable, intent(out) :: error
+    type(deck_reader_type) :: reader
+    call reader%init(deck)
+    call read_keys(reader, sweep)
+    call reader%finish(error)
+    if (allocated(error)) return
+    sweep%filename = deck%filename
+    sweep%deck_text = deck%text
+    if (len(sweep%base_deck) == 0) then
+      call fatal_error(error, deck%filename//": &sweep: base_deck is required (the run "// &
+                       "deck every case starts from)")
+      return
+    end if
+    sweep%base_path = relative_to(deck%filename, sweep%base_deck)
+    call read_config(sweep%base_path, sweep%base, error)
+    if (allocated(error)) return
+    call complete_defaults(reader, sweep)
+    call check_sweep(sweep, error)
+  end subroutine sweep_from_deck
+
+  subroutine read_keys(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(sweep_config), intent(inout) :: s
+    character(len=*), parameter :: g = "sweep"
+    call r%string(g, "base_deck", s%base_deck, "", "Run deck every case starts from "// &
+                  "(relative to the sweep deck's folder); required. Sweep decks only hold "// &
+                  "&sweep.")
+    call r%int_list(g, "levels", s%levels, [5], 4, 5, "-", "Sea-state levels; each sets "// &
+                    "the level's preset wave height and wind speed (review G19) and the "// &
+                    "peak period of the height (G18).", 1, 10, default_text="base deck")
+    call r%real_list(g, "heights", s%heights, [4.0_wp], 0.0_wp, 20.0_wp, "m", &
+                     "Wave heights H (regular 2a, irregular H of eq. 44), instead of the "// &
+                     "level preset; the period follows unless periods is given.", 1, &
+                     max_values, default_text="level preset or base deck")
+    call r%real_list(g, "periods", s%periods, [12.72_wp], 1.0_wp, 40.0_wp, "s", &
+                     "Regular-wave periods, instead of the peak period of the height.", 1, &
+                     max_values, default_text="peak period or base deck")
+    call r%real_list(g, "angles_deg", s%angles_deg, [90.0_wp], -360.0_wp, 360.0_wp, "deg", &
+                     "Encounter angles chi (&sea direction_deg); the wind blows along the "// &
+                     "waves.", 1, max_values, default_text="base deck")
+    call r%logical_list(g, "wind", s%winds, [.true.], "Wind on (the level preset speed, "// &
+                        "or the base deck's) or off (speed 0).", 1, 2, &
+                        default_text="base deck (on if its speed > 0)")
+    call r%real_list(g, "clearances_b", s%clearances_b, [0.5_wp], 0.0_wp, 20.0_wp, "-", &
+                     "Initial fender-to-ship-side distance in boat widths (&boat beam); boat "// &
+                     "and davit heads move together, so the boat still hangs plumb.", 1, &
+                     max_values, default_text="base deck")
+    call r%choice_list(g, "wave_types", s%wave_types, ["stokes2"], wave_type_names, &
+                       "Wave types (&sea wave_type).", 1, 4, default_text="base deck")
+    call r%real_list(g, "dts", s%dts, [2.0e-4_wp], 0.0_wp, 1.0_wp, "s", &
+                     "Time steps (&simulation dt), e.g. a step-size study.", 1, max_values, &
+                     default_text="base deck")
+    call r%int(g, "realisations", s%realisations, 1, 1, 100000, "-", &
+               "Random realisations of every combination: random phase (regular waves) "// &
+               "or random component phases (irregular).")
+    call r%int(g, "base_seed", s%base_seed, 0, 0, huge(1), "-", "Seed from which each "// &
+               "case's seed derives (SplitMix64 of base seed and case index).", &
+               default_text="base deck's seed")
+    call r%logical(g, "random_phase", s%random_phase, .true., &
+                   "Regular waves: draw the phase epsilon from the case seed (uniform in "// &
+                   "0-360 deg); .false. keeps the base deck's phase_deg.")
+    call r%logical(g, "stop_at_release", s%stop_at_release, .true., &
+                   "End each run when the lowering is over (hooks released, or waterborne "// &
+                   "when release is off): the results cover only the lowering.")
+  end subroutine read_keys
+
+  !> Defaults that depend on the base deck, for the keys the sweep deck leaves out.
+  subroutine complete_defaults(r, s)
+    type(deck_reader_type), intent(in) :: r
+    type(sweep_config), intent(inout) :: s
+    character(len=*), parameter :: g = "sweep"
+    s%has_levels = r%has(g, "levels")
+    s%has_heights = r%has(g, "heights")
+    s%has_periods = r%has(g, "periods")
+    s%has_angles = r%has(g, "angles_deg")
+    s%has_clearances = r%has(g, "clearances_b")
+    associate (b => s%base)
+      if (.not. s%has_levels) s%levels = [b%sea%level]
+      if (.not. s%has_heights) s%heights = [b%sea%height]
+      if (.not. s%has_periods) s%periods = [b%sea%period]
+      if (.not. s%has_angles) s%angles_deg = [b%sea%direction*180.0_wp/acos(-1.0_wp)]
+      if (.not. r%has(g, "wind")) s%winds = [b%wind%speed > 0.0_wp]
+      if (.not. s%has_clearances) s%clearances_b = [-1.0_wp]
+      if (.not. r%has(g, "wave_types")) s%wave_types = [character(len=9) :: b%sea%wave_type]
+      if (.not. r%has(g, "dts")) s%dts = [b%simulation%dt]
+      if (.not. r%has(g, "base_seed")) s%base_seed = b%simulation%seed
+    end associate
+  end subroutine complete_defaults
+
+  !> Checks across the sweep and its base deck.
+  subroutine check_sweep(s, error)
+    type(sweep_config), intent(in) :: s
+    type(error_type), allocatable, intent(out) :: error
+    integer :: i
+    select case (s%base%simulation%scene)
+    case ("hanging_boat", "lowering", "launch")
+    case default
+      call fatal_error(error, s%filename//": &sweep: base deck '"//s%base_deck// &
+                       "' has scene '"//s%base%simulation%scene//"'; sweeps run the boat "// &
+                       "scenes 'hanging_boat', 'lowering' and 'launch'")
+      return
+    end select
+    do i = 1, size(s%dts)
+      if (s%dts(i) > s%base%simulation%output_interval .or. &
+          s%dts(i) > s%base%simulation%t_end) then
+        call fatal_error(error, s%filename//": &sweep: dts = "//fmt_real(s%dts(i))// &
+                         " s must be <= the base deck's output_interval ("// &
+                         fmt_real(s%base%simulation%output_interval)//" s) and t_end")
+        return
+      end if
+    end do
+    if (s%has_clearances .and. s%base%simulation%scene == "hanging_boat" .and. &
+        .not. s%base%slings%attached) then
+      call fatal_error(error, s%filename//": &sweep: clearances_b needs a hanging boat "// &
+                       "(the base deck's slings are detached)")
+    end if
+  end subroutine check_sweep
+
+  !> `path` relative to the folder of `deck` (unchanged if absolute).
+  pure function relative_to(deck, path) result(full)
+    character(len=*), intent(in) :: deck, path
+    character(len=:), allocatable :: full
+    integer :: slash
+    slash = index(deck, "/", back=.true.)
+    if (path(1:1) == "/" .or. slash == 0) then
+      full = path
+    else
+      full = deck(1:slash)//path
+    end if
+  end function relative_to
+
+end module davit_sweep_keys

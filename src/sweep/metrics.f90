@@ -1,0 +1,174 @@
+!> What a sweep measures in each launch, from the state after every accepted step (so no
+!> contact or snatch load falls between output samples), over the lowering: from t = 0 until
+!> the hooks are released (or, with release off, until the boat is waterborne), else to
+!> the end of the run.
+!>
+!> * clearance: smallest fender-to-ship-side distance; negative = fender indentation, which
+!>   is a collision.
+!> * impacts: separate contact episodes: the boat goes from no fender touching to some
+!>   fender in its compression or restitution phase (a re-contact after separating counts
+!>   again).
+!> * accelerations: of the boat's CG in the inertial frame, as the velocity change over each
+!>   step over dt (the step's mean acceleration: within O((omega dt)^2) of the
+!>   instantaneous peak for a mode omega, 1e-3 for a 6 ms fender contact at dt = 2e-4 s,
+!>   and free of an extra RHS evaluation); horizontal = |(a_x, a_y)|, vertical = |a_z|.
+!> * tension: largest tension of any cable segment or sling segment (or foundation sling).
+module davit_sweep_metrics
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use davit_kinds, only: wp, i8
+  use davit_core_rotation, only: rotation_matrix
+  use davit_boat_contact, only: phase_compression, phase_restitution
+  use davit_system_model, only: system_type, boat_u
+  use davit_system_step_monitor, only: step_monitor
+  implicit none
+  private
+  public :: launch_metrics, case_result, status_not_run, status_ok, status_failed
+  public :: not_run_result
+
+  integer, parameter :: status_not_run = 0, status_ok = 1, status_failed = 2
+
+  !> One row of the summary. Results are defined for status ok; otherwise the reals are NaN
+  !> and the integers -1, except wall time, steps and RHS evaluations of a failed case.
+  !> Event times are -1 when the event did not happen.
+  type :: case_result
+    integer :: status = status_not_run
+    character(len=:), allocatable :: message
+    real(wp) :: min_clearance = 0.0_wp, peak_horizontal_acceleration = 0.0_wp
+    real(wp) :: peak_vertical_acceleration = 0.0_wp, peak_segment_tension = 0.0_wp
+    real(wp) :: first_contact_time = -1.0_wp, waterborne_time = -1.0_wp
+    real(wp) :: end_time = 0.0_wp, wall_time = 0.0_wp
+    integer :: collided = -1, impacts = -1
+    integer(i8) :: steps = 0, rhs_evaluations = 0
+  end type case_result
+
+  type, extends(step_monitor) :: launch_metrics
+    !> The integrated system (its fender phases and events are read, never changed).
+    type(system_type), pointer :: sys => null()
+    logical :: stop_at_release = .true.
+    !> False once the lowering is over: later steps change nothing.
+    logical :: open = .true.
+    real(wp) :: min_clearance = huge(1.0_wp), peak_horizontal = 0.0_wp
+    real(wp) :: peak_vertical = 0.0_wp, peak_tension = 0.0_wp
+    real(wp) :: first_contact_time = -1.0_wp, end_time = 0.0_wp
+    integer :: impacts = 0
+    logical :: touching = .false.
+    !> Inertial CG velocity and time of the previous step.
+    real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp
+  contains
+    procedure :: watch => metrics_watch
+    procedure :: result => metrics_result
+  end type launch_metrics
+
+contains
+
+  !> A row for a case that has not run (or whose results are undefined).
+  function not_run_result() result(r)
+    type(case_result) :: r
+    real(wp) :: nan
+    nan = ieee_value(nan, ieee_quiet_nan)
+    r%status = status_not_run
+    r%message = ""
+    r%min_clearance = nan
+    r%peak_horizontal_acceleration = nan
+    r%peak_vertical_acceleration = nan
+    r%peak_segment_tension = nan
+    r%first_contact_time = nan
+    r%waterborne_time = nan
+    r%end_time = nan
+    r%wall_time = nan
+    r%collided = -1
+    r%impacts = -1
+  end function not_run_result
+
+  subroutine metrics_watch(self, t, y, done)
+    class(launch_metrics), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    logical, intent(out) :: done
+    done = .false.
+    if (.not. self%open) return
+    self%end_time = t
+    call watch_contact(self, t, y)
+    call watch_acceleration(self, t, y)
+    self%peak_tension = max(self%peak_tension, largest_tension(self%sys, t, y))
+    if (lowering_over(self%sys)) then
+      self%open = .false.
+      done = self%stop_at_release
+    end if
+  end subroutine metrics_watch
+
+  !> Clearance and contact episodes (fender phases are advanced before the monitor).
+  subroutine watch_contact(self, t, y)
+    type(launch_metrics), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: clearance, force(self%sys%fenders%nf)
+    logical :: touching
+    call self%sys%contact_state(y, clearance, force)
+    self%min_clearance = min(self%min_clearance, clearance)
+    touching = any(self%sys%fender_states%phase == phase_compression .or. &
+                   self%sys%fender_states%phase == phase_restitution)
+    if (touching .and. .not. self%touching) then
+      self%impacts = self%impacts + 1
+      if (self%first_contact_time < 0.0_wp) self%first_contact_time = t
+    end if
+    self%touching = touching
+  end subroutine watch_contact
+
+  !> Mean CG acceleration over the last step, Delta v/Delta t (inertial frame).
+  subroutine watch_acceleration(self, t, y)
+    type(launch_metrics), intent(inout) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: v(3), a(3)
+    v = matmul(rotation_matrix(y(1:3)), y(boat_u(1) + 3:boat_u(2)))
+    if (self%t_prev >= 0.0_wp .and. t > self%t_prev) then
+      a = (v - self%v_prev)/(t - self%t_prev)
+      self%peak_horizontal = max(self%peak_horizontal, norm2(a(1:2)))
+      self%peak_vertical = max(self%peak_vertical, abs(a(3)))
+    end if
+    self%v_prev = v
+    self%t_prev = t
+  end subroutine watch_acceleration
+
+  !> Largest tension of any cable or sling segment at state y [N].
+  real(wp) function largest_tension(sys, t, y) result(tension)
+    type(system_type), intent(in) :: sys
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: seg(sys%rig%nseg), sling(sys%rig%nlump + 1, 2), paid
+    real(wp) :: lumps(3, sys%rig%nlump, 2)
+    if (sys%on_davit) then
+      if (sys%release_time >= 0.0_wp) then
+        tension = 0.0_wp
+        return
+      end if
+      call sys%rigging_state(t, y, seg, sling, paid, lumps)
+      tension = max(0.0_wp, maxval(seg), maxval(sling))
+    else
+      tension = maxval(sys%sling_tensions(y))
+    end if
+  end function largest_tension
+
+  !> The lowering is over once the hooks are released (or, with release off, once the
+  !> boat is waterborne).
+  pure logical function lowering_over(sys)
+    type(system_type), intent(in) :: sys
+    lowering_over = sys%on_davit .and. (sys%release_time >= 0.0_wp .or. &
+                                        (.not. sys%release .and. sys%waterborne_time >= 0.0_wp))
+  end function lowering_over
+
+  !> The measured quantities as a summary row of status ok.
+  function metrics_result(self) result(r)
+    class(launch_metrics), intent(in) :: self
+    type(case_result) :: r
+    r%status = status_ok
+    r%message = "ok"
+    r%min_clearance = self%min_clearance
+    r%collided = merge(1, 0, self%min_clearance < 0.0_wp)
+    r%impacts = self%impacts
+    r%peak_horizontal_acceleration = self%peak_horizontal
+    r%peak_vertical_acceleration = self%peak_vertical
+    r%peak_segment_tension = self%peak_tension
+    r%first_contact_time = self%first_contact_time
+    r%waterborne_time = self%sys%waterborne_time
+    r%end_time = self%end_time
+  end function metrics_result
+
+end module davit_sweep_metrics

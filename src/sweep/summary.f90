@@ -1,0 +1,212 @@
+!> The sweep summary file: one row per case (1-D datasets of length ncase), the case inputs
+!> under /cases and the results under /results, every dataset with `units` and
+!> `description`. It is always written whole (under SUMMARY.h5.tmp, then renamed), at the
+!> start, at checkpoints and at the end, so an interrupted sweep leaves a valid summary in
+!> which the unfinished cases have status 0. postproc/layout.py holds the same names.
+!> HDF5 is not thread-safe here: call these from one thread at a time.
+module davit_sweep_summary
+  use davit_kinds, only: wp, i8, davit_version
+  use davit_error, only: error_type, fatal_error
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_hdf5_reader, only: h5_reader_type
+  use davit_sweep_keys, only: sweep_config
+  use davit_sweep_cases, only: sweep_case
+  use davit_sweep_metrics, only: case_result, status_not_run
+  implicit none
+  private
+  public :: write_summary, read_results
+
+  character(len=*), parameter :: wave_type_codes = "0 calm, 1 airy (regular, linear), "// &
+                                                   "2 stokes2 (regular), 3 irregular"
+  character(len=*), parameter :: defined = " (status 1 only; NaN otherwise)"
+
+contains
+
+  !> Write the whole summary to `path` (atomically: `path.tmp`, then renamed).
+  subroutine write_summary(path, s, cases, results, threads, series_dir, error)
+    character(len=*), intent(in) :: path, series_dir
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: cases(:)
+    type(case_result), intent(in) :: results(:)
+    integer, intent(in) :: threads
+    type(error_type), allocatable, intent(out) :: error
+    type(h5_writer_type) :: w
+    call w%create(path, error)
+    if (allocated(error)) return
+    call write_cases(w, cases)
+    call write_results(w, results)
+    call w%attr_str("/", "davit_version", davit_version)
+    call w%attr_str("/", "sweep_file", s%filename)
+    call w%attr_str("/", "sweep_namelist", s%deck_text)
+    call w%attr_str("/", "base_deck", s%base_deck)
+    call w%attr_str("/", "base_namelist", s%base%deck_text)
+    call w%attr_int("/", "ncase", int(size(cases), i8))
+    call w%attr_int("/", "threads", int(threads, i8))
+    call w%attr_int("/", "complete", merge(1_i8, 0_i8, all(results%status /= status_not_run)))
+    call w%attr_str("/", "series_dir", series_dir)
+    call w%close(error)
+  end subroutine write_summary
+
+  subroutine write_cases(w, cases)
+    type(h5_writer_type), intent(inout) :: w
+    type(sweep_case), intent(in) :: cases(:)
+    call w%group("cases")
+    call w%write_1d_int("cases/index", int(cases%index, i8), "-", "Case number, 1-based")
+    call w%write_1d_int("cases/realisation", int(cases%realisation, i8), "-", &
+                        "Realisation of the combination of the other inputs, 1-based")
+    call w%write_1d_int("cases/seed", int(cases%seed, i8), "-", "Random seed of the case "// &
+                        "(SplitMix64 of the base seed and the case index, top 31 bits)")
+    call w%write_1d_int("cases/level", int(cases%level, i8), "-", &
+                        "Sea-state level (review G19)")
+    call w%write_1d_int("cases/wave_type", int(cases%wave_type, i8), "-", &
+                        "Wave type: "//wave_type_codes)
+    call w%attr_str("cases/wave_type", "codes", wave_type_codes)
+    call w%write_1d_int("cases/wind", merge(1_i8, 0_i8, cases%wind), "-", &
+                        "1 = wind on (along the waves), 0 = no wind")
+    call w%write_1d("cases/wind_speed", cases%wind_speed, "m/s", "Wind speed")
+    call w%write_1d("cases/wave_height", cases%wave_height, "m", &
+                    "Wave height (regular: 2a; irregular: H of eq. 44)")
+    call w%write_1d("cases/wave_period", cases%wave_period, "s", &
+                    "Regular-wave period (irregular: sets only the ramp)")
+    call w%write_1d("cases/angle_deg", cases%angle_deg, "deg", &
+                    "Encounter angle chi: wave direction from N1 towards N2, ship heading N1")
+    call w%write_1d("cases/clearance_b", cases%clearance_b, "-", &
+                    "Initial fender-to-ship-side distance in boat widths")
+    call w%write_1d("cases/dt", cases%dt, "s", "Time step")
+    call w%write_1d("cases/phase_deg", cases%phase_deg, "deg", "Regular-wave phase epsilon"// &
+                    " at the origin at t = 0 (irregular: unused, the seed sets the phases)")
+  end subroutine write_cases
+
+  subroutine write_results(w, r)
+    type(h5_writer_type), intent(inout) :: w
+    type(case_result), intent(in) :: r(:)
+    character(len=:), allocatable :: messages(:)
+    integer :: i, width
+    call w%group("results")
+    call w%write_1d_int("results/status", int(r%status, i8), "-", &
+                        "0 not run, 1 ok, 2 failed (see message)")
+    width = 1
+    do i = 1, size(r)
+      width = max(width, len(r(i)%message))
+    end do
+    allocate (character(len=width) :: messages(size(r)))
+    do i = 1, size(r)
+      messages(i) = r(i)%message
+    end do
+    call w%write_strings("results/message", messages, "-", &
+                         "'ok', the error of a failed case, or empty when not run")
+    call w%write_1d("results/min_clearance", r%min_clearance, "m", "Smallest fender-to-"// &
+                    "ship-side distance over the lowering; negative = indentation"//defined)
+    call w%write_1d_int("results/collided", int(r%collided, i8), "-", &
+                        "1 if min_clearance < 0 (a fender touched the ship), else 0; -1 "// &
+                        "if not status 1")
+    call w%write_1d_int("results/impacts", int(r%impacts, i8), "-", "Separate contact "// &
+                        "episodes over the lowering; -1 if not status 1")
+    call w%write_1d("results/peak_horizontal_acceleration", r%peak_horizontal_acceleration, &
+                    "m/s^2", "Largest horizontal CG acceleration |(a_x, a_y)|, mean over "// &
+                    "each step"//defined)
+    call w%write_1d("results/peak_vertical_acceleration", r%peak_vertical_acceleration, &
+                    "m/s^2", "Largest vertical CG acceleration |a_z| (gravity not "// &
+                    "subtracted: 0 hanging at rest), mean over each step"//defined)
+    call w%write_1d("results/peak_segment_tension", r%peak_segment_tension, "N", &
+                    "Largest tension of any cable or sling segment over the lowering"//defined)
+    call w%write_1d("results/first_contact_time", r%first_contact_time, "s", &
+                    "Time of the first fender contact over the lowering; -1 = none"//defined)
+    call w%write_1d("results/waterborne_time", r%waterborne_time, "s", "Time the boat "// &
+                    "became waterborne (review G24); -1 = never"//defined)
+    call w%write_1d("results/end_time", r%end_time, "s", "End of the lowering window: "// &
+                    "hook release, or the end of the run"//defined)
+    call w%write_1d("results/wall_time", r%wall_time, "s", &
+                    "Compute time of the case (one thread); NaN if not run")
+    call w%write_1d_int("results/steps", r%steps, "-", "Integrator steps")
+    call w%write_1d_int("results/rhs_evaluations", r%rhs_evaluations, "-", &
+                        "Right-hand-side evaluations of the integrator")
+  end subroutine write_results
+
+  !> The results of an earlier summary of the same sweep (resume). Fails with a clear
+  !> message when the file is not a summary of this sweep deck and base deck.
+  subroutine read_results(path, s, ncase, results, error)
+    character(len=*), intent(in) :: path
+    type(sweep_config), intent(in) :: s
+    integer, intent(in) :: ncase
+    type(case_result), intent(inout) :: results(:)
+    type(error_type), allocatable, intent(out) :: error
+    type(h5_reader_type) :: f
+    call f%open(path, error)
+    if (allocated(error)) return
+    call check_same_sweep(f, s, ncase, error)
+    if (.not. allocated(error)) call read_rows(f, results, error)
+    call f%close()
+    if (allocated(error)) error%message = "cannot resume: "//error%message
+  end subroutine read_results
+
+  subroutine check_same_sweep(f, s, ncase, error)
+    type(h5_reader_type), intent(inout) :: f
+    type(sweep_config), intent(in) :: s
+    integer, intent(in) :: ncase
+    type(error_type), allocatable, intent(out) :: error
+    character(len=:), allocatable :: text
+    integer(i8) :: n
+    call f%attr_str("sweep_namelist", text, error)
+    if (allocated(error)) return
+    if (text /= s%deck_text) then
+      call fatal_error(error, "'"//f%path//"' was written by a different sweep deck "// &
+                       "(its text differs from '"//s%filename//"'); run without --resume "// &
+                       "or restore the deck")
+      return
+    end if
+    call f%attr_str("base_namelist", text, error)
+    if (allocated(error)) return
+    if (text /= s%base%deck_text) then
+      call fatal_error(error, "'"//f%path//"' was written with a different base deck "// &
+                       "(its text differs from '"//s%base_path//"'); run without --resume "// &
+                       "or restore the deck")
+      return
+    end if
+    call f%attr_int("ncase", n, error)
+    if (allocated(error)) return
+    if (n /= ncase) call fatal_error(error, "'"//f%path//"' holds a different number of cases")
+  end subroutine check_same_sweep
+
+  subroutine read_rows(f, r, error)
+    type(h5_reader_type), intent(inout) :: f
+    type(case_result), intent(inout) :: r(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer(i8), allocatable :: iv(:)
+    real(wp), allocatable :: rv(:)
+    character(len=:), allocatable :: sv(:)
+    integer :: i
+    call f%read_1d_int("results/status", iv, error)
+    if (.not. allocated(error)) r%status = int(iv)
+    if (.not. allocated(error)) call f%read_strings("results/message", sv, error)
+    if (allocated(error)) return
+    do i = 1, size(r)
+      r(i)%message = trim(sv(i))
+    end do
+    call f%read_1d_int("results/collided", iv, error)
+    if (.not. allocated(error)) r%collided = int(iv)
+    if (.not. allocated(error)) call f%read_1d_int("results/impacts", iv, error)
+    if (.not. allocated(error)) r%impacts = int(iv)
+    if (.not. allocated(error)) call f%read_1d_int("results/steps", iv, error)
+    if (.not. allocated(error)) r%steps = iv
+    if (.not. allocated(error)) call f%read_1d_int("results/rhs_evaluations", iv, error)
+    if (.not. allocated(error)) r%rhs_evaluations = iv
+    if (.not. allocated(error)) call f%read_1d("results/min_clearance", rv, error)
+    if (.not. allocated(error)) r%min_clearance = rv
+    if (.not. allocated(error)) call f%read_1d("results/peak_horizontal_acceleration", rv, error)
+    if (.not. allocated(error)) r%peak_horizontal_acceleration = rv
+    if (.not. allocated(error)) call f%read_1d("results/peak_vertical_acceleration", rv, error)
+    if (.not. allocated(error)) r%peak_vertical_acceleration = rv
+    if (.not. allocated(error)) call f%read_1d("results/peak_segment_tension", rv, error)
+    if (.not. allocated(error)) r%peak_segment_tension = rv
+    if (.not. allocated(error)) call f%read_1d("results/first_contact_time", rv, error)
+    if (.not. allocated(error)) r%first_contact_time = rv
+    if (.not. allocated(error)) call f%read_1d("results/waterborne_time", rv, error)
+    if (.not. allocated(error)) r%waterborne_time = rv
+    if (.not. allocated(error)) call f%read_1d("results/end_time", rv, error)
+    if (.not. allocated(error)) r%end_time = rv
+    if (.not. allocated(error)) call f%read_1d("results/wall_time", rv, error)
+    if (.not. allocated(error)) r%wall_time = rv
+  end subroutine read_rows
+
+end module davit_sweep_summary

@@ -1,0 +1,26 @@
+!> A watcher the time loop calls at t = 0 and after every accepted step, for results that
+!> need step resolution (peaks, minima, contact onsets) without recording every step. It
+!> may end the run early (e.g. once the quantity of interest can no longer change).
+module davit_system_step_monitor
+  use davit_kinds, only: wp
+  implicit none
+  private
+  public :: step_monitor
+
+  type, abstract :: step_monitor
+  contains
+    procedure(watch_interface), deferred :: watch
+  end type step_monitor
+
+  abstract interface
+    !> See the accepted state y at time t (after the problem's after_step); set `done` to
+    !> end the run after this step (the run still counts as complete).
+    subroutine watch_interface(self, t, y, done)
+      import :: step_monitor, wp
+      class(step_monitor), intent(inout) :: self
+      real(wp), intent(in) :: t, y(:)
+      logical, intent(out) :: done
+    end subroutine watch_interface
+  end interface
+
+end module davit_system_step_monitor

@@ -1,0 +1,244 @@
+!> Sweeps (issue "7. Sweeps"): case seeds (SplitMix64 reference vectors), the Cartesian
+!> product and the level presets, the clearance geometry (the boat still hangs in
+!> equilibrium), and the in-run metrics on cases whose answer is known (a fender impact, the
+!> end of the lowering).
+module test_sweep
+  use davit_kinds, only: wp, i8, pi, gravity
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type, parse_config
+  use davit_boat_contact, only: hertz_peak
+  use davit_system_model, only: system_type, new_system
+  use davit_system_recorders, only: boat_recorder
+  use davit_system_run_summary, only: run_summary
+  use davit_system_driver, only: integrate
+  use davit_sweep_keys, only: sweep_config, parse_sweep
+  use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance, &
+                               splitmix64, case_seed
+  use davit_sweep_metrics, only: launch_metrics, case_result
+  use harness, only: suite_type, case_state, new_case, check, check_true, note
+  implicit none
+  private
+  public :: collect_sweep
+
+  !> The III.B launch deck the sweep decks start from (tests run in the project root).
+  character(len=*), parameter :: sweep_file = "input/test_sweep.nml"
+
+contains
+
+  function collect_sweep() result(suite)
+    type(suite_type) :: suite
+    suite%name = "sweep"
+    suite%cases = [new_case("splitmix64_reference_vectors", splitmix_vectors), &
+                   new_case("cartesian_product_and_level_presets", product_and_presets), &
+                   new_case("clearance_in_boat_widths_hangs_in_equilibrium", clearances), &
+                   new_case("metrics_fender_impact_hertz", impact_metrics), &
+                   new_case("metrics_window_ends_at_release", release_window)]
+  end function collect_sweep
+
+  function sweep_from_text(text) result(s)
+    character(len=*), intent(in) :: text
+    type(sweep_config) :: s
+    type(error_type), allocatable :: error
+    call parse_sweep(sweep_file, text, s, error)
+    if (allocated(error)) error stop "test sweep deck rejected: "//error%message
+  end function sweep_from_text
+
+  function deck_config(text) result(cfg)
+    character(len=*), intent(in) :: text
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    call parse_config("test.nml", text, cfg, error)
+    if (allocated(error)) error stop "test deck rejected: "//error%message
+  end function deck_config
+
+  !> SplitMix64 started at 1234567: the first five outputs of Vigna's reference
+  !> implementation (as signed 64-bit patterns); a case seed is the top 31 bits.
+  subroutine splitmix_vectors(state)
+    type(case_state), intent(inout) :: state
+    integer(i8), parameter :: expected(5) = [6457827717110365317_i8, 3203168211198807973_i8, &
+                                             -8629252141511181193_i8, 4593380528125082431_i8, &
+                                             -2037821214251327795_i8]
+    integer :: n
+    do n = 1, 5
+      call check_true(state, splitmix64(1234567_i8, int(n, i8)) == expected(n), &
+                      "SplitMix64(1234567) output "//achar(48 + n))
+    end do
+    call check_true(state, case_seed(1234567, 3) == int(ishft(expected(3), -33)), &
+                    "case seed = top 31 bits")
+    call check_true(state, all([(case_seed(7, n), n = 1, 50)] >= 0), "seeds in 0..2^31-1")
+  end subroutine splitmix_vectors
+
+  !> 2 levels x 3 angles x 2 clearances x 3 realisations = 36 cases, each combination once,
+  !> realisations fastest; level presets (review G18, G19): Level 4 H 2.5 m, T_p 10.06 s,
+  !> wind 8 m/s along the waves; Level 5 H 4 m, 12.72 s, 10 m/s; the base deck's ramp of 2
+  !> periods follows the period.
+  subroutine product_and_presets(state)
+    type(case_state), intent(inout) :: state
+    type(sweep_config) :: s
+    type(sweep_case), allocatable :: cases(:)
+    type(config_type) :: cfg
+    integer :: i, j, n
+    s = sweep_from_text("&sweep base_deck = 'iiib_level5_090.nml', levels = 4, 5, "// &
+                        "angles_deg = 45, 90, 135, clearances_b = 1.0, 2.0, "// &
+                        "realisations = 3 /")
+    call build_cases(s, 1.5_wp, cases)
+    call check_true(state, size(cases) == 36, "36 cases")
+    call check_true(state, all(cases%index == [(i, i = 1, 36)]), "indices 1..36")
+    call check_true(state, all(cases%realisation == [((j, j = 1, 3), i = 1, 12)]), &
+                    "realisations vary fastest")
+    n = 0
+    do i = 1, 36
+      do j = i + 1, 36
+        if (cases(i)%level == cases(j)%level .and. cases(i)%angle_deg == cases(j)%angle_deg &
+            .and. cases(i)%clearance_b == cases(j)%clearance_b .and. &
+            cases(i)%realisation == cases(j)%realisation) n = n + 1
+      end do
+    end do
+    call check_true(state, n == 0, "every combination once")
+    call check_true(state, size(unique_seeds(cases%seed)) == 36, "36 distinct seeds")
+    associate (c4 => cases(1), c5 => cases(36))
+      call check(state, c4%wave_height, 2.5_wp, "Level 4 H", abs_tol=1e-12_wp)
+      call check(state, c4%wave_period, 10.06_wp, "Level 4 T_p (G18)", abs_tol=0.01_wp)
+      call check(state, c4%wind_speed, 8.0_wp, "Level 4 wind", abs_tol=1e-12_wp)
+      call check(state, c5%wave_height, 4.0_wp, "Level 5 H", abs_tol=1e-12_wp)
+      call check(state, c5%wave_period, 12.72_wp, "Level 5 T_p (G18)", abs_tol=0.01_wp)
+      call check(state, c5%wind_speed, 10.0_wp, "Level 5 wind", abs_tol=1e-12_wp)
+      call case_config(s, c4, 1.5_wp, cfg)
+      call check(state, cfg%sea%direction, 45.0_wp*pi/180.0_wp, "encounter angle", &
+                 abs_tol=1e-15_wp)
+      call check(state, cfg%wind%direction, cfg%sea%direction, "wind along the waves", &
+                 abs_tol=1e-15_wp)
+      call check(state, cfg%sea%ramp_time, 2.0_wp*c4%wave_period, "ramp 2 periods", &
+                 rel_tol=1e-14_wp)
+      call check_true(state, cfg%simulation%seed == c4%seed, "case seed in the run")
+      call check_true(state, cfg%sea%wave_type == "stokes2", "base deck wave type")
+    end associate
+    call check_true(state, any(abs(cases(1:3)%phase_deg - cases(2)%phase_deg) > 1.0_wp), &
+                    "realisations draw different phases")
+  end subroutine product_and_presets
+
+  pure function unique_seeds(seeds) result(u)
+    integer, intent(in) :: seeds(:)
+    integer, allocatable :: u(:)
+    integer :: i
+    u = [integer ::]
+    do i = 1, size(seeds)
+      if (.not. any(u == seeds(i))) u = [u, seeds(i)]
+    end do
+  end function unique_seeds
+
+  !> Clearances of 1, 1.5 and 2 boat widths (G3: 2.8, 4.2, 5.6 m) measured by the model
+  !> itself at t = 0; boat and davit heads moved together, so on the 'lowering' scene in calm
+  !> air with the drum held the boat stays in its static equilibrium (a boat moved without
+  !> its heads would swing on inclined falls).
+  subroutine clearances(state)
+    type(case_state), intent(inout) :: state
+    type(sweep_config) :: s
+    type(sweep_case), allocatable :: cases(:)
+    type(config_type) :: cfg
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(run_summary) :: summary
+    type(error_type), allocatable :: error, run_error
+    real(wp), allocatable :: y(:)
+    real(wp) :: clearance0, clearance
+    integer :: i
+    s = sweep_from_text("&sweep base_deck = 'lowering.nml', clearances_b = 1.0, 1.5, 2.0 /")
+    s%base%rigging%drum_speed = 0.0_wp
+    s%base%simulation%t_end = 1.0_wp
+    s%base%simulation%output_interval = 0.01_wp
+    call initial_clearance(s%base, clearance0, error)
+    call check(state, clearance0, 1.5_wp, "base deck: 13.3 - 1.4 - 10.4 m", abs_tol=1e-12_wp)
+    call build_cases(s, clearance0, cases)
+    do i = 1, size(cases)
+      call case_config(s, cases(i), clearance0, cfg)
+      call initial_clearance(cfg, clearance, error)
+      call check(state, clearance, cases(i)%clearance_b*2.8_wp, "clearance = c B", &
+                 abs_tol=1e-12_wp)
+    end do
+    call new_system(sys, cfg, error)
+    y = sys%initial_state(cfg)
+    rec%sys => sys
+    call integrate(cfg, sys, y, rec, summary, run_error, error)
+    call note(state, "largest boat speed over 1 s at 2 B (m/s)", maxval(norm2(rec%velocity(:, 1:rec%n), 1)))
+    call check(state, maxval(norm2(rec%velocity(:, 1:rec%n), 1)), 0.0_wp, "at rest at 2 B", &
+               abs_tol=1e-6_wp)
+  end subroutine clearances
+
+  !> A free boat at 1 m/s onto the ship's side, both fenders at once, far above the water,
+  !> without air loads: one impact; the deepest indentation and the peak horizontal
+  !> acceleration are those of the Hertz impact of m/2 per fender (delta_m, 2 f_m/m); the
+  !> vertical acceleration is that of free fall, g.
+  subroutine impact_metrics(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(launch_metrics) :: metrics
+    type(run_summary) :: summary
+    type(case_result) :: r
+    type(error_type), allocatable :: error, run_error
+    real(wp), allocatable :: y(:)
+    real(wp) :: dm, fm
+    cfg = deck_config("&simulation t_end = 0.03, dt = 2.0e-6, output_interval = 0.001 / "// &
+                      "&slings attached = .false. / &wind speed = 0.0 / "// &
+                      "&contact fender_z = 0.0, 0.0 / "// &
+                      "&boat position = 0.0, 11.81, -100.0, velocity = 0.0, -1.0, 0.0, "// &
+                      "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
+    call new_system(sys, cfg, error)
+    y = sys%initial_state(cfg)
+    rec%sys => sys
+    metrics%sys => sys
+    call integrate(cfg, sys, y, rec, summary, run_error, error, metrics)
+    r = metrics%result()
+    call hertz_peak(sys%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call note(state, "peak horizontal acceleration (m/s^2)", r%peak_horizontal_acceleration)
+    call note(state, "min clearance (m)", r%min_clearance)
+    call check_true(state, .not. allocated(run_error), "run completes")
+    call check_true(state, r%collided == 1 .and. r%impacts == 1, "one impact")
+    call check(state, r%first_contact_time, 0.01_wp, "first contact after 0.01 m at 1 m/s", &
+               abs_tol=2.0_wp*cfg%simulation%dt)
+    call check(state, r%min_clearance, -dm, "deepest indentation = Hertz delta_m", &
+               rel_tol=1e-3_wp)
+    call check(state, r%peak_horizontal_acceleration, 2.0_wp*fm/cfg%boat%mass, &
+               "peak horizontal acceleration = 2 f_m/m", rel_tol=1e-3_wp)
+    call check(state, r%peak_vertical_acceleration, gravity, "free fall", rel_tol=1e-9_wp)
+    call check(state, r%peak_segment_tension, 0.0_wp, "no slings", abs_tol=0.0_wp)
+  end subroutine impact_metrics
+
+  !> The lowering deck with the boat starting 2 m above calm water (heads, lead sheave and
+  !> drum raised with it): the lowering window ends, and the run stops, when the hooks open,
+  !> 1 s (the waterborne hold, G24) after the boat became waterborne.
+  subroutine release_window(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(launch_metrics) :: metrics
+    type(run_summary) :: summary
+    type(case_result) :: r
+    type(error_type), allocatable :: error, run_error
+    real(wp), allocatable :: y(:)
+    cfg = deck_config("&simulation scene = 'lowering', t_end = 30.0, dt = 2.0e-4, "// &
+                      "output_interval = 0.02 / &boat position = 0.0, 13.3, -2.0, "// &
+                      "zeta = 0.1, 0.1, 0.1 / &wind speed = 0.0 / &sea wave_type = 'calm' / "// &
+                      "&rigging head_fore = 4.6, 13.3, -7.55, head_aft = -4.6, 13.3, -7.55, "// &
+                      "lead_sheave = 0.0, 11.5, -8.0, drum_position = 0.0, 8.0, -3.5 /")
+    call new_system(sys, cfg, error)
+    y = sys%initial_state(cfg)
+    rec%sys => sys
+    metrics%sys => sys
+    call integrate(cfg, sys, y, rec, summary, run_error, error, metrics)
+    r = metrics%result()
+    call note(state, "waterborne (s)", r%waterborne_time)
+    call note(state, "end of the lowering window (s)", r%end_time)
+    call check_true(state, r%waterborne_time > 0.0_wp, "waterborne")
+    call check(state, r%end_time, sys%release_time, "window ends at release", abs_tol=0.0_wp)
+    call check(state, r%end_time, r%waterborne_time + 1.0_wp, "release 1 s after waterborne", &
+               abs_tol=2.0_wp*cfg%simulation%dt)
+    call check(state, rec%time(rec%n), r%end_time, "run stopped there", abs_tol=0.0_wp)
+    call check_true(state, summary%steps == nint(r%end_time/cfg%simulation%dt), &
+                    "no step after the release")
+  end subroutine release_window
+
+end module test_sweep
