@@ -155,3 +155,125 @@ def chinese_spectrum(omega, height):
     u = 6.28 * np.sqrt(height)
     omega = np.asarray(omega, dtype=float)
     return 0.74 / omega ** 5 * np.exp(-(GRAVITY / u) ** 2 / omega ** 2)
+
+
+# --- Sweep summaries (`davit sweep`) ---------------------------------------------------------
+# One row per case: 1-D datasets of length ncase. Every dataset has `units` and
+# `description`. Results are defined for status 1 (ok) only: otherwise the real results are
+# NaN and collided/impacts -1. Event times are -1 when the event did not happen.
+import os  # noqa: E402  (here, not at the top: only the sweep section needs it)
+
+SWEEP_CASE_INDEX = "cases/index"
+SWEEP_CASE_LEVEL = "cases/level"
+SWEEP_CASE_REALISATION = "cases/realisation"
+SWEEP_CASE_SEED = "cases/seed"
+SWEEP_CASE_WIND = "cases/wind"                      # 1 on (along the waves), 0 off
+SWEEP_CASE_WAVE_TYPE = "cases/wave_type"            # code, see SWEEP_WAVE_TYPES
+SWEEP_CASE_WAVE_HEIGHT = "cases/wave_height"
+SWEEP_CASE_WAVE_PERIOD = "cases/wave_period"
+SWEEP_CASE_ANGLE = "cases/angle_deg"
+SWEEP_CASE_CLEARANCE = "cases/clearance_b"          # initial clearance in boat widths
+SWEEP_CASE_WIND_SPEED = "cases/wind_speed"
+SWEEP_CASE_DT = "cases/dt"
+SWEEP_CASE_PHASE = "cases/phase_deg"
+SWEEP_STATUS = "results/status"                     # 0 not run, 1 ok, 2 failed
+SWEEP_MESSAGE = "results/message"
+SWEEP_MIN_CLEARANCE = "results/min_clearance"
+SWEEP_COLLIDED = "results/collided"
+SWEEP_IMPACTS = "results/impacts"
+SWEEP_PEAK_HORIZONTAL = "results/peak_horizontal_acceleration"
+SWEEP_PEAK_VERTICAL = "results/peak_vertical_acceleration"
+SWEEP_PEAK_TENSION = "results/peak_segment_tension"
+SWEEP_FIRST_CONTACT = "results/first_contact_time"
+SWEEP_WATERBORNE = "results/waterborne_time"
+SWEEP_END_TIME = "results/end_time"
+SWEEP_WALL_TIME = "results/wall_time"
+SWEEP_STEPS = "results/steps"
+SWEEP_RHS = "results/rhs_evaluations"
+
+SWEEP_WAVE_TYPES = {0: "calm", 1: "airy", 2: "stokes2", 3: "irregular"}
+SWEEP_NOT_RUN, SWEEP_OK, SWEEP_FAILED = 0, 1, 2
+SWEEP_ROOT_ATTRIBUTES = ("davit_version", "sweep_file", "sweep_namelist", "base_deck",
+                         "base_namelist", "ncase", "threads", "complete", "series_dir")
+
+# field of Sweep -> dataset; every summary holds these
+SWEEP_FIELDS = {
+    "index": SWEEP_CASE_INDEX, "level": SWEEP_CASE_LEVEL,
+    "realisation": SWEEP_CASE_REALISATION, "seed": SWEEP_CASE_SEED, "wind": SWEEP_CASE_WIND,
+    "wave_type": SWEEP_CASE_WAVE_TYPE, "wave_height": SWEEP_CASE_WAVE_HEIGHT,
+    "wave_period": SWEEP_CASE_WAVE_PERIOD, "angle_deg": SWEEP_CASE_ANGLE,
+    "clearance_b": SWEEP_CASE_CLEARANCE, "wind_speed": SWEEP_CASE_WIND_SPEED,
+    "dt": SWEEP_CASE_DT, "phase_deg": SWEEP_CASE_PHASE, "status": SWEEP_STATUS,
+    "message": SWEEP_MESSAGE, "min_clearance": SWEEP_MIN_CLEARANCE,
+    "collided": SWEEP_COLLIDED, "impacts": SWEEP_IMPACTS,
+    "peak_horizontal_acceleration": SWEEP_PEAK_HORIZONTAL,
+    "peak_vertical_acceleration": SWEEP_PEAK_VERTICAL,
+    "peak_segment_tension": SWEEP_PEAK_TENSION, "first_contact_time": SWEEP_FIRST_CONTACT,
+    "waterborne_time": SWEEP_WATERBORNE, "end_time": SWEEP_END_TIME,
+    "wall_time": SWEEP_WALL_TIME, "steps": SWEEP_STEPS, "rhs_evaluations": SWEEP_RHS,
+}
+
+
+@dataclass
+class Sweep:
+    """A sweep summary as numpy arrays of length ncase (message: list of str)."""
+    path: str
+    attrs: dict
+    index: np.ndarray
+    level: np.ndarray
+    realisation: np.ndarray
+    seed: np.ndarray
+    wind: np.ndarray
+    wave_type: np.ndarray
+    wave_height: np.ndarray
+    wave_period: np.ndarray
+    angle_deg: np.ndarray
+    clearance_b: np.ndarray
+    wind_speed: np.ndarray
+    dt: np.ndarray
+    phase_deg: np.ndarray
+    status: np.ndarray
+    message: list
+    min_clearance: np.ndarray
+    collided: np.ndarray
+    impacts: np.ndarray
+    peak_horizontal_acceleration: np.ndarray
+    peak_vertical_acceleration: np.ndarray
+    peak_segment_tension: np.ndarray
+    first_contact_time: np.ndarray
+    waterborne_time: np.ndarray
+    end_time: np.ndarray
+    wall_time: np.ndarray
+    steps: np.ndarray
+    rhs_evaluations: np.ndarray
+
+    @property
+    def ncase(self):
+        return self.index.size
+
+    @property
+    def ok(self):
+        return self.status == SWEEP_OK
+
+    def series_file(self, index):
+        """Path of case `index`'s time-series file (`davit sweep --series DIR`), or None."""
+        folder = self.attrs.get("series_dir", "").strip()
+        if not folder:
+            return None
+        if not os.path.isabs(folder) and not os.path.isdir(folder):
+            folder = os.path.join(os.path.dirname(os.path.abspath(self.path)), folder)
+        path = os.path.join(folder, f"case_{int(index):06d}.h5")
+        return path if os.path.exists(path) else None
+
+
+def load_sweep(path):
+    """Read a `davit sweep` summary; ValueError naming what is missing if it is not one."""
+    with h5py.File(path, "r") as f:
+        attrs = {k: _text(v) for k, v in f.attrs.items()}
+        missing = [name for name in SWEEP_FIELDS.values() if name not in f]
+        if missing:
+            raise ValueError(f"{path}: not a davit sweep summary "
+                             f"(missing {', '.join(missing)})")
+        data = {field: f[name][()] for field, name in SWEEP_FIELDS.items()}
+    data["message"] = [_text(m).strip() for m in data["message"]]
+    return Sweep(path=str(path), attrs=attrs, **data)

@@ -65,20 +65,21 @@ contains
 
   !> Real list of min_count..max_count values, each in the range.
   subroutine get_real_list(self, group, key, x, default, lo, hi, units, description, &
-                           min_count, max_count, default_text)
+                           min_count, max_count, default_text, lo_open)
     class(deck_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: group, key, units, description
     real(wp), allocatable, intent(out) :: x(:)
     real(wp), intent(in) :: default(:), lo, hi
     integer, intent(in) :: min_count, max_count
     character(len=*), intent(in), optional :: default_text
+    logical, intent(in), optional :: lo_open
     character(len=:), allocatable :: value, items(:)
     integer :: line, n
     x = default
     if (.not. lookup(self, group, key, value, line)) then
       call get_real_vec(self, group, key, x, default, lo, hi, units, description, &
                         count_text=int_to_str(min_count)//"-"//int_to_str(max_count), &
-                        default_text=default_text)
+                        default_text=default_text, lo_open=lo_open)
       return
     end if
     call split_items(value, items)
@@ -94,7 +95,7 @@ contains
     allocate (x(n))
     call get_real_vec(self, group, key, x, [(default(1), line = 1, n)], lo, hi, units, &
                       description, count_text=int_to_str(min_count)//"-"//int_to_str(max_count), &
-                      default_text=default_text)
+                      default_text=default_text, lo_open=lo_open)
   end subroutine get_real_list
 
   !> Real vector of fixed size(x); every component must be in the range.
@@ -231,7 +232,11 @@ contains
     character(len=:), allocatable, intent(out) :: s
     character(len=:), allocatable :: value
     integer :: line
-    call self_doc(self, group, key, "'"//default//"'", "text", "-", description)
+    if (len(default) == 0) then
+      call self_doc(self, group, key, "none (required)", "text", "-", description)
+    else
+      call self_doc(self, group, key, "'"//default//"'", "text", "-", description)
+    end if
     s = default
     if (.not. lookup(self, group, key, value, line)) return
     s = unquote(value)
@@ -339,7 +344,7 @@ contains
       s(i) = item
       if (.not. any(choices == item)) then
         call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
-                       trim(items(i))//"') is an unknown choice", allowed, "-")
+                       trim(unquote(items(i)))//"') is an unknown choice", allowed, "-")
         return
       end if
     end do

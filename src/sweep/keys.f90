@@ -114,7 +114,7 @@ contains
     call r%real_list(g, "heights", s%heights, [4.0_wp], 0.0_wp, 20.0_wp, "m", &
                      "Wave heights H (regular 2a, irregular H of eq. 44), instead of the "// &
                      "level preset; the period follows unless periods is given.", 1, &
-                     max_values, default_text="level preset or base deck")
+                     max_values, default_text="level preset or base deck", lo_open=.true.)
     call r%real_list(g, "periods", s%periods, [12.72_wp], 1.0_wp, 40.0_wp, "s", &
                      "Regular-wave periods, instead of the peak period of the height.", 1, &
                      max_values, default_text="peak period or base deck")
@@ -132,7 +132,7 @@ contains
                        "Wave types (&sea wave_type).", 1, 4, default_text="base deck")
     call r%real_list(g, "dts", s%dts, [2.0e-4_wp], 0.0_wp, 1.0_wp, "s", &
                      "Time steps (&simulation dt), e.g. a step-size study.", 1, max_values, &
-                     default_text="base deck")
+                     default_text="base deck", lo_open=.true.)
     call r%int(g, "realisations", s%realisations, 1, 1, 100000, "-", &
                "Random realisations of every combination: random phase (regular waves) "// &
                "or random component phases (irregular).")
