@@ -147,7 +147,7 @@ contains
     if (allocated(error)) call fail(error)
     write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,f0.1,a,i0,a)") "davit: wrote '"//out// &
       "' (", outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
-      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, " threads)"
+      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, " thread(s))"
   end subroutine cmd_sweep
 
   !> The value of option i (the next argument); advances i past both.

@@ -100,6 +100,8 @@ def _peak_bars(ax, summary, rows, angles):
     ax.set_xticks(range(angles.size), [f"{a:g}" for a in angles])
     ax.set(xlabel="encounter angle [deg]", ylabel="peak horizontal acceleration [m/s^2]")
     ax.set_yscale("symlog", linthresh=1.0)
+    top = np.nanmax(summary.peak_horizontal_acceleration[rows])
+    ax.set_ylim(0.0, 3.0 * top if top > 1.0 else 2.0)
 
 
 def min_distance(summary, outdir, stem):

@@ -36,65 +36,54 @@ module davit_sweep_cases
 
 contains
 
-  !> Every combination of the swept values, realisations varying fastest, then dts,
-  !> clearances, angles, wind, periods, heights, levels and wave types. `clearance0` is the
-  !> base deck's initial clearance [m] (recorded when clearances are not swept).
+  !> Every combination of the swept values: case k's position in each list is the digit of
+  !> k - 1 in the mixed radix (wave types, levels, heights, periods, wind, angles,
+  !> clearances, dts, realisations), so realisations vary fastest. `clearance0` is the base
+  !> deck's initial clearance [m] (recorded when clearances are not swept).
   subroutine build_cases(s, clearance0, cases)
     type(sweep_config), intent(in) :: s
     real(wp), intent(in) :: clearance0
     type(sweep_case), allocatable, intent(out) :: cases(:)
-    integer :: n, it, il, ih, ip, iw, ia, ic, id, ir, k
-    n = size(s%wave_types)*size(s%levels)*size(s%heights)*size(s%periods)*size(s%winds)* &
-        size(s%angles_deg)*size(s%clearances_b)*size(s%dts)*s%realisations
-    allocate (cases(n))
-    k = 0
-    do it = 1, size(s%wave_types)
-      do il = 1, size(s%levels)
-        do ih = 1, size(s%heights)
-          do ip = 1, size(s%periods)
-            do iw = 1, size(s%winds)
-              do ia = 1, size(s%angles_deg)
-                do ic = 1, size(s%clearances_b)
-                  do id = 1, size(s%dts)
-                    do ir = 1, s%realisations
-                      k = k + 1
-                      cases(k) = one_case(s, k, ir, it, il, ih, ip, iw, ia, ic, id, clearance0)
-                    end do
-                  end do
-                end do
-              end do
-            end do
-          end do
-        end do
+    integer :: sizes(9), digit(9), k, d, rest
+    sizes = [size(s%wave_types), size(s%levels), size(s%heights), size(s%periods), &
+             size(s%winds), size(s%angles_deg), size(s%clearances_b), size(s%dts), &
+             s%realisations]
+    allocate (cases(product(sizes)))
+    do k = 1, size(cases)
+      rest = k - 1
+      do d = size(sizes), 1, -1
+        digit(d) = mod(rest, sizes(d)) + 1
+        rest = rest/sizes(d)
       end do
+      cases(k) = one_case(s, k, digit, clearance0)
     end do
   end subroutine build_cases
 
-  !> Case k from the indices of its values in each list.
-  function one_case(s, k, ir, it, il, ih, ip, iw, ia, ic, id, clearance0) result(c)
+  !> Case k from the positions of its values in each list (the order of build_cases).
+  function one_case(s, k, digit, clearance0) result(c)
     type(sweep_config), intent(in) :: s
-    integer, intent(in) :: k, ir, it, il, ih, ip, iw, ia, ic, id
+    integer, intent(in) :: k, digit(9)
     real(wp), intent(in) :: clearance0
     type(sweep_case) :: c
     type(rng_type) :: rng
     real(wp) :: u
     c%index = k
-    c%realisation = ir
-    c%seed = case_seed(s%base_seed, k)
-    c%wave_type = findloc(wave_type_names, s%wave_types(it), dim=1) - 1
-    c%level = s%levels(il)
-    c%wave_height = s%heights(ih)
+    c%wave_type = findloc(wave_type_names, s%wave_types(digit(1)), dim=1) - 1
+    c%level = s%levels(digit(2))
+    c%wave_height = s%heights(digit(3))
     if (s%has_levels .and. .not. s%has_heights) c%wave_height = level_wave_height(c%level)
-    c%wave_period = s%periods(ip)
+    c%wave_period = s%periods(digit(4))
     if ((s%has_levels .or. s%has_heights) .and. .not. s%has_periods) &
       c%wave_period = 2.0_wp*pi/spectrum_peak_omega(c%wave_height)
-    c%wind = s%winds(iw)
+    c%wind = s%winds(digit(5))
     c%wind_speed = 0.0_wp
     if (c%wind) c%wind_speed = wind_on_speed(s, c%level)
-    c%angle_deg = s%angles_deg(ia)
-    c%clearance_b = s%clearances_b(ic)
+    c%angle_deg = s%angles_deg(digit(6))
+    c%clearance_b = s%clearances_b(digit(7))
     if (.not. s%has_clearances) c%clearance_b = clearance0/s%base%boat%beam
-    c%dt = s%dts(id)
+    c%dt = s%dts(digit(8))
+    c%realisation = digit(9)
+    c%seed = case_seed(s%base_seed, k)
     c%phase_deg = s%base%sea%phase*180.0_wp/pi
     if (s%random_phase .and. (c%wave_type == 1 .or. c%wave_type == 2)) then
       rng = new_rng(c%seed, phase_stream)
