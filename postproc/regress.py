@@ -369,13 +369,17 @@ def gather_sweeps(folder):
 
 
 def gather_f2(folder):
-    """F2 rows from the Fig. 13 deck's run (weights from its deck text)."""
+    """F2 rows from the Fig. 13 deck's run (weights from its deck text); "no input" if the
+    run is absent or ends before the [3, 8] s window does."""
     path = os.path.join(folder, F2_STEM + ".h5")
+    head = ("F2 tension ~ W/4", "steady cable tension about W/4 (5 %)")
     if not os.path.exists(path):
-        return [Verdict("F2 tension ~ W/4", "steady cable tension about W/4 (5 %)",
-                        f"{F2_STEM}.h5 absent", NO_INPUT)]
+        return [Verdict(*head, f"{F2_STEM}.h5 absent", NO_INPUT)]
     run = layout.load(path)
     run.require([layout.RIGGING_SEGMENT_TENSION], "cable segment tensions")
+    if run.time[-1] < 8.0:
+        return [Verdict(*head, f"{F2_STEM}.h5 ends at {run.time[-1]:.2f} s, before 8 s",
+                        NO_INPUT)]
     g = layout.GRAVITY
     mass = run.deck("boat", "mass", 8500.0)
     rigging = (2 * run.deck("rigging", "block_mass", 50.0) +
@@ -385,21 +389,40 @@ def gather_f2(folder):
                    (mass + rigging) * g)
 
 
+def _swing_or_none(path, level, skipped):
+    """The in-air swing amplitude of a complete run long enough to measure it, else None
+    (with the reason appended to `skipped`)."""
+    run = layout.load(path)
+    run.require([layout.BOAT_POSITION], "boat trajectory")
+    if not run.complete:
+        skipped.append(f"{os.path.basename(path)}: incomplete run")
+        return None
+    try:
+        return run_swing(run, level)
+    except ValueError as exc:
+        skipped.append(f"{os.path.basename(path)}: {exc}")
+        return None
+
+
 def gather_f9(folder):
     """F9 rows: wind/no-wind pairs of the regular paper runs, and the frozen-ship run."""
     runs = {(r.level, r.angle, r.wind): r for r in paper.collect_runs(folder)
             if not r.irregular}
-    amplitudes = {}
-    for (level, angle, wind), item in runs.items():
+    amplitudes, skipped = {}, []
+    for (level, angle, wind), item in sorted(runs.items()):
         other = runs.get((level, angle, False))
         if wind and other:
-            amplitudes[(level, angle)] = (run_swing(layout.load(item.path), level),
-                                          run_swing(layout.load(other.path), level))
+            pair = (_swing_or_none(item.path, level, skipped),
+                    _swing_or_none(other.path, level, skipped))
+            if None not in pair:
+                amplitudes[(level, angle)] = pair
     swing = {}
     for stem in (FREE_STEM, FROZEN_STEM):
         path = os.path.join(folder, stem + ".h5")
-        swing[stem] = run_swing(layout.load(path), 5) if os.path.exists(path) else None
-    return [fact_f9(amplitudes), fact_f9_ship(swing[FREE_STEM], swing[FROZEN_STEM])]
+        swing[stem] = _swing_or_none(path, 5, skipped) if os.path.exists(path) else None
+    wind = fact_f9(amplitudes)
+    wind.details += [f"skipped {s}" for s in skipped]
+    return [wind, fact_f9_ship(swing[FREE_STEM], swing[FROZEN_STEM])]
 
 
 def _h5_files(folder):
