@@ -105,10 +105,18 @@ class Run:
         return deck_value(self.attrs.get("input_namelist", ""), group, key, default)
 
 
+def _open(path):
+    """h5py.File for reading; h5py's own errors do not name the file, so this one does."""
+    try:
+        return h5py.File(path, "r")
+    except OSError as exc:
+        raise OSError(f"{path}: cannot read as HDF5 ({exc})") from exc
+
+
 def load(path):
     """Read every dataset and the attributes of a davit output file."""
     datasets, group_attrs = {}, {}
-    with h5py.File(path, "r") as f:
+    with _open(path) as f:
         attrs = {k: _text(v) for k, v in f.attrs.items()}
 
         def visit(name, obj):
@@ -132,7 +140,7 @@ def file_kind(path):
     """What a davit HDF5 file holds, so that `python -m postproc all` can dispatch it:
     'rao' (davit rao), 'sweep' (davit sweep summary), 'study' (study charts), 'sea' (the
     'sea' scene) or 'run' (a time-domain run with a boat); None for anything else."""
-    with h5py.File(path, "r") as f:
+    with _open(path) as f:
         if RAO_GROUP in f:
             return "rao"
         if SWEEP_GROUP in f:
@@ -242,7 +250,7 @@ def load_summary_fields(path):
     """{field: 1-D array} of the SUMMARY_FIELDS of a sweep summary; a missing dataset is an
     error naming the file and the dataset (a half-written or foreign file must not pass as
     'no collisions')."""
-    with h5py.File(path, "r") as f:
+    with _open(path) as f:
         missing = [name for name in SUMMARY_FIELDS.values() if name not in f]
         if missing:
             raise ValueError(f"{path}: not a complete davit sweep summary "

@@ -122,9 +122,12 @@ def test_missing_dataset_is_refused_with_its_name(paper_folder, tmp_path, capsys
     assert cli.main(["acceleration", str(broken), "-o", str(tmp_path)]) == 1
     err = capsys.readouterr().err
     assert str(broken) in err and layout.BOAT_ACCELERATION in err
+    bogus = tmp_path / "bogus.h5"
+    bogus.write_bytes(b"not hdf5")
     assert cli.main(["all", str(tmp_path), "-o", str(tmp_path / "png")]) == 1
     err = capsys.readouterr().err
     assert str(broken) in err and layout.BOAT_ACCELERATION in err
+    assert f"{bogus}: cannot read as HDF5" in err
     assert list((tmp_path / "png").glob("*_sling_tension.png"))  # the rest is still drawn
 
 
