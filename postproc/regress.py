@@ -2,8 +2,8 @@
 against davit's latest outputs in a folder, printed as a table.
 
 The checks are pure functions over numpy arrays (tested on synthetic data with known
-answers); the functions named `gather_*` only read files. A fact whose files are absent is
-reported as "no input", never as a failure. Where davit disagrees with the paper the row says
+answers); the functions below the "gathering" line read the files. A fact whose files are
+absent is reported as "no input", never as a failure. Where davit disagrees with the paper the row says
 FAIL with both numbers: the model is not tuned to agree (README, "Regression report").
 """
 import os

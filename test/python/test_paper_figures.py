@@ -142,9 +142,9 @@ def _h5(path, groups):
 def test_file_kinds(paper_folder, sea_run, tmp_path):
     assert layout.file_kind(paper_folder / "iiib_level5_090_nowind.h5") == "run"
     assert layout.file_kind(sea_run[1]) == "sea"
-    assert layout.file_kind(_h5(tmp_path / "r.h5", ["rao"])) == "rao"
-    assert layout.file_kind(_h5(tmp_path / "s.h5", ["cases", "results"])) == "sweep"
-    assert layout.file_kind(_h5(tmp_path / "w.h5", ["study"])) == "study"
+    assert layout.file_kind(_h5(tmp_path / "r.h5", [layout.RAO_GROUP])) == "rao"
+    assert layout.file_kind(_h5(tmp_path / "s.h5", [layout.SWEEP_GROUP])) == "sweep"
+    assert layout.file_kind(_h5(tmp_path / "w.h5", [layout.STUDY_GROUP])) == "study"
     assert layout.file_kind(_h5(tmp_path / "x.h5", ["other"])) is None
 
 
@@ -158,8 +158,8 @@ def test_all_dispatches_sweep_and_study_files_to_their_modules(tmp_path, monkeyp
     monkeypatch.setitem(sys.modules, "postproc.study_figures", study)
     monkeypatch.setitem(sys.modules, "postproc.sweep_figures", sweep)
     monkeypatch.setattr(layout, "load_sweep", lambda path: ("summary", path), raising=False)
-    study_path = _h5(tmp_path / "wp.h5", ["study"])
-    sweep_path = _h5(tmp_path / "sw.h5", ["cases"])
+    study_path = _h5(tmp_path / "wp.h5", [layout.STUDY_GROUP])
+    sweep_path = _h5(tmp_path / "sw.h5", [layout.SWEEP_GROUP])
     written, errors = dispatch.make_all(str(tmp_path), str(tmp_path / "png"), log=lambda m: None)
     assert errors == [] and written == []
     assert calls == [("sweep", ("summary", sweep_path), "sw"), ("study", study_path)]
@@ -167,7 +167,7 @@ def test_all_dispatches_sweep_and_study_files_to_their_modules(tmp_path, monkeyp
 
 def test_all_skips_kinds_without_their_module(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "postproc.study_figures", None)   # as if absent
-    _h5(tmp_path / "wp.h5", ["study"])
+    _h5(tmp_path / "wp.h5", [layout.STUDY_GROUP])
     lines = []
     written, errors = dispatch.make_all(str(tmp_path), str(tmp_path), log=lines.append)
     assert errors == [] and written == []
