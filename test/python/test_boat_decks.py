@@ -182,7 +182,7 @@ def test_rk4_fourth_order_on_coupled_launch(davit, tmp_path):
         "t_end = 100.0", "t_end = 2.0").replace("output_interval = 0.02", "output_interval = 0.4")
     ends = []
     for dt in ("8.0e-4", "4.0e-4", "2.0e-4"):
-        run = _run_text(davit, tmp_path, f"order_{dt}.nml", base.replace("dt = 2.0e-4", f"dt = {dt}"))
+        run = _run_text(davit, tmp_path, f"order_{dt}.nml", base.replace("dt = 1.0e-3", f"dt = {dt}"))
         ends.append(np.concatenate([run.get(layout.BOAT_POSITION)[-1],
                                     run.get(layout.BOAT_EULER)[-1],
                                     run.get(layout.RIGGING_SEGMENT_TENSION)[-1] / 1e4]))
