@@ -201,15 +201,13 @@ def test_contact_step_limiting_locates_onset_and_resolves_impact(davit, tmp_path
     fine = _run_text(davit, tmp_path, "fine.nml", drop)
     limited = _run_text(davit, tmp_path, "limited.nml", drop.replace(
         "dt = 1.0e-5", "dt = 1.0e-3\n  dt_contact = 1.0e-5"))
-    coarse = _run_text(davit, tmp_path, "coarse.nml", drop.replace("dt = 1.0e-5", "dt = 1.0e-3"))
     onset = [float(np.ravel(r.get(layout.FIRST_CONTACT_TIME))[0]) for r in (fine, limited)]
     assert onset[0] > 0 and abs(onset[1] - onset[0]) <= 1.0e-5 + 1e-12, onset
     np.testing.assert_allclose(limited.get(layout.BOAT_VELOCITY)[-1],
                                fine.get(layout.BOAT_VELOCITY)[-1], atol=1e-4)
-    peak = [r.get(layout.CONTACT_FORCE).max() for r in (fine, limited, coarse)]
+    peak = [r.get(layout.CONTACT_FORCE).max() for r in (fine, limited)]
     assert abs(peak[1] / peak[0] - 1) < 5e-3, peak
     assert limited.attrs["steps"] < 0.1 * fine.attrs["steps"]
-    assert abs(peak[2] / peak[0] - 1) > 0.05, peak
 
 
 def test_ship_wave_load_slow_clock_is_fourth_order(davit, tmp_path):
