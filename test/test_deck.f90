@@ -62,7 +62,9 @@ contains
           "&simulation: output_interval = 0.001 must be >= dt = 0.01"), &
       bad("&simulation"//nl//" dt = /", "t.nml:2: &simulation: dt has no value"), &
       bad("&boat mass = 0 /", "mass = 0: out of range; allowed: 0 < mass <= 1e6 [kg]"), &
-      bad("&slings damping = NaN /", "&slings: damping = NaN: not a real number") ]
+      bad("&slings damping = NaN /", "&slings: damping = NaN: not a real number"), &
+      bad("&simulation fixed_step = 1 /", &
+          "&simulation: fixed_step = 1: not a logical; allowed: .true. or .false.") ]
     do i = 1, size(table)
       call parse_config("t.nml", table(i)%text, cfg, error)
       call check_true(state, allocated(error), "deck "//table(i)%text//" must be rejected")

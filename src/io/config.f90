@@ -18,6 +18,8 @@ module davit_io_config
     character(len=:), allocatable :: integrator, scene
     integer :: seed
     real(wp) :: rtol, atol
+    !> Adaptive integrators without error control: one step of dt per macro step.
+    logical :: fixed_step
   end type simulation_config
 
   !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
@@ -256,6 +258,10 @@ contains
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &
                 "Absolute error tolerance of the adaptive integrators (state units).")
+    call r%logical(g, "fixed_step", s%fixed_step, .false., &
+                   "dopri5 and rosenbrock take exactly one step of size dt per dt, with no "// &
+                   "error control (rtol, atol unused; convergence-order studies); rk4 "// &
+                   "ignores it.")
     call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &
                 "Interval between recorded samples; rounded to a whole number of steps.", &
                 lo_open=.true.)

@@ -71,7 +71,8 @@ contains
     integer :: bad
 
     call new_integrator(cfg%simulation%integrator, size(y), integ, error, &
-                        cfg%simulation%rtol, cfg%simulation%atol)
+                        cfg%simulation%rtol, cfg%simulation%atol, &
+                        fixed_step=cfg%simulation%fixed_step)
     if (allocated(error)) return
     call writer%create(out_path, error)
     if (allocated(error)) return

@@ -478,7 +478,8 @@ contains
   end function energy
 
   !> Rigging observables at state y: cable segment tensions [N], sling segment tensions
-  !> (row 1 at the hook) [N], paid-out length [m] and lump positions (inertial) [m].
+  !> (row 1 at the hook; zero once the hooks are released) [N], paid-out length [m] and lump
+  !> positions (inertial) [m].
   pure subroutine rigging_state(self, t, y, seg, sling, paid, lumps)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: t, y(:)
@@ -499,6 +500,9 @@ contains
     associate (yr => y(nstate + 1:nstate + self%rig%nstate))
       call self%rig%observe(tr, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
                             sling)
+      ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
+      ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
+      if (self%release_time >= 0.0_wp) sling = 0.0_wp
       paid = self%rig%paid_out(yr)
       if (self%rig%nlump > 0) lumps = self%rig%lump_positions(yr)
     end associate
