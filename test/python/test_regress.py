@@ -49,6 +49,15 @@ def test_f2_fails_off_weight_late_settling_and_unequal_sections():
     assert rows["F2 sections"].result == regress.FAIL
 
 
+def test_f2_equilibrium_start_has_no_transient_rows():
+    """A run started at equilibrium has no settling time or first peak to judge; the label
+    names which run a row belongs to."""
+    t, tension = step_tension(0.0, W / 4)
+    rows = regress.fact_f2(t, tension, W, RIGGED, label=" [III.A 1]", transient=False)
+    assert [v.fact for v in rows] == ["F2 tension ~ W/4 [III.A 1]", "F2 with rigging [III.A 1]"]
+    assert rows[0].result == regress.PASS
+
+
 def test_swing_amplitude_of_a_drifting_sine():
     """sqrt(2) RMS of the detrended horizontal motion: a sine of amplitude A at the wave
     period on a linear drift gives A; an orthogonal cosine B adds to sqrt(A^2 + B^2)."""
