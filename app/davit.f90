@@ -3,7 +3,7 @@
 program davit
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-  use davit_kinds, only: davit_version
+  use davit_kinds, only: wp, davit_version
   use davit_error, only: error_type
   use davit_io_config, only: config_type, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
@@ -11,6 +11,7 @@ program davit
   use davit_system_run_summary, only: run_summary
   use davit_system_bench, only: bench_result, run_bench
   use davit_system_rao, only: run_rao
+  use davit_system_linear_modes, only: linear_modes
   implicit none
 
   interface
@@ -39,6 +40,8 @@ program davit
     call cmd_run(.true.)
   case ("keys")
     call cmd_keys()
+  case ("modes")
+    call cmd_modes()
   case ("bench")
     call cmd_bench()
   case default
@@ -88,6 +91,22 @@ contains
     write (output_unit, "(a,i0,a,i0,a,f0.3,a)") "davit: wrote '"//out//"' (", summary%steps, &
       " steps, ", summary%rhs_evaluations, " RHS evaluations, ", summary%wall_time, " s)"
   end subroutine cmd_run
+
+  !> Fastest rates of the deck's system at t = 0 and the RK4 step limit they imply.
+  subroutine cmd_modes()
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    real(wp) :: rate, omega
+    if (nargs /= 2) call usage_error("'modes' needs one deck: davit modes DECK.nml")
+    call read_config(argument(2), cfg, error)
+    if (allocated(error)) call fail(error)
+    call linear_modes(cfg, rate, omega, error)
+    if (allocated(error)) call fail(error)
+    write (output_unit, "(a,es12.5,a)") "rate_max = ", rate, &
+      " 1/s (largest |eigenvalue| of df/dy at t = 0)"
+    write (output_unit, "(a,es12.5,a)") "omega_max = ", omega, " rad/s (largest |Im|)"
+    write (output_unit, "(a,es12.5,a)") "rk4_limit = ", 2.83_wp/rate, " s (2.83/rate_max)"
+  end subroutine cmd_modes
 
   subroutine cmd_bench()
     type(bench_result), allocatable :: results(:)
@@ -146,6 +165,7 @@ contains
       "  davit run DECK.nml [-o OUT.h5]   run a scenario; default output out/DECK.h5", &
       "  davit rao DECK.nml [-o OUT.h5]   ship response amplitude operators (&rao, &ship)", &
       "  davit keys                       print every deck key (Markdown tables)", &
+      "  davit modes DECK.nml             fastest rates at t = 0 and the RK4 step limit", &
       "  davit bench [--quick]            time the hot paths (single thread)", &
       "  davit --help | -h                this help", &
       "  davit --version | -V             print the version", &

@@ -14,7 +14,7 @@ module davit_io_config
   public :: read_config, parse_config, document_keys
 
   type :: simulation_config
-    real(wp) :: t_end, dt, output_interval
+    real(wp) :: t_end, dt, output_interval, dt_contact, wave_update
     character(len=:), allocatable :: integrator, scene
     integer :: seed
     real(wp) :: rtol, atol
@@ -234,6 +234,13 @@ contains
                 "Simulated time span from t = 0.", lo_open=.true.)
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
+    call r%real(g, "dt_contact", s%dt_contact, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
+                "Step while a fender touches the ship's side or is predicted to within "// &
+                "two steps (event location by step limiting); 0: always dt.")
+    call r%real(g, "wave_update", s%wave_update, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
+                "Slow clock of the ship's Froude-Krylov wave loads: sampled at this "// &
+                "interval with their rates and interpolated (cubic Hermite); 0: evaluated "// &
+                "at every stage.")
     call r%choice(g, "scene", s%scene, "hanging_boat", &
                   [character(len=16) :: "hanging_boat", "lowering", "launch", "sea", "ship"], &
                   "What to simulate: 'hanging_boat' (boat on two slings from fixed points), "// &
