@@ -4,6 +4,9 @@
 #                       write out/*.h5 and out/*.png
 #   bash make.sh test   install what is missing, build, run every Fortran and Python test,
 #                       closing with one line "N passed, N failed"
+#   bash make.sh paper  build, run every paper deck (and the sweeps, where `davit sweep`
+#                       exists) into out/, then draw every figure and print the regression
+#                       report (python -m postproc all / regress)
 # Both are idempotent: a second run installs nothing and rebuilds only what changed.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -76,6 +79,76 @@ demo() {
   python3 -m postproc run "out/$stem.h5" -o out
 }
 
+# The decks behind the paper's figures and facts: Section III.B regular runs with and
+# without wind (Figs. 15-19, F7-F9), the frozen-ship run (F9), the III.A experiments
+# (Figs. 11-13, F2), the Fig. 13 transient (F2), the lowering, the Level 4/5 seas (Fig. 6)
+# and the ship's RAOs. The irregular III.B decks
+# (about 8 min each) only with PAPER_IRREGULAR=1.
+paper_decks() {
+  ls input/iiib_level?_???.nml input/iiib_level?_???_nowind.nml input/iiib_level5_090_frozen.nml \
+     input/iiia_model_scale_?.nml input/fig13_tension.nml input/lowering.nml \
+     input/sea_level?_irregular.nml input/ship_rao.nml
+  if [ "${PAPER_IRREGULAR:-0}" = 1 ]; then ls input/iiib_level?_???_irregular.nml; fi
+}
+
+# One deck to out/<deck name>.h5, skipped when that file is newer than the deck and the
+# binary (FORCE=1 reruns everything); the log goes to out/<deck name>.log.
+run_paper_deck() {
+  local deck="$1" stem out mode=run
+  stem="$(basename "$deck" .nml)"
+  out="out/$stem.h5"
+  if [ "${FORCE:-0}" != 1 ] && [ "$out" -nt "$deck" ] && [ "$out" -nt "$DAVIT_BIN" ]; then
+    log "up to date: $out"
+    return 0
+  fi
+  grep -q '^ *&rao' "$deck" && mode=rao
+  if OMP_NUM_THREADS=1 "$DAVIT_BIN" "$mode" "$deck" -o "$out" >"out/$stem.log" 2>&1; then
+    log "$(tail -n 1 "out/$stem.log")"
+  else
+    log "FAILED: $deck (see out/$stem.log)"
+    echo "$deck" >>"$PAPER_FAILED"
+    return 1
+  fi
+}
+
+# Every sweep deck (input/sweep*.nml) through `davit sweep`, if this build has it.
+run_sweeps() {
+  if ! "$DAVIT_BIN" --help 2>&1 | grep -qw sweep; then
+    log "no 'davit sweep' in this build: sweeps skipped"
+    return 0
+  fi
+  local deck failed=0
+  for deck in input/sweep*.nml; do
+    [ -e "$deck" ] || continue
+    log "sweep $deck"
+    "$DAVIT_BIN" sweep "$deck" -o "out/$(basename "$deck" .nml).h5" || failed=1
+  done
+  return $failed
+}
+
+paper() {
+  setup
+  mkdir -p out
+  local start=$SECONDS jobs="${JOBS:-2}" deck failed=0 t_runs t_sweeps
+  PAPER_FAILED="$(mktemp)"
+  log "paper decks ($jobs at a time)"
+  for deck in $(paper_decks); do
+    while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+    run_paper_deck "$deck" &
+  done
+  wait
+  if [ -s "$PAPER_FAILED" ]; then failed=1; log "failed decks: $(tr '\n' ' ' <"$PAPER_FAILED")"; fi
+  rm -f "$PAPER_FAILED"
+  t_runs=$((SECONDS - start))
+  run_sweeps || failed=1
+  t_sweeps=$((SECONDS - start - t_runs))
+  python3 -m postproc all out -o out || failed=1
+  python3 -m postproc regress out | tee out/regress.md
+  log "paper: runs ${t_runs} s, sweeps ${t_sweeps} s, figures and report" \
+      "$((SECONDS - start - t_runs - t_sweeps)) s, total $((SECONDS - start)) s"
+  return $failed
+}
+
 run_tests() {
   setup
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
@@ -109,6 +182,7 @@ run_tests() {
 case "${1:-}" in
   demo) demo ;;
   test) run_tests ;;
+  paper) paper ;;
   setup) setup ;;
-  *) echo "usage: bash make.sh demo|test|setup" >&2; exit 2 ;;
+  *) echo "usage: bash make.sh demo|test|paper|setup" >&2; exit 2 ;;
 esac

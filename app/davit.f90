@@ -14,6 +14,7 @@ program davit
   use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
   use davit_sweep_cases, only: sweep_case
   use davit_sweep_driver, only: sweep_options, sweep_outcome, run_sweep, prepare_cases
+  use davit_system_linear_modes, only: linear_modes
   implicit none
 
   interface
@@ -44,6 +45,8 @@ program davit
     call cmd_sweep()
   case ("keys")
     call cmd_keys()
+  case ("modes")
+    call cmd_modes()
   case ("bench")
     call cmd_bench()
   case default
@@ -192,6 +195,22 @@ contains
     write (s, "(i0)") n
   end function int_text
 
+  !> Fastest rates of the deck's system at t = 0 and the RK4 step limit they imply.
+  subroutine cmd_modes()
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    real(wp) :: rate, omega
+    if (nargs /= 2) call usage_error("'modes' needs one deck: davit modes DECK.nml")
+    call read_config(argument(2), cfg, error)
+    if (allocated(error)) call fail(error)
+    call linear_modes(cfg, rate, omega, error)
+    if (allocated(error)) call fail(error)
+    write (output_unit, "(a,es12.5,a)") "rate_max = ", rate, &
+      " 1/s (largest |eigenvalue| of df/dy at t = 0)"
+    write (output_unit, "(a,es12.5,a)") "omega_max = ", omega, " rad/s (largest |Im|)"
+    write (output_unit, "(a,es12.5,a)") "rk4_limit = ", 2.83_wp/rate, " s (2.83/rate_max)"
+  end subroutine cmd_modes
+
   subroutine cmd_bench()
     type(bench_result), allocatable :: results(:)
     logical :: quick
@@ -255,6 +274,7 @@ contains
       "                                   run every case of a sweep deck (&sweep) in", &
       "                                   parallel; default summary out/SWEEP.h5", &
       "  davit keys                       print every deck key (Markdown tables)", &
+      "  davit modes DECK.nml             fastest rates at t = 0 and the RK4 step limit", &
       "  davit bench [--quick]            time the hot paths (single thread)", &
       "  davit --help | -h                this help", &
       "  davit --version | -V             print the version", &

@@ -1,54 +1,121 @@
-"""Command line: python -m postproc FIGURE RUN.h5 [-o OUTDIR]
+"""Command line:
 
-FIGURE is one of: trajectory, tension, acceleration (boat runs), surface (the paper's
-Fig. 6), spectrum (sea runs), rao (davit rao files), or run (every figure the file
-supports); or sweep, with a `davit sweep` summary (Figs. 19-23 style).
+  python -m postproc FIGURE RUN.h5 [-o OUTDIR]    one run's figure: trajectory, tension,
+                                                   acceleration, segment_tension (Fig. 13),
+                                                   contact (boat runs); surface (Fig. 6),
+                                                   spectrum (sea runs); rao (davit rao);
+                                                   run = every figure the file supports
+  python -m postproc FIGURE [FOLDER] [-o OUTDIR]  multi-run figures over the paper decks'
+                                                   outputs in FOLDER (default out/):
+                                                   trajectories (Figs. 15-18), collisions
+                                                   (Fig. 19)
+  python -m postproc all [FOLDER] [-o OUTDIR]     every figure whose inputs are in FOLDER
+  python -m postproc sweep SUMMARY.h5 [-o OUTDIR] the Figs. 19-23 style charts of a
+                                                   `davit sweep` summary
+  python -m postproc regress [FOLDER] [--strict]  the paper's stated facts vs the outputs
+                                                   in FOLDER, as a table
+
+Exit status: 0 success, 1 an unreadable or incomplete input (the message names the file and
+the missing dataset); regress exits 1 on a FAIL only with --strict.
 """
 import argparse
 import os
 import sys
 
-from . import figures, layout, sweep_figures
+from . import dispatch, figures, layout, paper, regress, sweep_figures
+
+FOLDER_COMMANDS = ("all", "regress")
 
 
-def main(argv=None):
+def _parser():
     parser = argparse.ArgumentParser(prog="python -m postproc", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("figure", choices=sorted(figures.RUN_FIGURES) + ["run", "sweep"])
-    parser.add_argument("input", help="davit HDF5 output file")
+    choices = (sorted(figures.RUN_FIGURES) + ["run"] + sorted(paper.FOLDER_FIGURES)
+               + list(FOLDER_COMMANDS) + ["sweep"])
+    parser.add_argument("figure", choices=choices, metavar="FIGURE",
+                        help="one of: " + ", ".join(choices))
+    parser.add_argument("input", nargs="?", default=None,
+                        help="davit HDF5 file (single-run figures) or folder (default out)")
     parser.add_argument("-o", "--outdir", default="out", help="folder for PNG files")
-    args = parser.parse_args(argv)
-    if args.figure == "sweep":
-        return _sweep(args)
+    parser.add_argument("--strict", action="store_true",
+                        help="regress: exit 1 if any fact fails")
+    return parser
+
+
+def _error(message):
+    print(f"postproc: error: {message}", file=sys.stderr)
+    return 1
+
+
+def _single_run(args):
+    if args.input is None:
+        return _error(f"'{args.figure}' needs a davit HDF5 file")
     try:
         run = layout.load(args.input)
     except (OSError, ValueError) as exc:
-        print(f"postproc: error: {exc}", file=sys.stderr)
-        return 1
+        return _error(exc)
     stem = os.path.splitext(os.path.basename(args.input))[0]
     names = figures.figures_for(run) if args.figure == "run" else [args.figure]
     for name in names:
         try:
             path = figures.RUN_FIGURES[name](run, args.outdir, stem)
         except ValueError as exc:
-            print(f"postproc: error: {exc}", file=sys.stderr)
-            return 1
+            return _error(exc)
         if path:
             print(f"postproc: wrote {path}")
     return 0
 
 
+def _folder(args):
+    folder = args.input or "out"
+    if not os.path.isdir(folder):
+        return _error(f"{folder}: not a folder")
+    if args.figure == "regress":
+        try:
+            verdicts = regress.report(folder)
+        except (OSError, ValueError) as exc:
+            return _error(exc)
+        print(regress.format_table(verdicts))
+        failed = any(v.result == regress.FAIL for v in verdicts)
+        return 1 if args.strict and failed else 0
+    if args.figure == "all":
+        _, errors = dispatch.make_all(folder, args.outdir)
+    else:
+        errors = []
+        try:
+            written = [p for p in paper.FOLDER_FIGURES[args.figure](folder, args.outdir) if p]
+        except (OSError, ValueError) as exc:
+            errors, written = [str(exc)], []
+        for path in written:
+            print(f"postproc: wrote {path}")
+        if not written and not errors:
+            print(f"postproc: no figure: no paper-deck runs for '{args.figure}' in {folder}")
+    for message in errors:
+        _error(message)
+    return 1 if errors else 0
+
+
 def _sweep(args):
     """Every sweep figure of a `davit sweep` summary."""
+    if args.input is None:
+        return _error("'sweep' needs a davit sweep summary file")
     stem = os.path.splitext(os.path.basename(args.input))[0]
     try:
         summary = layout.load_sweep(args.input)
         for plot in sweep_figures.SWEEP_FIGURES.values():
             print(f"postproc: wrote {plot(summary, args.outdir, stem)}")
     except (OSError, ValueError) as exc:
-        print(f"postproc: error: {exc}", file=sys.stderr)
-        return 1
+        return _error(exc)
     return 0
+
+
+def main(argv=None):
+    args = _parser().parse_args(argv)
+    if args.figure in figures.RUN_FIGURES or args.figure == "run":
+        return _single_run(args)
+    if args.figure == "sweep":
+        return _sweep(args)
+    return _folder(args)
 
 
 if __name__ == "__main__":

@@ -41,7 +41,8 @@ def trajectory(run, outdir, stem):
     for a in ax.flat:
         a.grid(True, alpha=0.3)
     status = "" if run.complete else "  [INCOMPLETE RUN]"
-    fig.suptitle(f"Lifeboat trajectory: {os.path.basename(run.path)}{status}")
+    fig.suptitle(f"Lifeboat CG trajectory, frame oxy1z1 (z1 up, still water 0): "
+                 f"{os.path.basename(run.path)}{status}")
     fig.tight_layout()
     return _save(fig, outdir, f"{stem}_trajectory.png")
 
@@ -78,18 +79,14 @@ def acceleration(run, outdir, stem):
 
 
 def _sea_height(run):
-    """H of the recorded sea, from the deck text (or 4 sigma of the first probe)."""
-    import re
-    match = re.search(r"height\s*=\s*([0-9.eEdD+-]+)", run.attrs.get("input_namelist", ""))
-    if match:
-        return float(match.group(1).lower().replace("d", "e"))
-    level = re.search(r"level\s*=\s*([45])", run.attrs.get("input_namelist", ""))
-    return {"4": 2.5, "5": 4.0}.get(level.group(1) if level else "5")
+    """H of the recorded sea: the deck's &sea height, else its level's preset (G19)."""
+    height = run.deck("sea", "height")
+    return height if height is not None else {4: 2.5, 5: 4.0}[int(run.deck("sea", "level", 5))]
 
 
 def surface(run, outdir, stem, size=200.0, n=161):
     """Paper Fig. 6: the sea surface over a size x size patch at the last recorded time,
-    rebuilt from the component table."""
+    rebuilt from the component table, drawn in the paper's frame oxy1z1 (y1 = -y, z1 up)."""
     run.require(layout.SEA, "sea")
     t = float(run.time[-1])
     x = np.linspace(-size / 2, size / 2, n)
@@ -99,11 +96,11 @@ def surface(run, outdir, stem, size=200.0, n=161):
         eta[i] = layout.sea_elevation(run, t, xx[i], yy[i])
     fig = plt.figure(figsize=(9, 7))
     ax = fig.add_subplot(projection="3d")
-    ax.plot_surface(xx, yy, eta, cmap="viridis", linewidth=0, antialiased=True)
-    ax.set(xlabel="x [m]", ylabel="y [m]", zlabel="eta [m] (up)")
+    ax.plot_surface(xx, -yy, eta, cmap="viridis", linewidth=0, antialiased=True)
+    ax.set(xlabel="x1 [m] (= x)", ylabel="y1 [m] (= -y)", zlabel="z1 = eta [m] (up)")
     ax.set_zlim(-3 * np.std(eta) * 2, 3 * np.std(eta) * 2)
-    ax.set_title(f"Sea surface at t = {t:.1f} s ({os.path.basename(run.path)}; "
-                 f"{len(run.get(layout.SEA_OMEGA))} components)")
+    ax.set_title(f"Fig. 6: sea surface at t = {t:.1f} s, frame oxy1z1\n"
+                 f"({os.path.basename(run.path)}; {len(run.get(layout.SEA_OMEGA))} components)")
     fig.tight_layout()
     return _save(fig, outdir, f"{stem}_surface.png")
 
@@ -174,16 +171,29 @@ def rao(run, outdir, stem):
     return _save(fig, outdir, f"{stem}_rao.png")
 
 
-def segment_tension(run, outdir, stem, mass=8500.0):
-    """Cable segment tensions against time with the static share W/4 (the paper's Fig. 13)."""
+def segment_tension(run, outdir, stem):
+    """Paper Fig. 13: cable segment tensions against time, with the static shares W/4 and
+    (W + blocks + slings)/4 (weights from the run's deck, else the paper's III.B values).
+    Drawn up to the hook release: after it the falls no longer carry the boat."""
     run.require([layout.RIGGING_SEGMENT_TENSION], "cable segment tensions")
     tension = run.get(layout.RIGGING_SEGMENT_TENSION)
     t = run.time
+    t_release = run.event(layout.RELEASE_TIME)
+    n = len(t) if t_release is None else int(np.searchsorted(t, t_release))
+    mass = run.deck("boat", "mass", 8500.0)
+    rigging = (2 * run.deck("rigging", "block_mass", 50.0) + 2 *
+               run.deck("rigging", "sling_length", 1.0) *
+               run.deck("rigging", "sling_mass_per_length", 1.6))
     fig, ax = plt.subplots(figsize=(9, 4.5))
     for k in range(tension.shape[1]):
-        ax.plot(t, tension[:, k] / 1e3, lw=0.7, label=f"segment {k + 1}")
-    ax.axhline(mass * layout.GRAVITY / 4e3, color="k", ls="--", lw=0.8, label="W/4")
-    ax.set(xlabel="t [s]", ylabel="tension [kN]", title="Cable segment tension (Fig. 13)")
+        ax.plot(t[:n], tension[:n, k] / 1e3, lw=0.7, label=f"segment {k + 1}")
+    ax.axhline(mass * layout.GRAVITY / 4e3, color="k", ls="--", lw=0.8,
+               label=f"W/4 = {mass * layout.GRAVITY / 4e3:.2f} kN")
+    ax.axhline((mass + rigging) * layout.GRAVITY / 4e3, color="k", ls=":", lw=0.8,
+               label="(W + blocks + slings)/4")
+    until = "" if t_release is None else f", until the hook release at {t_release:.1f} s"
+    ax.set(xlabel="t [s]", ylabel="tension [kN]",
+           title=f"Fig. 13: cable segment tension, drum to dead end{until}")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()

@@ -22,6 +22,10 @@ ENERGY = "diagnostics/energy"
 CONTACT_CLEARANCE = "contact/clearance"
 CONTACT_FORCE = "contact/force"
 FIRST_CONTACT_TIME = "events/first_contact_time"
+LOWERING_START_TIME = "events/lowering_start_time"
+WATERBORNE_TIME = "events/waterborne_time"
+RELEASE_TIME = "events/release_time"
+END_TIME = "events/end_time"
 CONTACT = (CONTACT_CLEARANCE, CONTACT_FORCE)
 RIGGING_SEGMENT_TENSION = "rigging/segment_tension"
 RIGGING_PAID_OUT = "rigging/paid_out"
@@ -43,6 +47,7 @@ RAO = (RAO_OMEGA, RAO_HEADING, RAO_AMPLITUDE, RAO_PHASE)
 RAO_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 SHIP_POSITION = "ship/position"
 SHIP_EULER = "ship/euler"
+SHIP = (SHIP_POSITION, SHIP_EULER)
 
 BOAT = (BOAT_POSITION, BOAT_EULER, BOAT_VELOCITY, BOAT_ANGULAR_VELOCITY, BOAT_ACCELERATION)
 SEA = (SEA_ELEVATION, SEA_PROBES, SEA_OMEGA, SEA_K, SEA_DIRECTION, SEA_AMPLITUDE, SEA_PHASE)
@@ -86,11 +91,32 @@ class Run:
     def scene(self):
         return self.attrs.get("scene", "")
 
+    def event(self, name):
+        """An /events time [s], or None where the file has none or it never happened (-1):
+        callers then fall back to the whole record instead of a sentinel time."""
+        value = self.get(name)
+        if value is None:
+            return None
+        value = float(np.ravel(value)[0])
+        return value if value >= 0 else None
+
+    def deck(self, group, key, default=None):
+        """A key of the deck this file was run from (root attribute input_namelist)."""
+        return deck_value(self.attrs.get("input_namelist", ""), group, key, default)
+
+
+def _open(path):
+    """h5py.File for reading; h5py's own errors do not name the file, so this one does."""
+    try:
+        return h5py.File(path, "r")
+    except OSError as exc:
+        raise OSError(f"{path}: cannot read as HDF5 ({exc})") from exc
+
 
 def load(path):
     """Read every dataset and the attributes of a davit output file."""
     datasets, group_attrs = {}, {}
-    with h5py.File(path, "r") as f:
+    with _open(path) as f:
         attrs = {k: _text(v) for k, v in f.attrs.items()}
 
         def visit(name, obj):
@@ -102,6 +128,53 @@ def load(path):
     if "davit_version" not in attrs or (TIME not in datasets and RAO_OMEGA not in datasets):
         raise ValueError(f"{path}: not a davit output file")
     return Run(path=path, attrs=attrs, datasets=datasets, group_attrs=group_attrs)
+
+
+RAO_GROUP = "rao"
+SWEEP_GROUP = "cases"
+STUDY_GROUP = "study"
+KINDS = ("run", "sea", "rao", "sweep", "study")
+
+
+def file_kind(path):
+    """What a davit HDF5 file holds, so that `python -m postproc all` can dispatch it:
+    'rao' (davit rao), 'sweep' (davit sweep summary), 'study' (study charts), 'sea' (the
+    'sea' scene) or 'run' (a time-domain run with a boat); None for anything else."""
+    with _open(path) as f:
+        if RAO_GROUP in f:
+            return "rao"
+        if SWEEP_GROUP in f:
+            return "sweep"
+        if STUDY_GROUP in f:
+            return "study"
+        if TIME not in f:
+            return None
+        return "sea" if _text(f.attrs.get("scene", "")) == "sea" else "run"
+
+
+def deck_value(text, group, key, default=None):
+    """The value of `key` in namelist group `&group` of a deck's text, as a float, a tuple
+    of floats, a bool or a string; `default` where the deck does not set it. Only keys the
+    deck states are known here: davit's own defaults live in the Fortran deck reader."""
+    import re
+    body = None
+    clean = "\n".join(line.split("!", 1)[0] for line in text.splitlines())
+    for match in re.finditer(r"&(\w+)(.*?)(?:^\s*/|/\s*$)", clean, re.S | re.M):
+        if match.group(1).lower() == group.lower():
+            body = match.group(2)
+    if body is None:
+        return default
+    found = re.search(rf"(?:^|[\s,]){re.escape(key)}\s*=\s*(.*?)(?=[\s,]\w+\s*=|\Z)",
+                      body, re.S | re.I)
+    if not found:
+        return default
+    raw = found.group(1).strip().rstrip(",").strip()
+    if raw[:1] in "'\"":
+        return raw.strip("'\"")
+    if raw.lower() in (".true.", ".false."):
+        return raw.lower() == ".true."
+    values = [float(v.lower().replace("d", "e")) for v in re.split(r"[\s,]+", raw) if v]
+    return values[0] if len(values) == 1 else tuple(values)
 
 
 def dataset_metadata(path):
@@ -148,6 +221,41 @@ def sea_elevation(run, t, x, y):
     if run.group_attrs.get("sea", {}).get("wave_type") == "stokes2":
         eta = eta + 0.5 * k[0] * (r * a[0]) ** 2 * np.cos(2 * theta[..., 0])
     return eta
+
+
+# ---------------------------------------------------------------------------------------
+# davit sweep summary, as read by the regression report (postproc/regress.py): one row per
+# case, 1-D arrays of length ncase. /cases holds the inputs, /results the outcomes.
+SUMMARY_LEVEL = "cases/level"
+SUMMARY_REALISATION = "cases/realisation"
+SUMMARY_WIND = "cases/wind"
+SUMMARY_WAVE_TYPE = "cases/wave_type"          # 1 airy, 2 stokes2, 3 irregular
+SUMMARY_ANGLE = "cases/angle_deg"
+SUMMARY_CLEARANCE = "cases/clearance_b"        # initial clearance in boat widths B
+SUMMARY_STATUS = "results/status"              # 0 not run, 1 ok, 2 failed
+SUMMARY_MIN_CLEARANCE = "results/min_clearance"
+SUMMARY_PEAK_HORIZONTAL_ACCELERATION = "results/peak_horizontal_acceleration"
+SUMMARY_COLLIDED = "results/collided"
+SUMMARY_FIELDS = {"level": SUMMARY_LEVEL, "realisation": SUMMARY_REALISATION,
+                  "wind": SUMMARY_WIND, "wave_type": SUMMARY_WAVE_TYPE,
+                  "angle_deg": SUMMARY_ANGLE, "clearance_b": SUMMARY_CLEARANCE,
+                  "status": SUMMARY_STATUS, "min_clearance": SUMMARY_MIN_CLEARANCE,
+                  "peak_horizontal_acceleration": SUMMARY_PEAK_HORIZONTAL_ACCELERATION,
+                  "collided": SUMMARY_COLLIDED}
+SUMMARY_STATUS_OK = 1
+SUMMARY_WAVE_IRREGULAR = 3
+
+
+def load_summary_fields(path):
+    """{field: 1-D array} of the SUMMARY_FIELDS of a sweep summary; a missing dataset is an
+    error naming the file and the dataset (a half-written or foreign file must not pass as
+    'no collisions')."""
+    with _open(path) as f:
+        missing = [name for name in SUMMARY_FIELDS.values() if name not in f]
+        if missing:
+            raise ValueError(f"{path}: not a complete davit sweep summary "
+                             f"(missing dataset {', '.join('/' + m for m in missing)})")
+        return {field: np.ravel(f[name][()]) for field, name in SUMMARY_FIELDS.items()}
 
 
 def chinese_spectrum(omega, height):

@@ -42,7 +42,7 @@ contains
     integer :: i
     table = [ &
       bad("&simulation"//nl//"  dtt = 0.001"//nl//"/", &
-          "t.nml:2: &simulation: unknown key 'dtt'; allowed keys: t_end dt scene integrator"), &
+          "t.nml:2: &simulation: unknown key 'dtt'; allowed keys: t_end dt dt_contact wave_update scene integrator"), &
       bad("&simulation dt = 'abc' /", &
           "t.nml:1: &simulation: dt = 'abc': not a real number; allowed: 0 < dt <= 1 [s]"), &
       bad("&simulation"//nl//nl//" dt = -1.0 /", &
@@ -62,7 +62,9 @@ contains
           "&simulation: output_interval = 0.001 must be >= dt = 0.01"), &
       bad("&simulation"//nl//" dt = /", "t.nml:2: &simulation: dt has no value"), &
       bad("&boat mass = 0 /", "mass = 0: out of range; allowed: 0 < mass <= 1e6 [kg]"), &
-      bad("&slings damping = NaN /", "&slings: damping = NaN: not a real number") ]
+      bad("&slings damping = NaN /", "&slings: damping = NaN: not a real number"), &
+      bad("&simulation fixed_step = 1 /", &
+          "&simulation: fixed_step = 1: not a logical; allowed: .true. or .false.") ]
     do i = 1, size(table)
       call parse_config("t.nml", table(i)%text, cfg, error)
       call check_true(state, allocated(error), "deck "//table(i)%text//" must be rejected")

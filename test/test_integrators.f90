@@ -454,7 +454,8 @@ contains
                rel_tol=1.0e-3_wp)
   end subroutine limited_substeps
 
-  !> The factory knows all three names, passes tolerances on, rejects unknown names.
+  !> The factory knows all three names, passes tolerances and fixed_step on, rejects unknown
+  !> names.
   subroutine factory_names(state)
     type(case_state), intent(inout) :: state
     class(integrator_type), allocatable :: integ
@@ -475,6 +476,24 @@ contains
     class default
       call check_true(state, .false., "dopri5 type")
     end select
+    ! The deck's &simulation fixed_step reaches both adaptive methods (off by default).
+    call new_integrator("dopri5", 3, integ, error, fixed_step=.true.)
+    select type (integ)
+    type is (dopri5_type)
+      call check_true(state, integ%fixed_step, "dopri5: fixed_step passed")
+    end select
+    call new_integrator("rosenbrock", 3, integ, error, fixed_step=.true.)
+    select type (integ)
+    type is (rosenbrock_type)
+      call check_true(state, integ%fixed_step, "rosenbrock: fixed_step passed")
+    end select
+    call new_integrator("rosenbrock", 3, integ, error)
+    select type (integ)
+    type is (rosenbrock_type)
+      call check_true(state, .not. integ%fixed_step, "rosenbrock: adaptive by default")
+    end select
+    call new_integrator("rk4", 3, integ, error, fixed_step=.true.)
+    call check_true(state, .not. allocated(error), "rk4 accepts (ignores) fixed_step")
     call new_integrator("euler", 3, integ, error)
     call check_true(state, allocated(error), "unknown name is an error")
   end subroutine factory_names

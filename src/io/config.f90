@@ -15,10 +15,12 @@ module davit_io_config
   public :: level_wave_height, level_wind_speed
 
   type :: simulation_config
-    real(wp) :: t_end, dt, output_interval
+    real(wp) :: t_end, dt, output_interval, dt_contact, wave_update
     character(len=:), allocatable :: integrator, scene
     integer :: seed
     real(wp) :: rtol, atol
+    !> Adaptive integrators without error control: one step of dt per macro step.
+    logical :: fixed_step
   end type simulation_config
 
   !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
@@ -233,6 +235,13 @@ contains
                 "Simulated time span from t = 0.", lo_open=.true.)
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
+    call r%real(g, "dt_contact", s%dt_contact, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
+                "Step while a fender touches the ship's side or is predicted to within "// &
+                "two steps (event location by step limiting); 0: always dt.")
+    call r%real(g, "wave_update", s%wave_update, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
+                "Slow clock of the ship's Froude-Krylov wave loads: sampled at this "// &
+                "interval with their rates and interpolated (cubic Hermite); 0: evaluated "// &
+                "at every stage.")
     call r%choice(g, "scene", s%scene, "hanging_boat", &
                   [character(len=16) :: "hanging_boat", "lowering", "launch", "sea", "ship"], &
                   "What to simulate: 'hanging_boat' (boat on two slings from fixed points), "// &
@@ -250,6 +259,10 @@ contains
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &
                 "Absolute error tolerance of the adaptive integrators (state units).")
+    call r%logical(g, "fixed_step", s%fixed_step, .false., &
+                   "dopri5 and rosenbrock take exactly one step of size dt per dt, with no "// &
+                   "error control (rtol, atol unused; convergence-order studies); rk4 "// &
+                   "ignores it.")
     call r%real(g, "output_interval", s%output_interval, 0.01_wp, 0.0_wp, 1.0e3_wp, "s", &
                 "Interval between recorded samples; rounded to a whole number of steps.", &
                 lo_open=.true.)

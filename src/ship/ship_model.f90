@@ -50,6 +50,14 @@ module davit_ship_ship_model
     !> runs to hold the mean position and heading as a frequency-domain RAO assumes; off
     !> (zero) in simulations. Anchored at `anchor` (x, y, yaw).
     real(wp) :: moor_k(3) = 0.0_wp, moor_c(3) = 0.0_wp, anchor(3) = 0.0_wp
+    !> Slow clock of the Froude-Krylov loads (`&simulation wave_update`; 0: off): with the
+    !> phases at the initial position they depend on time alone, so they are sampled with
+    !> their rates on the grid k wave_dt and interpolated by cubic Hermite in between
+    !> (error ~ (omega wave_dt)^4/384 of each component). Stages outside the window
+    !> [wave_t(1), wave_t(2)] are evaluated directly.
+    real(wp) :: wave_dt = 0.0_wp
+    logical :: wave_cached = .false.
+    real(wp) :: wave_t(2) = 0.0_wp, wave_f(6, 2) = 0.0_wp, wave_d(6, 2) = 0.0_wp
   contains
     procedure :: rhs => ship_rhs
     procedure :: refresh_heading
@@ -128,8 +136,68 @@ contains
   subroutine ship_after_step(self, t, y)
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
-    if (abs(y(3) - self%psi_ref) > heading_tolerance) call self%refresh_heading(y(3))
+    if (abs(y(3) - self%psi_ref) > heading_tolerance) then
+      call self%refresh_heading(y(3))
+      self%wave_cached = .false.
+    end if
+    if (self%wave_dt > 0.0_wp .and. self%phase_at_initial .and. &
+        self%sea%kind /= wave_none .and. .not. self%frozen) call advance_wave_clock(self, t)
   end subroutine ship_after_step
+
+  !> Keep the Hermite window of the Froude-Krylov loads on the grid interval that holds t:
+  !> shift by one interval (one new sample) or, after a jump or a heading refresh, resample
+  !> both ends.
+  subroutine advance_wave_clock(self, t)
+    type(ship_system_type), intent(inout) :: self
+    real(wp), intent(in) :: t
+    real(wp) :: t0
+    t0 = self%wave_dt*floor(t/self%wave_dt)
+    if (self%wave_cached .and. t0 == self%wave_t(1)) return
+    if (self%wave_cached .and. t0 == self%wave_t(2)) then
+      self%wave_t(1) = self%wave_t(2)
+      self%wave_f(:, 1) = self%wave_f(:, 2)
+      self%wave_d(:, 1) = self%wave_d(:, 2)
+    else
+      self%wave_t(1) = t0
+      call fk_unramped(self, t0, self%wave_f(:, 1), self%wave_d(:, 1))
+    end if
+    self%wave_t(2) = t0 + self%wave_dt
+    call fk_unramped(self, self%wave_t(2), self%wave_f(:, 2), self%wave_d(:, 2))
+    self%wave_cached = .true.
+  end subroutine advance_wave_clock
+
+  !> Froude-Krylov loads (heading frame, without the start-up ramp) at the initial position
+  !> and their time derivatives.
+  subroutine fk_unramped(self, t, load, rate)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp), intent(out) :: load(6), rate(6)
+    real(wp) :: s(self%sea%n), cs(self%sea%n)
+    integer :: j
+    associate (sea => self%sea)
+      call fast_sincos(sea%omega*t + sea%phase - sea%kx*self%origin(1) - &
+                       sea%ky*self%origin(2), s, cs)
+      do j = 1, 6
+        load(j) = sum(self%fk_sin(j, :)*s) + sum(self%fk_cos(j, :)*cs)
+        rate(j) = sum(sea%omega*(self%fk_sin(j, :)*cs - self%fk_cos(j, :)*s))
+      end do
+    end associate
+  end subroutine fk_unramped
+
+  !> Cubic Hermite interpolation of the cached loads at t in the window.
+  pure function fk_interpolated(self, t) result(load)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp) :: load(6), h, s, h00, h10, h01, h11
+    h = self%wave_t(2) - self%wave_t(1)
+    s = (t - self%wave_t(1))/h
+    h00 = (1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2
+    h10 = s*(1.0_wp - s)**2
+    h01 = s*s*(3.0_wp - 2.0_wp*s)
+    h11 = s*s*(s - 1.0_wp)
+    load = h00*self%wave_f(:, 1) + h10*h*self%wave_d(:, 1) + h01*self%wave_f(:, 2) + &
+           h11*h*self%wave_d(:, 2)
+  end function fk_interpolated
 
   subroutine ship_rhs(self, t, y, dydt)
     class(ship_system_type), intent(in) :: self
@@ -249,6 +317,10 @@ contains
     real(wp) :: load(6), o(3), s(self%sea%n), cs(self%sea%n)
     integer :: j
     associate (sea => self%sea)
+      if (self%wave_cached .and. t >= self%wave_t(1) .and. t <= self%wave_t(2)) then
+        load = wave_ramp(sea, t)*fk_interpolated(self, t)
+        return
+      end if
       if (self%phase_at_initial) then
         o(1:2) = self%origin
       else

@@ -14,13 +14,16 @@ contains
 
   !> Allocate and initialise the integrator `name` ("rk4", "dopri5", "rosenbrock") for a
   !> state of size n. rtol/atol set the adaptive methods' tolerances (defaults 1e-6, 1e-9);
-  !> rk4 has no error control and ignores them.
-  subroutine new_integrator(name, n, integrator, error, rtol, atol)
+  !> rk4 has no error control and ignores them. fixed_step (default .false.) makes the
+  !> adaptive methods take exactly one step of the macro step dt, without error control
+  !> (observed-order studies); rk4 is always fixed-step and ignores it.
+  subroutine new_integrator(name, n, integrator, error, rtol, atol, fixed_step)
     character(len=*), intent(in) :: name
     integer, intent(in) :: n
     class(integrator_type), allocatable, intent(out) :: integrator
     type(error_type), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: rtol, atol
+    logical, intent(in), optional :: fixed_step
     if (present(rtol)) then
       if (.not. rtol > 0.0_wp) then
         call fatal_error(error, "integrator rtol must be > 0")
@@ -49,9 +52,11 @@ contains
     type is (dopri5_type)
       if (present(rtol)) integrator%rtol = rtol
       if (present(atol)) integrator%atol = atol
+      if (present(fixed_step)) integrator%fixed_step = fixed_step
     type is (rosenbrock_type)
       if (present(rtol)) integrator%rtol = rtol
       if (present(atol)) integrator%atol = atol
+      if (present(fixed_step)) integrator%fixed_step = fixed_step
     end select
   end subroutine new_integrator
 

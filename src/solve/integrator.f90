@@ -14,6 +14,9 @@ module davit_solve_integrator
     !> Hook for the time loop after each accepted step (e.g. refreshing slowly varying
     !> coefficients outside the RHS); does nothing by default.
     procedure :: after_step => no_after_step
+    !> Largest step the problem allows from state (t, y) when the deck's step is dt (e.g.
+    !> a smaller one near a contact switch); dt by default.
+    procedure :: max_step => no_max_step
   end type ode_problem
 
   abstract interface
@@ -71,5 +74,11 @@ contains
     class(ode_problem), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
   end subroutine no_after_step
+
+  pure real(wp) function no_max_step(self, t, y, dt) result(h)
+    class(ode_problem), intent(in) :: self
+    real(wp), intent(in) :: t, y(:), dt
+    h = dt
+  end function no_max_step
 
 end module davit_solve_integrator

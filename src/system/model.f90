@@ -26,10 +26,12 @@ module davit_system_model
                                    lift_literal
   use davit_boat_contact, only: fender_state_type, fender_update, new_contact_law, &
                                 law_hertz_elastoplastic, law_lankarani_nikravesh, &
-                                phase_compression
+                                phase_compression, phase_free
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, &
                                 fender_probe, fender_loads
   use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch, watch_refresh, &
+                                      surely_dry
   use davit_error, only: error_type
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_nstate
@@ -43,6 +45,10 @@ module davit_system_model
   !> Index ranges of the boat's coordinates and speeds in y.
   integer, parameter :: boat_q(2) = [1, 6], boat_u(2) = [7, 12]
   integer, parameter :: nslings = 2
+  !> Refresh interval of the surface watch [s]: long enough to cost nothing (one strip-load
+  !> evaluation per interval), short enough for its bound to stay well below the height
+  !> of a boat hanging 15 m up (rate bound ~30 m/s in a 1300-component Level 5 sea).
+  real(wp), parameter :: surface_watch_interval = 0.05_wp
 
   !> Where the ship is: CG, rotation (ship -> N), velocity and angular velocity (inertial).
   type :: ship_pose_type
@@ -59,6 +65,8 @@ module davit_system_model
     type(boat_wind_type) :: air
     type(wave_field_type) :: sea
     type(wind_type) :: wind
+    !> Skips the strip loads while the hull is provably out of the water (exact).
+    type(surface_watch_type) :: watch
     !> Hull volume (dry fraction of the wind loads) [m^3].
     real(wp) :: hull_volume = 0.0_wp
     logical :: contact = .false.
@@ -88,6 +96,11 @@ module davit_system_model
     real(wp) :: waterborne_time = -1.0_wp, release_time = -1.0_wp, afloat_since = -1.0_wp
     logical :: release = .true.
     real(wp) :: release_delay = 0.0_wp
+    !> Step while a fender is in contact or about to be (0: no limit) [s].
+    real(wp) :: dt_contact = 0.0_wp
+    !> Where the hooks were when they let go (inertial) [m].
+    real(wp) :: released_hooks(3, nslings) = 0.0_wp
+    type(ship_pose_type) :: released_pose
   contains
     procedure :: rhs => system_rhs
     procedure :: initial_state
@@ -95,6 +108,7 @@ module davit_system_model
     procedure :: sling_tensions
     procedure :: observe
     procedure :: after_step => system_after_step
+    procedure :: max_step => system_max_step
     procedure :: contact_state
     procedure :: hook_kinematics
     procedure :: rigging_state
@@ -152,6 +166,7 @@ contains
     call new_ship_system(self%ship, hull, self%sea, self%wind, cfg%ship%frozen, &
                          cfg%ship%position, cfg%ship%heading, &
                          cfg%ship%wave_phase == "initial", cfg%ship%headway)
+    self%ship%wave_dt = cfg%simulation%wave_update
     self%with_ship = .true.
     self%iship = self%n + 1
     self%n = self%n + ship_nstate
@@ -173,6 +188,7 @@ contains
     end associate
     call build_wave_field(cfg%sea, cfg%simulation%seed, 0, self%sea)
     self%wind = build_wind(cfg%wind)
+    self%watch = new_surface_watch(self%sea, self%water%hull%n, surface_watch_interval)
   end subroutine new_boat_environment
 
   !> The ship's side plane at ship-frame y = side_y, normal +s2, for the ship at rest in its
@@ -183,6 +199,7 @@ contains
     real(wp) :: cs(3, 3)
     integer :: law
     self%contact = cfg%contact%enabled
+    self%dt_contact = cfg%simulation%dt_contact
     cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
     self%ship_rest%r = cfg%ship%position
     self%ship_rest%c = cs
@@ -320,8 +337,12 @@ contains
         f = f + body_point_force(self%hooks(:, i), matmul(transpose(c), fh))
       end do
     end if
-    call strip_loads(self%water, self%sea, t, c, r, u, fw, volume)
-    f = f + fw
+    if (surely_dry(self%watch, self%water, t, c, r)) then
+      volume = 0.0_wp
+    else
+      call strip_loads(self%water, self%sea, t, c, r, u, fw, volume)
+      f = f + fw
+    end if
     f(4:6) = f(4:6) + boat_wind_force(self%air, u(4:6) - matmul(wind_velocity(self%wind), c), &
                                       max(0.0_wp, 1.0_wp - volume/self%hull_volume))
     if (self%contact) then
@@ -338,6 +359,10 @@ contains
     real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
     integer :: deepest(self%fenders%nf), j
     if (self%with_ship) call self%ship%after_step(t, y(self%iship:self%iship + ship_nstate - 1))
+    if (.not. self%watch%valid .or. t - self%watch%t >= self%watch%interval) then
+      c = rotation_matrix(y(1:3))
+      call watch_refresh(self%watch, self%water, self%sea, t, c, matmul(c, y(4:6)))
+    end if
     if (self%on_davit .and. self%release_time < 0.0_wp) call watch_waterborne(self, t, y)
     if (.not. self%contact) return
     c = rotation_matrix(y(1:3))
@@ -350,6 +375,28 @@ contains
     end do
   end subroutine system_after_step
 
+  !> The contact phases switch only between steps (after_step), and the Hertz force rises
+  !> over milliseconds: while any fender is in contact, or its indentation extrapolated
+  !> over the next two steps of size dt would be positive, steps are limited to dt_contact.
+  !> This locates the contact onset to within dt_contact (an event location by step
+  !> limiting that keeps the step sequence deterministic) and resolves the impact.
+  pure real(wp) function system_max_step(self, t, y, dt) result(h)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:), dt
+    real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
+    integer :: deepest(self%fenders%nf)
+    h = dt
+    if (.not. self%contact .or. self%dt_contact <= 0.0_wp .or. self%dt_contact >= dt) return
+    if (any(self%fender_states%phase /= phase_free)) then
+      h = self%dt_contact
+      return
+    end if
+    c = rotation_matrix(y(1:3))
+    call fender_probe(self%fenders, side_plane(self, ship_pose(self, y)), c, &
+                      matmul(c, y(4:6)), y(boat_u(1):boat_u(2)), deepest, delta, delta_dot)
+    if (any(delta + 2.0_wp*dt*max(delta_dot, 0.0_wp) > 0.0_wp)) h = self%dt_contact
+  end function system_max_step
+
   !> Waterborne when rho g V >= W or the hooks carry < 1 % of W, held for 1 s; the hooks
   !> open release_delay later. Checked only when the keel can reach the water (CG less
   !> than 10 m above the still water), so the hanging phase costs nothing.
@@ -359,7 +406,7 @@ contains
     real(wp), parameter :: hold = 1.0_wp, hook_fraction = 0.01_wp
     real(wp) :: c(3, 3), r(3), fw(6), volume, weight
     real(wp) :: seg(self%rig%nseg), sling(self%rig%nlump + 1, 2), paid
-    real(wp) :: lumps(3, self%rig%nlump, 2)
+    real(wp) :: lumps(3, self%rig%nlump, 2), hook_vel(3, nslings)
     logical :: afloat
     c = rotation_matrix(y(1:3))
     r = matmul(c, y(4:6))
@@ -381,7 +428,11 @@ contains
       end if
     end if
     if (self%release .and. self%waterborne_time >= 0.0_wp .and. &
-        t >= self%waterborne_time + hold + self%release_delay) self%release_time = t
+        t >= self%waterborne_time + hold + self%release_delay) then
+      self%release_time = t
+      call self%hook_kinematics(y, self%released_hooks, hook_vel)
+      self%released_pose = ship_pose(self, y)
+    end if
   end subroutine watch_waterborne
 
   !> Smallest fender-to-side distance [m] (negative = penetration) and each fender's
@@ -427,21 +478,35 @@ contains
   end function energy
 
   !> Rigging observables at state y: cable segment tensions [N], sling segment tensions
-  !> (row 1 at the hook) [N], paid-out length [m] and lump positions (inertial) [m].
+  !> (row 1 at the hook; zero once the hooks are released) [N], paid-out length [m] and lump
+  !> positions (inertial) [m].
   pure subroutine rigging_state(self, t, y, seg, sling, paid, lumps)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
-    real(wp) :: hook_pos(3, 2), hook_vel(3, 2)
+    real(wp) :: hook_pos(3, 2), hook_vel(3, 2), tr
     type(ship_pose_type) :: pose
     call self%hook_kinematics(y, hook_pos, hook_vel)
     pose = ship_pose(self, y)
+    tr = t
+    if (self%release_time >= 0.0_wp) then
+      ! The falls are not simulated after release (their states are frozen): report them
+      ! as they were when the hooks let go, not stretched by the boat and ship moving on.
+      hook_pos = self%released_hooks
+      hook_vel = 0.0_wp
+      pose = self%released_pose
+      tr = self%release_time
+    end if
     associate (yr => y(nstate + 1:nstate + self%rig%nstate))
-      call self%rig%observe(t, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
+      call self%rig%observe(tr, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
                             sling)
+      ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
+      ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
+      if (self%release_time >= 0.0_wp) sling = 0.0_wp
       paid = self%rig%paid_out(yr)
       if (self%rig%nlump > 0) lumps = self%rig%lump_positions(yr)
     end associate
+
   end subroutine rigging_state
 
   !> Tensions [N] of the foundation slings at state y (zero when detached or on the davit,

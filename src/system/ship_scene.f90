@@ -26,6 +26,7 @@ contains
     call new_ship_system(ship, hull, sea, build_wind(cfg%wind), cfg%ship%frozen, &
                          cfg%ship%position, cfg%ship%heading, &
                          cfg%ship%wave_phase == "initial", cfg%ship%headway)
+    ship%wave_dt = cfg%simulation%wave_update
     y = ship_initial_state(cfg)
   end subroutine build_ship_scene
 

@@ -1,0 +1,272 @@
+"""Speed-versus-accuracy studies of the coupled launch (issue 7): work-precision of the
+integrators and level-of-detail switches, and the stability map.
+
+    python -m postproc.study input/study_work_precision.nml [-o out] [--davit PATH]
+    python -m postproc.study input/study_stability.nml [-o out]
+
+A study deck is a namelist with one `&study` group:
+    kind = 'work_precision' | 'stability'
+    base = 'input/iiib_level5_090.nml'     (the scene every run starts from)
+    t_end = 40.0                           (simulated span of each run, s)
+    reference = 'rk4 dt=1e-4 dt_contact=2e-6'
+    runs = 'rk4 dt=1e-3 dt_contact=1e-5', ...
+Each run string is an integrator name followed by key=value overrides of the base deck
+(the group of each key is looked up in KEY_GROUPS). The script runs `davit run` on each
+variant, compares with the reference and writes out/<study>.h5 (group /study) and a PNG
+chart. Timings are the runs' own single-thread wall times (root attribute wall_time).
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+from . import layout
+
+KEY_GROUPS = {"dt": "simulation", "dt_contact": "simulation", "rtol": "simulation",
+              "atol": "simulation", "wave_update": "simulation", "integrator": "simulation",
+              "t_end": "simulation", "output_interval": "simulation",
+              "fixed_step": "simulation",
+              "lumps": "rigging", "sheaves": "rigging", "strips": "boat",
+              "frozen": "ship", "n_frequencies": "sea", "n_directions": "sea",
+              "wave_type": "sea"}
+STRING_KEYS = {"sheaves", "integrator", "wave_type"}
+
+
+def parse_study(path):
+    """Read the `&study` group: strings, numbers and comma-separated string lists."""
+    text = open(path).read()
+    body = re.search(r"&study(.*?)\n\s*/", text, re.S)
+    if not body:
+        raise ValueError(f"{path}: no &study group")
+    lines = [ln.split("!")[0].rstrip() for ln in body.group(1).splitlines()]
+    joined = " ".join(ln for ln in lines if ln.strip())
+    study = {}
+    for key, value in re.findall(r"(\w+)\s*=\s*((?:'[^']*'(?:\s*,\s*)?)+|[^\s,']+)", joined):
+        strings = re.findall(r"'([^']*)'", value)
+        if strings:
+            study[key] = strings if key == "runs" else strings[0]
+        else:
+            study[key] = float(value.strip().rstrip(","))
+    for need in ("kind", "base", "t_end", "runs"):
+        if need not in study:
+            raise ValueError(f"{path}: &study: missing key '{need}'")
+    return study
+
+
+def override(deck, group, key, value):
+    """The deck text with `key = value` set in `&group` (replaced or added)."""
+    literal = f"'{value}'" if key in STRING_KEYS else str(value)
+    pattern = re.compile(rf"(&{group}\b.*?)(\n\s*/)", re.S)
+    match = pattern.search(deck)
+    if not match:
+        return deck.rstrip() + f"\n&{group}\n  {key} = {literal}\n/\n"
+    block = match.group(1)
+    line = re.compile(rf"^(\s*){key}\s*=.*$", re.M)
+    if line.search(block):
+        block = line.sub(rf"\g<1>{key} = {literal}", block, count=1)
+    else:
+        block = block + f"\n  {key} = {literal}"
+    return deck[:match.start()] + block + match.group(2) + deck[match.end():]
+
+
+def variant(base_text, spec, t_end):
+    """Deck text of one run spec 'integrator key=value ...'."""
+    words = spec.split()
+    deck = override(base_text, "simulation", "integrator", words[0])
+    deck = override(deck, "simulation", "t_end", t_end)
+    for word in words[1:]:
+        key, value = word.split("=")
+        if key not in KEY_GROUPS:
+            raise ValueError(f"study run '{spec}': unknown key '{key}'")
+        deck = override(deck, KEY_GROUPS[key], key, value)
+    return deck
+
+
+def run_davit(davit, deck_text, workdir, name):
+    """Run one variant; returns the output path and whether it completed."""
+    deck = os.path.join(workdir, name + ".nml")
+    out = os.path.join(workdir, name + ".h5")
+    with open(deck, "w") as f:
+        f.write(deck_text)
+    result = subprocess.run([davit, "run", deck, "-o", out], capture_output=True, text=True)
+    return out, result.returncode == 0, result.stderr.strip()
+
+
+def metrics(path):
+    """Time, CG position, peak segment tension series, horizontal acceleration, first
+    contact time and cost of one run file."""
+    with h5py.File(path, "r") as f:
+        out = {"time": f[layout.TIME][:], "x": f[layout.BOAT_POSITION][:],
+               "a": f[layout.BOAT_ACCELERATION][:],
+               "tension": f[layout.RIGGING_SEGMENT_TENSION][:].max(axis=1),
+               "contact": float(np.ravel(f[layout.FIRST_CONTACT_TIME])[0]),
+               "wall": float(f.attrs["wall_time"]), "rhs": int(f.attrs["rhs_evaluations"]),
+               "steps": int(f.attrs["steps"]), "complete": int(f.attrs["complete"])}
+    return out
+
+
+def compare(run, ref):
+    """Errors against the reference on the common samples: max CG distance before the
+    reference's first contact (smooth phase) and over the whole run, relative error of the
+    peak segment tension, and the peak horizontal acceleration (sampled)."""
+    n = min(len(run["time"]), len(ref["time"]))
+    if n < 2 or not np.allclose(run["time"][:n], ref["time"][:n], atol=1e-9):
+        raise ValueError("runs sampled at different times")
+    dist = np.linalg.norm(run["x"][:n] - ref["x"][:n], axis=1)
+    smooth = ref["time"][:n] < ref["contact"] if ref["contact"] > 0 else np.ones(n, bool)
+    ah = np.hypot(run["a"][:n, 0], run["a"][:n, 1])
+    return {"err_smooth": dist[smooth].max(), "err_all": dist.max(),
+            "tension_err": abs(run["tension"][:n].max() / ref["tension"][:n].max() - 1),
+            "peak_ah": ah.max()}
+
+
+def work_precision(study, davit, workdir):
+    """Run the reference and every variant; rows of (label, cost, errors)."""
+    base = open(study["base"]).read()
+    t_end = study["t_end"]
+    path, ok, msg = run_davit(davit, variant(base, study["reference"], t_end), workdir, "ref")
+    if not ok:
+        raise RuntimeError(f"reference run failed: {msg}")
+    ref = metrics(path)
+    rows = []
+    for i, spec in enumerate(study["runs"]):
+        path, ok, msg = run_davit(davit, variant(base, spec, t_end), workdir, f"run{i}")
+        row = {"label": spec, "ok": ok, "message": msg}
+        if ok:
+            m = metrics(path)
+            row.update(compare(m, ref), wall=m["wall"], rhs=m["rhs"], steps=m["steps"])
+        rows.append(row)
+        print(format_row(row), flush=True)
+    return ref, rows
+
+
+def format_row(row):
+    if not row["ok"]:
+        return f"{row['label']:<52s} FAILED: {row['message'][:80]}"
+    return (f"{row['label']:<52s} {row['wall']:8.3f} s {row['rhs']:10d} rhs "
+            f"{row['err_smooth']:10.2e} m {row['err_all']:10.2e} m "
+            f"{100 * row['tension_err']:8.3f} % {row['peak_ah']:8.3f}")
+
+
+def largest_stable_step(davit, base, spec, t_end, workdir, lo, hi, iters=7):
+    """Bisect (geometrically) the largest fixed step that completes t_end."""
+    if run_ok(davit, base, spec, t_end, hi, workdir):
+        return hi
+    if not run_ok(davit, base, spec, t_end, lo, workdir):
+        return float("nan")
+    for _ in range(iters):
+        mid = np.sqrt(lo * hi)
+        if run_ok(davit, base, spec, t_end, mid, workdir):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def run_ok(davit, base, spec, t_end, dt, workdir):
+    deck = override(variant(base, spec, t_end), "simulation", "dt", f"{dt:.6e}")
+    deck = override(deck, "simulation", "output_interval", f"{max(dt, t_end / 50):.6e}")
+    _, ok, _ = run_davit(davit, deck, workdir, "probe")
+    return ok
+
+
+def modes_limit(davit, deck_text, workdir):
+    """RK4 limit 2.83/|lambda|_max from `davit modes`."""
+    deck = os.path.join(workdir, "modes.nml")
+    with open(deck, "w") as f:
+        f.write(deck_text)
+    out = subprocess.run([davit, "modes", deck], capture_output=True, text=True, check=True)
+    rate = float(re.search(r"rate_max =\s*(\S+)", out.stdout).group(1))
+    return rate, 2.83 / rate
+
+
+def stability(study, davit, workdir):
+    """For each stiffness variant: the analytic RK4 limit, the largest RK4 step that runs,
+    dopri5's mean accepted step (it settles at its stability boundary) and RODAS3's mean
+    step at the same tolerance (set by accuracy)."""
+    base = open(study["base"]).read()
+    t_end = study["t_end"]
+    rows = []
+    for spec in study["runs"]:
+        deck = variant(base, spec, t_end)
+        rate, limit = modes_limit(davit, deck, workdir)
+        rk4 = largest_stable_step(davit, base, spec, t_end, workdir, limit / 8, limit * 4)
+        row = {"label": spec, "rate": rate, "rk4_limit": limit, "rk4_stable": rk4}
+        for name in ("dopri5", "rosenbrock"):
+            d = override(override(deck, "simulation", "integrator", name),
+                         "simulation", "dt", "0.02")
+            d = override(d, "simulation", "output_interval", "0.02")
+            d = override(d, "simulation", "rtol", study.get("rtol", 1e-6))
+            path, ok, msg = run_davit(davit, d, workdir, name)
+            m = metrics(path) if os.path.exists(path) else None
+            row[name + "_step"] = t_end / m["steps"] if ok and m["steps"] else float("nan")
+            row[name + "_rhs"] = m["rhs"] if ok else -1
+            row[name + "_wall"] = m["wall"] if ok else float("nan")
+        rows.append(row)
+        print(f"{spec:<40s} rate {rate:10.4g} 1/s  RK4 limit {limit:9.3e}  stable "
+              f"{rk4:9.3e}  dopri5 h {row['dopri5_step']:9.3e} ({row['dopri5_rhs']} rhs)  "
+              f"RODAS3 h {row['rosenbrock_step']:9.3e} ({row['rosenbrock_rhs']} rhs)",
+              flush=True)
+    return rows
+
+
+def write_rows(path, study, rows, ref=None):
+    """/study/<column> datasets (one entry per run) and the study deck as attributes."""
+    with h5py.File(path, "w") as f:
+        g = f.create_group("study")
+        g.attrs["kind"] = study["kind"]
+        g.attrs["base"] = study["base"]
+        g.attrs["t_end"] = study["t_end"]
+        if ref is not None:
+            g.attrs["reference"] = study["reference"]
+            g.attrs["reference_wall_time"] = ref["wall"]
+            g.attrs["reference_first_contact"] = ref["contact"]
+        keys = sorted({k for r in rows for k in r if k not in ("label", "message", "ok")})
+        g.create_dataset("label", data=np.array([r["label"] for r in rows], dtype="S"))
+        g.create_dataset("ok", data=np.array([int(r["ok"]) if "ok" in r else 1 for r in rows]))
+        for k in keys:
+            g.create_dataset(k, data=np.array([r.get(k, np.nan) for r in rows], dtype=float))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m postproc.study", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("deck", help="study deck (&study group)")
+    parser.add_argument("-o", "--outdir", default="out")
+    parser.add_argument("--davit", default=os.environ.get("DAVIT", "davit"),
+                        help="davit executable (default: $DAVIT or davit on PATH)")
+    args = parser.parse_args(argv)
+    try:
+        study = parse_study(args.deck)
+    except (OSError, ValueError) as exc:
+        print(f"postproc.study: error: {exc}", file=sys.stderr)
+        return 1
+    os.makedirs(args.outdir, exist_ok=True)
+    stem = os.path.splitext(os.path.basename(args.deck))[0]
+    out = os.path.join(args.outdir, stem + ".h5")
+    with tempfile.TemporaryDirectory() as workdir:
+        if study["kind"] == "work_precision":
+            ref, rows = work_precision(study, args.davit, workdir)
+            write_rows(out, study, rows, ref)
+        elif study["kind"] == "stability":
+            write_rows(out, study, stability(study, args.davit, workdir))
+        else:
+            print(f"postproc.study: error: {args.deck}: &study: kind = '{study['kind']}' "
+                  "must be 'work_precision' or 'stability'", file=sys.stderr)
+            return 1
+    print(f"postproc.study: wrote {out}")
+    from . import study_figures
+    for fn in study_figures.STUDY_FIGURES.values():
+        png = fn(out, args.outdir)
+        if png:
+            print(f"postproc.study: wrote {png}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,99 @@
+"""Charts of the speed-versus-accuracy studies written by `python -m postproc.study`:
+work-precision (error against single-thread wall time) and the stability map (largest
+stable step against the stiffness variant, with the analytic RK4 limit 2.83/|lambda|max).
+Each function takes a study file and returns the PNG path, or None for another kind."""
+import os
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+COLOURS = {"rk4": "tab:blue", "dopri5": "tab:orange", "rosenbrock": "tab:green"}
+
+
+def _load(path, kind):
+    with h5py.File(path, "r") as f:
+        if "study" not in f or f["study"].attrs.get("kind") != kind:
+            return None
+        g = f["study"]
+        data = {k: g[k][:] for k in g}
+        data["label"] = [s.decode() for s in data["label"]]
+        data["attrs"] = dict(g.attrs)
+    return data
+
+
+def work_precision(path, outdir):
+    """Smooth-phase CG error and peak-tension error against wall time, per run."""
+    d = _load(path, "work_precision")
+    if d is None:
+        return None
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    for i, label in enumerate(d["label"]):
+        if not d["ok"][i]:
+            continue
+        integ = label.split()[0]
+        lod = any(k in label for k in ("lumps", "sheaves", "strips", "frozen", "wave_update",
+                                       "n_frequencies"))
+        style = dict(color=COLOURS.get(integ, "k"), marker="s" if lod else "o",
+                     markerfacecolor="none" if lod else COLOURS.get(integ, "k"))
+        for ax, key in zip(axes, ("err_smooth", "tension_err")):
+            y = max(d[key][i], 1e-13)
+            ax.loglog(d["wall"][i], y, linestyle="none", **style)
+            ax.annotate(" ".join(label.split()[1:]) or label, (d["wall"][i], y), fontsize=6,
+                        xytext=(3, 2), textcoords="offset points")
+    axes[0].set_ylabel("max boat CG position error before first contact [m]")
+    axes[1].set_ylabel("relative error of peak cable segment tension [-]")
+    for ax in axes:
+        ax.set_xlabel("wall time, one thread [s]")
+        ax.grid(True, which="both", alpha=0.3)
+    handles = [plt.Line2D([], [], color=c, marker="o", linestyle="none", label=n)
+               for n, c in COLOURS.items()]
+    handles.append(plt.Line2D([], [], color="k", marker="s", markerfacecolor="none",
+                              linestyle="none", label="level-of-detail switch"))
+    axes[0].legend(handles=handles, fontsize=8)
+    a = d["attrs"]
+    fig.suptitle(f"Work-precision on {os.path.basename(a['base'])}, {a['t_end']:.0f} s; "
+                 f"reference: {a['reference']}")
+    fig.tight_layout()
+    return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
+
+
+def stability(path, outdir):
+    """Largest stable RK4 step vs the analytic limit, and the adaptive methods' steps."""
+    d = _load(path, "stability")
+    if d is None:
+        return None
+    x = np.arange(len(d["label"]))
+    fig, ax = plt.subplots(figsize=(10, 5))
+    ax.semilogy(x, d["rk4_limit"], "k--", label="RK4 limit 2.83/|lambda|max (linearised)")
+    ax.semilogy(x, d["rk4_stable"], "o", color=COLOURS["rk4"],
+                label="RK4: largest step that runs")
+    ax.semilogy(x, d["dopri5_step"], "^", color=COLOURS["dopri5"],
+                label="dopri5: mean accepted step (settles at its stability boundary)")
+    ax.semilogy(x, d["rosenbrock_step"], "v", color=COLOURS["rosenbrock"],
+                label="RODAS3: mean step (set by accuracy)")
+    ax.set_xticks(x)
+    ax.set_xticklabels([" ".join(s.split()[1:]) for s in d["label"]], rotation=20,
+                       fontsize=8)
+    ax.set_ylabel("time step [s]")
+    ax.set_xlabel("stiffness variant (lumps per sling, sheaves)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(f"Stability map on {os.path.basename(d['attrs']['base'])}, "
+                 f"{d['attrs']['t_end']:.1f} s runs")
+    fig.tight_layout()
+    return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
+
+
+def _save(fig, outdir, name):
+    os.makedirs(outdir, exist_ok=True)
+    path = os.path.join(outdir, name + ".png")
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+STUDY_FIGURES = {"work_precision": work_precision, "stability": stability}

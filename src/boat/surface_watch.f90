@@ -1,0 +1,92 @@
+!> Proof that the hull is out of the water, so the strip loads (eqs. 18-25) can be skipped
+!> while the boat hangs high above the waves: an exact shortcut, not an approximation.
+!>
+!> Every few hundredths of a second (after a step) the surface elevation is sampled at the
+!> strips' reference points. In between, the elevation anywhere is bounded by the Lipschitz
+!> constants of the wave field,
+!>   |eta(p, t) - eta(p_c, t_c)| <= B_t |t - t_c| + B_x |p - p_c|,
+!>   B_t = sum a (omega + r'_max) (+ Stokes term),  B_x = sum a k (+ Stokes term),
+!> so a strip whose section stays dry under the raised surface eta_c + bound is surely dry.
+!> When every strip is surely dry the strip loads are exactly zero and need not be formed.
+!> An irregular sea of 1300 components costs 1300 sines per strip and stage: this keeps
+!> that cost out of the hanging phase.
+module davit_boat_surface_watch
+  use davit_kinds, only: wp, pi
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_stokes2, wave_elevation
+  use davit_boat_hull, only: section_immersion, section_wet_type
+  use davit_boat_strip_loads, only: strip_model_type
+  implicit none
+  private
+  public :: surface_watch_type, new_surface_watch, watch_refresh, surely_dry
+
+  type :: surface_watch_type
+    logical :: valid = .false.
+    !> Sample time [s] and refresh interval [s].
+    real(wp) :: t = 0.0_wp, interval = 0.05_wp
+    !> Elevation [m] (up positive) at each strip's reference point, and that point (x, y).
+    real(wp), allocatable :: eta(:), xy(:, :)
+    !> Lipschitz constants of eta in time [m/s] and in horizontal space [-].
+    real(wp) :: rate_bound = 0.0_wp, slope_bound = 0.0_wp
+  end type surface_watch_type
+
+contains
+
+  !> Bounds of the field's rate and slope; the watch starts invalid (no shortcut).
+  pure function new_surface_watch(field, nstrips, interval) result(w)
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: nstrips
+    real(wp), intent(in) :: interval
+    type(surface_watch_type) :: w
+    real(wp) :: amp, ramp_rate, stokes
+    allocate (w%eta(nstrips), w%xy(2, nstrips))
+    w%interval = interval
+    if (field%kind == wave_none) return
+    amp = sum(abs(field%amplitude))
+    ! (1 - cos(pi t/T))/2 rises at most at pi/(2 T).
+    ramp_rate = 0.0_wp
+    if (field%ramp_time > 0.0_wp) ramp_rate = 0.5_wp*pi/field%ramp_time
+    stokes = 0.0_wp
+    if (field%kind == wave_stokes2) stokes = 0.5_wp*field%k(1)*field%amplitude(1)**2
+    ! d/dt [r a cos] and d/dt [r^2 k a^2/2 cos 2 theta]
+    w%rate_bound = sum(abs(field%amplitude)*field%omega) + amp*ramp_rate + &
+                   stokes*(2.0_wp*ramp_rate + 2.0_wp*maxval(field%omega))
+    w%slope_bound = sum(abs(field%amplitude)*field%k) + 2.0_wp*stokes*maxval(field%k)
+  end function new_surface_watch
+
+  !> Sample the elevation at the strips' reference points of the boat at (c, r).
+  pure subroutine watch_refresh(w, s, field, t, c, r)
+    type(surface_watch_type), intent(inout) :: w
+    type(strip_model_type), intent(in) :: s
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp) :: p(3)
+    integer :: k
+    do k = 1, s%hull%n
+      p = r + c(:, 1)*s%hull%x(k)
+      w%xy(:, k) = p(1:2)
+      w%eta(k) = wave_elevation(field, t, p(1), p(2))
+    end do
+    w%t = t
+    w%valid = .true.
+  end subroutine watch_refresh
+
+  !> True only if no strip can touch the water at time t with the boat at (c, r).
+  pure logical function surely_dry(w, s, t, c, r)
+    type(surface_watch_type), intent(in) :: w
+    type(strip_model_type), intent(in) :: s
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp) :: p(3), eta_up
+    type(section_wet_type) :: wet
+    integer :: k
+    surely_dry = .false.
+    if (.not. w%valid) return
+    do k = 1, s%hull%n
+      p = r + c(:, 1)*s%hull%x(k)
+      eta_up = w%eta(k) + w%rate_bound*abs(t - w%t) + w%slope_bound*norm2(p(1:2) - w%xy(:, k))
+      wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
+      if (wet%area > 0.0_wp) return
+    end do
+    surely_dry = .true.
+  end function surely_dry
+
+end module davit_boat_surface_watch
