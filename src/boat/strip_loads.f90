@@ -15,6 +15,8 @@ module davit_boat_strip_loads
   use davit_kinds, only: wp, gravity, rho_water
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_elevation, wave_kinematics
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
+  use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_cover, &
+                                    cached_elevation, cached_kinematics
   implicit none
   private
   public :: strip_model_type, new_strip_model, strip_loads, strip_partial_velocities
@@ -71,27 +73,39 @@ contains
   end function strip_partial_velocities
 
   !> Generalized force f (eqs. 18-25) of the water on the boat with rotation c (b -> N),
-  !> CG r (inertial) and speeds u at time t; also the wet volume [m^3].
-  pure subroutine strip_loads(s, field, t, c, r, u, f, volume)
+  !> CG r (inertial) and speeds u at time t; also the wet volume [m^3]. With a cache
+  !> that covers t, the water comes from its slow clock (davit_boat_strip_waves).
+  pure subroutine strip_loads(s, field, t, c, r, u, f, volume, cache)
     type(strip_model_type), intent(in) :: s
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
     real(wp), intent(out) :: f(6), volume
+    type(strip_wave_cache_type), intent(in), optional :: cache
     type(section_wet_type) :: wet(s%hull%n)
     real(wp) :: vrel(3, s%hull%n), fk(3), p(3), eta, vw(3), aw(3), pw, a1max, heave_rel
     real(wp) :: sin_roll
     integer :: k
+    logical :: cached
+    cached = .false.
+    if (present(cache)) cached = strip_waves_cover(cache, t)
     f = 0.0_wp
     volume = 0.0_wp
     heave_rel = 0.0_wp
     associate (h => s%hull, n3 => c(3, :))
       do k = 1, h%n
         p = r + c(:, 1)*h%x(k)
-        eta = wave_elevation(field, t, p(1), p(2))
+        if (cached) then
+          eta = cached_elevation(cache, field, k, t, p(1), p(2))
+        else
+          eta = wave_elevation(field, t, p(1), p(2))
+        end if
         wet(k) = section_immersion(h, k, p(3) + eta, n3(2), n3(3))
         if (wet(k)%area <= 0.0_wp) cycle
         vw = 0.0_wp
-        if (field%kind /= wave_none) then
+        if (cached) then
+          call cached_kinematics(cache, field, k, t, r + matmul(c, [h%x(k), wet(k)%centroid]), &
+                                 eta, vw)
+        else if (field%kind /= wave_none) then
           call wave_kinematics(field, t, r + matmul(c, [h%x(k), wet(k)%centroid]), eta, vw, &
                                aw, pw)
         end if

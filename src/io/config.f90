@@ -239,9 +239,10 @@ contains
                 "Step while a fender touches the ship's side or is predicted to within "// &
                 "two steps (event location by step limiting); 0: always dt.")
     call r%real(g, "wave_update", s%wave_update, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
-                "Slow clock of the ship's Froude-Krylov wave loads: sampled at this "// &
-                "interval with their rates and interpolated (cubic Hermite); 0: evaluated "// &
-                "at every stage.")
+                "Slow clock of the wave loads: the ship's Froude-Krylov loads and (irregular "// &
+                "seas) the water at the boat's strips are sampled at this interval with "// &
+                "their rates and interpolated (cubic Hermite; strips also expanded to first "// &
+                "order in space about their position at the sample); 0: exact at every stage.")
     call r%choice(g, "scene", s%scene, "hanging_boat", &
                   [character(len=16) :: "hanging_boat", "lowering", "launch", "sea", "ship"], &
                   "What to simulate: 'hanging_boat' (boat on two slings from fixed points), "// &

@@ -30,6 +30,8 @@ module davit_system_model
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, &
                                 fender_probe, fender_loads
   use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
+                                    strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch, watch_refresh, &
                                       surely_dry
   use davit_error, only: error_type
@@ -67,6 +69,8 @@ module davit_system_model
     type(wind_type) :: wind
     !> Skips the strip loads while the hull is provably out of the water (exact).
     type(surface_watch_type) :: watch
+    !> Slow clock of the water at the strips (`&simulation wave_update`, irregular seas).
+    type(strip_wave_cache_type) :: waves
     !> Hull volume (dry fraction of the wind loads) [m^3].
     real(wp) :: hull_volume = 0.0_wp
     logical :: contact = .false.
@@ -189,6 +193,7 @@ contains
     call build_wave_field(cfg%sea, cfg%simulation%seed, 0, self%sea)
     self%wind = build_wind(cfg%wind)
     self%watch = new_surface_watch(self%sea, self%water%hull%n, surface_watch_interval)
+    self%waves = new_strip_wave_cache(self%sea, self%water%hull%n, cfg%simulation%wave_update)
   end subroutine new_boat_environment
 
   !> The ship's side plane at ship-frame y = side_y, normal +s2, for the ship at rest in its
@@ -340,7 +345,7 @@ contains
     if (surely_dry(self%watch, self%water, t, c, r)) then
       volume = 0.0_wp
     else
-      call strip_loads(self%water, self%sea, t, c, r, u, fw, volume)
+      call strip_loads(self%water, self%sea, t, c, r, u, fw, volume, self%waves)
       f = f + fw
     end if
     f(4:6) = f(4:6) + boat_wind_force(self%air, u(4:6) - matmul(wind_velocity(self%wind), c), &
@@ -362,6 +367,11 @@ contains
     if (.not. self%watch%valid .or. t - self%watch%t >= self%watch%interval) then
       c = rotation_matrix(y(1:3))
       call watch_refresh(self%watch, self%water, self%sea, t, c, matmul(c, y(4:6)))
+    end if
+    if (strip_waves_due(self%waves, t)) then
+      c = rotation_matrix(y(1:3))
+      if (.not. surely_dry(self%watch, self%water, t, c, matmul(c, y(4:6)))) &
+        call strip_waves_refresh(self%waves, self%water%hull, self%sea, t, c, matmul(c, y(4:6)))
     end if
     if (self%on_davit .and. self%release_time < 0.0_wp) call watch_waterborne(self, t, y)
     if (.not. self%contact) return
@@ -413,7 +423,8 @@ contains
     if (r(3) < -10.0_wp) return
     if (self%waterborne_time < 0.0_wp) then
       weight = self%boat%mass*gravity
-      call strip_loads(self%water, self%sea, t, c, r, y(boat_u(1):boat_u(2)), fw, volume)
+      call strip_loads(self%water, self%sea, t, c, r, y(boat_u(1):boat_u(2)), fw, volume, &
+                       self%waves)
       afloat = rho_water*gravity*volume >= weight
       if (.not. afloat) then
         call self%rigging_state(t, y, seg, sling, paid, lumps)

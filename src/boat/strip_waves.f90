@@ -1,0 +1,207 @@
+!> Slow clock of the water the boat's strips see (`&simulation wave_update`, irregular seas).
+!>
+!> In a 1300-component short-crested sea every strip load (eqs. 18-25) needs the elevation
+!> at the strip centre and the water velocity at the wet centroid: 2 x 1300 sines per strip
+!> and stage, 97 % of a launch once the boat is in the water. The water moves on the wave
+!> time scale (periods of seconds), the strips by centimetres over a few hundredths of a
+!> second, so the field is sampled on a slow window [t1, t2 = t1 + h] at reference points
+!> (each strip's centre p_k and its wet centroid q_k at t1) and expanded:
+!>   f(x, t) ~ H(t) + grad f(t) . (x - x_ref),
+!> H the cubic Hermite interpolant of the reference value from its exact values and time
+!> derivatives at t1 and t2, grad f (d/dx, d/dy, and for the velocity d/dd with d the
+!> Wheeler-stretched depth) linear in time. Per component of amplitude a, frequency w and
+!> wavenumber k the error is at most a [ (w h)^4/384 + (k |dx|)^2/2 + ... ] (velocity:
+!> times w), |dx| the strip's travel since t1: ~1e-6 a at h = 0.05 s and ~1e-3 a for the
+!> shortest components when the strip moves 5 cm. The start-up ramp multiplies the result
+!> exactly. Stages outside the window fall back to the exact sum (wave_field).
+!> Regular and Stokes-2 seas (one component) are always evaluated exactly.
+module davit_boat_strip_waves
+  use davit_kinds, only: wp
+  use davit_core_fastmath, only: fast_sincos
+  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp
+  use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
+  implicit none
+  private
+  public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
+  public :: strip_waves_due, strip_waves_cover, cached_elevation, cached_kinematics
+  public :: elevation_sums, kinematic_sums
+
+  !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
+  integer, parameter :: ne = 4, nv = 5
+  !> A window is renewed once a step ends past this fraction of it, so steps up to
+  !> (1 - renew) h keep all their stages inside.
+  real(wp), parameter :: renew = 0.75_wp
+
+  type :: strip_wave_cache_type
+    logical :: enabled = .false., valid = .false.
+    !> Window length h [s] and the window [t1, t2].
+    real(wp) :: window = 0.0_wp, t(2) = 0.0_wp
+    !> Reference points: strip centres (x, y) and wet centroids (x, y, stretched depth d0).
+    real(wp), allocatable :: p(:, :), q(:, :)
+    !> Unramped elevation terms at p and at q, (ne, end, strip); velocity terms at q,
+    !> (component, nv, end, strip).
+    real(wp), allocatable :: ep(:, :, :), eq(:, :, :), vq(:, :, :, :)
+  end type strip_wave_cache_type
+
+contains
+
+  !> A cache for n strips with window h [s]; enabled only for irregular seas and h > 0.
+  pure function new_strip_wave_cache(field, n, h) result(cache)
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: n
+    real(wp), intent(in) :: h
+    type(strip_wave_cache_type) :: cache
+    cache%window = h
+    cache%enabled = h > 0.0_wp .and. field%kind == wave_irregular
+    if (.not. cache%enabled) return
+    allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
+              cache%vq(3, nv, 2, n))
+  end function new_strip_wave_cache
+
+  !> True when the window should be renewed after a step ending at t.
+  pure logical function strip_waves_due(cache, t)
+    type(strip_wave_cache_type), intent(in) :: cache
+    real(wp), intent(in) :: t
+    strip_waves_due = cache%enabled .and. (.not. cache%valid .or. &
+                      t > cache%t(1) + renew*cache%window .or. t < cache%t(1))
+  end function strip_waves_due
+
+  !> True when a stage at time t may use the cache.
+  pure logical function strip_waves_cover(cache, t)
+    type(strip_wave_cache_type), intent(in) :: cache
+    real(wp), intent(in) :: t
+    strip_waves_cover = cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)
+  end function strip_waves_cover
+
+  !> New window [t, t + h] for the boat at (c, r): references at the strip centres and at
+  !> the wet centroids of the sections at t (the keel line of a dry section, where it
+  !> would first get wet).
+  pure subroutine strip_waves_refresh(cache, hull, field, t, c, r)
+    type(strip_wave_cache_type), intent(inout) :: cache
+    type(boat_hull_type), intent(in) :: hull
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    type(section_wet_type) :: wet
+    real(wp) :: p(3), q(3), eta, ramp
+    integer :: k, j
+    if (.not. cache%enabled) return
+    cache%t = [t, t + cache%window]
+    ramp = wave_ramp(field, t)
+    do k = 1, hull%n
+      p = r + c(:, 1)*hull%x(k)
+      cache%p(:, k) = p(1:2)
+      do j = 1, 2
+        call elevation_sums(field, cache%t(j), p(1), p(2), cache%ep(:, j, k))
+      end do
+      eta = ramp*cache%ep(1, 1, k)
+      wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
+      if (wet%area > 0.0_wp) then
+        q = r + matmul(c, [hull%x(k), wet%centroid])
+      else
+        q = r + matmul(c, [hull%x(k), 0.0_wp, hull%keel])
+      end if
+      eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
+      cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
+      do j = 1, 2
+        call kinematic_sums(field, cache%t(j), q(1), q(2), cache%q(3, k), &
+                            cache%eq(:, j, k), cache%vq(:, :, j, k))
+      end do
+    end do
+    cache%valid = .true.
+  end subroutine strip_waves_refresh
+
+  !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
+  pure subroutine elevation_sums(field, t, x, y, e)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y
+    real(wp), intent(out) :: e(ne)
+    real(wp) :: s(field%n), cs(field%n), as(field%n)
+    call fast_sincos(field%omega*t + field%phase - field%kx*x - field%ky*y, s, cs)
+    as = field%amplitude*s
+    e = [sum(field%amplitude*cs), -sum(as*field%omega), sum(as*field%kx), sum(as*field%ky)]
+  end subroutine elevation_sums
+
+  !> Elevation terms as elevation_sums, and the unramped water velocity (inertial, z down)
+  !> at (x, y) and stretched depth d with its derivatives (t, x, y, d): per component
+  !> v = a w exp(-k d) (cos theta cos g, cos theta sin g, sin theta).
+  pure subroutine kinematic_sums(field, t, x, y, d, e, v)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y, d
+    real(wp), intent(out) :: e(ne), v(3, nv)
+    real(wp) :: s(field%n), cs(field%n), as(field%n), w(field%n), wc(field%n), ws(field%n)
+    call fast_sincos(field%omega*t + field%phase - field%kx*x - field%ky*y, s, cs)
+    as = field%amplitude*s
+    e = [sum(field%amplitude*cs), -sum(as*field%omega), sum(as*field%kx), sum(as*field%ky)]
+    w = field%amplitude*field%omega*exp(-field%k*d)
+    wc = w*cs
+    ws = w*s
+    ! theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin, d(sin)/dx = -kx cos
+    v(:, 1) = [sum(wc*field%cos_dir), sum(wc*field%sin_dir), sum(ws)]
+    v(:, 2) = [-sum(ws*field%omega*field%cos_dir), -sum(ws*field%omega*field%sin_dir), &
+               sum(wc*field%omega)]
+    v(:, 3) = [sum(ws*field%kx*field%cos_dir), sum(ws*field%kx*field%sin_dir), &
+               -sum(wc*field%kx)]
+    v(:, 4) = [sum(ws*field%ky*field%cos_dir), sum(ws*field%ky*field%sin_dir), &
+               -sum(wc*field%ky)]
+    v(:, 5) = [-sum(wc*field%k*field%cos_dir), -sum(wc*field%k*field%sin_dir), &
+               -sum(ws*field%k)]
+  end subroutine kinematic_sums
+
+  !> Cubic Hermite weights (h00, h10 h, h01, h11 h) at s = (t - t1)/h.
+  pure function hermite_weights(cache, t) result(hw)
+    type(strip_wave_cache_type), intent(in) :: cache
+    real(wp), intent(in) :: t
+    real(wp) :: hw(4), h, s
+    h = cache%t(2) - cache%t(1)
+    s = (t - cache%t(1))/h
+    hw = [(1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2, h*s*(1.0_wp - s)**2, s*s*(3.0_wp - 2.0_wp*s), &
+          h*s*s*(s - 1.0_wp)]
+  end function hermite_weights
+
+  !> Unramped value at t and offset dx from elevation terms e(ne, 2).
+  pure real(wp) function expand_elevation(e, hw, lam, dx) result(f)
+    real(wp), intent(in) :: e(ne, 2), hw(4), lam, dx(2)
+    f = hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
+        sum(((1.0_wp - lam)*e(3:4, 1) + lam*e(3:4, 2))*dx)
+  end function expand_elevation
+
+  !> Elevation [m] (up) at the horizontal point (x, y) near strip k's centre at time t.
+  pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t, x, y
+    real(wp) :: lam
+    lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
+    eta = wave_ramp(field, t)*expand_elevation(cache%ep(:, :, k), hermite_weights(cache, t), &
+                                               lam, [x, y] - cache%p(:, k))
+  end function cached_elevation
+
+  !> Elevation and water velocity (inertial, z down; zero above the surface) at the point
+  !> pt near strip k's wet centroid at time t, as wave_kinematics gives them.
+  pure subroutine cached_kinematics(cache, field, k, t, pt, eta, velocity)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t, pt(3)
+    real(wp), intent(out) :: eta, velocity(3)
+    real(wp) :: hw(4), lam, ramp, dx(3)
+    integer :: i
+    hw = hermite_weights(cache, t)
+    lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
+    ramp = wave_ramp(field, t)
+    dx(1:2) = pt(1:2) - cache%q(1:2, k)
+    eta = ramp*expand_elevation(cache%eq(:, :, k), hw, lam, dx(1:2))
+    velocity = 0.0_wp
+    if (pt(3) + eta < 0.0_wp) return
+    dx(3) = pt(3) + eta - cache%q(3, k)
+    associate (v => cache%vq(:, :, :, k))
+      do i = 1, 3
+        velocity(i) = ramp*(hw(1)*v(i, 1, 1) + hw(2)*v(i, 2, 1) + hw(3)*v(i, 1, 2) + &
+                            hw(4)*v(i, 2, 2) + &
+                            sum(((1.0_wp - lam)*v(i, 3:5, 1) + lam*v(i, 3:5, 2))*dx))
+      end do
+    end associate
+  end subroutine cached_kinematics
+
+end module davit_boat_strip_waves

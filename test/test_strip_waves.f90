@@ -1,0 +1,188 @@
+!> Slow clock of the water at the boat's strips (davit_boat_strip_waves) against the exact
+!> sums of the wave field: the cubic Hermite time error bound and its fourth order, the
+!> first-order spatial expansion's second-order remainder, and the coupled boat in an
+!> irregular sea with and without the clock.
+module test_strip_waves
+  use davit_kinds, only: wp, pi
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type, parse_config
+  use davit_core_random, only: rng_type, new_rng
+  use davit_core_rotation, only: rotation_matrix
+  use davit_sea_wave_field, only: wave_field_type, new_irregular_sea, wave_elevation, &
+                                  wave_kinematics
+  use davit_boat_hull, only: boat_hull_type, new_boat_hull
+  use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
+                                    strip_waves_refresh, cached_elevation, cached_kinematics
+  use davit_system_model, only: system_type, new_system
+  use davit_solve_rk4, only: rk4_type
+  use harness, only: suite_type, case_state, new_case, check, check_true, note
+  implicit none
+  private
+  public :: collect_strip_waves
+
+contains
+
+  function collect_strip_waves() result(suite)
+    type(suite_type) :: suite
+    suite%name = "strip_waves"
+    suite%cases = [new_case("hermite_time_error_bound_and_order4", time_order), &
+                   new_case("spatial_expansion_remainder_order2", space_order), &
+                   new_case("coupled_boat_with_and_without_clock", coupled_boat)]
+  end function collect_strip_waves
+
+  !> Level 5 short-crested sea (H = 4 m, 100 x 13 components, no ramp).
+  subroutine level5_sea(field)
+    type(wave_field_type), intent(out) :: field
+    type(rng_type) :: rng
+    rng = new_rng(7)
+    call new_irregular_sea(field, 4.0_wp, 0.5_wp, 1, pi/6, 100, 13, 0.3_wp, 3.0_wp, &
+                           .true., .true., rng, 0.0_wp)
+  end subroutine level5_sea
+
+  !> Boat of the paper (11.5 x 2.8 m, 20 strips), CG 1.5 m below the still water (in a 4 m sea).
+  subroutine afloat(hull, c, r)
+    type(boat_hull_type), intent(out) :: hull
+    real(wp), intent(out) :: c(3, 3), r(3)
+    hull = new_boat_hull(11.5_wp, 2.8_wp, 3.0_wp, 1.0_wp, 4.3_wp, 20)
+    c = rotation_matrix([0.05_wp, -0.03_wp, 0.4_wp])
+    r = [3.0_wp, -2.0_wp, 1.5_wp]
+  end subroutine afloat
+
+  !> Largest error of the cached elevation at the strip centres and of the velocity at
+  !> the wet-centroid references displaced by dx, at time t.
+  subroutine max_errors(cache, field, hull, c, r, t, dx, err_eta, err_v)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    type(boat_hull_type), intent(in) :: hull
+    real(wp), intent(in) :: c(3, 3), r(3), t, dx(3)
+    real(wp), intent(out) :: err_eta, err_v
+    real(wp) :: p(3), pt(3), eta, eta_x, v(3), v_x(3), a(3), pw
+    integer :: k, nwet
+    err_eta = 0.0_wp
+    nwet = 0
+    err_v = 0.0_wp
+    do k = 1, hull%n
+      p = r + c(:, 1)*hull%x(k) + dx
+      err_eta = max(err_eta, abs(cached_elevation(cache, field, k, t, p(1), p(2)) - &
+                                 wave_elevation(field, t, p(1), p(2))))
+      ! a point below the surface at the reference's stretched depth, shifted by dx (not
+      ! at references on the surface, where Wheeler's zero above it is a jump)
+      if (cache%q(3, k) < 0.05_wp) cycle
+      nwet = nwet + 1
+      pt = [cache%q(1, k), cache%q(2, k), 0.0_wp] + dx
+      pt(3) = cache%q(3, k) + dx(3) - wave_elevation(field, t, pt(1), pt(2))
+      call cached_kinematics(cache, field, k, t, pt, eta, v)
+      call wave_kinematics(field, t, pt, eta_x, v_x, a, pw)
+      err_v = max(err_v, norm2(v - v_x))
+    end do
+    if (nwet < hull%n/2) err_v = huge(1.0_wp)
+  end subroutine max_errors
+
+  !> Strips at rest: only the time interpolation errs. Cubic Hermite on [t1, t1 + h]:
+  !> |f - H| <= h^4/384 max|f''''|, and per component |eta''''| <= a w^4, |v''''| <= a w^5
+  !> (v = a w e^{-kd} ...). Halving h divides the error by ~16.
+  subroutine time_order(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(boat_hull_type) :: hull
+    type(strip_wave_cache_type) :: cache
+    real(wp) :: c(3, 3), r(3), h, e_eta(2), e_v(2), bound_eta, bound_v
+    integer :: i
+    call level5_sea(field)
+    call afloat(hull, c, r)
+    do i = 1, 2
+      h = 0.4_wp/real(2**i, wp)
+      cache = new_strip_wave_cache(field, hull%n, h)
+      call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r)
+      call max_errors(cache, field, hull, c, r, 20.0_wp + 0.37_wp*h, [0.0_wp, 0.0_wp, 0.0_wp], &
+                      e_eta(i), e_v(i))
+      bound_eta = h**4/384*sum(field%amplitude*field%omega**4)
+      bound_v = h**4/384*sum(field%amplitude*field%omega**5)
+      call check_true(state, e_eta(i) <= bound_eta, "eta error within h^4/384 sum a w^4")
+      call check_true(state, e_v(i) <= bound_v, "velocity error within h^4/384 sum a w^5")
+    end do
+    call note(state, "eta error at h = 0.1 s (m)", e_eta(2))
+    call note(state, "velocity error at h = 0.1 s (m/s)", e_v(2))
+    call check(state, log(e_eta(1)/e_eta(2))/log(2.0_wp), 4.0_wp, "eta order in h", &
+               abs_tol=0.5_wp)
+    call check(state, log(e_v(1)/e_v(2))/log(2.0_wp), 4.0_wp, "velocity order in h", &
+               abs_tol=0.5_wp)
+  end subroutine time_order
+
+  !> Strips moved by dx at the window start (no time error): the first-order expansion
+  !> leaves the second-order remainder, <= sum a k^2 |dx|^2/2 for eta (|dx| horizontal) and
+  !> <= sum a w k^2 (|dx_h| + |dd|)^2/2 for the velocity (e^{-kd} <= 1); halving dx divides
+  !> it by ~4.
+  subroutine space_order(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(boat_hull_type) :: hull
+    type(strip_wave_cache_type) :: cache
+    real(wp) :: c(3, 3), r(3), dx(3), e_eta(2), e_v(2), bound_eta, bound_v, dh
+    integer :: i
+    call level5_sea(field)
+    call afloat(hull, c, r)
+    cache = new_strip_wave_cache(field, hull%n, 0.05_wp)
+    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r)
+    do i = 1, 2
+      dx = [0.08_wp, -0.06_wp, 0.04_wp]/real(i, wp)
+      call max_errors(cache, field, hull, c, r, 20.0_wp, dx, e_eta(i), e_v(i))
+      dh = norm2(dx(1:2))
+      bound_eta = 0.5_wp*dh**2*sum(field%amplitude*field%k**2)
+      bound_v = 0.5_wp*(dh + abs(dx(3)))**2*sum(field%amplitude*field%omega*field%k**2)
+      call check_true(state, e_eta(i) <= bound_eta, "eta remainder within sum a k^2 dx^2/2")
+      call check_true(state, e_v(i) <= bound_v, "velocity remainder within its bound")
+    end do
+    call note(state, "eta error at |dx| = 5 cm (m)", e_eta(2))
+    call note(state, "velocity error at |dx| = 5 cm (m/s)", e_v(2))
+    call check(state, log(e_eta(1)/e_eta(2))/log(2.0_wp), 2.0_wp, "eta order in dx", &
+               abs_tol=0.3_wp)
+    call check(state, log(e_v(1)/e_v(2))/log(2.0_wp), 2.0_wp, "velocity order in dx", &
+               abs_tol=0.3_wp)
+  end subroutine space_order
+
+  !> The free boat afloat in the Level 5 irregular sea for 3 s (RK4, dt = 5e-3 s), with
+  !> the slow clock at 0.05 s and exact: by the bounds above the forcing differs by
+  !> ~1e-5 relative, so the CG paths agree to well below a millimetre.
+  subroutine coupled_boat(state)
+    type(case_state), intent(inout) :: state
+    type(system_type) :: sys
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(rk4_type) :: rk4
+    real(wp), allocatable :: y(:), cg(:, :)
+    real(wp) :: t
+    integer :: i, j
+    logical :: used
+    character(len=*), parameter :: deck = "&sea level = 5 wave_type = 'irregular' "// &
+                                          "ramp_periods = 0.0 / &slings attached = .false. / "// &
+                                          "&contact enabled = .false. / &wind speed = 0.0 / "// &
+                                          "&boat position = 0.0, 0.0, -0.5 / "// &
+                                          "&simulation wave_update = "
+    allocate (cg(3, 2))
+    used = .false.
+    do j = 1, 2
+      call parse_config("test.nml", deck//merge("0.05", "0.00", j == 1)//" /", cfg, error)
+      if (allocated(error)) error stop "test deck rejected: "//error%message
+      call new_system(sys, cfg)
+      y = sys%initial_state(cfg)
+      call rk4%init(size(y))
+      t = 0.0_wp
+      call sys%after_step(t, y)
+      do i = 1, 600
+        call rk4%step(sys, t, y, 5.0e-3_wp)
+        call sys%after_step(t, y)
+      end do
+      cg(:, j) = matmul(rotation_matrix(y(1:3)), y(4:6))
+      if (j == 1) used = sys%waves%valid
+    end do
+    call note(state, "CG difference after 3 s (m)", norm2(cg(:, 1) - cg(:, 2)))
+    call note(state, "CG travel (m)", norm2(cg(:, 2) - [0.0_wp, 0.0_wp, -0.5_wp]))
+    call check_true(state, used, "the clock was used")
+    call check_true(state, norm2(cg(:, 2) - [0.0_wp, 0.0_wp, -0.5_wp]) > 0.1_wp, &
+                    "the sea moves the boat")
+    call check(state, norm2(cg(:, 1) - cg(:, 2)), 0.0_wp, "CG with clock vs exact", &
+               abs_tol=1e-4_wp)
+  end subroutine coupled_boat
+
+end module test_strip_waves
