@@ -9,7 +9,7 @@ program davit
   use davit_io_deck_reader, only: key_doc
   use davit_system_driver, only: run_simulation
   use davit_system_run_summary, only: run_summary
-  use davit_system_bench, only: bench_result, run_bench
+  use davit_bench_suite, only: bench_options, run_bench
   use davit_system_rao, only: run_rao
   use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
   use davit_sweep_cases, only: sweep_case
@@ -211,20 +211,33 @@ contains
     write (output_unit, "(a,es12.5,a)") "rk4_limit = ", 2.83_wp/rate, " s (2.83/rate_max)"
   end subroutine cmd_modes
 
+  !> `bench [--quick] [-o FILE.h5] [--decks DIR]`: default output out/bench.h5, decks input/.
   subroutine cmd_bench()
-    type(bench_result), allocatable :: results(:)
-    logical :: quick
+    type(bench_options) :: opts
+    type(error_type), allocatable :: error
+    character(len=:), allocatable :: out, arg
     integer :: i
-    quick = .false.
-    do i = 2, nargs
-      select case (argument(i))
+    opts%decks = "input"
+    out = ""
+    i = 2
+    do while (i <= nargs)
+      arg = argument(i)
+      select case (arg)
       case ("--quick")
-        quick = .true.
+        opts%quick = .true.
+        i = i + 1
+      case ("-o", "--output")
+        call take_value(i, out)
+      case ("--decks")
+        call take_value(i, opts%decks)
       case default
-        call usage_error("unknown option '"//argument(i)//"' for 'bench'")
+        call usage_error("unknown option '"//arg//"' for 'bench'")
       end select
     end do
-    call run_bench(quick, results)
+    if (len(out) == 0) out = default_output("bench")
+    call run_bench(opts, out, error)
+    if (allocated(error)) call fail(error)
+    write (output_unit, "(a)") "davit: wrote '"//out//"'"
   end subroutine cmd_bench
 
   !> Print every deck key as a Markdown table per group (the README tables).
@@ -275,7 +288,10 @@ contains
       "                                   parallel; default summary out/SWEEP.h5", &
       "  davit keys                       print every deck key (Markdown tables)", &
       "  davit modes DECK.nml             fastest rates at t = 0 and the RK4 step limit", &
-      "  davit bench [--quick]            time the hot paths (single thread)", &
+      "  davit bench [--quick] [-o OUT.h5] [--decks DIR]", &
+      "                                   time fixed scenes, the sea module and a small", &
+      "                                   sweep on 1 and 2 threads (decks from DIR,", &
+      "                                   default input/); default output out/bench.h5", &
       "  davit --help | -h                this help", &
       "  davit --version | -V             print the version", &
       "", &
@@ -295,7 +311,7 @@ contains
     character(len=*), intent(in) :: message
     write (error_unit, "(a)") "davit: error: "//message, &
       "usage: davit run|rao DECK.nml [-o OUT.h5] | davit sweep SWEEP.nml [options] | "// &
-      "davit keys | davit bench [--quick] | davit --help | davit --version"
+      "davit keys | davit bench [--quick] [-o OUT.h5] | davit --help | davit --version"
     stop 2, quiet=.true.
   end subroutine usage_error
 

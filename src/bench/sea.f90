@@ -1,7 +1,7 @@
-!> `davit bench`: timings of the hot paths, printed as a table. Speed goals live here, never
-!> in tests. Sea: cost per component-point of the wave evaluations (Level 5 irregular sea,
-!> 100 x 13 components).
-module davit_system_bench
+!> `davit bench`, the sea module alone: cost per component-point of the wave evaluations
+!> (Level 5 irregular sea, 100 x 13 components, 20 points). Speed goals live in the README,
+!> never in tests.
+module davit_bench_sea
   use, intrinsic :: iso_fortran_env, only: output_unit
   use davit_kinds, only: wp, i8, pi
   use davit_core_random, only: rng_type, new_rng
@@ -10,8 +10,9 @@ module davit_system_bench
                                   rotation_phasors, advance_phasors, elevation_from_phasors
   implicit none
   private
-  public :: bench_result, run_bench
+  public :: bench_result, bench_sea
 
+  !> One timing: what was timed, its cost and the unit of the cost.
   type :: bench_result
     character(len=:), allocatable :: name, unit
     real(wp) :: value = 0.0_wp
@@ -19,19 +20,11 @@ module davit_system_bench
 
 contains
 
-  subroutine run_bench(quick, results)
-    logical, intent(in) :: quick
-    type(bench_result), allocatable, intent(out) :: results(:)
-    real(wp) :: budget
-    budget = merge(0.05_wp, 0.5_wp, quick)
-    allocate (results(0))
-    call bench_sea(budget, results)
-    call print_table(results)
-  end subroutine run_bench
-
+  !> Each timing repeats its kernel for about `budget` seconds (after a 10-repetition
+  !> probe that sets the count), so quick and full runs differ only in noise.
   subroutine bench_sea(budget, results)
     real(wp), intent(in) :: budget
-    type(bench_result), allocatable, intent(inout) :: results(:)
+    type(bench_result), allocatable, intent(out) :: results(:)
     integer, parameter :: np = 20
     type(wave_field_type) :: field
     type(rng_type) :: rng
@@ -39,6 +32,7 @@ contains
     real(wp), allocatable :: cb(:, :), sb(:, :), ca(:), sa(:), cr(:), sr(:), th(:), c(:)
     integer(i8) :: reps, r
     integer :: j
+    allocate (results(0))
     rng = new_rng(1)
     call new_irregular_sea(field, 4.0_wp, pi/2, 1, pi/6, 100, 13, 0.3_wp, 3.0_wp, .true., &
                            .true., rng, 0.0_wp)
@@ -151,14 +145,4 @@ contains
     results = [results, r]
   end subroutine add
 
-  subroutine print_table(results)
-    type(bench_result), intent(in) :: results(:)
-    integer :: i
-    write (output_unit, "(a)") "| benchmark | value | unit |", "|---|---|---|"
-    do i = 1, size(results)
-      write (output_unit, "(a,f0.3,a)") "| "//results(i)%name//" | ", results(i)%value, &
-        " | "//results(i)%unit//" |"
-    end do
-  end subroutine print_table
-
-end module davit_system_bench
+end module davit_bench_sea

@@ -1,0 +1,238 @@
+!> `davit bench`: what one bench measured and the conditions it ran under (CPU, compiler,
+!> flags, load), printed as Markdown tables and written to HDF5 under /bench. Rates are
+!> derived from the stored counts and times (davit_bench_timing) in both.
+module davit_bench_report
+  use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options
+  use davit_kinds, only: wp, i8, davit_version
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_bench_timing, only: timed_run, rhs_rate, step_rate, real_time_factor
+  use davit_bench_sea, only: bench_result
+  implicit none
+  private
+  public :: bench_record, new_bench_record, load_average, print_report, print_progress
+  public :: write_report
+
+  !> Everything one `davit bench` measured.
+  type :: bench_record
+    logical :: quick = .false.
+    !> Folder of the decks, CPU model, compiler and its options.
+    character(len=:), allocatable :: decks, cpu, compiler, options
+    !> One-minute load average of the machine before and after (other jobs' share).
+    real(wp) :: load_start = -1.0_wp, load_end = -1.0_wp
+    !> Scenes (one thread) and the sweep on each thread count.
+    type(timed_run), allocatable :: runs(:)
+    !> Sweep: cases, and wall time on 1 thread / wall time on 2 threads.
+    integer :: sweep_cases = 0
+    real(wp) :: speed_up = 0.0_wp
+    !> Paper-literal scene: |lambda|max at t = 0 [1/s], RK4 limit [s], safety factor.
+    real(wp) :: rate_max = 0.0_wp, rk4_limit = 0.0_wp, safety = 0.0_wp
+    !> The sea module alone.
+    type(bench_result), allocatable :: sea(:)
+  end type bench_record
+
+contains
+
+  !> An empty record of the conditions this bench runs under.
+  function new_bench_record(quick, decks) result(rec)
+    logical, intent(in) :: quick
+    character(len=*), intent(in) :: decks
+    type(bench_record) :: rec
+    rec%quick = quick
+    rec%decks = decks
+    rec%cpu = cpu_model()
+    rec%compiler = compiler_version()
+    rec%options = compiler_options()
+    rec%load_start = load_average()
+    allocate (rec%runs(0), rec%sea(0))
+  end function new_bench_record
+
+  !> The one-minute load average (/proc/loadavg), or -1 where there is none: timings
+  !> taken beside other jobs are marked as such.
+  real(wp) function load_average() result(load)
+    integer :: unit, ios
+    load = -1.0_wp
+    open (newunit=unit, file="/proc/loadavg", status="old", action="read", iostat=ios)
+    if (ios /= 0) return
+    read (unit, *, iostat=ios) load
+    if (ios /= 0) load = -1.0_wp
+    close (unit)
+  end function load_average
+
+  !> The first "model name" of /proc/cpuinfo, or "unknown".
+  function cpu_model() result(name)
+    character(len=:), allocatable :: name
+    character(len=512) :: line
+    integer :: unit, ios, colon
+    name = "unknown"
+    open (newunit=unit, file="/proc/cpuinfo", status="old", action="read", iostat=ios)
+    if (ios /= 0) return
+    do
+      read (unit, "(a)", iostat=ios) line
+      if (ios /= 0) exit
+      colon = index(line, ":")
+      if (index(line, "model name") == 1 .and. colon > 0) then
+        name = trim(adjustl(line(colon + 1:)))
+        exit
+      end if
+    end do
+    close (unit)
+  end function cpu_model
+
+  !> The tables: runs (rates and real-time factors), the sweep's speed-up, the
+  !> paper-literal step, the sea module.
+  subroutine print_report(unit, rec)
+    integer, intent(in) :: unit
+    type(bench_record), intent(in) :: rec
+    integer :: i
+    write (unit, "(a)") "davit bench ("//trim(merge("quick", "full ", rec%quick))//"): "// &
+      rec%cpu//", "//rec%compiler//", load average "//sig(rec%load_start)//" -> "// &
+      sig(rec%load_end), "", &
+      "| benchmark | deck | threads | dt [s] | simulated [s] | wall [s] | steps | "// &
+      "RHS evaluations | RHS/s | steps/s | real-time factor |", &
+      "|---|---|---|---|---|---|---|---|---|---|---|"
+    do i = 1, size(rec%runs)
+      associate (r => rec%runs(i))
+        write (unit, "(a)") "| "//r%name//" | "//r%deck//" | "//int_text(int(r%threads, i8))// &
+          " | "//sig(r%dt)//" | "//sig(r%simulated)//" | "//sig(r%wall)//" | "// &
+          int_text(r%steps)//" | "//int_text(r%rhs_evaluations)//" | "//sig(rhs_rate(r))// &
+          " | "//sig(step_rate(r))//" | "//sig(real_time_factor(r))//" |"
+      end associate
+    end do
+    write (unit, "(a)") "", "sweep speed-up, 1 -> 2 threads: "//sig(rec%speed_up)//" ("// &
+      int_text(int(rec%sweep_cases, i8))//" cases)", &
+      "paper-literal step: "//sig(rec%safety)//" x RK4 limit 2.83/|lambda|max = "// &
+      sig(rec%safety*rec%rk4_limit)//" s (|lambda|max = "//sig(rec%rate_max)// &
+      " 1/s at t = 0), rounded down to a whole fraction of the output interval", "", &
+      "| sea module | value | unit |", "|---|---|---|"
+    do i = 1, size(rec%sea)
+      write (unit, "(a)") "| "//rec%sea(i)%name//" | "//sig(rec%sea(i)%value)//" | "// &
+        rec%sea(i)%unit//" |"
+    end do
+  end subroutine print_report
+
+  !> "davit bench: regular, 1 thread: 100 s simulated in 2.31 s (43.3x real time)"
+  subroutine print_progress(unit, run)
+    integer, intent(in) :: unit
+    type(timed_run), intent(in) :: run
+    write (unit, "(a)") "davit bench: "//run%name//", "//int_text(int(run%threads, i8))// &
+      " thread(s): "//sig(run%simulated)//" s simulated in "//sig(run%wall)//" s ("// &
+      sig(real_time_factor(run))//"x real time)"
+    flush (unit)
+  end subroutine print_progress
+
+  !> Write `rec` under /bench (runs, sweep, paper_literal, sea) of the open file `w`, with
+  !> the conditions as root attributes.
+  subroutine write_report(w, rec)
+    type(h5_writer_type), intent(inout) :: w
+    type(bench_record), intent(in) :: rec
+    call w%group("bench")
+    call write_runs(w, rec%runs)
+    call w%group("bench/sweep")
+    call w%write_1d("bench/sweep/speed_up", [rec%speed_up], "-", &
+                    "Wall time of the sweep on 1 thread / on 2 threads")
+    call w%group("bench/paper_literal")
+    call w%write_1d("bench/paper_literal/rate_max", [rec%rate_max], "1/s", &
+                    "Largest |eigenvalue| of df/dy at t = 0 (davit modes)")
+    call w%write_1d("bench/paper_literal/rk4_limit", [rec%rk4_limit], "s", &
+                    "RK4 stability limit 2.83/rate_max")
+    call w%write_1d("bench/paper_literal/safety_factor", [rec%safety], "-", &
+                    "Step = safety_factor x rk4_limit, rounded down to a whole fraction "// &
+                    "of the output interval")
+    call write_sea(w, rec%sea)
+    call write_attributes(w, rec)
+  end subroutine write_report
+
+  subroutine write_runs(w, runs)
+    type(h5_writer_type), intent(inout) :: w
+    type(timed_run), intent(in) :: runs(:)
+    character(len=:), allocatable :: names(:), decks(:)
+    integer :: i
+    call w%group("bench/runs")
+    allocate (character(len=maxval([(len(runs(i)%name), i = 1, size(runs)), 1])) :: &
+              names(size(runs)))
+    allocate (character(len=maxval([(len(runs(i)%deck), i = 1, size(runs)), 1])) :: &
+              decks(size(runs)))
+    do i = 1, size(runs)
+      names(i) = runs(i)%name
+      decks(i) = runs(i)%deck
+    end do
+    call w%write_strings("bench/runs/name", names, "-", "Benchmark: a scene (regular, "// &
+                         "irregular, paper_literal) or the sweep")
+    call w%write_strings("bench/runs/deck", decks, "-", "Deck run (a sweep deck for sweep)")
+    call w%write_1d_int("bench/runs/cases", int(runs%cases, i8), "-", &
+                        "Runs timed together: 1 for a scene, the sweep's cases")
+    call w%write_1d_int("bench/runs/threads", int(runs%threads, i8), "-", "OpenMP threads")
+    call w%write_1d("bench/runs/dt", runs%dt, "s", "Time step (near contact dt_contact)")
+    call w%write_1d("bench/runs/simulated_time", runs%simulated, "s", &
+                    "Simulated time (summed over a sweep's cases)")
+    call w%write_1d("bench/runs/wall_time", runs%wall, "s", "Wall time: a scene's time "// &
+                    "loop, or a sweep's whole parallel loop")
+    call w%write_1d_int("bench/runs/steps", runs%steps, "-", "Integrator steps (summed)")
+    call w%write_1d_int("bench/runs/rhs_evaluations", runs%rhs_evaluations, "-", &
+                        "Right-hand-side evaluations (summed)")
+    call w%write_1d("bench/runs/rhs_per_second", [(rhs_rate(runs(i)), i = 1, size(runs))], &
+                    "1/s", "rhs_evaluations / wall_time")
+    call w%write_1d("bench/runs/steps_per_second", [(step_rate(runs(i)), i = 1, size(runs))], &
+                    "1/s", "steps / wall_time")
+    call w%write_1d("bench/runs/real_time_factor", &
+                    [(real_time_factor(runs(i)), i = 1, size(runs))], "-", &
+                    "simulated_time / wall_time")
+  end subroutine write_runs
+
+  subroutine write_sea(w, sea)
+    type(h5_writer_type), intent(inout) :: w
+    type(bench_result), intent(in) :: sea(:)
+    character(len=64) :: names(size(sea)), units(size(sea))
+    integer :: i
+    do i = 1, size(sea)
+      names(i) = sea(i)%name
+      units(i) = sea(i)%unit
+    end do
+    call w%group("bench/sea")
+    call w%write_strings("bench/sea/name", names, "-", "Sea-module timing")
+    call w%write_1d("bench/sea/value", sea%value, "see bench/sea/unit", "Cost")
+    call w%write_strings("bench/sea/unit", units, "-", "Unit of each value")
+  end subroutine write_sea
+
+  subroutine write_attributes(w, rec)
+    type(h5_writer_type), intent(inout) :: w
+    type(bench_record), intent(in) :: rec
+    call w%attr_str("/", "davit_version", davit_version)
+    call w%attr_int("/", "quick", merge(1_i8, 0_i8, rec%quick))
+    call w%attr_str("/", "decks", rec%decks)
+    call w%attr_str("/", "cpu", rec%cpu)
+    call w%attr_str("/", "compiler", rec%compiler)
+    call w%attr_str("/", "compiler_options", rec%options)
+    call w%attr_real("/", "load_average_start", rec%load_start)
+    call w%attr_real("/", "load_average_end", rec%load_end)
+  end subroutine write_attributes
+
+  !> Three significant digits: fixed-point from 0.01 to 1e6, else scientific.
+  function sig(x) result(s)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    character(len=16) :: form
+    integer :: decimals
+    if (x /= 0.0_wp .and. (abs(x) < 0.01_wp .or. abs(x) >= 1.0e6_wp)) then
+      write (buf, "(es10.2)") x
+    else
+      decimals = 0
+      if (x /= 0.0_wp) decimals = max(0, 2 - floor(log10(abs(x))))
+      write (form, "(a,i0,a)") "(f0.", decimals, ")"
+      write (buf, form) x
+    end if
+    s = trim(adjustl(buf))
+    if (s(1:1) == ".") s = "0"//s
+    if (s(len(s):len(s)) == ".") s = s(1:len(s) - 1)
+  end function sig
+
+  pure function int_text(n) result(s)
+    integer(i8), intent(in) :: n
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, "(i0)") n
+    s = trim(buf)
+  end function int_text
+
+end module davit_bench_report

@@ -1,0 +1,109 @@
+!> `davit bench`, whole scenes: a boat deck run in memory through the run driver's time
+!> loop (recorded as by `davit run`, but no file written), timed on the calling thread.
+!> Optionally at the RK4 stability limit of the deck's linearised system, for the
+!> paper-literal level of detail whose step the stiff lumps set.
+module davit_bench_scenes
+  use davit_kinds, only: wp
+  use davit_error, only: error_type, fatal_error
+  use davit_io_config, only: config_type, read_config
+  use davit_io_deck_reader, only: fmt_real
+  use davit_system_model, only: system_type, new_system
+  use davit_system_recorders, only: boat_recorder
+  use davit_system_run_summary, only: run_summary
+  use davit_system_driver, only: integrate
+  use davit_system_linear_modes, only: linear_modes
+  use davit_bench_timing, only: timed_run
+  implicit none
+  private
+  public :: step_limit, time_deck, rk4_bound, safety_factor
+
+  !> RK4 is stable for h |lambda| <= 2.83 on the imaginary axis (README, Integrators).
+  real(wp), parameter :: rk4_bound = 2.83_wp
+  !> Margin below the limit at t = 0: the fastest rates move as the falls pay out.
+  real(wp), parameter :: safety_factor = 0.9_wp
+
+contains
+
+  !> Run deck `path` for `t_end` seconds (its own t_end when t_end <= 0), at its own step
+  !> or, with `at_limit`, at the step of step_limit. `rate_max` is the deck's largest
+  !> |eigenvalue| at t = 0 when at_limit (else 0).
+  subroutine time_deck(name, path, t_end, at_limit, run, rate_max, error)
+    character(len=*), intent(in) :: name, path
+    real(wp), intent(in) :: t_end
+    logical, intent(in) :: at_limit
+    type(timed_run), intent(out) :: run
+    real(wp), intent(out) :: rate_max
+    type(error_type), allocatable, intent(out) :: error
+    type(config_type) :: cfg
+    rate_max = 0.0_wp
+    call read_config(path, cfg, error)
+    if (allocated(error)) return
+    if (t_end > 0.0_wp) cfg%simulation%t_end = max(t_end, cfg%simulation%dt)
+    if (at_limit) then
+      call step_limit(cfg, rate_max, error)
+      if (allocated(error)) return
+    end if
+    run%name = name
+    run%deck = path
+    call time_config(cfg, run, error)
+  end subroutine time_deck
+
+  !> Set the deck's step to safety_factor x the RK4 limit rk4_bound/|lambda|max of its
+  !> system at t = 0, rounded down to a whole fraction of the output interval (so that
+  !> landing on every sample costs no extra short step).
+  subroutine step_limit(cfg, rate_max, error)
+    type(config_type), intent(inout) :: cfg
+    real(wp), intent(out) :: rate_max
+    type(error_type), allocatable, intent(out) :: error
+    real(wp) :: omega_max, h
+    call linear_modes(cfg, rate_max, omega_max, error)
+    if (allocated(error)) return
+    if (cfg%simulation%integrator /= "rk4" .or. .not. rate_max > 0.0_wp) then
+      call fatal_error(error, cfg%filename//": the stability-limited bench scene needs "// &
+                       "integrator = 'rk4' and a system with a nonzero fastest rate")
+      return
+    end if
+    h = safety_factor*rk4_bound/rate_max
+    cfg%simulation%dt = cfg%simulation%output_interval/ &
+                        real(ceiling(cfg%simulation%output_interval/h), wp)
+  end subroutine step_limit
+
+  !> Build the boat scene of `cfg` and time its time loop (the driver's own clock and
+  !> counters). A run that diverges is an error: its rates would mean nothing.
+  subroutine time_config(cfg, run, error)
+    type(config_type), intent(in) :: cfg
+    type(timed_run), intent(inout) :: run
+    type(error_type), allocatable, intent(out) :: error
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(run_summary) :: summary
+    type(error_type), allocatable :: run_error
+    real(wp), allocatable :: y(:)
+    select case (cfg%simulation%scene)
+    case ("hanging_boat", "lowering", "launch")
+    case default
+      call fatal_error(error, cfg%filename//": bench scenes run the boat scenes, not '"// &
+                       cfg%simulation%scene//"'")
+      return
+    end select
+    call new_system(sys, cfg, error)
+    if (allocated(error)) return
+    y = sys%initial_state(cfg)
+    rec%sys => sys
+    call integrate(cfg, sys, y, rec, summary, run_error, error)
+    if (allocated(error)) return
+    if (allocated(run_error)) then
+      call fatal_error(error, cfg%filename//" (dt = "//fmt_real(cfg%simulation%dt)// &
+                       " s): "//run_error%message)
+      return
+    end if
+    run%threads = 1
+    run%dt = cfg%simulation%dt
+    ! with no step monitor a complete run ends exactly at t_end (the last step lands on it)
+    run%simulated = cfg%simulation%t_end
+    run%wall = summary%wall_time
+    run%steps = summary%steps
+    run%rhs_evaluations = summary%rhs_evaluations
+  end subroutine time_config
+
+end module davit_bench_scenes

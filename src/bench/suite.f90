@@ -1,0 +1,123 @@
+!> `davit bench [--quick]`: a fixed set of timings, from decks in the decks folder:
+!> (1) the default scene in a regular sea, (2) the same in the irregular sea, (3) the
+!> paper-literal level of detail (2 lumps per sling, rotating sheaves) with RK4 at its
+!> stability limit, each on one thread; (4) the sea module alone; (5) a small sweep on 1
+!> and 2 OpenMP threads and its speed-up. Printed as tables and written under /bench.
+!> Speed goals live in the README, never in tests; --quick only shortens the runs.
+module davit_bench_suite
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+  use davit_kinds, only: wp
+  use davit_error, only: error_type
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_sweep_keys, only: sweep_config
+  use davit_bench_timing, only: timed_run
+  use davit_bench_sea, only: bench_sea
+  use davit_bench_scenes, only: time_deck, rk4_bound, safety_factor
+  use davit_bench_sweep, only: read_bench_sweep, time_sweep
+  use davit_bench_report, only: bench_record, new_bench_record, load_average, print_report, &
+                                print_progress, write_report
+  implicit none
+  private
+  public :: bench_options, run_bench
+
+  type :: bench_options
+    !> Short runs (~10 s in all): a smoke test of the bench, not figures to quote.
+    logical :: quick = .false.
+    !> Folder of the bench decks.
+    character(len=:), allocatable :: decks
+  end type bench_options
+
+  !> A scene: label, deck (in the decks folder), simulated time of the full and of the
+  !> quick bench [s] (0: the deck's own), step at the RK4 stability limit or the deck's.
+  type :: scene_spec
+    character(len=16) :: name
+    character(len=48) :: deck
+    real(wp) :: t_full, t_quick
+    logical :: at_limit
+  end type scene_spec
+
+  !> Full: the whole 100 s launch (hanging, lowering, contact, water) for the default level
+  !> of detail; 20 s of the paper-literal one (its step is 13x smaller). Quick: the start.
+  type(scene_spec), parameter :: scenes(3) = [ &
+    scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false.), &
+    scene_spec("irregular", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, .false.), &
+    scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true.)]
+
+  !> The sweep deck; full: whole launches (each to its hook release), quick: 10 s each.
+  character(len=*), parameter :: sweep_deck = "bench_sweep.nml"
+  real(wp), parameter :: sweep_t_quick = 10.0_wp
+  integer, parameter :: sweep_threads(2) = [1, 2]
+  !> Seconds each sea-module timing repeats its kernel.
+  real(wp), parameter :: sea_budget_full = 0.5_wp, sea_budget_quick = 0.05_wp
+
+contains
+
+  !> Run every benchmark, print the tables on stdout (progress on stderr) and write
+  !> `out_path`. The file is created first, so an unwritable path fails before any run.
+  subroutine run_bench(opts, out_path, error)
+    type(bench_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path
+    type(error_type), allocatable, intent(out) :: error
+    type(bench_record) :: rec
+    type(h5_writer_type) :: w
+    call w%create(out_path, error)
+    if (allocated(error)) return
+    rec = new_bench_record(opts%quick, opts%decks)
+    call bench_scenes(opts, rec, error)
+    if (.not. allocated(error)) call bench_sweep(opts, rec, error)
+    if (allocated(error)) then
+      call w%discard()
+      return
+    end if
+    call bench_sea(merge(sea_budget_quick, sea_budget_full, opts%quick), rec%sea)
+    rec%load_end = load_average()
+    call print_report(output_unit, rec)
+    call write_report(w, rec)
+    call w%close(error)
+  end subroutine run_bench
+
+  subroutine bench_scenes(opts, rec, error)
+    type(bench_options), intent(in) :: opts
+    type(bench_record), intent(inout) :: rec
+    type(error_type), allocatable, intent(out) :: error
+    type(timed_run) :: run
+    type(scene_spec) :: sc
+    real(wp) :: rate_max
+    integer :: i
+    do i = 1, size(scenes)
+      sc = scenes(i)
+      call time_deck(trim(sc%name), opts%decks//"/"//trim(sc%deck), &
+                     merge(sc%t_quick, sc%t_full, opts%quick), sc%at_limit, run, rate_max, &
+                     error)
+      if (allocated(error)) return
+      if (sc%at_limit) then
+        rec%rate_max = rate_max
+        rec%rk4_limit = rk4_bound/rate_max
+        rec%safety = safety_factor
+      end if
+      call print_progress(error_unit, run)
+      rec%runs = [rec%runs, run]
+    end do
+  end subroutine bench_scenes
+
+  subroutine bench_sweep(opts, rec, error)
+    type(bench_options), intent(in) :: opts
+    type(bench_record), intent(inout) :: rec
+    type(error_type), allocatable, intent(out) :: error
+    type(sweep_config) :: s
+    type(timed_run) :: runs(size(sweep_threads))
+    integer :: i
+    call read_bench_sweep(opts%decks//"/"//sweep_deck, merge(sweep_t_quick, 0.0_wp, &
+                          opts%quick), s, error)
+    if (allocated(error)) return
+    do i = 1, size(sweep_threads)
+      call time_sweep("sweep", s, sweep_threads(i), runs(i), error)
+      if (allocated(error)) return
+      call print_progress(error_unit, runs(i))
+    end do
+    rec%runs = [rec%runs, runs]
+    rec%sweep_cases = runs(1)%cases
+    rec%speed_up = runs(1)%wall/max(runs(2)%wall, 1.0e-9_wp)
+  end subroutine bench_sweep
+
+end module davit_bench_suite

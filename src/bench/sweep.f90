@@ -1,0 +1,90 @@
+!> `davit bench`, a small sweep: the cases of a sweep deck through the sweep's own case
+!> runner (davit_sweep_driver's run_case, the launch metrics watching every step), in an
+!> OpenMP loop like `davit sweep`'s (dynamic schedule, one system per case and thread), on
+!> a given number of threads. No summary file: the bench times the computation.
+module davit_bench_sweep
+  use davit_kinds, only: wp
+  use davit_error, only: error_type, fatal_error
+  use davit_io_config, only: config_type
+  use davit_io_namelist, only: int_to_str
+  use davit_system_model, only: system_type
+  use davit_system_recorders, only: boat_recorder
+  use davit_sweep_keys, only: sweep_config, read_sweep
+  use davit_sweep_cases, only: sweep_case, case_config
+  use davit_sweep_driver, only: prepare_cases, run_case
+  use davit_sweep_metrics, only: case_result, status_ok
+  use davit_bench_timing, only: timed_run, wall_seconds
+  implicit none
+  private
+  public :: read_bench_sweep, time_sweep
+
+contains
+
+  !> Read sweep deck `path`, every case cut to `t_end` seconds (the base deck's t_end when
+  !> t_end <= 0; a case still ends at the hook release when the deck says so).
+  subroutine read_bench_sweep(path, t_end, s, error)
+    character(len=*), intent(in) :: path
+    real(wp), intent(in) :: t_end
+    type(sweep_config), intent(out) :: s
+    type(error_type), allocatable, intent(out) :: error
+    call read_sweep(path, s, error)
+    if (allocated(error)) return
+    if (t_end > 0.0_wp) s%base%simulation%t_end = max(t_end, maxval(s%dts))
+  end subroutine read_bench_sweep
+
+  !> Run every case of sweep `s` on `threads` threads and time the whole loop. Simulated
+  !> time, steps and RHS evaluations are summed over the cases (the same on any number of
+  !> threads: a case does not depend on where it runs). A failed case is an error.
+  subroutine time_sweep(name, s, threads, run, error)
+    character(len=*), intent(in) :: name
+    type(sweep_config), intent(in) :: s
+    integer, intent(in) :: threads
+    type(timed_run), intent(out) :: run
+    type(error_type), allocatable, intent(out) :: error
+    type(sweep_case), allocatable :: cases(:)
+    type(case_result), allocatable :: rows(:)
+    real(wp) :: clearance0, t0
+    integer :: k
+    call prepare_cases(s, cases, clearance0, error)
+    if (allocated(error)) return
+    allocate (rows(size(cases)))
+    t0 = wall_seconds()
+    !$omp parallel do schedule(dynamic, 1) num_threads(threads) default(none) &
+    !$omp shared(s, cases, clearance0, rows)
+    do k = 1, size(cases)
+      call run_one(s, cases(k), clearance0, rows(k))
+    end do
+    !$omp end parallel do
+    run%wall = wall_seconds() - t0
+    do k = 1, size(rows)
+      if (rows(k)%status /= status_ok) then
+        call fatal_error(error, s%filename//": bench sweep case "//int_to_str(k)// &
+                         " failed: "//rows(k)%message)
+        return
+      end if
+    end do
+    run%name = name
+    run%deck = s%filename
+    run%cases = size(cases)
+    run%threads = threads
+    run%dt = s%base%simulation%dt
+    run%simulated = sum(rows%end_time)
+    run%steps = sum(rows%steps)
+    run%rhs_evaluations = sum(rows%rhs_evaluations)
+  end subroutine time_sweep
+
+  !> One case with its own configuration, system and recorder (locals of this thread).
+  subroutine run_one(s, c, clearance0, row)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: c
+    real(wp), intent(in) :: clearance0
+    type(case_result), intent(out) :: row
+    type(config_type) :: cfg
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(error_type), allocatable :: run_error
+    call case_config(s, c, clearance0, cfg)
+    call run_case(cfg, s%stop_at_release, sys, rec, row, run_error)
+  end subroutine run_one
+
+end module davit_bench_sweep

@@ -1,0 +1,58 @@
+!> What one timed piece of `davit bench` reports, and the clock it is timed with. The rates
+!> are derived from the stored counts and times, never measured on their own, so the
+!> printed table and the HDF5 file agree with each other by construction.
+module davit_bench_timing
+  use davit_kinds, only: wp, i8
+  implicit none
+  private
+  public :: timed_run, wall_seconds, rhs_rate, step_rate, real_time_factor
+
+  !> One timed run of a deck, or the cases of a sweep deck on a number of threads.
+  type :: timed_run
+    !> Label of the benchmark and the deck it ran (as opened).
+    character(len=:), allocatable :: name, deck
+    !> Runs timed together (1, or the sweep's cases) and the OpenMP threads they ran on.
+    integer :: cases = 1, threads = 1
+    !> Time step [s]: the deck's, or the one set from the stability limit.
+    real(wp) :: dt = 0.0_wp
+    !> Simulated time, summed over a sweep's cases [s], and wall time of the timed section
+    !> (a scene's time loop; a sweep's whole parallel loop) [s].
+    real(wp) :: simulated = 0.0_wp, wall = 0.0_wp
+    !> The run driver's counters (summed over a sweep's cases).
+    integer(i8) :: steps = 0, rhs_evaluations = 0
+  end type timed_run
+
+contains
+
+  !> Monotonic wall-clock reading [s]; system_clock with a 64-bit count ticks in ns.
+  real(wp) function wall_seconds() result(t)
+    integer(i8) :: count, rate
+    call system_clock(count, rate)
+    t = real(count, wp)/real(rate, wp)
+  end function wall_seconds
+
+  !> Right-hand-side evaluations per wall second.
+  pure real(wp) function rhs_rate(run)
+    type(timed_run), intent(in) :: run
+    rhs_rate = real(run%rhs_evaluations, wp)/positive(run%wall)
+  end function rhs_rate
+
+  !> Integrator steps per wall second.
+  pure real(wp) function step_rate(run)
+    type(timed_run), intent(in) :: run
+    step_rate = real(run%steps, wp)/positive(run%wall)
+  end function step_rate
+
+  !> Simulated seconds per wall second.
+  pure real(wp) function real_time_factor(run)
+    type(timed_run), intent(in) :: run
+    real_time_factor = run%simulated/positive(run%wall)
+  end function real_time_factor
+
+  !> A wall time below the clock's tick still divides (a rate, not a division by zero).
+  pure real(wp) function positive(seconds)
+    real(wp), intent(in) :: seconds
+    positive = max(seconds, 1.0e-9_wp)
+  end function positive
+
+end module davit_bench_timing

@@ -1,0 +1,133 @@
+"""`davit bench --quick`: exits 0, prints its tables and writes /bench, whose numbers agree
+with each other (rates = counts / wall time, real-time factor = simulated / wall time,
+speed-up = wall time on 1 thread / on 2 threads, the paper-literal step from the RK4
+limit). No timing thresholds: the speed goals live in the README."""
+import math
+import pathlib
+import re
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+RUN_FIELDS = ("name", "deck", "cases", "threads", "dt", "simulated_time", "wall_time",
+              "steps", "rhs_evaluations", "rhs_per_second", "steps_per_second",
+              "real_time_factor")
+DATASETS = ({f"bench/runs/{field}" for field in RUN_FIELDS}
+            | {"bench/sweep/speed_up", "bench/paper_literal/rate_max",
+               "bench/paper_literal/rk4_limit", "bench/paper_literal/safety_factor",
+               "bench/sea/name", "bench/sea/value", "bench/sea/unit"})
+ROWS = [("regular", "iiib_level5_090.nml", 1), ("irregular", "iiib_level5_090_irregular.nml", 1),
+        ("paper_literal", "iiib_level5_090_literal.nml", 1), ("sweep", "bench_sweep.nml", 1),
+        ("sweep", "bench_sweep.nml", 2)]
+EXACT = dict(rtol=1e-12, atol=0)
+
+
+def _text(values):
+    return [v.decode().strip() if isinstance(v, bytes) else str(v).strip() for v in values]
+
+
+@pytest.fixture(scope="module")
+def bench(davit, tmp_path_factory):
+    """(stdout, {dataset: value}, root attributes) of one quick bench."""
+    out = tmp_path_factory.mktemp("bench") / "bench.h5"
+    result = davit("bench", "--quick", "-o", out, "--decks", ROOT / "input")
+    assert result.returncode == 0, result.stderr
+    data, meta = {}, {}
+    with h5py.File(out, "r") as f:
+        f.visititems(lambda name, obj: data.__setitem__(name, obj[()])
+                     if isinstance(obj, h5py.Dataset) else None)
+        f.visititems(lambda name, obj: meta.__setitem__(name, dict(obj.attrs))
+                     if isinstance(obj, h5py.Dataset) else None)
+        attrs = dict(f.attrs)
+    return result.stdout, data, meta, attrs
+
+
+def test_bench_writes_every_dataset_with_units(bench):
+    _, data, meta, attrs = bench
+    assert DATASETS <= set(data)
+    for name in DATASETS:
+        assert {"units", "description"} <= set(meta[name]), name
+    assert int(attrs["quick"]) == 1
+    for key in ("davit_version", "cpu", "compiler", "compiler_options"):
+        assert attrs[key], key
+    assert "-fopenmp" in attrs["compiler_options"].decode()
+
+
+def test_bench_rows_are_the_fixed_scenes_and_the_sweep(bench):
+    _, data, _, _ = bench
+    rows = list(zip(_text(data["bench/runs/name"]), _text(data["bench/runs/deck"]),
+                    data["bench/runs/threads"].tolist()))
+    assert [(name, pathlib.Path(deck).name, threads) for name, deck, threads in rows] == ROWS
+    cases = data["bench/runs/cases"]
+    assert cases[:3].tolist() == [1, 1, 1] and cases[3] == cases[4] == 8
+
+
+def test_rates_are_counts_over_wall_time(bench):
+    _, data, _, _ = bench
+    runs = {field: data[f"bench/runs/{field}"] for field in RUN_FIELDS}
+    wall = runs["wall_time"]
+    assert np.all(wall > 0) and np.all(runs["simulated_time"] > 0)
+    np.testing.assert_allclose(runs["rhs_per_second"], runs["rhs_evaluations"] / wall, **EXACT)
+    np.testing.assert_allclose(runs["steps_per_second"], runs["steps"] / wall, **EXACT)
+    np.testing.assert_allclose(runs["real_time_factor"], runs["simulated_time"] / wall,
+                               **EXACT)
+    # every bench deck is RK4: four evaluations per step, counted by the run driver
+    np.testing.assert_array_equal(runs["rhs_evaluations"], 4 * runs["steps"])
+    # quick: the first 20 s of the default scenes, 2 s of the paper-literal one
+    np.testing.assert_allclose(runs["simulated_time"][:3], [20.0, 20.0, 2.0], **EXACT)
+    np.testing.assert_allclose(runs["steps"][:2], [20000, 20000], **EXACT)
+
+
+def test_sweep_speed_up_is_the_wall_time_ratio(bench):
+    _, data, _, _ = bench
+    wall = data["bench/runs/wall_time"]
+    np.testing.assert_allclose(data["bench/sweep/speed_up"], [wall[3] / wall[4]], **EXACT)
+    # a case does not depend on the thread that runs it: the same work on 1 and 2 threads
+    for field in ("steps", "rhs_evaluations", "simulated_time"):
+        assert data[f"bench/runs/{field}"][3] == data[f"bench/runs/{field}"][4], field
+
+
+def test_paper_literal_step_is_the_rk4_limit_with_margin(bench):
+    _, data, _, _ = bench
+    rate = data["bench/paper_literal/rate_max"][0]
+    limit = data["bench/paper_literal/rk4_limit"][0]
+    safety = data["bench/paper_literal/safety_factor"][0]
+    dt = data["bench/runs/dt"][2]
+    np.testing.assert_allclose(limit, 2.83 / rate, **EXACT)
+    assert 0 < safety < 1
+    # the largest whole fraction of the deck's 0.02 s output interval below safety x limit
+    n = round(0.02 / dt)
+    assert math.isclose(n * dt, 0.02, rel_tol=1e-12)
+    assert dt <= safety * limit < 0.02 / (n - 1)
+    np.testing.assert_array_equal(data["bench/runs/dt"][[0, 1, 3, 4]], 1e-3)
+
+
+def test_printed_table_is_the_file(bench):
+    stdout, data, _, _ = bench
+    lines = [line for line in stdout.splitlines() if line.startswith("| ")]
+    rows = [line for line in lines if line.split("|")[1].strip() in ("regular", "irregular",
+                                                                     "paper_literal", "sweep")]
+    assert len(rows) == 5
+    for i, row in enumerate(rows):
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        assert int(cells[6]) == data["bench/runs/steps"][i]
+        assert int(cells[7]) == data["bench/runs/rhs_evaluations"][i]
+        assert math.isclose(float(cells[10]), data["bench/runs/real_time_factor"][i],
+                            rel_tol=5e-3)
+    speed_up = re.search(r"sweep speed-up, 1 -> 2 threads: ([0-9.]+) \(8 cases\)", stdout)
+    assert speed_up and math.isclose(float(speed_up.group(1)), data["bench/sweep/speed_up"][0],
+                                     rel_tol=5e-3)
+    sea = [line for line in lines if line.startswith("| sea: ")]
+    assert len(sea) == 3 and len(data["bench/sea/value"]) == 4
+
+
+def test_bench_usage_and_missing_decks(davit, tmp_path):
+    assert davit("bench", "--bogus").returncode == 2
+    assert davit("bench", "-o").returncode == 2
+    out = tmp_path / "bench.h5"
+    result = davit("bench", "--quick", "-o", out, "--decks", tmp_path)
+    assert result.returncode == 1
+    assert "iiib_level5_090.nml" in result.stderr
+    assert not out.exists() and not pathlib.Path(str(out) + ".tmp").exists()
