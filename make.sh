@@ -111,7 +111,8 @@ run_paper_deck() {
   fi
 }
 
-# Every sweep deck (input/sweep*.nml) through `davit sweep`, if this build has it.
+# Every sweep deck (input/sweep*.nml) through `davit sweep`, if this build has it; the
+# irregular-sea sweeps (hours on 2 cores) only with PAPER_IRREGULAR=1.
 run_sweeps() {
   if ! "$DAVIT_BIN" --help 2>&1 | grep -qw sweep; then
     log "no 'davit sweep' in this build: sweeps skipped"
@@ -120,6 +121,10 @@ run_sweeps() {
   local deck failed=0
   for deck in input/sweep*.nml; do
     [ -e "$deck" ] || continue
+    if [ "${PAPER_IRREGULAR:-0}" != 1 ] && grep -q "^ *wave_types *= *'irregular'" "$deck"; then
+      log "irregular sweep $deck skipped (PAPER_IRREGULAR=1 runs it)"
+      continue
+    fi
     log "sweep $deck"
     "$DAVIT_BIN" sweep "$deck" -o "out/$(basename "$deck" .nml).h5" || failed=1
   done
