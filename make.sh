@@ -15,8 +15,9 @@ APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config pyth
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest)
 DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
-# 3x better than with the x86-64 baseline (davit bench).
-FPM_FLAGS=(--profile release --flag "-march=native")
+# 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
+# (-fstack-arrays) instead of malloc in the RHS: 7 % less CPU on the default scene.
+FPM_FLAGS=(--profile release --flag "-march=native -fstack-arrays")
 
 log() { printf '%s\n' "make.sh: $*" >&2; }
 
