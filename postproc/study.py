@@ -107,10 +107,14 @@ def metrics(path):
     """Time, CG position, peak segment tension series, horizontal acceleration, first
     contact time and cost of one run file."""
     with h5py.File(path, "r") as f:
-        out = {"time": f[layout.TIME][:], "x": f[layout.BOAT_POSITION][:],
-               "a": f[layout.BOAT_ACCELERATION][:],
-               "tension": f[layout.RIGGING_SEGMENT_TENSION][:].max(axis=1),
-               "contact": float(np.ravel(f[layout.FIRST_CONTACT_TIME])[0]),
+        time = f[layout.TIME][:]
+        # a free boat (no rigging, no contact) has neither tensions nor contact events
+        tension = (f[layout.RIGGING_SEGMENT_TENSION][:].max(axis=1)
+                   if layout.RIGGING_SEGMENT_TENSION in f else np.zeros(len(time)))
+        contact = (float(np.ravel(f[layout.FIRST_CONTACT_TIME])[0])
+                   if layout.FIRST_CONTACT_TIME in f else -1.0)
+        out = {"time": time, "x": f[layout.BOAT_POSITION][:],
+               "a": f[layout.BOAT_ACCELERATION][:], "tension": tension, "contact": contact,
                "wall": float(f.attrs["wall_time"]), "rhs": int(f.attrs["rhs_evaluations"]),
                "steps": int(f.attrs["steps"]), "complete": int(f.attrs["complete"])}
     return out
@@ -127,7 +131,8 @@ def compare(run, ref):
     smooth = ref["time"][:n] < ref["contact"] if ref["contact"] > 0 else np.ones(n, bool)
     ah = np.hypot(run["a"][:n, 0], run["a"][:n, 1])
     return {"err_smooth": dist[smooth].max(), "err_all": dist.max(),
-            "tension_err": abs(run["tension"][:n].max() / ref["tension"][:n].max() - 1),
+            "tension_err": (abs(run["tension"][:n].max() / ref["tension"][:n].max() - 1)
+                            if ref["tension"][:n].max() > 0 else 0.0),
             "peak_ah": ah.max()}
 
 
