@@ -15,8 +15,9 @@ APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config pyth
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest)
 DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
-# 3x better than with the x86-64 baseline (davit bench).
-FPM_FLAGS=(--profile release --flag "-march=native")
+# 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
+# (-fstack-arrays) instead of malloc in the RHS: 7 % less CPU on the default scene.
+FPM_FLAGS=(--profile release --flag "-march=native -fstack-arrays")
 
 log() { printf '%s\n' "make.sh: $*" >&2; }
 
@@ -111,7 +112,8 @@ run_paper_deck() {
   fi
 }
 
-# Every sweep deck (input/sweep*.nml) through `davit sweep`, if this build has it.
+# Every sweep deck (input/sweep*.nml) through `davit sweep`, if this build has it; the
+# irregular-sea sweeps (hours on 2 cores) only with PAPER_IRREGULAR=1.
 run_sweeps() {
   if ! "$DAVIT_BIN" --help 2>&1 | grep -qw sweep; then
     log "no 'davit sweep' in this build: sweeps skipped"
@@ -120,6 +122,10 @@ run_sweeps() {
   local deck failed=0
   for deck in input/sweep*.nml; do
     [ -e "$deck" ] || continue
+    if [ "${PAPER_IRREGULAR:-0}" != 1 ] && grep -q "^ *wave_types *= *'irregular'" "$deck"; then
+      log "irregular sweep $deck skipped (PAPER_IRREGULAR=1 runs it)"
+      continue
+    fi
     log "sweep $deck"
     "$DAVIT_BIN" sweep "$deck" -o "out/$(basename "$deck" .nml).h5" || failed=1
   done

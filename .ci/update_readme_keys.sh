@@ -2,7 +2,7 @@
 # Regenerate the README's deck-key tables from `davit keys` (test_readme checks they match).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin="${DAVIT_BIN:-$(fpm run --profile release --flag -march=native --runner echo 2>/dev/null | tail -n 1)}"
+bin="${DAVIT_BIN:-$(fpm run --profile release --flag "-march=native -fstack-arrays" --runner echo 2>/dev/null | tail -n 1)}"
 python3 - "$bin" <<'PY'
 import subprocess, sys
 keys = subprocess.run([sys.argv[1], "keys"], capture_output=True, text=True, check=True).stdout

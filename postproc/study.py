@@ -3,9 +3,10 @@ integrators and level-of-detail switches, and the stability map.
 
     python -m postproc.study input/study_work_precision.nml [-o out] [--davit PATH]
     python -m postproc.study input/study_stability.nml [-o out]
+    python -m postproc.study input/study_damping.nml [-o out]
 
 A study deck is a namelist with one `&study` group:
-    kind = 'work_precision' | 'stability'
+    kind = 'work_precision' | 'stability' | 'damping'
     base = 'input/iiib_level5_090.nml'     (the scene every run starts from)
     t_end = 40.0                           (simulated span of each run, s)
     reference = 'rk4 dt=1e-4 dt_contact=2e-6'
@@ -14,6 +15,11 @@ Each run string is an integrator name followed by key=value overrides of the bas
 (the group of each key is looked up in KEY_GROUPS). The script runs `davit run` on each
 variant, compares with the reference and writes out/<study>.h5 (group /study) and a PNG
 chart. Timings are the runs' own single-thread wall times (root attribute wall_time).
+
+kind = 'damping' measures how much each method damps the boat's bounce on its slings: the
+decay rate of the vertical CG velocity (a two-pole fit of its samples, bounce_decay), as an
+apparent damping ratio zeta = sigma/omega, beside the value predicted from the method's stability function
+R(h lambda) with the bounce's physical lambda (from the reference run).
 """
 import argparse
 import os
@@ -101,10 +107,14 @@ def metrics(path):
     """Time, CG position, peak segment tension series, horizontal acceleration, first
     contact time and cost of one run file."""
     with h5py.File(path, "r") as f:
-        out = {"time": f[layout.TIME][:], "x": f[layout.BOAT_POSITION][:],
-               "a": f[layout.BOAT_ACCELERATION][:],
-               "tension": f[layout.RIGGING_SEGMENT_TENSION][:].max(axis=1),
-               "contact": float(np.ravel(f[layout.FIRST_CONTACT_TIME])[0]),
+        time = f[layout.TIME][:]
+        # a free boat (no rigging, no contact) has neither tensions nor contact events
+        tension = (f[layout.RIGGING_SEGMENT_TENSION][:].max(axis=1)
+                   if layout.RIGGING_SEGMENT_TENSION in f else np.zeros(len(time)))
+        contact = (float(np.ravel(f[layout.FIRST_CONTACT_TIME])[0])
+                   if layout.FIRST_CONTACT_TIME in f else -1.0)
+        out = {"time": time, "x": f[layout.BOAT_POSITION][:],
+               "a": f[layout.BOAT_ACCELERATION][:], "tension": tension, "contact": contact,
                "wall": float(f.attrs["wall_time"]), "rhs": int(f.attrs["rhs_evaluations"]),
                "steps": int(f.attrs["steps"]), "complete": int(f.attrs["complete"])}
     return out
@@ -121,7 +131,8 @@ def compare(run, ref):
     smooth = ref["time"][:n] < ref["contact"] if ref["contact"] > 0 else np.ones(n, bool)
     ah = np.hypot(run["a"][:n, 0], run["a"][:n, 1])
     return {"err_smooth": dist[smooth].max(), "err_all": dist.max(),
-            "tension_err": abs(run["tension"][:n].max() / ref["tension"][:n].max() - 1),
+            "tension_err": (abs(run["tension"][:n].max() / ref["tension"][:n].max() - 1)
+                            if ref["tension"][:n].max() > 0 else 0.0),
             "peak_ah": ah.max()}
 
 
@@ -215,6 +226,86 @@ def stability(study, davit, workdir):
     return rows
 
 
+# RODAS3 as in src/solve/rosenbrock.f90 (KPP form): stage coefficients a_ij, c_ij, weights
+# m_i and the diagonal gamma.
+RODAS3_A = np.array([[0, 0, 0, 0], [0, 0, 0, 0], [2, 0, 0, 0], [2, 0, 1, 0]], float)
+RODAS3_C = np.array([[0, 0, 0, 0], [4, 0, 0, 0], [1, -1, 0, 0], [1, -1, -8 / 3, 0]], float)
+RODAS3_M = np.array([2, 0, 1, 1], float)
+RODAS3_GAMMA = 0.5
+
+
+def stability_function(method, z):
+    """R(z) of one step on y' = lambda y, z = h lambda (complex)."""
+    if method == "rk4":
+        return 1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24
+    if method == "rosenbrock":
+        # (1/gamma - z) K_i = z (1 + sum_j a_ij K_j) + sum_j c_ij K_j,  R = 1 + sum m_i K_i
+        z = np.asarray(z, complex)
+        k = []
+        for i in range(4):
+            rhs = z * (1 + sum(RODAS3_A[i, j] * k[j] for j in range(i))) + \
+                sum(RODAS3_C[i, j] * k[j] for j in range(i))
+            k.append(rhs / (1 / RODAS3_GAMMA - z))
+        return 1 + sum(RODAS3_M[i] * k[i] for i in range(4))
+    raise ValueError(f"no stability function for '{method}'")
+
+
+def bounce_decay(path, t_max=1.0):
+    """Bounce frequency [rad/s] and decay rate [1/s] from the vertical CG velocity samples:
+    a two-pole linear prediction w[n+2] = p1 w[n+1] + p2 w[n] + c (c: a slow drift) fitted
+    over the samples up to t_max, or until the bounce has decayed to 2 % of its first
+    swing; the poles are R exp(+-i omega dt), so sigma = -ln|R|/dt, |R|^2 = -p2."""
+    with h5py.File(path, "r") as f:
+        t = f[layout.TIME][:]
+        w = f[layout.BOAT_VELOCITY][:, 2]
+    dt = t[1] - t[0]
+    keep = (t > 0) & (t <= t_max)
+    t, w = t[keep], w[keep]
+    small = np.nonzero(np.abs(w) < 0.02 * np.abs(w).max())[0]
+    n = max(small[0], 8) if len(small) and small[0] > 0 else len(w)
+    w = w[:n]
+    x = np.column_stack([w[1:-1], w[:-2], np.ones(len(w) - 2)])
+    (p1, p2, _), *_ = np.linalg.lstsq(x, w[2:], rcond=None)
+    if p2 >= 0:
+        return np.nan, np.nan
+    r = np.sqrt(-p2)
+    omega = np.arccos(np.clip(p1 / (2 * r), -1, 1)) / dt
+    return omega, -np.log(r) / dt
+
+
+def damping(study, davit, workdir):
+    """Apparent damping ratio of the bounce for each run, measured and predicted."""
+    base = open(study["base"]).read()
+    t_end = study["t_end"]
+    ref_deck = override(variant(base, study["reference"], t_end), "simulation",
+                        "output_interval", "1e-3")
+    path, ok, msg = run_davit(davit, ref_deck, workdir, "ref")
+    if not ok:
+        raise RuntimeError(f"reference run failed: {msg}")
+    omega, sigma = bounce_decay(path)
+    zeta = sigma / omega
+    lam = omega * complex(-zeta, np.sqrt(1 - zeta**2))
+    print(f"reference {study['reference']}: omega {omega:.3f} rad/s, zeta {zeta:.5f}")
+    rows = []
+    for i, spec in enumerate(study["runs"]):
+        method = spec.split()[0]
+        dt = float(re.search(r"dt=(\S+)", spec).group(1))
+        deck = override(variant(base, spec, t_end), "simulation", "output_interval",
+                        f"{max(dt, 1e-3):.6e}")
+        path, ok, msg = run_davit(davit, deck, workdir, f"run{i}")
+        row = {"label": spec, "ok": ok, "message": msg, "dt": dt, "omega_h": omega * dt,
+               "zeta_physical": zeta}
+        r = abs(stability_function(method, dt * lam))
+        row["zeta_predicted"] = -np.log(r) / (dt * omega) if r > 0 else np.inf
+        if ok:
+            row["zeta_measured"] = bounce_decay(path)[1] / omega
+        rows.append(row)
+        print(f"{spec:<48s} omega h {omega * dt:7.3f}  zeta measured "
+              f"{row.get('zeta_measured', np.nan):9.5f}  predicted {row['zeta_predicted']:9.5f}"
+              + ("" if ok else "  FAILED: " + msg[:60]), flush=True)
+    return rows
+
+
 def write_rows(path, study, rows, ref=None):
     """/study/<column> datasets (one entry per run) and the study deck as attributes."""
     with h5py.File(path, "w") as f:
@@ -255,9 +346,11 @@ def main(argv=None):
             write_rows(out, study, rows, ref)
         elif study["kind"] == "stability":
             write_rows(out, study, stability(study, args.davit, workdir))
+        elif study["kind"] == "damping":
+            write_rows(out, study, damping(study, args.davit, workdir))
         else:
             print(f"postproc.study: error: {args.deck}: &study: kind = '{study['kind']}' "
-                  "must be 'work_precision' or 'stability'", file=sys.stderr)
+                  "must be 'work_precision', 'stability' or 'damping'", file=sys.stderr)
             return 1
     print(f"postproc.study: wrote {out}")
     from . import study_figures

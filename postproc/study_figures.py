@@ -1,6 +1,7 @@
 """Charts of the speed-versus-accuracy studies written by `python -m postproc.study`:
 work-precision (error against single-thread wall time) and the stability map (largest
-stable step against the stiffness variant, with the analytic RK4 limit 2.83/|lambda|max).
+stable step against the stiffness variant, with the analytic RK4 limit 2.83/|lambda|max)
+and the spurious damping of the bounce (measured against the stability functions).
 Each function takes a study file and returns the PNG path, or None for another kind."""
 import os
 
@@ -88,6 +89,36 @@ def stability(path, outdir):
     return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
 
 
+def damping(path, outdir):
+    """Apparent damping ratio of the bounce against omega h: measured (markers) and from
+    each method's stability function (lines), with the physical value."""
+    d = _load(path, "damping")
+    if d is None:
+        return None
+    from .study import stability_function
+    zeta = float(d["zeta_physical"][0])
+    lam = complex(-zeta, np.sqrt(1 - zeta**2))
+    wh = np.geomspace(0.03, 10, 400)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for method, name in (("rk4", "RK4"), ("rosenbrock", "RODAS3, fixed step")):
+        r = np.abs(stability_function(method, wh * lam))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pred = np.where(r <= 1, -np.log(r) / wh, np.nan)
+        ax.loglog(wh, pred, "-", color=COLOURS[method], label=f"{name}: -ln|R(h lambda)|/(omega h)")
+        pick = [i for i, s in enumerate(d["label"]) if s.split()[0] == method]
+        ax.loglog(d["omega_h"][pick], d["zeta_measured"][pick], "o", color=COLOURS[method],
+                  label=f"{name}: measured")
+    ax.axhline(zeta, color="k", ls=":", label=f"physical zeta = {zeta:.4f} (slings)")
+    ax.axvline(2.83, color="tab:blue", ls="--", lw=0.8, label="RK4 limit omega h = 2.83")
+    ax.set_xlabel("omega h (bounce 70 rad/s times the step)")
+    ax.set_ylabel("apparent damping ratio of the bounce")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(f"Spurious damping of the bounce on {os.path.basename(d['attrs']['base'])}")
+    fig.tight_layout()
+    return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
+
+
 def _save(fig, outdir, name):
     os.makedirs(outdir, exist_ok=True)
     path = os.path.join(outdir, name + ".png")
@@ -96,4 +127,5 @@ def _save(fig, outdir, name):
     return path
 
 
-STUDY_FIGURES = {"work_precision": work_precision, "stability": stability}
+STUDY_FIGURES = {"work_precision": work_precision, "stability": stability,
+                 "damping": damping}

@@ -87,13 +87,13 @@ contains
     type(boat_hull_type) :: hull
     type(strip_wave_cache_type) :: cache
     real(wp) :: c(3, 3), r(3), h, e_eta(2), e_v(2), bound_eta, bound_v
-    integer :: i
+    integer :: i, k
     call level5_sea(field)
     call afloat(hull, c, r)
     do i = 1, 2
       h = 0.4_wp/real(2**i, wp)
       cache = new_strip_wave_cache(field, hull%n, h)
-      call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r)
+      call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
       call max_errors(cache, field, hull, c, r, 20.0_wp + 0.37_wp*h, [0.0_wp, 0.0_wp, 0.0_wp], &
                       e_eta(i), e_v(i))
       bound_eta = h**4/384*sum(field%amplitude*field%omega**4)
@@ -119,11 +119,11 @@ contains
     type(boat_hull_type) :: hull
     type(strip_wave_cache_type) :: cache
     real(wp) :: c(3, 3), r(3), dx(3), e_eta(2), e_v(2), bound_eta, bound_v, dh
-    integer :: i
+    integer :: i, k
     call level5_sea(field)
     call afloat(hull, c, r)
     cache = new_strip_wave_cache(field, hull%n, 0.05_wp)
-    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r)
+    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
     do i = 1, 2
       dx = [0.08_wp, -0.06_wp, 0.04_wp]/real(i, wp)
       call max_errors(cache, field, hull, c, r, 20.0_wp, dx, e_eta(i), e_v(i))

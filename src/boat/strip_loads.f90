@@ -16,7 +16,7 @@ module davit_boat_strip_loads
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_elevation, wave_kinematics
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_cover, &
-                                    cached_elevation, cached_kinematics
+                                    strip_cached, cached_elevation, cached_kinematics
   implicit none
   private
   public :: strip_model_type, new_strip_model, strip_loads, strip_partial_velocities
@@ -85,16 +85,16 @@ contains
     real(wp) :: vrel(3, s%hull%n), fk(3), p(3), eta, vw(3), aw(3), pw, a1max, heave_rel
     real(wp) :: sin_roll
     integer :: k
-    logical :: cached
-    cached = .false.
-    if (present(cache)) cached = strip_waves_cover(cache, t)
+    logical :: window, cached
+    window = .false.
+    if (present(cache)) window = strip_waves_cover(cache, t)
     f = 0.0_wp
     volume = 0.0_wp
     heave_rel = 0.0_wp
     associate (h => s%hull, n3 => c(3, :))
       do k = 1, h%n
         p = r + c(:, 1)*h%x(k)
-        if (cached) then
+        if (window) then
           eta = cached_elevation(cache, field, k, t, p(1), p(2))
         else
           eta = wave_elevation(field, t, p(1), p(2))
@@ -102,6 +102,8 @@ contains
         wet(k) = section_immersion(h, k, p(3) + eta, n3(2), n3(3))
         if (wet(k)%area <= 0.0_wp) cycle
         vw = 0.0_wp
+        cached = .false.
+        if (window) cached = strip_cached(cache, k)
         if (cached) then
           call cached_kinematics(cache, field, k, t, r + matmul(c, [h%x(k), wet(k)%centroid]), &
                                  eta, vw)

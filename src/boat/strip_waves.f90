@@ -23,19 +23,24 @@ module davit_boat_strip_waves
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
-  public :: strip_waves_due, strip_waves_cover, cached_elevation, cached_kinematics
+  public :: strip_waves_due, strip_waves_cover, strip_cached, cached_elevation
+  public :: cached_kinematics
   public :: elevation_sums, kinematic_sums
 
   !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
   integer, parameter :: ne = 4, nv = 5
-  !> A window is renewed once a step ends past this fraction of it, so steps up to
-  !> (1 - renew) h keep all their stages inside.
-  real(wp), parameter :: renew = 0.75_wp
+  !> A window is renewed once the next step, if up to this many times the last one, could
+  !> end past it: all stages of steady steps stay inside.
+  real(wp), parameter :: reach = 2.0_wp
 
   type :: strip_wave_cache_type
     logical :: enabled = .false., valid = .false.
     !> Window length h [s] and the window [t1, t2].
     real(wp) :: window = 0.0_wp, t(2) = 0.0_wp
+    !> Time of the last accepted step seen [s] (for the next step's reach).
+    real(wp) :: t_last = 0.0_wp
+    !> Strips whose velocity is sampled in this window (those the hull may wet in it).
+    logical, allocatable :: sampled(:)
     !> Reference points: strip centres (x, y) and wet centroids (x, y, stretched depth d0).
     real(wp), allocatable :: p(:, :), q(:, :)
     !> Unramped elevation terms at p and at q, (ne, end, strip); velocity terms at q,
@@ -55,16 +60,20 @@ contains
     cache%enabled = h > 0.0_wp .and. field%kind == wave_irregular
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
-              cache%vq(3, nv, 2, n))
+              cache%vq(3, nv, 2, n), cache%sampled(n))
+    cache%sampled = .false.
   end function new_strip_wave_cache
 
-  !> True when the window should be renewed after a step ending at t.
-  pure logical function strip_waves_due(cache, t)
-    type(strip_wave_cache_type), intent(in) :: cache
+  !> After a step ending at t: true when the window should be renewed (the next step may
+  !> leave it); records t.
+  subroutine strip_waves_due(cache, t, due)
+    type(strip_wave_cache_type), intent(inout) :: cache
     real(wp), intent(in) :: t
-    strip_waves_due = cache%enabled .and. (.not. cache%valid .or. &
-                      t > cache%t(1) + renew*cache%window .or. t < cache%t(1))
-  end function strip_waves_due
+    logical, intent(out) :: due
+    due = cache%enabled .and. (.not. cache%valid .or. t < cache%t(1) .or. &
+                               t + reach*max(t - cache%t_last, 0.0_wp) > cache%t(2))
+    cache%t_last = t
+  end subroutine strip_waves_due
 
   !> True when a stage at time t may use the cache.
   pure logical function strip_waves_cover(cache, t)
@@ -73,26 +82,39 @@ contains
     strip_waves_cover = cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)
   end function strip_waves_cover
 
+  !> True when strip k's velocity was sampled in the current window.
+  pure logical function strip_cached(cache, k)
+    type(strip_wave_cache_type), intent(in) :: cache
+    integer, intent(in) :: k
+    strip_cached = cache%sampled(k)
+  end function strip_cached
+
   !> New window [t, t + h] for the boat at (c, r): references at the strip centres and at
   !> the wet centroids of the sections at t (the keel line of a dry section, where it
-  !> would first get wet).
-  pure subroutine strip_waves_refresh(cache, hull, field, t, c, r)
+  !> would first get wet). The elevation is sampled at every strip centre (every stage
+  !> needs it to find the wet sections), the velocity only at the strips in `maybe_wet` (a
+  !> strip the surface watch proves dry over the window needs none; should it get wet
+  !> after all, its stages take the exact kinematics).
+  pure subroutine strip_waves_refresh(cache, hull, field, t, c, r, maybe_wet)
     type(strip_wave_cache_type), intent(inout) :: cache
     type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    logical, intent(in) :: maybe_wet(:)
     type(section_wet_type) :: wet
     real(wp) :: p(3), q(3), eta, ramp
     integer :: k, j
     if (.not. cache%enabled) return
     cache%t = [t, t + cache%window]
     ramp = wave_ramp(field, t)
+    cache%sampled = maybe_wet
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
       cache%p(:, k) = p(1:2)
       do j = 1, 2
         call elevation_sums(field, cache%t(j), p(1), p(2), cache%ep(:, j, k))
       end do
+      if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
       if (wet%area > 0.0_wp) then
@@ -111,40 +133,67 @@ contains
   end subroutine strip_waves_refresh
 
   !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
+  !> One pass with independent accumulators: the sums are latency-bound one at a time.
   pure subroutine elevation_sums(field, t, x, y, e)
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, x, y
     real(wp), intent(out) :: e(ne)
-    real(wp) :: s(field%n), cs(field%n), as(field%n)
+    real(wp) :: s(field%n), cs(field%n), as
+    integer :: i
     call fast_sincos(field%omega*t + field%phase - field%kx*x - field%ky*y, s, cs)
-    as = field%amplitude*s
-    e = [sum(field%amplitude*cs), -sum(as*field%omega), sum(as*field%kx), sum(as*field%ky)]
+    e = 0.0_wp
+    do i = 1, field%n
+      as = field%amplitude(i)*s(i)
+      e(1) = e(1) + field%amplitude(i)*cs(i)
+      e(2) = e(2) - as*field%omega(i)
+      e(3) = e(3) + as*field%kx(i)
+      e(4) = e(4) + as*field%ky(i)
+    end do
   end subroutine elevation_sums
 
   !> Elevation terms as elevation_sums, and the unramped water velocity (inertial, z down)
   !> at (x, y) and stretched depth d with its derivatives (t, x, y, d): per component
-  !> v = a w exp(-k d) (cos theta cos g, cos theta sin g, sin theta).
+  !> v = a w exp(-k d) (cos theta cos g, cos theta sin g, sin theta), with
+  !> theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin,
+  !> d(sin)/dx = -kx cos, d/dd = -k. One pass, independent accumulators.
   pure subroutine kinematic_sums(field, t, x, y, d, e, v)
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, x, y, d
     real(wp), intent(out) :: e(ne), v(3, nv)
-    real(wp) :: s(field%n), cs(field%n), as(field%n), w(field%n), wc(field%n), ws(field%n)
+    real(wp) :: s(field%n), cs(field%n), w(field%n), as, wc, ws, wcg, wsg, wsc, wss
+    integer :: i
     call fast_sincos(field%omega*t + field%phase - field%kx*x - field%ky*y, s, cs)
-    as = field%amplitude*s
-    e = [sum(field%amplitude*cs), -sum(as*field%omega), sum(as*field%kx), sum(as*field%ky)]
     w = field%amplitude*field%omega*exp(-field%k*d)
-    wc = w*cs
-    ws = w*s
-    ! theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin, d(sin)/dx = -kx cos
-    v(:, 1) = [sum(wc*field%cos_dir), sum(wc*field%sin_dir), sum(ws)]
-    v(:, 2) = [-sum(ws*field%omega*field%cos_dir), -sum(ws*field%omega*field%sin_dir), &
-               sum(wc*field%omega)]
-    v(:, 3) = [sum(ws*field%kx*field%cos_dir), sum(ws*field%kx*field%sin_dir), &
-               -sum(wc*field%kx)]
-    v(:, 4) = [sum(ws*field%ky*field%cos_dir), sum(ws*field%ky*field%sin_dir), &
-               -sum(wc*field%ky)]
-    v(:, 5) = [-sum(wc*field%k*field%cos_dir), -sum(wc*field%k*field%sin_dir), &
-               -sum(ws*field%k)]
+    e = 0.0_wp
+    v = 0.0_wp
+    do i = 1, field%n
+      as = field%amplitude(i)*s(i)
+      e(1) = e(1) + field%amplitude(i)*cs(i)
+      e(2) = e(2) - as*field%omega(i)
+      e(3) = e(3) + as*field%kx(i)
+      e(4) = e(4) + as*field%ky(i)
+      wc = w(i)*cs(i)
+      ws = w(i)*s(i)
+      wcg = wc*field%cos_dir(i)
+      wsg = wc*field%sin_dir(i)
+      wsc = ws*field%cos_dir(i)
+      wss = ws*field%sin_dir(i)
+      v(1, 1) = v(1, 1) + wcg
+      v(2, 1) = v(2, 1) + wsg
+      v(3, 1) = v(3, 1) + ws
+      v(1, 2) = v(1, 2) - wsc*field%omega(i)
+      v(2, 2) = v(2, 2) - wss*field%omega(i)
+      v(3, 2) = v(3, 2) + wc*field%omega(i)
+      v(1, 3) = v(1, 3) + wsc*field%kx(i)
+      v(2, 3) = v(2, 3) + wss*field%kx(i)
+      v(3, 3) = v(3, 3) - wc*field%kx(i)
+      v(1, 4) = v(1, 4) + wsc*field%ky(i)
+      v(2, 4) = v(2, 4) + wss*field%ky(i)
+      v(3, 4) = v(3, 4) - wc*field%ky(i)
+      v(1, 5) = v(1, 5) - wcg*field%k(i)
+      v(2, 5) = v(2, 5) - wsg*field%k(i)
+      v(3, 5) = v(3, 5) - ws*field%k(i)
+    end do
   end subroutine kinematic_sums
 
   !> Cubic Hermite weights (h00, h10 h, h01, h11 h) at s = (t - t1)/h.

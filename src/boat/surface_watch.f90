@@ -17,7 +17,7 @@ module davit_boat_surface_watch
   use davit_boat_strip_loads, only: strip_model_type
   implicit none
   private
-  public :: surface_watch_type, new_surface_watch, watch_refresh, surely_dry
+  public :: surface_watch_type, new_surface_watch, watch_refresh, surely_dry, strip_surely_dry
 
   type :: surface_watch_type
     logical :: valid = .false.
@@ -75,18 +75,29 @@ contains
     type(surface_watch_type), intent(in) :: w
     type(strip_model_type), intent(in) :: s
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3), eta_up
-    type(section_wet_type) :: wet
     integer :: k
     surely_dry = .false.
     if (.not. w%valid) return
     do k = 1, s%hull%n
-      p = r + c(:, 1)*s%hull%x(k)
-      eta_up = w%eta(k) + w%rate_bound*abs(t - w%t) + w%slope_bound*norm2(p(1:2) - w%xy(:, k))
-      wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
-      if (wet%area > 0.0_wp) return
+      if (.not. strip_surely_dry(w, s, k, t, c, r)) return
     end do
     surely_dry = .true.
   end function surely_dry
+
+  !> True only if strip k cannot touch the water at time t with the boat at (c, r).
+  pure logical function strip_surely_dry(w, s, k, t, c, r)
+    type(surface_watch_type), intent(in) :: w
+    type(strip_model_type), intent(in) :: s
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp) :: p(3), eta_up
+    type(section_wet_type) :: wet
+    strip_surely_dry = .false.
+    if (.not. w%valid) return
+    p = r + c(:, 1)*s%hull%x(k)
+    eta_up = w%eta(k) + w%rate_bound*abs(t - w%t) + w%slope_bound*norm2(p(1:2) - w%xy(:, k))
+    wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
+    strip_surely_dry = wet%area <= 0.0_wp
+  end function strip_surely_dry
 
 end module davit_boat_surface_watch

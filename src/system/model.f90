@@ -33,7 +33,7 @@ module davit_system_model
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch, watch_refresh, &
-                                      surely_dry
+                                      surely_dry, strip_surely_dry
   use davit_error, only: error_type
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_nstate
@@ -363,15 +363,24 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
     integer :: deepest(self%fenders%nf), j
+    logical :: due, maybe_wet(self%water%hull%n)
     if (self%with_ship) call self%ship%after_step(t, y(self%iship:self%iship + ship_nstate - 1))
     if (.not. self%watch%valid .or. t - self%watch%t >= self%watch%interval) then
       c = rotation_matrix(y(1:3))
       call watch_refresh(self%watch, self%water, self%sea, t, c, matmul(c, y(4:6)))
     end if
-    if (strip_waves_due(self%waves, t)) then
+    ! Sample the water at the strips the hull may wet within the window (the watch's
+    ! bound at its far end): otherwise the stages of a hull just above the crests would
+    ! all take the exact sums.
+    call strip_waves_due(self%waves, t, due)
+    if (due) then
       c = rotation_matrix(y(1:3))
-      if (.not. surely_dry(self%watch, self%water, t, c, matmul(c, y(4:6)))) &
-        call strip_waves_refresh(self%waves, self%water%hull, self%sea, t, c, matmul(c, y(4:6)))
+      do j = 1, self%water%hull%n
+        maybe_wet(j) = .not. strip_surely_dry(self%watch, self%water, j, &
+                                              t + self%waves%window, c, matmul(c, y(4:6)))
+      end do
+      if (any(maybe_wet)) call strip_waves_refresh(self%waves, self%water%hull, self%sea, t, &
+                                                   c, matmul(c, y(4:6)), maybe_wet)
     end if
     if (self%on_davit .and. self%release_time < 0.0_wp) call watch_waterborne(self, t, y)
     if (.not. self%contact) return
@@ -423,9 +432,7 @@ contains
     if (r(3) < -10.0_wp) return
     if (self%waterborne_time < 0.0_wp) then
       weight = self%boat%mass*gravity
-      ! A hull the surface watch proves dry displaces nothing: during the ~40 s the boat
-      ! spends lowered within 10 m of the water this skips the exact strip sums after every
-      ! step (60 % of the irregular launch, davit bench), with bitwise the same result.
+      ! the watch proves most of these steps dry: no strip sums then (exact)
       volume = 0.0_wp
       if (.not. surely_dry(self%watch, self%water, t, c, r)) &
         call strip_loads(self%water, self%sea, t, c, r, y(boat_u(1):boat_u(2)), fw, volume, &

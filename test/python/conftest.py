@@ -21,8 +21,8 @@ def _find_binary():
     env = os.environ.get("DAVIT_BIN")
     if env:
         return env
-    out = subprocess.run(["fpm", "run", "--profile", "release", "--flag", "-march=native",
-                          "--runner", "echo"],
+    out = subprocess.run(["fpm", "run", "--profile", "release",
+                          "--flag", "-march=native -fstack-arrays", "--runner", "echo"],
                          cwd=ROOT, capture_output=True, text=True, check=True)
     return str(ROOT / out.stdout.strip().splitlines()[-1])
 
