@@ -6,7 +6,7 @@ integrators and level-of-detail switches, and the stability map.
     python -m postproc.study input/study_damping.nml [-o out]
 
 A study deck is a namelist with one `&study` group:
-    kind = 'work_precision' | 'stability' | 'damping'
+    kind = 'work_precision' | 'stability' | 'damping' | 'statistics'
     base = 'input/iiib_level5_090.nml'     (the scene every run starts from)
     t_end = 40.0                           (simulated span of each run, s)
     reference = 'rk4 dt=1e-4 dt_contact=2e-6'
@@ -20,6 +20,11 @@ kind = 'damping' measures how much each method damps the boat's bounce on its sl
 decay rate of the vertical CG velocity (a two-pole fit of its samples, bounce_decay), as an
 apparent damping ratio zeta = sigma/omega, beside the value predicted from the method's stability function
 R(h lambda) with the bounce's physical lambda (from the reference run).
+
+kind = 'statistics' is for switches that change the sea itself (wave components): the runs
+cannot be compared path by path, so each run spec is repeated over `seeds` (e.g. seeds = 4)
+sea realisations and the study reports the mean and standard deviation over the seeds of
+the boat's RMS heave, RMS roll and peak horizontal acceleration (sampled), and the cost.
 """
 import argparse
 import os
@@ -39,7 +44,7 @@ KEY_GROUPS = {"dt": "simulation", "dt_contact": "simulation", "rtol": "simulatio
               "fixed_step": "simulation",
               "lumps": "rigging", "sheaves": "rigging", "strips": "boat",
               "frozen": "ship", "n_frequencies": "sea", "n_directions": "sea",
-              "wave_type": "sea"}
+              "wave_type": "sea", "seed": "simulation"}
 STRING_KEYS = {"sheaves", "integrator", "wave_type"}
 
 
@@ -306,6 +311,45 @@ def damping(study, davit, workdir):
     return rows
 
 
+def motion_statistics(path):
+    """RMS heave [m] and roll [rad] about their means, and the peak horizontal CG
+    acceleration [m/s^2] (sampled), of one run file."""
+    with h5py.File(path, "r") as f:
+        z = f[layout.BOAT_POSITION][:, 2]
+        roll = f[layout.BOAT_EULER][:, 0]
+        a = f[layout.BOAT_ACCELERATION][:]
+        wall = float(f.attrs["wall_time"])
+    return {"rms_heave": np.std(z), "rms_roll": np.std(roll),
+            "peak_ah": np.hypot(a[:, 0], a[:, 1]).max(), "wall": wall}
+
+
+def statistics(study, davit, workdir):
+    """Mean and standard deviation over seeds of each run's motion statistics."""
+    base = open(study["base"]).read()
+    t_end = study["t_end"]
+    nseeds = int(study.get("seeds", 4))
+    rows = []
+    for i, spec in enumerate(study["runs"]):
+        samples = []
+        for seed in range(1, nseeds + 1):
+            deck = override(variant(base, spec, t_end), "simulation", "seed", seed)
+            path, ok, msg = run_davit(davit, deck, workdir, f"run{i}_{seed}")
+            if not ok:
+                raise RuntimeError(f"run '{spec}' seed {seed} failed: {msg}")
+            samples.append(motion_statistics(path))
+        row = {"label": spec, "ok": True, "seeds": nseeds}
+        for key in ("rms_heave", "rms_roll", "peak_ah", "wall"):
+            values = np.array([m[key] for m in samples])
+            row[key + "_mean"] = values.mean()
+            row[key + "_sd"] = values.std(ddof=1) if nseeds > 1 else 0.0
+        rows.append(row)
+        print(f"{spec:<44s} heave {row['rms_heave_mean']:.4f} +- {row['rms_heave_sd']:.4f} m  "
+              f"roll {row['rms_roll_mean']:.4f} +- {row['rms_roll_sd']:.4f} rad  "
+              f"a_h {row['peak_ah_mean']:.3f} +- {row['peak_ah_sd']:.3f}  "
+              f"wall {row['wall_mean']:.2f} s", flush=True)
+    return rows
+
+
 def write_rows(path, study, rows, ref=None):
     """/study/<column> datasets (one entry per run) and the study deck as attributes."""
     with h5py.File(path, "w") as f:
@@ -348,9 +392,11 @@ def main(argv=None):
             write_rows(out, study, stability(study, args.davit, workdir))
         elif study["kind"] == "damping":
             write_rows(out, study, damping(study, args.davit, workdir))
+        elif study["kind"] == "statistics":
+            write_rows(out, study, statistics(study, args.davit, workdir))
         else:
             print(f"postproc.study: error: {args.deck}: &study: kind = '{study['kind']}' "
-                  "must be 'work_precision', 'stability' or 'damping'", file=sys.stderr)
+                  "must be 'work_precision', 'stability', 'damping' or 'statistics'", file=sys.stderr)
             return 1
     print(f"postproc.study: wrote {out}")
     from . import study_figures
