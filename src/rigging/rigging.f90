@@ -17,17 +17,34 @@
 !>   y(idr)             drum passage s_drum [m] (paid-out length; speed prescribed)
 !> DOFs (F1): 6n (lumps) + 6 (block translations) + ns sheave rotations + 1 drum = 6n + m + 6
 !> with m = ns + 1; with the boat's 6 and the ship's 6 this is the paper's 6n + m + 18.
+!>
+!> Quasi-static blocks (&rigging blocks = 'quasi_static', review §4.3 item 2): a 50 kg block
+!> between its ~6e7 N/m sling and the falls bounces at ~200 Hz (|lambda| = 1259 1/s on the
+!> III.B deck, RK4 limit 2.25e-3 s), far above anything the boat feels. Dropping the
+!> block's inertia (eq. 82; not its weight) removes that mode: each evaluation finds the
+!> block positions where gravity (eq. 78), the cable's pull (eqs. 69, 79) and the top sling
+!> segment (eqs. 80-81, corrected 63) balance, by Newton on the 6 block coordinates. The
+!> blocks are then no DOFs (ndof = 6n + m), but the layout stays: y(ibr) holds a copy that
+!> follows the solved positions (d/dt = v_b + (r_b - y)/follow_time) and is only the
+!> Newton start, so the right-hand side stays a function of (t, y); y(ibv) is unused and
+!> has zero derivative. Keeping the weight keeps the statics of the massive model (parts
+!> (W/2 + m_b g)/(2 cos a), F2) and keeps the balance well posed: with its sling slack a
+!> block hangs in the cable's V under its weight, where a weightless one would have no
+!> unique position.
 module davit_rigging_rigging
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use davit_kinds, only: wp, gravity, pi
   use davit_error, only: error_type, fatal_error
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_winch, only: winch_type, winch_speed
   use davit_rigging_sling_chain, only: sling_chain_type, max_lumps, chain_forces, &
-                                       chain_energy, new_sling_chain
+                                       chain_energy, new_sling_chain, top_segment_tangent
   use davit_rigging_cable, only: cable_type, max_nodes, node_drum, node_fixed, node_block, &
                                  node_dead, cable_node_kinematics, cable_passages, &
                                  cable_tensions_rotating, cable_tension_quasi_static, &
-                                 cable_node_forces, cable_energy_rotating, cable_geometry
+                                 cable_node_forces, cable_energy_rotating, cable_geometry, &
+                                 cable_block_tangent_rotating, &
+                                 cable_block_tangent_quasi_static
   implicit none
   private
   public :: rigging_type, new_rigging, max_segments, max_sheaves
@@ -36,6 +53,19 @@ module davit_rigging_rigging
   integer, parameter :: max_sheaves = 2*(max_nodes - 2)
   !> Rate scale of the regularised Coulomb bearing moment M_f tanh(omega/omega_f) [rad/s].
   real(wp), parameter :: omega_friction = 1.0e-2_wp
+  !> Quasi-static blocks. Newton stops after a step of at most newton_tol [m]: convergence
+  !> is quadratic (the lagged dashpot velocity adds a linear rate ~1e-4), so what remains
+  !> is below 1e-12 m, which keeps finite-difference Jacobians of the right-hand side
+  !> (davit modes, RODAS3) clean; from the RK4 stages' starts that takes 2 iterations. A step moves a block by at most newton_cap [m] (a slack
+  !> block falling onto its cable); newton_floor [N/m] on the diagonal keeps the matrix
+  !> regular while a block has no taut link (stiffnesses are 1e4 to 1e8 N/m, so it changes
+  !> the converged answer not at all and the rate of convergence by < 1e-7).
+  real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 0.5_wp
+  real(wp), parameter :: newton_floor = 1.0e-3_wp
+  integer, parameter :: newton_max = 60, backtrack_max = 20
+  !> Relaxation time of the block-position copies towards the solved positions [s]: a
+  !> decay rate of 10 1/s, slower than every mode of the boat, so it limits no step.
+  real(wp), parameter :: follow_time = 0.1_wp
 
   type :: rigging_type
     !> Sizes: state length, DOFs (F1), cables (1 for A, 2 for B), total cable segments,
@@ -44,6 +74,8 @@ module davit_rigging_rigging
     !> Offsets into y_rig (see the module header).
     integer :: ilr = 1, ilv = 1, ibr = 1, ibv = 1, ith = 1, iom = 1, idr = 1
     logical :: rotating = .false., unstretched = .false.
+    !> Quasi-static (inertia-free) blocks: positions solved from the force balance.
+    logical :: static_blocks = .false.
     character(len=1) :: reeving = "a"
     type(cable_type) :: cables(2)
     type(sling_chain_type) :: sling
@@ -58,6 +90,7 @@ module davit_rigging_rigging
     procedure :: energy => rigging_energy
     procedure :: observe => rigging_observe
     procedure :: paid_out, sheave_angles, drum_angle, lump_positions, block_positions
+    procedure :: block_state => rigging_block_state
     procedure :: unstretched_length
   end type rigging_type
 
@@ -76,6 +109,7 @@ contains
     ea = cfg%youngs_modulus*pi*cfg%wire_diameter**2/4.0_wp
     self%rotating = cfg%sheaves == "rotating"
     self%unstretched = cfg%initial == "unstretched"
+    self%static_blocks = cfg%blocks == "quasi_static"
     self%reeving = cfg%reeving
     self%nlump = cfg%lumps
     self%sling = new_sling_chain(cfg%lumps, cfg%sling_length, ea, cfg%sling_damping, &
@@ -168,7 +202,7 @@ contains
     self%iom = self%ith + self%nsheave
     self%idr = self%iom + self%nsheave
     self%nstate = self%idr
-    self%ndof = 6*n + 6 + self%nsheave + 1
+    self%ndof = 6*n + merge(0, 6, self%static_blocks) + self%nsheave + 1
   end subroutine set_layout
 
   !> Time derivative of the rigging states and the forces ON the two boat hooks (inertial
@@ -207,11 +241,22 @@ contains
     real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
     real(wp), intent(out) :: dydt(:), hook_force(3, 2)
     real(wp), intent(out) :: seg(max_segments), sl(max_lumps + 1, 2)
-    real(wp) :: block_f(3, 2), torque(max_sheaves), f_top(3), v_drum
-    integer :: a, n, il, iv, ib, ibv, ns
+    real(wp) :: block_f(3, 2), torque(max_sheaves), f_top(3), v_drum, br(3, 2), bv(3, 2)
+    real(wp) :: low_r(3, 2), low_v(3, 2)
+    integer :: a, n, il, iv, ns
+    logical :: solved
     n = self%nlump
     ns = self%nsheave
     v_drum = winch_speed(self%winch, t)
+    br(:, 1) = y(self%ibr:self%ibr + 2)
+    br(:, 2) = y(self%ibr + 3:self%ibr + 5)
+    bv(:, 1) = y(self%ibv:self%ibv + 2)
+    bv(:, 2) = y(self%ibv + 3:self%ibv + 5)
+    if (self%static_blocks) then
+      call sling_low_ends(self, y, hook_pos, hook_vel, low_r, low_v)
+      call solve_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, br, &
+                        bv, solved)
+    end if
     seg = 0.0_wp
     sl = 0.0_wp
     block_f = 0.0_wp
@@ -219,18 +264,29 @@ contains
     do a = 1, 2
       il = self%ilr + 3*n*(a - 1)
       iv = self%ilv + 3*n*(a - 1)
-      ib = self%ibr + 3*(a - 1)
-      ibv = self%ibv + 3*(a - 1)
       call chain_forces(self%sling, hook_pos(:, a), hook_vel(:, a), y(il:il + 3*n - 1), &
-                        y(iv:iv + 3*n - 1), y(ib:ib + 2), y(ibv:ibv + 2), &
+                        y(iv:iv + 3*n - 1), br(:, a), bv(:, a), &
                         dydt(iv:iv + 3*n - 1), f_top, hook_force(:, a), sl(1:n + 1, a))
       dydt(il:il + 3*n - 1) = y(iv:iv + 3*n - 1)
       block_f(:, a) = block_f(:, a) + f_top
     end do
     torque = 0.0_wp
-    call cable_forces(self, y, v_drum, ship_r, ship_c, ship_v, ship_w, block_f, torque, seg)
-    dydt(self%ibr:self%ibr + 5) = y(self%ibv:self%ibv + 5)
-    dydt(self%ibv:self%ibv + 5) = reshape(block_f, [6])/self%block_mass
+    call cable_forces(self, y, br, bv, v_drum, ship_r, ship_c, ship_v, ship_w, block_f, &
+                      torque, seg)
+    if (self%static_blocks) then
+      ! block_f is the balance's residual (~0); the copies follow the solved blocks. A
+      ! balance that fails to converge poisons them, so the driver's finiteness check stops
+      ! the run naming a rigging state instead of going on with wrong forces.
+      dydt(self%ibr:self%ibr + 2) = bv(:, 1) + (br(:, 1) - y(self%ibr:self%ibr + 2))/follow_time
+      dydt(self%ibr + 3:self%ibr + 5) = bv(:, 2) + &
+                                        (br(:, 2) - y(self%ibr + 3:self%ibr + 5))/follow_time
+      if (.not. solved) dydt(self%ibr:self%ibr + 5) = ieee_value(0.0_wp, ieee_quiet_nan)
+      dydt(self%ibv:self%ibv + 5) = 0.0_wp
+    else
+      dydt(self%ibr:self%ibr + 5) = y(self%ibv:self%ibv + 5)
+      dydt(self%ibv:self%ibv + 2) = block_f(:, 1)/self%block_mass
+      dydt(self%ibv + 3:self%ibv + 5) = block_f(:, 2)/self%block_mass
+    end if
     if (ns > 0) then
       associate (omega => y(self%iom:self%iom + ns - 1))
         dydt(self%ith:self%ith + ns - 1) = omega
@@ -241,41 +297,287 @@ contains
     dydt(self%idr) = v_drum
   end subroutine evaluate
 
-  !> Cable forces on the blocks, sheave torques and segment tensions of every cable.
-  pure subroutine cable_forces(self, y, v_drum, ship_r, ship_c, ship_v, ship_w, block_f, &
-                               torque, seg)
+  !> Cable forces on the blocks, sheave torques and segment tensions of every cable, with
+  !> the blocks at br moving at bv.
+  pure subroutine cable_forces(self, y, br, bv, v_drum, ship_r, ship_c, ship_v, ship_w, &
+                               block_f, torque, seg)
     type(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: y(:), v_drum, ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
+    real(wp), intent(in) :: y(:), br(3, 2), bv(3, 2), v_drum
+    real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
     real(wp), intent(inout) :: block_f(3, 2), torque(max_sheaves), seg(max_segments)
     real(wp) :: p(3, max_nodes), v(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
-    real(wp) :: ldot(max_nodes - 1), s(max_nodes), sdot(max_nodes), f(max_nodes - 1)
-    real(wp) :: g(max_nodes - 1), br(3, 2), bv(3, 2)
-    integer :: c, k, nseg, ns
-    ns = self%nsheave
-    br = reshape(y(self%ibr:self%ibr + 5), [3, 2])
-    bv = reshape(y(self%ibv:self%ibv + 5), [3, 2])
+    real(wp) :: s(max_nodes), sdot(max_nodes), f(max_nodes - 1), g(max_nodes - 1)
+    integer :: c, k, nseg
     k = 0
     do c = 1, self%ncable
       associate (cab => self%cables(c))
         nseg = cab%nnode - 1
         call cable_node_kinematics(cab, ship_r, ship_c, ship_v, ship_w, br, bv, p, v)
-        call cable_geometry(cab, p, v, lam, l, ldot)
-        if (self%rotating) then
-          call cable_passages(cab, y(self%idr), v_drum, self%sheave_radius, &
-                              y(self%ith:self%ith + ns - 1), y(self%iom:self%iom + ns - 1), &
-                              s, sdot)
-          call cable_tensions_rotating(cab, l, ldot, s, sdot, f, g)
-        else
-          call cable_tension_quasi_static(cab, l, ldot, self%l0_total(c) + y(self%idr), &
-                                          v_drum, self%friction_ratio, f)
-          g = f
-        end if
+        call cable_tensions(self, c, y, p, v, v_drum, lam, l, s, sdot, f, g)
         call cable_node_forces(cab, lam, f, g, self%sheave_radius, block_f, torque)
         seg(k + 1:k + nseg) = f(1:nseg)
         k = k + nseg
       end associate
     end do
   end subroutine cable_forces
+
+  !> Chords (lam, l), passages (s, sdot; rotating sheaves) and segment tensions f (g drives
+  !> the sheaves) of cable c with its nodes at p moving at v.
+  pure subroutine cable_tensions(self, c, y, p, v, v_drum, lam, l, s, sdot, f, g)
+    type(rigging_type), intent(in) :: self
+    integer, intent(in) :: c
+    real(wp), intent(in) :: y(:), p(3, max_nodes), v(3, max_nodes), v_drum
+    real(wp), intent(out) :: lam(3, max_nodes - 1), l(max_nodes - 1)
+    real(wp), intent(out) :: s(max_nodes), sdot(max_nodes), f(max_nodes - 1)
+    real(wp), intent(out) :: g(max_nodes - 1)
+    real(wp) :: ldot(max_nodes - 1)
+    integer :: ns
+    ns = self%nsheave
+    associate (cab => self%cables(c))
+      call cable_geometry(cab, p, v, lam, l, ldot)
+      if (self%rotating) then
+        call cable_passages(cab, y(self%idr), v_drum, self%sheave_radius, &
+                            y(self%ith:self%ith + ns - 1), y(self%iom:self%iom + ns - 1), &
+                            s, sdot)
+        call cable_tensions_rotating(cab, l, ldot, s, sdot, f, g)
+      else
+        s = 0.0_wp
+        sdot = 0.0_wp
+        call cable_tension_quasi_static(cab, l, ldot, self%l0_total(c) + y(self%idr), &
+                                        v_drum, self%friction_ratio, f)
+        g = f
+      end if
+    end associate
+  end subroutine cable_tensions
+
+  !> Lower end of each sling's top segment: the hook (no lumps) or the top lump n.
+  pure subroutine sling_low_ends(self, y, hook_pos, hook_vel, low_r, low_v)
+    type(rigging_type), intent(in) :: self
+    real(wp), intent(in) :: y(:), hook_pos(3, 2), hook_vel(3, 2)
+    real(wp), intent(out) :: low_r(3, 2), low_v(3, 2)
+    integer :: a, n, il, iv
+    n = self%nlump
+    low_r = hook_pos
+    low_v = hook_vel
+    if (n == 0) return
+    do a = 1, 2
+      il = self%ilr + 3*n*(a - 1) + 3*(n - 1)
+      iv = self%ilv + 3*n*(a - 1) + 3*(n - 1)
+      low_r(:, a) = y(il:il + 2)
+      low_v(:, a) = y(iv:iv + 2)
+    end do
+  end subroutine sling_low_ends
+
+  !> Quasi-static blocks: positions br (in: the start, e.g. the state's copies) where the
+  !> net force on each block, cable pull + top sling segment + weight m_b g, vanishes, and
+  !> their velocities bv on that balance. Newton on the 6 coordinates of both blocks
+  !> together: with quasi-static sheaves on reeving A one tension couples them.
+  !>
+  !> The balance is dF/dr dr + dF/dt = 0 along the motion, so the blocks move at
+  !> bv = -(dF/dr)^(-1) dF/dt|_r, dF/dt|_r being the force rate due to everything else
+  !> (hooks or lumps, ship-fixed nodes, drum, sheaves) at fixed blocks. That is the
+  !> velocity the dashpots see: to first order in c/k the slow motion of the massive model
+  !> (its block follows the same balance, lagging by c v/k ~ 1e-4 m); left out are the
+  !> dashpots' response to accelerations, O(c a/k). bv comes first from the tangent at the
+  !> start, then from each iterate's (lagged by one iteration in the residual: its
+  !> effect is axial, c (v/l)/k_axial ~ 1e-4 of the step, and converges with it).
+  !>
+  !> Well posed whenever the cable is taut, which the weight ensures at the solution (a
+  !> tension-only sling pulls the block down, only the cable holds it up); the potential
+  !> (elastic energies - m_b g z) is convex in the block positions, so the minimiser is
+  !> unique. Globalisation for starts far off (a sling going slack lets its block rise to
+  !> where the cable alone holds its weight): steps capped at newton_cap per block,
+  !> halved while they raise |F| (up to backtrack_max times, then taken anyway), and the
+  !> diagonal floor newton_floor for a block with no taut link. solved = .false. after
+  !> newton_max iterations.
+  pure subroutine solve_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, &
+                               br, bv, solved, iterations)
+    type(rigging_type), intent(in) :: self
+    real(wp), intent(in) :: y(:), low_r(3, 2), low_v(3, 2), v_drum
+    real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
+    real(wp), intent(inout) :: br(3, 2)
+    real(wp), intent(out) :: bv(3, 2)
+    logical, intent(out) :: solved
+    integer, intent(out), optional :: iterations
+    real(wp) :: b(6), v(6), res(6), jac(6, 6), rate(6), x(6, 2), step(6), b_prev(6)
+    real(wp) :: fnorm, fnorm_prev, longest, pn(3, max_nodes, 2), vn(3, max_nodes, 2)
+    integer :: it, nback, c
+    ! the ship-fixed nodes once (blocks at rest in vn); block_balance places the blocks
+    do c = 1, self%ncable
+      call cable_node_kinematics(self%cables(c), ship_r, ship_c, ship_v, ship_w, br, &
+                                 0.0_wp*br, pn(:, :, c), vn(:, :, c))
+    end do
+    b(1:3) = br(:, 1)
+    b(4:6) = br(:, 2)
+    v = 0.0_wp
+    step = 0.0_wp
+    b_prev = b
+    fnorm_prev = huge(1.0_wp)
+    nback = 0
+    solved = .false.
+    ! the velocity first (from the tangent at the start), so the dashpot forces in the
+    ! first residual are already about right (they are ~10 % of the load while bouncing)
+    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, res, jac, rate)
+    call newton_matrix(jac)
+    x(:, 1) = res
+    x(:, 2) = rate
+    call dense_solve(jac, x)
+    v = x(:, 2)
+    do it = 1, newton_max
+      call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, res, jac, rate)
+      fnorm = norm2(res)
+      if (fnorm > fnorm_prev .and. maxval(abs(step)) > 1.0e3_wp*newton_tol .and. &
+          nback < backtrack_max) then
+        step = 0.5_wp*step
+        b = b_prev + step
+        nback = nback + 1
+        cycle
+      end if
+      nback = 0
+      ! (-dF/dr + floor) x = [F, dF/dt]: x(:, 1) the Newton step, x(:, 2) the velocity.
+      call newton_matrix(jac)
+      x(:, 1) = res
+      x(:, 2) = rate
+      call dense_solve(jac, x)
+      v = x(:, 2)
+      step = x(:, 1)
+      longest = max(norm2(step(1:3)), norm2(step(4:6)))
+      if (longest > newton_cap) step = step*(newton_cap/longest)
+      b_prev = b
+      fnorm_prev = fnorm
+      b = b + step
+      if (maxval(abs(step)) <= newton_tol) then
+        solved = .true.
+        exit
+      end if
+    end do
+    br(:, 1) = b(1:3)
+    br(:, 2) = b(4:6)
+    bv(:, 1) = v(1:3)
+    bv(:, 2) = v(4:6)
+    if (present(iterations)) iterations = it
+  end subroutine solve_blocks
+
+  !> -jac + newton_floor I, the matrix of solve_blocks' Newton step.
+  pure subroutine newton_matrix(jac)
+    real(wp), intent(inout) :: jac(6, 6)
+    integer :: j
+    jac = -jac
+    do j = 1, 6
+      jac(j, j) = jac(j, j) + newton_floor
+    end do
+  end subroutine newton_matrix
+
+  !> Net force res on the two blocks at positions b moving at v (cable, top sling segments,
+  !> weight), its Jacobian jac = d res/d b and its rate at fixed blocks, rate = d res/dt.
+  !> pn, vn: the cables' ship-fixed node positions and velocities (block nodes zero in vn:
+  !> the rate is taken with the blocks at rest).
+  pure subroutine block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, res, jac, rate)
+    type(rigging_type), intent(in) :: self
+    real(wp), intent(in) :: y(:), b(6), v(6), low_r(3, 2), low_v(3, 2), v_drum
+    real(wp), intent(in) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2)
+    real(wp), intent(out) :: res(6), jac(6, 6), rate(6)
+    real(wp) :: br(3, 2), bv(3, 2), f_top(3), k(3, 3), block_f(3, 2), torque(max_sheaves)
+    real(wp) :: p(3, max_nodes), vv(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
+    real(wp) :: s(max_nodes), sdot(max_nodes), f(max_nodes - 1), g(max_nodes - 1)
+    integer :: a, c, i
+    br(:, 1) = b(1:3)
+    br(:, 2) = b(4:6)
+    bv(:, 1) = v(1:3)
+    bv(:, 2) = v(4:6)
+    jac = 0.0_wp
+    rate = 0.0_wp
+    block_f = 0.0_wp
+    block_f(3, :) = self%block_mass*gravity
+    do a = 1, 2
+      call top_segment_tangent(self%sling, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
+                               f_top, k)
+      block_f(:, a) = block_f(:, a) + f_top
+      jac(3*a - 2:3*a, 3*a - 2:3*a) = k
+      rate(3*a - 2:3*a) = -matmul(k, low_v(:, a))
+    end do
+    torque = 0.0_wp
+    do c = 1, self%ncable
+      associate (cab => self%cables(c))
+        p = pn(:, :, c)
+        vv = vn(:, :, c)
+        do i = 1, cab%nnode
+          if (cab%kind(i) /= node_block) cycle
+          p(:, i) = br(:, cab%block(i))
+          vv(:, i) = bv(:, cab%block(i))
+        end do
+        call cable_tensions(self, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
+        call cable_node_forces(cab, lam, f, g, self%sheave_radius, block_f, torque)
+        if (self%rotating) then
+          call cable_block_tangent_rotating(cab, lam, l, f, s, sdot, vv, vn(:, :, c), jac, &
+                                            rate)
+        else
+          call cable_block_tangent_quasi_static(cab, lam, l, f, self%l0_total(c) + &
+                                                y(self%idr), v_drum, self%friction_ratio, &
+                                                vv, vn(:, :, c), jac, rate)
+        end if
+      end associate
+    end do
+    res(1:3) = block_f(:, 1)
+    res(4:6) = block_f(:, 2)
+  end subroutine block_balance
+
+  !> Solves a x = b in place (b holds x on return) by Gaussian elimination with partial
+  !> pivoting; a is overwritten. For the small, regular 6 x 6 systems of solve_blocks.
+  pure subroutine dense_solve(a, b)
+    real(wp), intent(inout) :: a(6, 6), b(6, 2)
+    real(wp) :: row(6), rhs(2), m
+    integer :: i, j, k, piv
+    do j = 1, 6
+      piv = j - 1 + maxloc(abs(a(j:6, j)), 1)
+      if (piv /= j) then
+        row = a(j, :)
+        a(j, :) = a(piv, :)
+        a(piv, :) = row
+        rhs = b(j, :)
+        b(j, :) = b(piv, :)
+        b(piv, :) = rhs
+      end if
+      do i = j + 1, 6
+        m = a(i, j)/a(j, j)
+        a(i, j + 1:6) = a(i, j + 1:6) - m*a(j, j + 1:6)
+        b(i, :) = b(i, :) - m*b(j, :)
+      end do
+    end do
+    do j = 6, 1, -1
+      do k = j + 1, 6
+        b(j, :) = b(j, :) - a(j, k)*b(k, :)
+      end do
+      b(j, :) = b(j, :)/a(j, j)
+    end do
+  end subroutine dense_solve
+
+  !> Block positions and velocities (3, block), inertial: the states for massive blocks;
+  !> for quasi-static blocks the solved balance at this state (the copies in y are only the
+  !> start). solved is .false. if the balance did not converge; iterations: Newton's.
+  pure subroutine rigging_block_state(self, t, y, hook_pos, hook_vel, ship_r, ship_c, ship_v, &
+                                      ship_w, r, v, solved, iterations)
+    class(rigging_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
+    real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
+    real(wp), intent(out) :: r(3, 2), v(3, 2)
+    logical, intent(out), optional :: solved
+    integer, intent(out), optional :: iterations
+    real(wp) :: low_r(3, 2), low_v(3, 2)
+    logical :: ok
+    integer :: it
+    r = reshape(y(self%ibr:self%ibr + 5), [3, 2])
+    v = reshape(y(self%ibv:self%ibv + 5), [3, 2])
+    ok = .true.
+    it = 0
+    if (self%static_blocks) then
+      call sling_low_ends(self, y, hook_pos, hook_vel, low_r, low_v)
+      call solve_blocks(self, y, low_r, low_v, winch_speed(self%winch, t), ship_r, ship_c, &
+                        ship_v, ship_w, r, v, ok, it)
+    end if
+    if (present(solved)) solved = ok
+    if (present(iterations)) iterations = it
+  end subroutine rigging_block_state
 
   !> Initial rigging state for a boat hanging at rest with its hooks at hook_pos and needing
   !> the force hook_force from the rigging (e.g. (0, 0, -W/2) each). 'equilibrium': each
@@ -375,19 +677,31 @@ contains
 
   !> Kinetic (lumps, blocks, sheaves) + gravity (-m g z) + elastic (slings, cables) [J].
   !> The drum does work when it pays out, so this is conserved only with the drum stopped.
+  !> Quasi-static blocks have no kinetic energy and sit at their balance.
   pure function rigging_energy(self, y, hook_pos, ship_r, ship_c) result(en)
     class(rigging_type), intent(in) :: self
     real(wp), intent(in) :: y(:), hook_pos(3, 2), ship_r(3), ship_c(3, 3)
     real(wp) :: en, br(3, 2), p(3, max_nodes), v(3, max_nodes), lam(3, max_nodes - 1)
     real(wp) :: l(max_nodes - 1), ldot(max_nodes - 1), s(max_nodes), sdot(max_nodes)
-    real(wp) :: zero3(3), stretch
+    real(wp) :: zero3(3), stretch, bv(3, 2), lr(3, 2), lv(3, 2)
     integer :: a, c, n, il, iv, ns
+    logical :: solved
     n = self%nlump
     ns = self%nsheave
     zero3 = 0.0_wp
-    br = reshape(y(self%ibr:self%ibr + 5), [3, 2])
-    en = 0.5_wp*self%block_mass*sum(y(self%ibv:self%ibv + 5)**2) - &
-         self%block_mass*gravity*sum(br(3, :))
+    if (self%static_blocks) then
+      ! the blocks where the elastic forces and the weights balance (no motion: no dashpot
+      ! forces); with them at that minimum the energy is a potential of the hooks.
+      br = reshape(y(self%ibr:self%ibr + 5), [3, 2])
+      call sling_low_ends(self, y, hook_pos, 0.0_wp*hook_pos, lr, lv)
+      call solve_blocks(self, y, lr, 0.0_wp*lv, 0.0_wp, ship_r, ship_c, zero3, zero3, br, &
+                        bv, solved)
+      en = -self%block_mass*gravity*sum(br(3, :))
+    else
+      br = reshape(y(self%ibr:self%ibr + 5), [3, 2])
+      en = 0.5_wp*self%block_mass*sum(y(self%ibv:self%ibv + 5)**2) - &
+           self%block_mass*gravity*sum(br(3, :))
+    end if
     if (ns > 0) en = en + 0.5_wp*self%sheave_inertia*sum(y(self%iom:self%iom + ns - 1)**2)
     do a = 1, 2
       il = self%ilr + 3*n*(a - 1)
@@ -467,7 +781,8 @@ contains
     r = reshape(y(self%ilr:self%ilr + 6*self%nlump - 1), [3, self%nlump, 2])
   end function lump_positions
 
-  !> Block positions (3, block), inertial [m].
+  !> Block positions (3, block), inertial [m], as stored in the state: for quasi-static
+  !> blocks the copies that follow the solved positions (block_state gives those).
   pure function block_positions(self, y) result(r)
     class(rigging_type), intent(in) :: self
     real(wp), intent(in) :: y(:)

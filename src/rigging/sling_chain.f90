@@ -8,6 +8,7 @@ module davit_rigging_sling_chain
   implicit none
   private
   public :: sling_chain_type, max_lumps, chain_forces, chain_energy, new_sling_chain
+  public :: top_segment_tangent
 
   integer, parameter :: max_lumps = 20
 
@@ -99,5 +100,31 @@ contains
       en = en + 0.5_wp*ch%k_seg*stretch**2
     end do
   end function chain_energy
+
+  !> The top segment (from r_low, the hook or lump n, to the block at r_top) for a
+  !> quasi-static block: its force on the block f_top = -f e and that force's tangent
+  !> d f_top/d r_top = -(e g^T + (f/D)(I - e e^T)), zero when slack, with
+  !> g = k e + (c/D)(I - e e^T) dv the change of f = k (D - l0) + c e . dv (dv = v_top -
+  !> v_low) with r_top: the spring, the dashpot through the turning chord, and the chord
+  !> turning the force. Moving r_low changes f_top by -jac times its displacement.
+  pure subroutine top_segment_tangent(ch, r_low, v_low, r_top, v_top, f_top, jac)
+    type(sling_chain_type), intent(in) :: ch
+    real(wp), intent(in) :: r_low(3), v_low(3), r_top(3), v_top(3)
+    real(wp), intent(out) :: f_top(3), jac(3, 3)
+    real(wp) :: f, e(3), k_geo, dist, g(3), dv(3)
+    integer :: j
+    call segment(ch, r_low, v_low, r_top, v_top, f, e)
+    f_top = -f*e
+    jac = 0.0_wp
+    if (f <= 0.0_wp) return
+    dist = norm2(r_top - r_low)
+    k_geo = f/dist
+    dv = v_top - v_low
+    g = ch%k_seg*e + ch%c_seg/dist*(dv - dot_product(e, dv)*e)
+    do j = 1, 3
+      jac(:, j) = -e*g(j) + k_geo*e(j)*e
+      jac(j, j) = jac(j, j) - k_geo
+    end do
+  end subroutine top_segment_tangent
 
 end module davit_rigging_sling_chain
