@@ -16,6 +16,7 @@ module davit_rigging_cable
   public :: cable_node_kinematics, cable_passages, cable_tensions_rotating
   public :: cable_tension_quasi_static, cable_node_forces, cable_energy_rotating
   public :: cable_geometry, cable_block_tangent_rotating, cable_block_tangent_quasi_static
+  public :: ramp_factor, ramp_slope
 
   integer, parameter :: max_nodes = 8
   integer, parameter :: node_drum = 1, node_fixed = 2, node_block = 3, node_dead = 4
@@ -34,6 +35,10 @@ module davit_rigging_cable
     real(wp) :: l0_init(max_nodes - 1) = 0.0_wp
     !> Axial stiffness EA [N] and per-segment absolute dashpot [N s/m].
     real(wp) :: ea = 0.0_wp, damping = 0.0_wp
+    !> Stretch over which the dashpot tension grows from 0 to full [m]; 0: at once (the
+    !> paper's law, massive blocks). Quasi-static blocks need the tension continuous where
+    !> a cable goes slack, or a massless block has no balance there (ramp_factor).
+    real(wp) :: ramp = 0.0_wp
   end type cable_type
 
 contains
@@ -119,7 +124,7 @@ contains
       if (e <= 0.0_wp) cycle
       fel = cab%ea*e/l0
       edot = ldot(i) - (sdot(i) - sdot(i + 1))
-      f(i) = max(0.0_wp, fel + cab%damping*edot)
+      f(i) = max(0.0_wp, fel + cab%damping*edot*ramp_factor(e, cab%ramp))
       g(i) = f(i) + fel**2/(2.0_wp*cab%ea)
     end do
   end subroutine cable_tensions_rotating
@@ -149,7 +154,8 @@ contains
     if (stretch <= 0.0_wp) return
     ! sum_i w_i T L0_i/EA = stretch, with L0_i = l_i L0_tot/L_geom
     lengths = sum(w(1:nseg)*l(1:nseg))*l0_total/total
-    t = cab%ea*stretch/lengths + cab%damping*(sum(ldot(1:nseg)) - v_drum)/sum(w(1:nseg))
+    t = cab%ea*stretch/lengths + cab%damping*(sum(ldot(1:nseg)) - v_drum)/sum(w(1:nseg))* &
+        ramp_factor(stretch, cab%ramp)
     f(1:nseg) = max(0.0_wp, t)*w(1:nseg)
   end subroutine cable_tension_quasi_static
 
@@ -201,15 +207,21 @@ contains
     real(wp), intent(in) :: s(max_nodes), sdot(max_nodes), v(3, max_nodes)
     real(wp), intent(in) :: v_exo(3, max_nodes)
     real(wp), intent(inout) :: jac(6, 6), rate(6)
-    real(wp) :: k(3, 3), l0, dl0, g(3)
+    real(wp) :: k(3, 3), l0, dl0, g(3), e, edot, phi, dphi
     integer :: i
     do i = 1, cab%nnode - 1
       if (f(i) <= 0.0_wp) cycle
       l0 = max(cab%l0_init(i) + s(i) - s(i + 1), l0_floor)
       dl0 = sdot(i) - sdot(i + 1)
-      g = cab%ea/l0*lam(:, i) + cab%damping/l(i)*across(lam(:, i), v(:, i + 1) - v(:, i))
+      e = l(i) - l0
+      edot = dot_product(lam(:, i), v(:, i + 1) - v(:, i)) - dl0
+      phi = ramp_factor(e, cab%ramp)
+      dphi = ramp_slope(e, cab%ramp)
+      g = (cab%ea/l0 + cab%damping*edot*dphi)*lam(:, i) + &
+          cab%damping*phi/l(i)*across(lam(:, i), v(:, i + 1) - v(:, i))
       k = tangent(lam(:, i), g, f(i)/l(i))
-      call add_segment(cab, i, k, v_exo, -cab%ea*l(i)/l0**2*dl0*lam(:, i), jac, rate)
+      call add_segment(cab, i, k, v_exo, &
+                       -(cab%ea*l(i)/l0**2 + cab%damping*edot*dphi)*dl0*lam(:, i), jac, rate)
     end do
   end subroutine cable_block_tangent_rotating
 
@@ -227,7 +239,7 @@ contains
     real(wp), intent(in) :: l0_total, v_drum, ratio, v(3, max_nodes), v_exo(3, max_nodes)
     real(wp), intent(inout) :: jac(6, 6), rate(6)
     real(wp) :: w(max_nodes - 1), u(3, 2), q(3, 2), k(3, 3), t_i(3)
-    real(wp) :: total, weighted, t_el, tdot, d_el
+    real(wp) :: total, weighted, t_el, tdot, d_el, d_damp, phi, rate_l
     real(wp), parameter :: zero3(3) = 0.0_wp
     integer :: i, j, nseg, a, b, lo, hi
     nseg = cab%nnode - 1
@@ -242,14 +254,22 @@ contains
     weighted = sum(w(1:nseg)*l(1:nseg))
     t_el = cab%ea*(total - l0_total)*total/(l0_total*weighted)
     d_el = cab%ea*(2.0_wp*total - l0_total)/(l0_total*weighted)
-    tdot = -cab%ea*total**2/(weighted*l0_total**2)*v_drum
+    ! the dashpot's ramp in: d/dL of c (dL/dt - v_drum) phi(L - L0)/sum w
+    rate_l = -v_drum
+    do i = 1, nseg
+      rate_l = rate_l + dot_product(lam(:, i), v(:, i + 1) - v(:, i))
+    end do
+    phi = ramp_factor(total - l0_total, cab%ramp)
+    d_damp = cab%damping*rate_l*ramp_slope(total - l0_total, cab%ramp)/sum(w(1:nseg))
+    d_el = d_el + d_damp
+    tdot = -(cab%ea*total**2/(weighted*l0_total**2) + d_damp)*v_drum
     u = 0.0_wp
     q = 0.0_wp
     do i = 1, nseg
       k = tangent(lam(:, i), zero3, f(i)/l(i))
       call add_segment(cab, i, k, v_exo, zero3, jac, rate)
       t_i = (d_el - t_el*w(i)/weighted)*lam(:, i) + &
-            cab%damping/(l(i)*sum(w(1:nseg)))*across(lam(:, i), v(:, i + 1) - v(:, i))
+            cab%damping*phi/(l(i)*sum(w(1:nseg)))*across(lam(:, i), v(:, i + 1) - v(:, i))
       tdot = tdot + dot_product(t_i, v_exo(:, i + 1) - v_exo(:, i))
       if (cab%kind(i) == node_block) then
         u(:, cab%block(i)) = u(:, cab%block(i)) + w(i)*lam(:, i)
@@ -271,6 +291,29 @@ contains
       end do
     end do
   end subroutine cable_block_tangent_quasi_static
+
+  !> Share of the dashpot tension at stretch e: 0 at e <= 0, 1 from e = ramp on, and the
+  !> smooth step 3x^2 - 2x^3 (x = e/ramp) between (always 1 with ramp = 0). Multiplying
+  !> the dashpot by it keeps a tension-only segment's tension continuous, with a
+  !> continuous slope, where it goes slack, instead of jumping from c de/dt to 0.
+  elemental real(wp) function ramp_factor(e, ramp) result(phi)
+    real(wp), intent(in) :: e, ramp
+    real(wp) :: x
+    phi = 1.0_wp
+    if (ramp <= 0.0_wp) return
+    x = min(1.0_wp, max(0.0_wp, e/ramp))
+    phi = x*x*(3.0_wp - 2.0_wp*x)
+  end function ramp_factor
+
+  !> d ramp_factor/de.
+  elemental real(wp) function ramp_slope(e, ramp) result(dphi)
+    real(wp), intent(in) :: e, ramp
+    real(wp) :: x
+    dphi = 0.0_wp
+    if (ramp <= 0.0_wp) return
+    x = min(1.0_wp, max(0.0_wp, e/ramp))
+    dphi = 6.0_wp*x*(1.0_wp - x)/ramp
+  end function ramp_slope
 
   !> The part of d across lam: (I - lam lam^T) d.
   pure function across(lam, d) result(p)

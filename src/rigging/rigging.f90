@@ -56,16 +56,37 @@ module davit_rigging_rigging
   !> Quasi-static blocks. Newton stops after a step of at most newton_tol [m]: convergence
   !> is quadratic (the lagged dashpot velocity adds a linear rate ~1e-4), so what remains
   !> is below 1e-12 m, which keeps finite-difference Jacobians of the right-hand side
-  !> (davit modes, RODAS3) clean; from the RK4 stages' starts that takes 2 iterations. A step moves a block by at most newton_cap [m] (a slack
-  !> block falling onto its cable); newton_floor [N/m] on the diagonal keeps the matrix
-  !> regular while a block has no taut link (stiffnesses are 1e4 to 1e8 N/m, so it changes
-  !> the converged answer not at all and the rate of convergence by < 1e-7).
-  real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 0.5_wp
+  !> (davit modes, RODAS3) clean; from an RK4 stage's start that takes 3 evaluations of
+  !> the balance. A step moves a block by at most newton_cap [m] (a block falling onto its
+  !> cable after the drum paid out over a slack sling); newton_floor [N/m] on the diagonal
+  !> keeps the matrix regular while a block has no taut link (stiffnesses are 1e2 to 1e8
+  !> N/m, so it changes the converged answer not at all).
+  real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 2.0_wp
   real(wp), parameter :: newton_floor = 1.0e-3_wp
-  integer, parameter :: newton_max = 60, backtrack_max = 20
+  integer, parameter :: newton_max = 100, search_max = 30, max_switches = 8
+  integer, parameter :: velocity_updates = 8
+  !> A Newton step is cut back when it overshoots the balance along its line by more than
+  !> search_ratio of the force component it started with (solve_blocks); 0.1 leaves the
+  !> quadratic regime alone (there the overshoot is ~|step|/l of it).
+  real(wp), parameter :: search_ratio = 0.1_wp
+  !> A sling counts as slack at the balance if its continued tension is below -k kink_tol
+  !> (and as taut if its tension-only value is above k kink_tol); kink_tol [m] of stretch
+  !> is far below what Newton leaves (< 1e-12 m) and far below anything physical.
+  real(wp), parameter :: kink_tol = 1.0e-11_wp
+  !> ... and is corrected during the iterations once it is off by more than gross_stretch
+  !> [m] of stretch (6 kN on the default sling), which no converging iterate comes near.
+  real(wp), parameter :: gross_stretch = 1.0e-4_wp
   !> Relaxation time of the block-position copies towards the solved positions [s]: a
   !> decay rate of 10 1/s, slower than every mode of the boat, so it limits no step.
   real(wp), parameter :: follow_time = 0.1_wp
+  !> Quasi-static blocks: stretch over which a segment's dashpot tension grows from 0 to
+  !> full [m] (cable_type%ramp). With the paper's law a segment going slack drops from
+  !> c de/dt to 0 at once; a massless block then may have no balance (a cable paid out
+  !> over a slack sling: 3 kN of dashpot tension at zero stretch against 490 N of block
+  !> weight). 1e-4 m is ~200 N of the whole cable's elastic tension (quasi-static
+  !> sheaves), ~2 kN of a 3 m part, ~6 kN of a 1 m sling: the loaded rigging (~20 kN per
+  !> part) never sees it.
+  real(wp), parameter :: dashpot_ramp = 1.0e-4_wp
 
   type :: rigging_type
     !> Sizes: state length, DOFs (F1), cables (1 for A, 2 for B), total cable segments,
@@ -129,6 +150,10 @@ contains
     self%winch%t_stop = cfg%stop_time
     self%winch%t_brake = cfg%brake_time
     call build_reeving(self, cfg, ea)
+    if (self%static_blocks) then
+      self%sling%ramp = dashpot_ramp
+      self%cables%ramp = dashpot_ramp
+    end if
     call set_layout(self)
   end subroutine new_rigging
 
@@ -385,11 +410,17 @@ contains
   !> Well posed whenever the cable is taut, which the weight ensures at the solution (a
   !> tension-only sling pulls the block down, only the cable holds it up); the potential
   !> (elastic energies - m_b g z) is convex in the block positions, so the minimiser is
-  !> unique. Globalisation for starts far off (a sling going slack lets its block rise to
-  !> where the cable alone holds its weight): steps capped at newton_cap per block,
-  !> halved while they raise |F| (up to backtrack_max times, then taken anyway), and the
-  !> diagonal floor newton_floor for a block with no taut link. solved = .false. after
-  !> newton_max iterations.
+  !> unique. A tension-only sling makes the balance kinked where the sling just goes slack
+  !> (D = l0), and Newton across that kink cycles between the two sides. So each sling is
+  !> either held (its law continued smoothly through D = l0) or free (left out), guessed
+  !> at the start and corrected once converged: a held sling that would push, or a free
+  !> one that would pull, changes side and Newton goes on (an active set; at most
+  !> max_switches changes, one per sling is the rule). Globalisation for starts far off:
+  !> steps capped at newton_cap per block and cut back where they overshoot (see
+  !> search_ratio), and the diagonal floor newton_floor for a block with no taut link.
+  !> After newton_max iterations the best iterate is taken if the force left on each block
+  !> is below its weight (see the end), else solved = .false.; iterations counts the
+  !> balance evaluations (3 from an RK4 stage's start).
   pure subroutine solve_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, &
                                br, bv, solved, iterations)
     type(rigging_type), intent(in) :: self
@@ -399,9 +430,12 @@ contains
     real(wp), intent(out) :: bv(3, 2)
     logical, intent(out) :: solved
     integer, intent(out), optional :: iterations
-    real(wp) :: b(6), v(6), res(6), jac(6, 6), rate(6), x(6, 2), step(6), b_prev(6)
-    real(wp) :: fnorm, fnorm_prev, longest, pn(3, max_nodes, 2), vn(3, max_nodes, 2)
-    integer :: it, nback, c
+    real(wp) :: b(6), v(6), res(6), jac(6, 6), rate(6), x(6, 2), step(6), b_try(6)
+    real(wp) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2), f_sling(2), f_real(2), f_tol
+    real(wp) :: longest, alpha, res_t(6), jac_t(6, 6), rate_t(6), fs_t(2), fr_t(2)
+    real(wp) :: g, g_lo, g_hi, g_tol, a_lo, a_hi, f_gross, best_norm, b_best(6), v_best(6)
+    integer :: it, c, nswitch, nbal, ls, side
+    logical :: taut(2), changed
     ! the ship-fixed nodes once (blocks at rest in vn); block_balance places the blocks
     do c = 1, self%ncable
       call cable_node_kinematics(self%cables(c), ship_r, ship_c, ship_v, ship_w, br, &
@@ -410,52 +444,141 @@ contains
     b(1:3) = br(:, 1)
     b(4:6) = br(:, 2)
     v = 0.0_wp
-    step = 0.0_wp
-    b_prev = b
-    fnorm_prev = huge(1.0_wp)
-    nback = 0
+    nswitch = 0
     solved = .false.
+    best_norm = huge(1.0_wp)
+    b_best = b
+    v_best = v
+    f_tol = self%sling%k_seg*kink_tol
+    f_gross = self%sling%k_seg*gross_stretch
+    ! which slings hold their blocks: guessed at the start, then corrected (active set)
+    do c = 1, 2
+      call top_segment_tangent(self%sling, low_r(:, c), low_v(:, c), br(:, c), 0.0_wp*br(:, c), &
+                               x(1:3, 1), f_sling(c), f_real(c), jac(1:3, 1:3))
+      taut(c) = f_real(c) > 0.0_wp
+    end do
     ! the velocity first (from the tangent at the start), so the dashpot forces in the
     ! first residual are already about right (they are ~10 % of the load while bouncing)
-    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, res, jac, rate)
+    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, rate, &
+                       f_sling, f_real)
     call newton_matrix(jac)
     x(:, 1) = res
     x(:, 2) = rate
     call dense_solve(jac, x)
     v = x(:, 2)
+    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, rate, &
+                       f_sling, f_real)
+    nbal = 2
     do it = 1, newton_max
-      call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, res, jac, rate)
-      fnorm = norm2(res)
-      if (fnorm > fnorm_prev .and. maxval(abs(step)) > 1.0e3_wp*newton_tol .and. &
-          nback < backtrack_max) then
-        step = 0.5_wp*step
-        b = b_prev + step
-        nback = nback + 1
-        cycle
-      end if
-      nback = 0
       ! (-dF/dr + floor) x = [F, dF/dt]: x(:, 1) the Newton step, x(:, 2) the velocity.
       call newton_matrix(jac)
       x(:, 1) = res
       x(:, 2) = rate
       call dense_solve(jac, x)
-      v = x(:, 2)
+      ! The velocity enters the dashpot forces, and through their turning chords the
+      ! Jacobian; where the links are nearly slack (lateral stiffness T/l ~ 100 N/m
+      ! against c |dv|/l) that loop can cycle, so after velocity_updates iterations it is
+      ! kept and Newton finishes on positions alone.
+      if (it <= velocity_updates) v = x(:, 2)
       step = x(:, 1)
       longest = max(norm2(step(1:3)), norm2(step(4:6)))
       if (longest > newton_cap) step = step*(newton_cap/longest)
-      b_prev = b
-      fnorm_prev = fnorm
-      b = b + step
       if (maxval(abs(step)) <= newton_tol) then
-        solved = .true.
-        exit
+        b = b + step
+        ! converged with these slings holding: a held sling must pull, a free one must not
+        changed = .false.
+        do c = 1, 2
+          if (taut(c) .and. f_sling(c) < -f_tol .or. .not. taut(c) .and. f_real(c) > f_tol) then
+            taut(c) = .not. taut(c)
+            changed = .true.
+          end if
+        end do
+        if (.not. changed) then
+          solved = .true.
+          exit
+        end if
+        nswitch = nswitch + 1
+        if (nswitch > max_switches) exit
+        call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, &
+                           rate, f_sling, f_real)
+        nbal = nbal + 1
+        cycle
+      end if
+      ! Line search: along the step the force component g(alpha) = step . F(b + alpha step)
+      ! starts positive, g(0) = F . (-dF/dr)^(-1) F, and falls (the elastic potential is
+      ! convex). A whole step leaves g(1) ~ 0 (quadratic convergence) and is taken; one
+      ! that overshoots, g(1) < -search_ratio g(0) (a far start, a kink where a link goes
+      ! slack, the soft swing of a block on slack links), is cut back to where g is
+      ! within search_ratio g(0) of zero, by regula falsi (Illinois) on [0, 1].
+      b_try = b + step
+      call block_balance(self, y, b_try, v, low_r, low_v, v_drum, pn, vn, taut, res_t, &
+                         jac_t, rate_t, fs_t, fr_t)
+      nbal = nbal + 1
+      g_lo = dot_product(res, step)
+      g_hi = dot_product(res_t, step)
+      a_lo = 0.0_wp
+      a_hi = 1.0_wp
+      side = 0
+      if (g_lo > 0.0_wp .and. g_hi < -search_ratio*g_lo) then
+        g_tol = search_ratio*g_lo
+        do ls = 1, search_max
+          alpha = a_hi - g_hi*(a_hi - a_lo)/(g_hi - g_lo)
+          b_try = b + alpha*step
+          call block_balance(self, y, b_try, v, low_r, low_v, v_drum, pn, vn, taut, res_t, &
+                             jac_t, rate_t, fs_t, fr_t)
+          nbal = nbal + 1
+          g = dot_product(res_t, step)
+          if (abs(g) <= g_tol) exit
+          if (g < 0.0_wp) then
+            a_hi = alpha
+            g_hi = g
+            if (side == -1) g_lo = 0.5_wp*g_lo
+            side = -1
+          else
+            a_lo = alpha
+            g_lo = g
+            if (side == 1) g_hi = 0.5_wp*g_hi
+            side = 1
+          end if
+        end do
+      end if
+      b = b_try
+      res = res_t
+      jac = jac_t
+      rate = rate_t
+      f_sling = fs_t
+      f_real = fr_t
+      if (max(norm2(res(1:3)), norm2(res(4:6))) < best_norm) then
+        best_norm = max(norm2(res(1:3)), norm2(res(4:6)))
+        b_best = b
+        v_best = v
+      end if
+      ! a guess that is plainly wrong (a free sling stretched, or a held one pushing, by
+      ! more than gross_stretch) is corrected at once rather than after converging to it
+      if (nswitch < max_switches .and. any(taut .and. f_sling < -f_gross .or. &
+                                           .not. taut .and. f_real > f_gross)) then
+        taut = taut .neqv. (taut .and. f_sling < -f_gross .or. &
+                            .not. taut .and. f_real > f_gross)
+        nswitch = nswitch + 1
+        call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, &
+                           rate, f_sling, f_real)
+        nbal = nbal + 1
       end if
     end do
+    if (.not. solved .and. best_norm <= self%block_mass*gravity) then
+      ! Newton stalled (near-slack links: soft, kinked, with the dashpots' ramps): take the
+      ! best iterate if the force left on each block is below its weight. Neglecting the
+      ! block's inertia already errs by m_b a, which is of that size when the block is
+      ! jerked about by slack slings; loaded links converge in 2-3 evaluations.
+      b = b_best
+      v = v_best
+      solved = .true.
+    end if
     br(:, 1) = b(1:3)
     br(:, 2) = b(4:6)
     bv(:, 1) = v(1:3)
     bv(:, 2) = v(4:6)
-    if (present(iterations)) iterations = it
+    if (present(iterations)) iterations = nbal
   end subroutine solve_blocks
 
   !> -jac + newton_floor I, the matrix of solve_blocks' Newton step.
@@ -468,15 +591,19 @@ contains
     end do
   end subroutine newton_matrix
 
-  !> Net force res on the two blocks at positions b moving at v (cable, top sling segments,
-  !> weight), its Jacobian jac = d res/d b and its rate at fixed blocks, rate = d res/dt.
+  !> Net force res on the two blocks at positions b moving at v (cable, top sling segments
+  !> where taut, weight), its Jacobian jac = d res/d b and its rate at fixed blocks,
+  !> rate = d res/dt; f_sling: the top segments' tensions continued through slack (< 0
+  !> there), f_real: their tension-only values.
   !> pn, vn: the cables' ship-fixed node positions and velocities (block nodes zero in vn:
   !> the rate is taken with the blocks at rest).
-  pure subroutine block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, res, jac, rate)
+  pure subroutine block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, &
+                                rate, f_sling, f_real)
     type(rigging_type), intent(in) :: self
     real(wp), intent(in) :: y(:), b(6), v(6), low_r(3, 2), low_v(3, 2), v_drum
     real(wp), intent(in) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2)
-    real(wp), intent(out) :: res(6), jac(6, 6), rate(6)
+    logical, intent(in) :: taut(2)
+    real(wp), intent(out) :: res(6), jac(6, 6), rate(6), f_sling(2), f_real(2)
     real(wp) :: br(3, 2), bv(3, 2), f_top(3), k(3, 3), block_f(3, 2), torque(max_sheaves)
     real(wp) :: p(3, max_nodes), vv(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
     real(wp) :: s(max_nodes), sdot(max_nodes), f(max_nodes - 1), g(max_nodes - 1)
@@ -491,7 +618,8 @@ contains
     block_f(3, :) = self%block_mass*gravity
     do a = 1, 2
       call top_segment_tangent(self%sling, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
-                               f_top, k)
+                               f_top, f_sling(a), f_real(a), k)
+      if (.not. taut(a)) cycle
       block_f(:, a) = block_f(:, a) + f_top
       jac(3*a - 2:3*a, 3*a - 2:3*a) = k
       rate(3*a - 2:3*a) = -matmul(k, low_v(:, a))
