@@ -63,7 +63,8 @@ contains
                    new_case("quasi_static_blocks_energy_A8", static_blocks_energy), &
                    new_case("quasi_static_blocks_velocity", static_blocks_velocity), &
                    new_case("quasi_static_blocks_modes", static_blocks_modes), &
-                   new_case("quasi_static_blocks_lowering_large_step", static_blocks_lowering)]
+                   new_case("quasi_static_blocks_lowering_large_step", static_blocks_lowering), &
+                   new_case("quasi_static_blocks_launch_iiib", static_blocks_launch)]
   end function collect_rigging
 
   ! ---------------------------------------------------------------- set-up helpers
@@ -853,5 +854,84 @@ contains
     call note(state, "wall massive [s]", sum_m%wall_time)
     call note(state, "wall quasi-static [s]", sum_q%wall_time)
   end subroutine static_blocks_lowering
+
+  !> The III.B Level 5 launch (beam sea, ship rolling, the boat swinging ~3 m, fender
+  !> impacts from 38 s, waterborne and released at ~82 s). (1) Before any impact, what
+  !> quasi-static blocks change is the blocks' inertia in the slow motions (the swing
+  !> carries them along): first order in m_b, so the CG difference from the massive
+  !> blocks over the first 20 s must shrink tenfold with a tenfold lighter block (5 kg,
+  !> massive at dt = 5e-4 s), within 10 %. (2) At RK4 dt = 1e-2 s the run gets through the
+  !> impacts, the slack slings and the water entry to the hook release.
+  subroutine static_blocks_launch(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    real(wp) :: d50, d5, release
+    logical :: ok
+    call read_config("input/iiib_level5_090.nml", cfg, error)
+    call check_true(state, .not. allocated(error), "deck read")
+    if (allocated(error)) return
+    cfg%simulation%t_end = 20.0_wp
+    d50 = cg_difference(cfg, 50.0_wp, 1.0e-3_wp)
+    d5 = cg_difference(cfg, 5.0_wp, 5.0e-4_wp)
+    call check(state, d50/d5, 10.0_wp, "CG difference ~ m_b", rel_tol=0.1_wp)
+    call note(state, "max CG difference 0-20 s, m_b = 50 kg [m]", d50)
+    call note(state, "max CG difference 0-20 s, m_b = 5 kg [m]", d5)
+    cfg%simulation%t_end = 84.0_wp
+    cfg%rigging%blocks = "quasi_static"
+    cfg%simulation%dt = 1.0e-2_wp
+    call launch(cfg, ok, release)
+    call check_true(state, ok, "quasi-static launch at dt = 1e-2 runs 84 s")
+    call check_true(state, release > 80.0_wp, "hooks released after the water entry")
+    call note(state, "release [s]", release)
+  end subroutine static_blocks_launch
+
+  !> Largest boat CG distance between massive blocks of mass m_b (RK4 at dt) and
+  !> quasi-static ones of the same weight (RK4 at 1e-2 s) over cfg's run.
+  function cg_difference(base, m_b, dt) result(d)
+    type(config_type), intent(in) :: base
+    real(wp), intent(in) :: m_b, dt
+    real(wp) :: d
+    type(config_type) :: cfg
+    type(system_type), target :: sys_m, sys_q
+    type(boat_recorder) :: rec_m, rec_q
+    type(run_summary) :: summary
+    type(error_type), allocatable :: error, run_error
+    real(wp), allocatable :: y(:)
+    integer :: n
+    cfg = base
+    cfg%rigging%block_mass = m_b
+    cfg%simulation%dt = dt
+    call new_system(sys_m, cfg, error)
+    y = sys_m%initial_state(cfg)
+    rec_m%sys => sys_m
+    call integrate(cfg, sys_m, y, rec_m, summary, run_error, error)
+    cfg%rigging%blocks = "quasi_static"
+    cfg%simulation%dt = 1.0e-2_wp
+    call new_system(sys_q, cfg, error)
+    y = sys_q%initial_state(cfg)
+    rec_q%sys => sys_q
+    call integrate(cfg, sys_q, y, rec_q, summary, run_error, error)
+    n = min(rec_m%n, rec_q%n)
+    d = maxval(norm2(rec_m%position(:, 1:n) - rec_q%position(:, 1:n), 1))
+  end function cg_difference
+
+  !> Runs cfg; ok if it completed; release: the hook release time [s] (< 0: none).
+  subroutine launch(cfg, ok, release)
+    type(config_type), intent(in) :: cfg
+    logical, intent(out) :: ok
+    real(wp), intent(out) :: release
+    type(system_type), target :: sys
+    type(boat_recorder) :: rec
+    type(run_summary) :: summary
+    type(error_type), allocatable :: error, run_error
+    real(wp), allocatable :: y(:)
+    call new_system(sys, cfg, error)
+    y = sys%initial_state(cfg)
+    rec%sys => sys
+    call integrate(cfg, sys, y, rec, summary, run_error, error)
+    ok = .not. allocated(run_error) .and. .not. allocated(error)
+    release = sys%release_time
+  end subroutine launch
 
 end module test_rigging

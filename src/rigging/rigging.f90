@@ -63,12 +63,19 @@ module davit_rigging_rigging
   !> N/m, so it changes the converged answer not at all).
   real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 2.0_wp
   real(wp), parameter :: newton_floor = 1.0e-3_wp
-  integer, parameter :: newton_max = 100, search_max = 30, max_switches = 8
-  integer, parameter :: velocity_updates = 8
+  integer, parameter :: newton_max = 50, search_max = 12, max_switches = 8
   !> A Newton step is cut back when it overshoots the balance along its line by more than
   !> search_ratio of the force component it started with (solve_blocks); 0.1 leaves the
   !> quadratic regime alone (there the overshoot is ~|step|/l of it).
   real(wp), parameter :: search_ratio = 0.1_wp
+  !> The dashpots shift a block by ~c v/k ~ 1e-4 m on taut links; dashpot_cap [m] bounds
+  !> that shift where the links are so slack that a small dashpot force would move the
+  !> block far across (it is then not first order in c/k any more).
+  real(wp), parameter :: dashpot_cap = 1.0e-3_wp
+  !> Fallback of solve_blocks: anchor stiffness m_b/anchor_time^2 (2e4 N/m for 50 kg),
+  !> above a nearly slack block's pendulum stiffness (~1e2 to 1e3 N/m), far below a taut
+  !> link's (1e7 N/m along it).
+  real(wp), parameter :: anchor_time = 0.05_wp
   !> A sling counts as slack at the balance if its continued tension is below -k kink_tol
   !> (and as taut if its tension-only value is above k kink_tol); kink_tol [m] of stretch
   !> is far below what Newton leaves (< 1e-12 m) and far below anything physical.
@@ -338,7 +345,7 @@ contains
       associate (cab => self%cables(c))
         nseg = cab%nnode - 1
         call cable_node_kinematics(cab, ship_r, ship_c, ship_v, ship_w, br, bv, p, v)
-        call cable_tensions(self, c, y, p, v, v_drum, lam, l, s, sdot, f, g)
+        call cable_tensions(self, cab, c, y, p, v, v_drum, lam, l, s, sdot, f, g)
         call cable_node_forces(cab, lam, f, g, self%sheave_radius, block_f, torque)
         seg(k + 1:k + nseg) = f(1:nseg)
         k = k + nseg
@@ -347,9 +354,10 @@ contains
   end subroutine cable_forces
 
   !> Chords (lam, l), passages (s, sdot; rotating sheaves) and segment tensions f (g drives
-  !> the sheaves) of cable c with its nodes at p moving at v.
-  pure subroutine cable_tensions(self, c, y, p, v, v_drum, lam, l, s, sdot, f, g)
+  !> the sheaves) of cable cab (one of self's, c its index) with its nodes at p moving at v.
+  pure subroutine cable_tensions(self, cab, c, y, p, v, v_drum, lam, l, s, sdot, f, g)
     type(rigging_type), intent(in) :: self
+    type(cable_type), intent(in) :: cab
     integer, intent(in) :: c
     real(wp), intent(in) :: y(:), p(3, max_nodes), v(3, max_nodes), v_drum
     real(wp), intent(out) :: lam(3, max_nodes - 1), l(max_nodes - 1)
@@ -358,21 +366,19 @@ contains
     real(wp) :: ldot(max_nodes - 1)
     integer :: ns
     ns = self%nsheave
-    associate (cab => self%cables(c))
-      call cable_geometry(cab, p, v, lam, l, ldot)
-      if (self%rotating) then
-        call cable_passages(cab, y(self%idr), v_drum, self%sheave_radius, &
-                            y(self%ith:self%ith + ns - 1), y(self%iom:self%iom + ns - 1), &
-                            s, sdot)
-        call cable_tensions_rotating(cab, l, ldot, s, sdot, f, g)
-      else
-        s = 0.0_wp
-        sdot = 0.0_wp
-        call cable_tension_quasi_static(cab, l, ldot, self%l0_total(c) + y(self%idr), &
-                                        v_drum, self%friction_ratio, f)
-        g = f
-      end if
-    end associate
+    call cable_geometry(cab, p, v, lam, l, ldot)
+    if (self%rotating) then
+      call cable_passages(cab, y(self%idr), v_drum, self%sheave_radius, &
+                          y(self%ith:self%ith + ns - 1), y(self%iom:self%iom + ns - 1), &
+                          s, sdot)
+      call cable_tensions_rotating(cab, l, ldot, s, sdot, f, g)
+    else
+      s = 0.0_wp
+      sdot = 0.0_wp
+      call cable_tension_quasi_static(cab, l, ldot, self%l0_total(c) + y(self%idr), v_drum, &
+                                      self%friction_ratio, f)
+      g = f
+    end if
   end subroutine cable_tensions
 
   !> Lower end of each sling's top segment: the hook (no lumps) or the top lump n.
@@ -395,45 +401,43 @@ contains
 
   !> Quasi-static blocks: positions br (in: the start, e.g. the state's copies) where the
   !> net force on each block, cable pull + top sling segment + weight m_b g, vanishes, and
-  !> their velocities bv on that balance. Newton on the 6 coordinates of both blocks
-  !> together: with quasi-static sheaves on reeving A one tension couples them.
+  !> their velocities bv on that balance. Both blocks together (6 coordinates): with
+  !> quasi-static sheaves on reeving A one tension couples them.
   !>
-  !> The balance is dF/dr dr + dF/dt = 0 along the motion, so the blocks move at
-  !> bv = -(dF/dr)^(-1) dF/dt|_r, dF/dt|_r being the force rate due to everything else
-  !> (hooks or lumps, ship-fixed nodes, drum, sheaves) at fixed blocks. That is the
-  !> velocity the dashpots see: to first order in c/k the slow motion of the massive model
-  !> (its block follows the same balance, lagging by c v/k ~ 1e-4 m); left out are the
-  !> dashpots' response to accelerations, O(c a/k). bv comes first from the tangent at the
-  !> start, then from each iterate's (lagged by one iteration in the residual: its
-  !> effect is axial, c (v/l)/k_axial ~ 1e-4 of the step, and converges with it).
+  !> First the elastic balance (no dashpots): it minimises a convex potential (elastic
+  !> energies - m_b g z) whose gradient and Hessian are -F and -dF/dr, so it is unique and
+  !> symmetric, and it is well posed whenever the cable is taut, which the weight ensures
+  !> (a tension-only sling pulls its block towards the hook; only the cable holds it up).
+  !> Along the motion dF/dr dr + dF/dt = 0, so the blocks move at bv = -(dF/dr)^(-1) dF/dt,
+  !> dF/dt the force rate due to everything else (hooks or lumps, ship-fixed nodes, drum,
+  !> sheaves) at fixed blocks. Then the dashpots, at that velocity, shift the blocks by
+  !> (-dF/dr)^(-1) F_dashpot, ~1e-4 m: the slow motion of the massive model to first
+  !> order in c/k (its block lags the same way); left out are O((c v/k)^2/l) and the
+  !> dashpots' response to accelerations, O(c a/k).
   !>
-  !> Well posed whenever the cable is taut, which the weight ensures at the solution (a
-  !> tension-only sling pulls the block down, only the cable holds it up); the potential
-  !> (elastic energies - m_b g z) is convex in the block positions, so the minimiser is
-  !> unique. A tension-only sling makes the balance kinked where the sling just goes slack
-  !> (D = l0), and Newton across that kink cycles between the two sides. So each sling is
-  !> either held (its law continued smoothly through D = l0) or free (left out), guessed
-  !> at the start and corrected once converged: a held sling that would push, or a free
-  !> one that would pull, changes side and Newton goes on (an active set; at most
-  !> max_switches changes, one per sling is the rule). Globalisation for starts far off:
-  !> steps capped at newton_cap per block and cut back where they overshoot (see
-  !> search_ratio), and the diagonal floor newton_floor for a block with no taut link.
-  !> After newton_max iterations the best iterate is taken if the force left on each block
-  !> is below its weight (see the end), else solved = .false.; iterations counts the
-  !> balance evaluations (3 from an RK4 stage's start).
-  pure subroutine solve_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, &
-                               br, bv, solved, iterations)
+  !> Newton with: an active set for the slings' slack kink (D = l0, where Newton would
+  !> cycle between the sides): each sling is held (its law continued smoothly through
+  !> D = l0) or free (left out), guessed at the start, corrected once converged (a held
+  !> sling that would push, or a free one that would pull, changes side) or at once when
+  !> off by gross_stretch; steps capped at newton_cap per block and cut back where they
+  !> overshoot (search_ratio); the diagonal floor newton_floor for a block with no taut
+  !> link. After newton_max iterations the best iterate is taken if the force left on
+  !> each block is below its weight, else solved = .false.; iterations counts the balance
+  !> evaluations (3 from an RK4 stage's start: start, step, dashpots).
+  pure subroutine newton_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, &
+                                ship_w, k_anchor, br, bv, solved, iterations)
     type(rigging_type), intent(in) :: self
     real(wp), intent(in) :: y(:), low_r(3, 2), low_v(3, 2), v_drum
     real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
     real(wp), intent(inout) :: br(3, 2)
     real(wp), intent(out) :: bv(3, 2)
     logical, intent(out) :: solved
-    integer, intent(out), optional :: iterations
-    real(wp) :: b(6), v(6), res(6), jac(6, 6), rate(6), x(6, 2), step(6), b_try(6)
-    real(wp) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2), f_sling(2), f_real(2), f_tol
-    real(wp) :: longest, alpha, res_t(6), jac_t(6, 6), rate_t(6), fs_t(2), fr_t(2)
-    real(wp) :: g, g_lo, g_hi, g_tol, a_lo, a_hi, f_gross, best_norm, b_best(6), v_best(6)
+    real(wp), intent(in) :: k_anchor
+    integer, intent(out) :: iterations
+    real(wp) :: b(6), v(6), res(6), jac(6, 6), rate(6), x(6, 2), step(6), b_try(6), anchor(6)
+    real(wp) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2), f_sling(2), f_real(2)
+    real(wp) :: res_t(6), jac_t(6, 6), rate_t(6), fs_t(2), fr_t(2), res_d(6), f_tol, f_gross
+    real(wp) :: g, g_lo, g_hi, g_tol, a_lo, a_hi, alpha, longest, best_norm, b_best(6)
     integer :: it, c, nswitch, nbal, ls, side
     logical :: taut(2), changed
     ! the ship-fixed nodes once (blocks at rest in vn); block_balance places the blocks
@@ -443,12 +447,10 @@ contains
     end do
     b(1:3) = br(:, 1)
     b(4:6) = br(:, 2)
+    anchor = b
     v = 0.0_wp
     nswitch = 0
     solved = .false.
-    best_norm = huge(1.0_wp)
-    b_best = b
-    v_best = v
     f_tol = self%sling%k_seg*kink_tol
     f_gross = self%sling%k_seg*gross_stretch
     ! which slings hold their blocks: guessed at the start, then corrected (active set)
@@ -457,29 +459,17 @@ contains
                                x(1:3, 1), f_sling(c), f_real(c), jac(1:3, 1:3))
       taut(c) = f_real(c) > 0.0_wp
     end do
-    ! the velocity first (from the tangent at the start), so the dashpot forces in the
-    ! first residual are already about right (they are ~10 % of the load while bouncing)
-    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, rate, &
-                       f_sling, f_real)
-    call newton_matrix(jac)
-    x(:, 1) = res
-    x(:, 2) = rate
-    call dense_solve(jac, x)
-    v = x(:, 2)
-    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, rate, &
-                       f_sling, f_real)
-    nbal = 2
+    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, k_anchor, &
+                       res, jac, rate, f_sling, f_real, res_d)
+    nbal = 1
+    best_norm = huge(1.0_wp)
+    b_best = b
     do it = 1, newton_max
       ! (-dF/dr + floor) x = [F, dF/dt]: x(:, 1) the Newton step, x(:, 2) the velocity.
       call newton_matrix(jac)
       x(:, 1) = res
       x(:, 2) = rate
       call dense_solve(jac, x)
-      ! The velocity enters the dashpot forces, and through their turning chords the
-      ! Jacobian; where the links are nearly slack (lateral stiffness T/l ~ 100 N/m
-      ! against c |dv|/l) that loop can cycle, so after velocity_updates iterations it is
-      ! kept and Newton finishes on positions alone.
-      if (it <= velocity_updates) v = x(:, 2)
       step = x(:, 1)
       longest = max(norm2(step(1:3)), norm2(step(4:6)))
       if (longest > newton_cap) step = step*(newton_cap/longest)
@@ -499,33 +489,34 @@ contains
         end if
         nswitch = nswitch + 1
         if (nswitch > max_switches) exit
-        call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, &
-                           rate, f_sling, f_real)
+        call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, k_anchor, &
+                           res, jac, rate, f_sling, f_real, res_d)
         nbal = nbal + 1
+        best_norm = huge(1.0_wp)
         cycle
       end if
       ! Line search: along the step the force component g(alpha) = step . F(b + alpha step)
-      ! starts positive, g(0) = F . (-dF/dr)^(-1) F, and falls (the elastic potential is
-      ! convex). A whole step leaves g(1) ~ 0 (quadratic convergence) and is taken; one
-      ! that overshoots, g(1) < -search_ratio g(0) (a far start, a kink where a link goes
-      ! slack, the soft swing of a block on slack links), is cut back to where g is
-      ! within search_ratio g(0) of zero, by regula falsi (Illinois) on [0, 1].
+      ! starts positive, g(0) = F . (-dF/dr)^(-1) F, and falls (the potential is convex).
+      ! A whole step leaves g(1) ~ 0 (quadratic convergence) and is taken; one that
+      ! overshoots, g(1) < -search_ratio g(0) (a far start, a kink where a link goes slack,
+      ! the soft swing of a block on slack links), is cut back to where g is within
+      ! search_ratio g(0) of zero, by regula falsi (Illinois) on [0, 1].
       b_try = b + step
-      call block_balance(self, y, b_try, v, low_r, low_v, v_drum, pn, vn, taut, res_t, &
-                         jac_t, rate_t, fs_t, fr_t)
+      call block_balance(self, y, b_try, v, low_r, low_v, v_drum, pn, vn, taut, anchor, &
+                         k_anchor, res_t, jac_t, rate_t, fs_t, fr_t, res_d)
       nbal = nbal + 1
       g_lo = dot_product(res, step)
       g_hi = dot_product(res_t, step)
-      a_lo = 0.0_wp
-      a_hi = 1.0_wp
-      side = 0
       if (g_lo > 0.0_wp .and. g_hi < -search_ratio*g_lo) then
         g_tol = search_ratio*g_lo
+        a_lo = 0.0_wp
+        a_hi = 1.0_wp
+        side = 0
         do ls = 1, search_max
           alpha = a_hi - g_hi*(a_hi - a_lo)/(g_hi - g_lo)
           b_try = b + alpha*step
-          call block_balance(self, y, b_try, v, low_r, low_v, v_drum, pn, vn, taut, res_t, &
-                             jac_t, rate_t, fs_t, fr_t)
+          call block_balance(self, y, b_try, v, low_r, low_v, v_drum, pn, vn, taut, anchor, &
+                             k_anchor, res_t, jac_t, rate_t, fs_t, fr_t, res_d)
           nbal = nbal + 1
           g = dot_product(res_t, step)
           if (abs(g) <= g_tol) exit
@@ -551,7 +542,6 @@ contains
       if (max(norm2(res(1:3)), norm2(res(4:6))) < best_norm) then
         best_norm = max(norm2(res(1:3)), norm2(res(4:6)))
         b_best = b
-        v_best = v
       end if
       ! a guess that is plainly wrong (a free sling stretched, or a held one pushing, by
       ! more than gross_stretch) is corrected at once rather than after converging to it
@@ -560,25 +550,84 @@ contains
         taut = taut .neqv. (taut .and. f_sling < -f_gross .or. &
                             .not. taut .and. f_real > f_gross)
         nswitch = nswitch + 1
-        call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, &
-                           rate, f_sling, f_real)
+        call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, k_anchor, &
+                           res, jac, rate, f_sling, f_real, res_d)
         nbal = nbal + 1
+        best_norm = huge(1.0_wp)
+        b_best = b
       end if
     end do
-    if (.not. solved .and. best_norm <= self%block_mass*gravity) then
-      ! Newton stalled (near-slack links: soft, kinked, with the dashpots' ramps): take the
-      ! best iterate if the force left on each block is below its weight. Neglecting the
-      ! block's inertia already errs by m_b a, which is of that size when the block is
-      ! jerked about by slack slings; loaded links converge in 2-3 evaluations.
+    if (.not. solved) then
+      ! Newton stalled (links near slack: soft and kinked): take the best iterate (of
+      ! this active set) if the force left on each block, and the force a sling would
+      ! have on the wrong side of its kink, are below the block's weight. Neglecting the
+      ! block's inertia already errs by m_b a, of that size when slack slings jerk the
+      ! block about; taut links converge in 2-3 evaluations.
       b = b_best
-      v = v_best
-      solved = .true.
+      call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, k_anchor, &
+                         res, jac, rate, f_sling, f_real, res_d)
+      nbal = nbal + 1
+      solved = max(norm2(res(1:3)), norm2(res(4:6))) <= self%block_mass*gravity .and. &
+               all(.not. taut .or. f_sling >= -self%block_mass*gravity) .and. &
+               all(taut .or. f_real <= self%block_mass*gravity)
+      call newton_matrix(jac)
+      x(:, 2) = rate
+      call dense_solve(jac, x)
     end if
+    ! the velocity on the balance (from the last tangent, within newton_tol of it), then
+    ! the dashpots at that velocity and the shift by what is left (their force, and the
+    ! balance's own ~1e-6 N), capped at dashpot_cap
+    v = x(:, 2)
+    call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, k_anchor, &
+                       res, jac, rate, f_sling, f_real, res_d)
+    nbal = nbal + 1
+    call newton_matrix(jac)
+    x(:, 1) = res + res_d
+    x(:, 2) = 0.0_wp
+    call dense_solve(jac, x)
+    step = x(:, 1)
+    ! only where the sling holds: a free block would be moved by the cable's dashpot
+    ! alone, along links so slack that the shift would no longer be small (and could
+    ! take up its sling's slack, which the balance has not seen)
+    if (.not. taut(1)) step(1:3) = 0.0_wp
+    if (.not. taut(2)) step(4:6) = 0.0_wp
+    longest = max(norm2(step(1:3)), norm2(step(4:6)))
+    if (longest > dashpot_cap) step = step*(dashpot_cap/longest)
+    b = b + step
     br(:, 1) = b(1:3)
     br(:, 2) = b(4:6)
     bv(:, 1) = v(1:3)
     bv(:, 2) = v(4:6)
-    if (present(iterations)) iterations = nbal
+    iterations = nbal
+  end subroutine newton_blocks
+
+  !> The balance of the quasi-static blocks (newton_blocks). Where it fails (slack or
+  !> nearly slack links in a violent phase: a hook unloaded by a wave or an impact, the
+  !> falls paid out over a waterborne boat) the blocks are tied by anchor_stiffness to
+  !> their start (the state's copies) and the balance solved again: the copies follow the
+  !> solved blocks, so the anchor acts like the block's inertia over anchor_time, letting
+  !> it drift rather than jump to where its slack links would put it.
+  pure subroutine solve_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, &
+                               br, bv, solved, iterations)
+    type(rigging_type), intent(in) :: self
+    real(wp), intent(in) :: y(:), low_r(3, 2), low_v(3, 2), v_drum
+    real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
+    real(wp), intent(inout) :: br(3, 2)
+    real(wp), intent(out) :: bv(3, 2)
+    logical, intent(out) :: solved
+    integer, intent(out), optional :: iterations
+    real(wp) :: b0(3, 2)
+    integer :: n1, n2
+    b0 = br
+    call newton_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, &
+                       0.0_wp, br, bv, solved, n1)
+    n2 = 0
+    if (.not. solved) then
+      br = b0
+      call newton_blocks(self, y, low_r, low_v, v_drum, ship_r, ship_c, ship_v, ship_w, &
+                         self%block_mass/anchor_time**2, br, bv, solved, n2)
+    end if
+    if (present(iterations)) iterations = n1 + n2
   end subroutine solve_blocks
 
   !> -jac + newton_floor I, the matrix of solve_blocks' Newton step.
@@ -591,36 +640,47 @@ contains
     end do
   end subroutine newton_matrix
 
-  !> Net force res on the two blocks at positions b moving at v (cable, top sling segments
-  !> where taut, weight), its Jacobian jac = d res/d b and its rate at fixed blocks,
-  !> rate = d res/dt; f_sling: the top segments' tensions continued through slack (< 0
-  !> there), f_real: their tension-only values.
-  !> pn, vn: the cables' ship-fixed node positions and velocities (block nodes zero in vn:
-  !> the rate is taken with the blocks at rest).
-  pure subroutine block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, res, jac, &
-                                rate, f_sling, f_real)
+  !> The elastic balance on the two blocks at positions b: net force res (cable and top
+  !> sling segments where held, without their dashpots, and weight), its Jacobian
+  !> jac = d res/d b and its rate at fixed blocks, rate = d res/dt; f_sling: the top
+  !> segments' elastic tensions continued through slack (< 0 there), f_real: their
+  !> tension-only values (with the dashpot); res_d: the dashpots' force on the blocks
+  !> moving at v (cable, and held slings). pn, vn: the cables' ship-fixed node positions
+  !> and velocities (block nodes zero in vn: the rate is taken with the blocks at rest).
+  !> With k_anchor > 0 a spring k_anchor ties each block to anchor (solve_blocks' fallback).
+  pure subroutine block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, &
+                                k_anchor, res, jac, rate, f_sling, f_real, res_d)
     type(rigging_type), intent(in) :: self
     real(wp), intent(in) :: y(:), b(6), v(6), low_r(3, 2), low_v(3, 2), v_drum
-    real(wp), intent(in) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2)
+    real(wp), intent(in) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2), anchor(6), k_anchor
     logical, intent(in) :: taut(2)
-    real(wp), intent(out) :: res(6), jac(6, 6), rate(6), f_sling(2), f_real(2)
+    real(wp), intent(out) :: res(6), jac(6, 6), rate(6), f_sling(2), f_real(2), res_d(6)
+    type(sling_chain_type) :: sling_el
+    type(cable_type) :: cab_el
     real(wp) :: br(3, 2), bv(3, 2), f_top(3), k(3, 3), block_f(3, 2), torque(max_sheaves)
     real(wp) :: p(3, max_nodes), vv(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
     real(wp) :: s(max_nodes), sdot(max_nodes), f(max_nodes - 1), g(max_nodes - 1)
+    real(wp) :: damp_f(3, 2), f_damped(3), fs_damped, fr_dummy, k_damped(3, 3)
     integer :: a, c, i
     br(:, 1) = b(1:3)
     br(:, 2) = b(4:6)
     bv(:, 1) = v(1:3)
     bv(:, 2) = v(4:6)
+    sling_el = self%sling
+    sling_el%c_seg = 0.0_wp
     jac = 0.0_wp
     rate = 0.0_wp
     block_f = 0.0_wp
     block_f(3, :) = self%block_mass*gravity
+    damp_f = 0.0_wp
     do a = 1, 2
+      call top_segment_tangent(sling_el, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
+                               f_top, f_sling(a), fr_dummy, k)
       call top_segment_tangent(self%sling, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
-                               f_top, f_sling(a), f_real(a), k)
+                               f_damped, fs_damped, f_real(a), k_damped)
       if (.not. taut(a)) cycle
       block_f(:, a) = block_f(:, a) + f_top
+      damp_f(:, a) = f_damped - f_top
       jac(3*a - 2:3*a, 3*a - 2:3*a) = k
       rate(3*a - 2:3*a) = -matmul(k, low_v(:, a))
     end do
@@ -634,13 +694,20 @@ contains
           p(:, i) = br(:, cab%block(i))
           vv(:, i) = bv(:, cab%block(i))
         end do
-        call cable_tensions(self, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
-        call cable_node_forces(cab, lam, f, g, self%sheave_radius, block_f, torque)
+        ! with the dashpots, then without (the same cable with c = 0): their difference
+        ! is the dashpots' share
+        call cable_tensions(self, cab, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
+        call cable_node_forces(cab, lam, f, g, self%sheave_radius, damp_f, torque)
+        cab_el = cab
+        cab_el%damping = 0.0_wp
+        call cable_tensions(self, cab_el, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
+        call cable_node_forces(cab_el, lam, f, g, self%sheave_radius, block_f, torque)
+        call cable_node_forces(cab_el, lam, -f, -g, self%sheave_radius, damp_f, torque)
         if (self%rotating) then
-          call cable_block_tangent_rotating(cab, lam, l, f, s, sdot, vv, vn(:, :, c), jac, &
-                                            rate)
+          call cable_block_tangent_rotating(cab_el, lam, l, f, s, sdot, vv, vn(:, :, c), &
+                                            jac, rate)
         else
-          call cable_block_tangent_quasi_static(cab, lam, l, f, self%l0_total(c) + &
+          call cable_block_tangent_quasi_static(cab_el, lam, l, f, self%l0_total(c) + &
                                                 y(self%idr), v_drum, self%friction_ratio, &
                                                 vv, vn(:, :, c), jac, rate)
         end if
@@ -648,6 +715,14 @@ contains
     end do
     res(1:3) = block_f(:, 1)
     res(4:6) = block_f(:, 2)
+    if (k_anchor > 0.0_wp) then
+      res = res - k_anchor*(b - anchor)
+      do i = 1, 6
+        jac(i, i) = jac(i, i) - k_anchor
+      end do
+    end if
+    res_d(1:3) = damp_f(:, 1)
+    res_d(4:6) = damp_f(:, 2)
   end subroutine block_balance
 
   !> Solves a x = b in place (b holds x on return) by Gaussian elimination with partial
