@@ -23,7 +23,8 @@
 !> III.B deck, RK4 limit 2.25e-3 s), far above anything the boat feels. Dropping the
 !> block's inertia (eq. 82; not its weight) removes that mode: each evaluation finds the
 !> block positions where gravity (eq. 78), the cable's pull (eqs. 69, 79) and the top sling
-!> segment (eqs. 80-81, corrected 63) balance, by Newton on the 6 block coordinates. The
+!> segment (eqs. 80-81, corrected 63) balance, by Newton on the 6 block coordinates (see
+!> solve_blocks: the elastic balance, then the dashpots' first-order shift). The
 !> blocks are then no DOFs (ndof = 6n + m), but the layout stays: y(ibr) holds a copy that
 !> follows the solved positions (d/dt = v_b + (r_b - y)/follow_time) and is only the
 !> Newton start, so the right-hand side stays a function of (t, y); y(ibv) is unused and
@@ -53,14 +54,15 @@ module davit_rigging_rigging
   integer, parameter :: max_sheaves = 2*(max_nodes - 2)
   !> Rate scale of the regularised Coulomb bearing moment M_f tanh(omega/omega_f) [rad/s].
   real(wp), parameter :: omega_friction = 1.0e-2_wp
-  !> Quasi-static blocks. Newton stops after a step of at most newton_tol [m]: convergence
-  !> is quadratic (the lagged dashpot velocity adds a linear rate ~1e-4), so what remains
-  !> is below 1e-12 m, which keeps finite-difference Jacobians of the right-hand side
-  !> (davit modes, RODAS3) clean; from an RK4 stage's start that takes 3 evaluations of
-  !> the balance. A step moves a block by at most newton_cap [m] (a block falling onto its
-  !> cable after the drum paid out over a slack sling); newton_floor [N/m] on the diagonal
-  !> keeps the matrix regular while a block has no taut link (stiffnesses are 1e2 to 1e8
-  !> N/m, so it changes the converged answer not at all).
+  !> Quasi-static blocks. Newton on the elastic balance stops after a step of at most
+  !> newton_tol [m]: convergence is quadratic there (analytic tangents, smooth while the
+  !> active set holds), so what remains is below 1e-12 m, which keeps finite-difference
+  !> Jacobians of the right-hand side (davit modes, RODAS3) clean; from an RK4 stage's
+  !> start that takes 3 evaluations of the balance (start, step, dashpots). A step moves a
+  !> block by at most newton_cap [m] (a block falling onto its cable after the drum paid
+  !> out over a slack sling); newton_floor [N/m] on the diagonal keeps the matrix regular
+  !> while a block has no taut link (stiffnesses are 1e2 to 1e8 N/m, so it changes the
+  !> converged answer not at all).
   real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 2.0_wp
   real(wp), parameter :: newton_floor = 1.0e-3_wp
   integer, parameter :: newton_max = 50, search_max = 12, max_switches = 8
@@ -88,11 +90,11 @@ module davit_rigging_rigging
   real(wp), parameter :: follow_time = 0.1_wp
   !> Quasi-static blocks: stretch over which a segment's dashpot tension grows from 0 to
   !> full [m] (cable_type%ramp). With the paper's law a segment going slack drops from
-  !> c de/dt to 0 at once; a massless block then may have no balance (a cable paid out
-  !> over a slack sling: 3 kN of dashpot tension at zero stretch against 490 N of block
-  !> weight). 1e-4 m is ~200 N of the whole cable's elastic tension (quasi-static
-  !> sheaves), ~2 kN of a 3 m part, ~6 kN of a 1 m sling: the loaded rigging (~20 kN per
-  !> part) never sees it.
+  !> c de/dt to 0 at once; a massless block has no balance across such a jump (a cable
+  !> paid out over a slack sling: 3 kN of dashpot tension at zero stretch against 490 N of
+  !> block weight), and the dashpots' shift of the blocks would jump with it. 1e-4 m is
+  !> ~200 N of the whole cable's elastic tension (quasi-static sheaves), ~2 kN of a 3 m
+  !> part, ~6 kN of a 1 m sling: the loaded rigging (~20 kN per part) never sees it.
   real(wp), parameter :: dashpot_ramp = 1.0e-4_wp
 
   type :: rigging_type
@@ -579,7 +581,7 @@ contains
     ! balance's own ~1e-6 N), capped at dashpot_cap
     v = x(:, 2)
     call block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, k_anchor, &
-                       res, jac, rate, f_sling, f_real, res_d)
+                       res, jac, rate, f_sling, f_real, res_d, dashpots=.true.)
     nbal = nbal + 1
     call newton_matrix(jac)
     x(:, 1) = res + res_d
@@ -644,24 +646,28 @@ contains
   !> sling segments where held, without their dashpots, and weight), its Jacobian
   !> jac = d res/d b and its rate at fixed blocks, rate = d res/dt; f_sling: the top
   !> segments' elastic tensions continued through slack (< 0 there), f_real: their
-  !> tension-only values (with the dashpot); res_d: the dashpots' force on the blocks
+  !> tension-only values; res_d (if dashpots, else 0): the dashpots' force on the blocks
   !> moving at v (cable, and held slings). pn, vn: the cables' ship-fixed node positions
   !> and velocities (block nodes zero in vn: the rate is taken with the blocks at rest).
   !> With k_anchor > 0 a spring k_anchor ties each block to anchor (solve_blocks' fallback).
   pure subroutine block_balance(self, y, b, v, low_r, low_v, v_drum, pn, vn, taut, anchor, &
-                                k_anchor, res, jac, rate, f_sling, f_real, res_d)
+                                k_anchor, res, jac, rate, f_sling, f_real, res_d, dashpots)
     type(rigging_type), intent(in) :: self
     real(wp), intent(in) :: y(:), b(6), v(6), low_r(3, 2), low_v(3, 2), v_drum
     real(wp), intent(in) :: pn(3, max_nodes, 2), vn(3, max_nodes, 2), anchor(6), k_anchor
     logical, intent(in) :: taut(2)
+    logical, intent(in), optional :: dashpots
     real(wp), intent(out) :: res(6), jac(6, 6), rate(6), f_sling(2), f_real(2), res_d(6)
     type(sling_chain_type) :: sling_el
     type(cable_type) :: cab_el
     real(wp) :: br(3, 2), bv(3, 2), f_top(3), k(3, 3), block_f(3, 2), torque(max_sheaves)
     real(wp) :: p(3, max_nodes), vv(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
     real(wp) :: s(max_nodes), sdot(max_nodes), f(max_nodes - 1), g(max_nodes - 1)
-    real(wp) :: damp_f(3, 2), f_damped(3), fs_damped, fr_dummy, k_damped(3, 3)
+    real(wp) :: damp_f(3, 2), f_damped(3), fs_damped, fr_damped, k_damped(3, 3)
     integer :: a, c, i
+    logical :: with_dashpots
+    with_dashpots = .false.
+    if (present(dashpots)) with_dashpots = dashpots
     br(:, 1) = b(1:3)
     br(:, 2) = b(4:6)
     bv(:, 1) = v(1:3)
@@ -675,12 +681,14 @@ contains
     damp_f = 0.0_wp
     do a = 1, 2
       call top_segment_tangent(sling_el, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
-                               f_top, f_sling(a), fr_dummy, k)
-      call top_segment_tangent(self%sling, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
-                               f_damped, fs_damped, f_real(a), k_damped)
+                               f_top, f_sling(a), f_real(a), k)
       if (.not. taut(a)) cycle
+      if (with_dashpots) then
+        call top_segment_tangent(self%sling, low_r(:, a), low_v(:, a), br(:, a), bv(:, a), &
+                                 f_damped, fs_damped, fr_damped, k_damped)
+        damp_f(:, a) = f_damped - f_top
+      end if
       block_f(:, a) = block_f(:, a) + f_top
-      damp_f(:, a) = f_damped - f_top
       jac(3*a - 2:3*a, 3*a - 2:3*a) = k
       rate(3*a - 2:3*a) = -matmul(k, low_v(:, a))
     end do
@@ -694,15 +702,18 @@ contains
           p(:, i) = br(:, cab%block(i))
           vv(:, i) = bv(:, cab%block(i))
         end do
-        ! with the dashpots, then without (the same cable with c = 0): their difference
-        ! is the dashpots' share
-        call cable_tensions(self, cab, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
-        call cable_node_forces(cab, lam, f, g, self%sheave_radius, damp_f, torque)
+        ! without the dashpots (the same cable with c = 0); asked for, also with them:
+        ! the difference is the dashpots' share
+        if (with_dashpots) then
+          call cable_tensions(self, cab, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
+          call cable_node_forces(cab, lam, f, g, self%sheave_radius, damp_f, torque)
+        end if
         cab_el = cab
         cab_el%damping = 0.0_wp
         call cable_tensions(self, cab_el, c, y, p, vv, v_drum, lam, l, s, sdot, f, g)
         call cable_node_forces(cab_el, lam, f, g, self%sheave_radius, block_f, torque)
-        call cable_node_forces(cab_el, lam, -f, -g, self%sheave_radius, damp_f, torque)
+        if (with_dashpots) call cable_node_forces(cab_el, lam, -f, -g, self%sheave_radius, &
+                                                  damp_f, torque)
         if (self%rotating) then
           call cable_block_tangent_rotating(cab_el, lam, l, f, s, sdot, vv, vn(:, :, c), &
                                             jac, rate)
