@@ -15,6 +15,8 @@ module davit_io_rigging_keys
     character(len=:), allocatable :: reeving
     !> 'rotating' (sheave DOFs, eq. 71 corrected) or 'quasi_static' (one tension per cable).
     character(len=:), allocatable :: sheaves
+    !> 'massive' (3 translational DOFs per block) or 'quasi_static' (no block inertia).
+    character(len=:), allocatable :: blocks
     !> 'drum' (drum_speed is the rope speed) or 'boat' (lowering_speed is the boat's).
     character(len=:), allocatable :: winch_mode
     !> 'equilibrium' (pre-stretched, static) or 'unstretched' (Fig. 13 transient).
@@ -54,6 +56,11 @@ contains
                   [character(len=12) :: "rotating", "quasi_static"], &
                   "'rotating': sheave DOFs with torque r (f_out - f_in) (eq. 71, c_gamma = 1); "// &
                   "'quasi_static': one tension per cable, no sheave DOFs (review §4.3 item 3).")
+    call r%choice(g, "blocks", s%blocks, "massive", &
+                  [character(len=12) :: "massive", "quasi_static"], &
+                  "'massive': each movable block a 3-DOF mass (eqs. 74-82); 'quasi_static': "// &
+                  "no block inertia (eq. 82 dropped, weight kept), the position solved from "// &
+                  "the balance of eqs. 78-81 at every evaluation (removes the ~200 Hz mode).")
     call r%int(g, "lumps", s%lumps, 0, 0, 20, "-", &
                "Lumped masses per sling; 0 = massless tension-only spring (review §4.3, §4.4).")
     call r%choice(g, "initial", s%initial, "equilibrium", &

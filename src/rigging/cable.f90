@@ -15,7 +15,8 @@ module davit_rigging_cable
   public :: cable_type, max_nodes, node_drum, node_fixed, node_block, node_dead
   public :: cable_node_kinematics, cable_passages, cable_tensions_rotating
   public :: cable_tension_quasi_static, cable_node_forces, cable_energy_rotating
-  public :: cable_geometry
+  public :: cable_geometry, cable_block_tangent_rotating, cable_block_tangent_quasi_static
+  public :: ramp_factor, ramp_slope
 
   integer, parameter :: max_nodes = 8
   integer, parameter :: node_drum = 1, node_fixed = 2, node_block = 3, node_dead = 4
@@ -34,6 +35,10 @@ module davit_rigging_cable
     real(wp) :: l0_init(max_nodes - 1) = 0.0_wp
     !> Axial stiffness EA [N] and per-segment absolute dashpot [N s/m].
     real(wp) :: ea = 0.0_wp, damping = 0.0_wp
+    !> Stretch over which the dashpot tension grows from 0 to full [m]; 0: at once (the
+    !> paper's law, massive blocks). Quasi-static blocks need the tension continuous where
+    !> a cable goes slack, or a massless block has no balance there (ramp_factor).
+    real(wp) :: ramp = 0.0_wp
   end type cable_type
 
 contains
@@ -119,7 +124,7 @@ contains
       if (e <= 0.0_wp) cycle
       fel = cab%ea*e/l0
       edot = ldot(i) - (sdot(i) - sdot(i + 1))
-      f(i) = max(0.0_wp, fel + cab%damping*edot)
+      f(i) = max(0.0_wp, fel + cab%damping*edot*ramp_factor(e, cab%ramp))
       g(i) = f(i) + fel**2/(2.0_wp*cab%ea)
     end do
   end subroutine cable_tensions_rotating
@@ -149,7 +154,8 @@ contains
     if (stretch <= 0.0_wp) return
     ! sum_i w_i T L0_i/EA = stretch, with L0_i = l_i L0_tot/L_geom
     lengths = sum(w(1:nseg)*l(1:nseg))*l0_total/total
-    t = cab%ea*stretch/lengths + cab%damping*(sum(ldot(1:nseg)) - v_drum)/sum(w(1:nseg))
+    t = cab%ea*stretch/lengths + cab%damping*(sum(ldot(1:nseg)) - v_drum)/sum(w(1:nseg))* &
+        ramp_factor(stretch, cab%ramp)
     f(1:nseg) = max(0.0_wp, t)*w(1:nseg)
   end subroutine cable_tension_quasi_static
 
@@ -185,5 +191,175 @@ contains
       en = en + 0.5_wp*cab%ea*e**2/l0
     end do
   end function cable_energy_rotating
+
+  !> Quasi-static blocks: how the cable's pull on the blocks changes with them, for rotating
+  !> sheaves. jac(3a-2:3a, 3b-2:3b) += d(force on block a)/d(position of block b) and
+  !> rate += d(force on the blocks)/dt at fixed blocks (the ship-fixed nodes moving at
+  !> v_exo, whose block nodes must be 0, and the passages at sdot). A taut segment i
+  !> (f_i > 0) pulls node i with f_i lam_i; f_i = EA e/L0 + c (lam . dv - dL0/dt) changes
+  !> with the far node as g = (EA/L0) lam + (c/l)(I - lam lam^T) dv (the dashpot through
+  !> the turning chord, dv = v_(i+1) - v_i at the actual velocities v), so the tangent is
+  !> K_i = lam g^T + (f_i/l_i)(I - lam lam^T); and df/dL0 = -EA l/L0^2. What is left out,
+  !> d f/d(node velocities) times accelerations, is the O(c a/k) lag of a massive block.
+  pure subroutine cable_block_tangent_rotating(cab, lam, l, f, s, sdot, v, v_exo, jac, rate)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: lam(3, max_nodes - 1), l(max_nodes - 1), f(max_nodes - 1)
+    real(wp), intent(in) :: s(max_nodes), sdot(max_nodes), v(3, max_nodes)
+    real(wp), intent(in) :: v_exo(3, max_nodes)
+    real(wp), intent(inout) :: jac(6, 6), rate(6)
+    real(wp) :: k(3, 3), l0, dl0, g(3), e, edot, phi, dphi
+    integer :: i
+    do i = 1, cab%nnode - 1
+      if (f(i) <= 0.0_wp) cycle
+      l0 = max(cab%l0_init(i) + s(i) - s(i + 1), l0_floor)
+      dl0 = sdot(i) - sdot(i + 1)
+      e = l(i) - l0
+      edot = dot_product(lam(:, i), v(:, i + 1) - v(:, i)) - dl0
+      phi = ramp_factor(e, cab%ramp)
+      dphi = ramp_slope(e, cab%ramp)
+      g = (cab%ea/l0 + cab%damping*edot*dphi)*lam(:, i) + &
+          cab%damping*phi/l(i)*across(lam(:, i), v(:, i + 1) - v(:, i))
+      k = tangent(lam(:, i), g, f(i)/l(i))
+      call add_segment(cab, i, k, v_exo, &
+                       -(cab%ea*l(i)/l0**2 + cab%damping*edot*dphi)*dl0*lam(:, i), jac, rate)
+    end do
+  end subroutine cable_block_tangent_rotating
+
+  !> As cable_block_tangent_rotating for quasi-static sheaves: f_i = w_i T with one tension
+  !> T = EA (L - L0) L/(L0 A) + c (sum ldot - v_drum)/sum w, L = sum l_i, A = sum w_i l_i
+  !> (cable_tension_quasi_static). T changes with segment i's far node as
+  !> t_i = (EA (2L - L0)/(L0 A) - T_el w_i/A) lam_i + c/(l_i sum w) (I - lam lam^T) dv_i,
+  !> and with L0 (growing at the drum speed) as -EA L^2/(A L0^2). Each segment adds its
+  !> chord's turning w_i T/l_i (I - lam lam^T); the change of T couples every block on the
+  !> cable (reeving A: both): block a is pulled along u_a = sum (+-w_i lam_i).
+  pure subroutine cable_block_tangent_quasi_static(cab, lam, l, f, l0_total, v_drum, ratio, &
+                                                   v, v_exo, jac, rate)
+    type(cable_type), intent(in) :: cab
+    real(wp), intent(in) :: lam(3, max_nodes - 1), l(max_nodes - 1), f(max_nodes - 1)
+    real(wp), intent(in) :: l0_total, v_drum, ratio, v(3, max_nodes), v_exo(3, max_nodes)
+    real(wp), intent(inout) :: jac(6, 6), rate(6)
+    real(wp) :: w(max_nodes - 1), u(3, 2), q(3, 2), k(3, 3), t_i(3)
+    real(wp) :: total, weighted, t_el, tdot, d_el, d_damp, phi, rate_l
+    real(wp), parameter :: zero3(3) = 0.0_wp
+    integer :: i, j, nseg, a, b, lo, hi
+    nseg = cab%nnode - 1
+    if (f(1) <= 0.0_wp) return
+    w = 1.0_wp
+    if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
+      do i = 1, nseg
+        w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
+      end do
+    end if
+    total = sum(l(1:nseg))
+    weighted = sum(w(1:nseg)*l(1:nseg))
+    t_el = cab%ea*(total - l0_total)*total/(l0_total*weighted)
+    d_el = cab%ea*(2.0_wp*total - l0_total)/(l0_total*weighted)
+    ! the dashpot's ramp in: d/dL of c (dL/dt - v_drum) phi(L - L0)/sum w
+    rate_l = -v_drum
+    do i = 1, nseg
+      rate_l = rate_l + dot_product(lam(:, i), v(:, i + 1) - v(:, i))
+    end do
+    phi = ramp_factor(total - l0_total, cab%ramp)
+    d_damp = cab%damping*rate_l*ramp_slope(total - l0_total, cab%ramp)/sum(w(1:nseg))
+    d_el = d_el + d_damp
+    tdot = -(cab%ea*total**2/(weighted*l0_total**2) + d_damp)*v_drum
+    u = 0.0_wp
+    q = 0.0_wp
+    do i = 1, nseg
+      k = tangent(lam(:, i), zero3, f(i)/l(i))
+      call add_segment(cab, i, k, v_exo, zero3, jac, rate)
+      t_i = (d_el - t_el*w(i)/weighted)*lam(:, i) + &
+            cab%damping*phi/(l(i)*sum(w(1:nseg)))*across(lam(:, i), v(:, i + 1) - v(:, i))
+      tdot = tdot + dot_product(t_i, v_exo(:, i + 1) - v_exo(:, i))
+      if (cab%kind(i) == node_block) then
+        u(:, cab%block(i)) = u(:, cab%block(i)) + w(i)*lam(:, i)
+        q(:, cab%block(i)) = q(:, cab%block(i)) - t_i
+      end if
+      if (cab%kind(i + 1) == node_block) then
+        u(:, cab%block(i + 1)) = u(:, cab%block(i + 1)) - w(i)*lam(:, i)
+        q(:, cab%block(i + 1)) = q(:, cab%block(i + 1)) + t_i
+      end if
+    end do
+    do a = 1, 2
+      lo = 3*a - 2
+      hi = 3*a
+      rate(lo:hi) = rate(lo:hi) + u(:, a)*tdot
+      do b = 1, 2
+        do j = 1, 3
+          jac(lo:hi, 3*b - 3 + j) = jac(lo:hi, 3*b - 3 + j) + u(:, a)*q(j, b)
+        end do
+      end do
+    end do
+  end subroutine cable_block_tangent_quasi_static
+
+  !> Share of the dashpot tension at stretch e: 0 at e <= 0, 1 from e = ramp on, and the
+  !> smooth step 3x^2 - 2x^3 (x = e/ramp) between (always 1 with ramp = 0). Multiplying
+  !> the dashpot by it keeps a tension-only segment's tension continuous, with a
+  !> continuous slope, where it goes slack, instead of jumping from c de/dt to 0.
+  elemental real(wp) function ramp_factor(e, ramp) result(phi)
+    real(wp), intent(in) :: e, ramp
+    real(wp) :: x
+    phi = 1.0_wp
+    if (ramp <= 0.0_wp) return
+    x = min(1.0_wp, max(0.0_wp, e/ramp))
+    phi = x*x*(3.0_wp - 2.0_wp*x)
+  end function ramp_factor
+
+  !> d ramp_factor/de.
+  elemental real(wp) function ramp_slope(e, ramp) result(dphi)
+    real(wp), intent(in) :: e, ramp
+    real(wp) :: x
+    dphi = 0.0_wp
+    if (ramp <= 0.0_wp) return
+    x = min(1.0_wp, max(0.0_wp, e/ramp))
+    dphi = 6.0_wp*x*(1.0_wp - x)/ramp
+  end function ramp_slope
+
+  !> The part of d across lam: (I - lam lam^T) d.
+  pure function across(lam, d) result(p)
+    real(wp), intent(in) :: lam(3), d(3)
+    real(wp) :: p(3)
+    p = d - dot_product(lam, d)*lam
+  end function across
+
+  !> lam g^T + k_geo (I - lam lam^T): a force f lam whose magnitude changes by g . dr and
+  !> whose direction turns by (I - lam lam^T) dr/l (k_geo = f/l).
+  pure function tangent(lam, g, k_geo) result(k)
+    real(wp), intent(in) :: lam(3), g(3), k_geo
+    real(wp) :: k(3, 3)
+    integer :: j
+    do j = 1, 3
+      k(:, j) = lam*g(j) - k_geo*lam(j)*lam
+      k(j, j) = k(j, j) + k_geo
+    end do
+  end function tangent
+
+  !> Segment i pulls node i with F = f lam and node i+1 with -F; dF = K (dp_(i+1) - dp_i) +
+  !> extra dt. Adds the parts that fall on block nodes: their Jacobian blocks, and their
+  !> rates with the other nodes moving at v (block nodes at rest in v).
+  pure subroutine add_segment(cab, i, k, v, extra, jac, rate)
+    type(cable_type), intent(in) :: cab
+    integer, intent(in) :: i
+    real(wp), intent(in) :: k(3, 3), v(3, max_nodes), extra(3)
+    real(wp), intent(inout) :: jac(6, 6), rate(6)
+    real(wp) :: df(3)
+    integer :: a, b
+    a = 0
+    b = 0
+    if (cab%kind(i) == node_block) a = cab%block(i)
+    if (cab%kind(i + 1) == node_block) b = cab%block(i + 1)
+    if (a == 0 .and. b == 0) return
+    df = matmul(k, v(:, i + 1) - v(:, i)) + extra
+    if (a > 0) then
+      jac(3*a - 2:3*a, 3*a - 2:3*a) = jac(3*a - 2:3*a, 3*a - 2:3*a) - k
+      rate(3*a - 2:3*a) = rate(3*a - 2:3*a) + df
+      if (b > 0) jac(3*a - 2:3*a, 3*b - 2:3*b) = jac(3*a - 2:3*a, 3*b - 2:3*b) + k
+    end if
+    if (b > 0) then
+      jac(3*b - 2:3*b, 3*b - 2:3*b) = jac(3*b - 2:3*b, 3*b - 2:3*b) - k
+      rate(3*b - 2:3*b) = rate(3*b - 2:3*b) - df
+      if (a > 0) jac(3*b - 2:3*b, 3*a - 2:3*a) = jac(3*b - 2:3*b, 3*a - 2:3*a) + k
+    end if
+  end subroutine add_segment
 
 end module davit_rigging_cable

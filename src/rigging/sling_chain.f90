@@ -5,9 +5,11 @@
 !> F/m with gravity +m g N3 (corrected eq. 54). n = 0 gives a massless spring hook-block.
 module davit_rigging_sling_chain
   use davit_kinds, only: wp, gravity
+  use davit_rigging_cable, only: ramp_factor, ramp_slope
   implicit none
   private
   public :: sling_chain_type, max_lumps, chain_forces, chain_energy, new_sling_chain
+  public :: top_segment_tangent
 
   integer, parameter :: max_lumps = 20
 
@@ -16,6 +18,9 @@ module davit_rigging_sling_chain
     !> Unstretched segment length l/(n+1) [m], its stiffness EA (n+1)/l [N/m] and its
     !> absolute dashpot [N s/m]; lump mass mu l/(n+1) [kg].
     real(wp) :: l0_seg = 1.0_wp, k_seg = 0.0_wp, c_seg = 0.0_wp, m_lump = 0.0_wp
+    !> Stretch over which the dashpot tension grows from 0 to full [m] (0: at once), as
+    !> cable_type%ramp.
+    real(wp) :: ramp = 0.0_wp
   end type sling_chain_type
 
 contains
@@ -47,7 +52,8 @@ contains
     e = 0.0_wp
     if (dist <= ch%l0_seg) return
     e = d/dist
-    f = max(0.0_wp, ch%k_seg*(dist - ch%l0_seg) + ch%c_seg*dot_product(vb - va, e))
+    f = max(0.0_wp, ch%k_seg*(dist - ch%l0_seg) + ch%c_seg*dot_product(vb - va, e)* &
+                    ramp_factor(dist - ch%l0_seg, ch%ramp))
   end subroutine segment
 
   !> Accelerations of the lumps, forces on the top (block) and on the hook, and the segment
@@ -99,5 +105,38 @@ contains
       en = en + 0.5_wp*ch%k_seg*stretch**2
     end do
   end function chain_energy
+
+  !> The top segment (from r_low, the hook or lump n, to the block at r_top) for a
+  !> quasi-static block (ch%ramp > 0), taken as taut: f = k (D - l0) + c e . dv phi (dv =
+  !> v_top - v_low, phi the dashpot's ramp) on both sides of D = l0, so that the balance
+  !> is smooth; the caller keeps the segment
+  !> only where this f is positive (it is then the tension-only law of `segment`). Returns
+  !> the force on the block f_top = -f e, f, the tension-only law's value f_real, and the
+  !> tangent d f_top/d r_top = -(e g^T + (f/D)(I - e e^T)) with g = k e + (c/D)(I - e e^T) dv
+  !> the change of f with r_top (spring, dashpot through the turning chord) and the chord
+  !> turning the force. Moving r_low changes f_top by -jac times its displacement.
+  pure subroutine top_segment_tangent(ch, r_low, v_low, r_top, v_top, f_top, f, f_real, jac)
+    type(sling_chain_type), intent(in) :: ch
+    real(wp), intent(in) :: r_low(3), v_low(3), r_top(3), v_top(3)
+    real(wp), intent(out) :: f_top(3), f, f_real, jac(3, 3)
+    real(wp) :: e(3), k_geo, dist, g(3), dv(3), phi, dphi
+    integer :: j
+    call segment(ch, r_low, v_low, r_top, v_top, f_real, e)
+    dist = norm2(r_top - r_low)
+    e = (r_top - r_low)/dist
+    dv = v_top - v_low
+    ! the dashpot ramps in over ch%ramp of stretch (none in compression)
+    phi = ramp_factor(dist - ch%l0_seg, ch%ramp)
+    dphi = ramp_slope(dist - ch%l0_seg, ch%ramp)
+    f = ch%k_seg*(dist - ch%l0_seg) + ch%c_seg*dot_product(dv, e)*phi
+    f_top = -f*e
+    k_geo = f/dist
+    g = (ch%k_seg + ch%c_seg*dot_product(dv, e)*dphi)*e + &
+        ch%c_seg*phi/dist*(dv - dot_product(e, dv)*e)
+    do j = 1, 3
+      jac(:, j) = -e*g(j) + k_geo*e(j)*e
+      jac(j, j) = jac(j, j) - k_geo
+    end do
+  end subroutine top_segment_tangent
 
 end module davit_rigging_sling_chain
