@@ -35,7 +35,8 @@ contains
                    new_case("free_fall_and_terminal_velocity", free_fall), &
                    new_case("fender_impact_in_system", fender_impact), &
                    new_case("approach_rate_eq33_moving_side_vs_fd", moving_side_rate), &
-                   new_case("surface_watch_never_skips_a_wet_hull", surface_watch)]
+                   new_case("surface_watch_never_skips_a_wet_hull", surface_watch), &
+                   new_case("contact_approach_graded_vs_window", contact_approach)]
   end function collect_boat_water
 
   function deck_config(text) result(cfg)
@@ -294,6 +295,52 @@ contains
     call check(state, maxval(abs(y(7:9))), 0.0_wp, "no rotation", abs_tol=1e-9_wp)
     call check_true(state, clearance > 0.0_wp, "separated at the end")
   end subroutine fender_impact
+
+  !> The fender impact of fender_impact driven by the system's step policy (dt = 1e-3 s,
+  !> dt_contact = 2e-6 s): both approach rules find the onset (0.01 s) to within
+  !> dt_contact and give the same rebound and Hertz peak; before contact the two-step
+  !> window takes 9 steps of dt plus between dt/dt_contact = 500 and 2 dt/dt_contact small
+  !> ones (by where the window opens), the graded rule 9 plus ~log2(dt/dt_contact) = 9.
+  subroutine contact_approach(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type) :: sys
+    type(rk4_type) :: rk
+    real(wp) :: y(nstate), t, h, clearance, force(2), fpeak, dm, fm
+    integer :: i, j, before
+    character(len=6), parameter :: rule(2) = ["window", "graded"]
+    do j = 1, 2
+      cfg = deck_config("&slings attached = .false. / &wind speed = 0.0 / "// &
+                        "&contact fender_z = 0.0, 0.0 / "// &
+                        "&boat position = 0.0, 11.81, -100.0, velocity = 0.0, -1.0, 0.0, "// &
+                        "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 / "// &
+                        "&simulation dt = 1e-3, dt_contact = 2e-6, contact_approach = '"// &
+                        trim(rule(j))//"' /")
+      call new_system(sys, cfg)
+      y = sys%initial_state(cfg)
+      call rk%init(nstate)
+      t = 0.0_wp
+      fpeak = 0.0_wp
+      before = 0
+      do i = 1, 200000
+        h = sys%max_step(t, y, 1.0e-3_wp)
+        call rk%step(sys, t, y, h)
+        call sys%after_step(t, y)
+        if (sys%first_contact_time < 0.0_wp) before = before + 1
+        call sys%contact_state(y, clearance, force)
+        fpeak = max(fpeak, maxval(force))
+        if (t > 0.03_wp) exit
+      end do
+      call hertz_peak(sys%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+      call note(state, rule(j)//": steps before contact", real(before, wp))
+      call check(state, sys%first_contact_time, 0.01_wp, rule(j)//": first contact", &
+                 abs_tol=2.0_wp*2.0e-6_wp)
+      call check(state, y(11), 0.8_wp, rule(j)//": rebound = e_r v0", rel_tol=1e-3_wp)
+      call check(state, fpeak, fm, rule(j)//": peak force = Hertz(m/2)", rel_tol=2e-3_wp)
+      if (j == 1) call check_true(state, before >= 500, "window: >= dt/dt_contact small steps")
+      if (j == 2) call check_true(state, before <= 9 + 9 + 3, "graded: ~log2(dt/dt_contact)")
+    end do
+  end subroutine contact_approach
 
   !> Eq. (33) on a ship side that translates and rotates, with a moving, rotating boat: the
   !> approach rate of the deepest point equals the central difference of its indentation

@@ -16,7 +16,7 @@ module davit_io_config
 
   type :: simulation_config
     real(wp) :: t_end, dt, output_interval, dt_contact, wave_update
-    character(len=:), allocatable :: integrator, scene
+    character(len=:), allocatable :: integrator, scene, contact_approach
     integer :: seed
     real(wp) :: rtol, atol
     !> Adaptive integrators without error control: one step of dt per macro step.
@@ -238,6 +238,12 @@ contains
     call r%real(g, "dt_contact", s%dt_contact, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
                 "Step while a fender touches the ship's side or is predicted to within "// &
                 "two steps (event location by step limiting); 0: always dt.")
+    call r%choice(g, "contact_approach", s%contact_approach, "window", &
+                  [character(len=8) :: "window", "graded"], &
+                  "Steps before a fender reaches the ship's side: 'window' takes dt_contact "// &
+                  "once contact is predicted within two steps of dt; 'graded' takes half "// &
+                  "the predicted time to contact (at least dt_contact), so the approach costs "// &
+                  "~log2(dt/dt_contact) steps instead of 2 dt/dt_contact.")
     call r%real(g, "wave_update", s%wave_update, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
                 "Slow clock of the wave loads: the ship's Froude-Krylov loads and (irregular "// &
                 "seas) the water at the boat's strips are sampled at this interval with "// &

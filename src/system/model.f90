@@ -102,6 +102,8 @@ module davit_system_model
     real(wp) :: release_delay = 0.0_wp
     !> Step while a fender is in contact or about to be (0: no limit) [s].
     real(wp) :: dt_contact = 0.0_wp
+    !> Approach steps: graded by the predicted time to contact (else the two-step window).
+    logical :: graded_approach = .false.
     !> Where the hooks were when they let go (inertial) [m].
     real(wp) :: released_hooks(3, nslings) = 0.0_wp
     type(ship_pose_type) :: released_pose
@@ -205,6 +207,7 @@ contains
     integer :: law
     self%contact = cfg%contact%enabled
     self%dt_contact = cfg%simulation%dt_contact
+    self%graded_approach = cfg%simulation%contact_approach == "graded"
     cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
     self%ship_rest%r = cfg%ship%position
     self%ship_rest%c = cs
@@ -398,12 +401,15 @@ contains
   !> over milliseconds: while any fender is in contact, or its indentation extrapolated
   !> over the next two steps of size dt would be positive, steps are limited to dt_contact.
   !> This locates the contact onset to within dt_contact (an event location by step
-  !> limiting that keeps the step sequence deterministic) and resolves the impact.
+  !> limiting that keeps the step sequence deterministic) and resolves the impact. With
+  !> `contact_approach = 'graded'` the approach steps are instead half the predicted time
+  !> to contact (at least dt_contact): the same onset resolution in ~log2(dt/dt_contact)
+  !> steps rather than 2 dt/dt_contact, which matters at large dt (quasi-static blocks).
   pure real(wp) function system_max_step(self, t, y, dt) result(h)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: t, y(:), dt
     real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
-    integer :: deepest(self%fenders%nf)
+    integer :: deepest(self%fenders%nf), j
     h = dt
     if (.not. self%contact .or. self%dt_contact <= 0.0_wp .or. self%dt_contact >= dt) return
     if (any(self%fender_states%phase /= phase_free)) then
@@ -413,7 +419,16 @@ contains
     c = rotation_matrix(y(1:3))
     call fender_probe(self%fenders, side_plane(self, ship_pose(self, y)), c, &
                       matmul(c, y(4:6)), y(boat_u(1):boat_u(2)), deepest, delta, delta_dot)
-    if (any(delta + 2.0_wp*dt*max(delta_dot, 0.0_wp) > 0.0_wp)) h = self%dt_contact
+    if (self%graded_approach) then
+      ! half the predicted time to contact -delta/delta_dot of each approaching fender:
+      ! the gap is halved each step, down to dt_contact
+      do j = 1, self%fenders%nf
+        if (delta_dot(j) > 0.0_wp .and. delta(j) + 2.0_wp*dt*delta_dot(j) > 0.0_wp) &
+          h = min(h, max(self%dt_contact, -0.5_wp*delta(j)/delta_dot(j)))
+      end do
+    else if (any(delta + 2.0_wp*dt*max(delta_dot, 0.0_wp) > 0.0_wp)) then
+      h = self%dt_contact
+    end if
   end function system_max_step
 
   !> Waterborne when rho g V >= W or the hooks carry < 1 % of W, held for 1 s; the hooks
