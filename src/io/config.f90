@@ -238,12 +238,6 @@ contains
     call r%real(g, "dt_contact", s%dt_contact, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
                 "Step while a fender touches the ship's side or is predicted to within "// &
                 "two steps (event location by step limiting); 0: always dt.")
-    call r%choice(g, "contact_approach", s%contact_approach, "window", &
-                  [character(len=8) :: "window", "graded"], &
-                  "Steps before a fender reaches the ship's side: 'window' takes dt_contact "// &
-                  "once contact is predicted within two steps of dt; 'graded' takes half "// &
-                  "the predicted time to contact (at least dt_contact), so the approach costs "// &
-                  "~log2(dt/dt_contact) steps instead of 2 dt/dt_contact.")
     call r%real(g, "wave_update", s%wave_update, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
                 "Slow clock of the wave loads: the ship's Froude-Krylov loads and (irregular "// &
                 "seas) the water at the boat's strips are sampled at this interval with "// &
@@ -275,6 +269,12 @@ contains
                 lo_open=.true.)
     call r%int(g, "seed", s%seed, 12345, 0, huge(1), "-", &
                "Random seed, recorded in the output (used by random seas).")
+    call r%choice(g, "contact_approach", s%contact_approach, "window", &
+                  [character(len=8) :: "window", "graded"], &
+                  "Steps before a fender reaches the ship's side: 'window' takes dt_contact "// &
+                  "once contact is predicted within two steps of dt; 'graded' takes half "// &
+                  "the predicted time to contact (at least dt_contact), so the approach costs "// &
+                  "~log2(dt/dt_contact) steps instead of 2 dt/dt_contact.")
   end subroutine read_simulation
 
   subroutine read_boat(r, b)
