@@ -20,7 +20,10 @@ module davit_boat_strip_loads
   implicit none
   private
   public :: strip_model_type, new_strip_model, strip_loads, strip_partial_velocities
-  public :: strip_velocity
+  public :: strip_velocity, max_strips
+
+  !> Most strips a hull may have (the deck's limit for `&boat strips`).
+  integer, parameter :: max_strips = 400
 
   type :: strip_model_type
     type(boat_hull_type) :: hull
@@ -57,7 +60,10 @@ contains
   pure function strip_velocity(u, x) result(v)
     real(wp), intent(in) :: u(6), x
     real(wp) :: v(3)
-    v = matmul(strip_partial_velocities(x), u)
+    ! eq. (20) written out (the partial-velocity matrix product made a heap temporary)
+    v(1) = u(4)
+    v(2) = u(5) + x*u(3)
+    v(3) = u(6) - x*u(2)
   end function strip_velocity
 
   !> Partial velocities of the strip centre, eq. (20): column r is dv/du_r in b.
@@ -81,8 +87,10 @@ contains
     real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
     real(wp), intent(out) :: f(6), volume
     type(strip_wave_cache_type), intent(in), optional :: cache
-    type(section_wet_type) :: wet(s%hull%n)
-    real(wp) :: vrel(3, s%hull%n), fk(3), p(3), eta, vw(3), aw(3), pw, a1max, heave_rel
+    ! fixed-size locals: automatic arrays of size s%hull%n went through malloc per call
+    type(section_wet_type) :: wet(max_strips)
+    real(wp) :: vrel(3, max_strips), fk(3), p(3), q(3), area(3), eta, vw(3), aw(3), pw, a1max
+    real(wp) :: heave_rel
     real(wp) :: sin_roll
     integer :: k
     logical :: window, cached
@@ -91,6 +99,7 @@ contains
     f = 0.0_wp
     volume = 0.0_wp
     heave_rel = 0.0_wp
+    a1max = 0.0_wp
     associate (h => s%hull, n3 => c(3, :))
       do k = 1, h%n
         p = r + c(:, 1)*h%x(k)
@@ -104,26 +113,32 @@ contains
         vw = 0.0_wp
         cached = .false.
         if (window) cached = strip_cached(cache, k)
+        ! wet centroid (x_k, y_c, z_c) in N, written out: an array constructor here costs
+        ! a heap temporary per strip and stage
+        q = r + c(:, 1)*h%x(k) + c(:, 2)*wet(k)%centroid(1) + c(:, 3)*wet(k)%centroid(2)
         if (cached) then
-          call cached_kinematics(cache, field, k, t, r + matmul(c, [h%x(k), wet(k)%centroid]), &
-                                 eta, vw)
+          call cached_kinematics(cache, field, k, t, q, eta, vw)
         else if (field%kind /= wave_none) then
-          call wave_kinematics(field, t, r + matmul(c, [h%x(k), wet(k)%centroid]), eta, vw, &
-                               aw, pw)
+          call wave_kinematics(field, t, q, eta, vw, aw, pw)
         end if
         vrel(:, k) = strip_velocity(u, h%x(k)) - matmul(vw, c)
         volume = volume + wet(k)%area*h%thickness
+        a1max = max(a1max, wet(k)%area)
         heave_rel = heave_rel + wet(k)%area*h%thickness*dot_product(n3, vrel(:, k))
       end do
       if (volume <= 0.0_wp) return
-      a1max = maxval(wet%area)
       do k = 1, h%n
         if (wet(k)%area <= 0.0_wp) cycle
         ! Eq. (22) with the review's areas, plus buoyancy (eq. 23 corrected).
-        fk = -0.5_wp*rho_water*s%cd*[a1max/real(h%n, wp), h%thickness*wet(k)%height, &
-                                     h%thickness*wet(k)%width]*abs(vrel(:, k))*vrel(:, k)
+        area(1) = a1max/real(h%n, wp)
+        area(2) = h%thickness*wet(k)%height
+        area(3) = h%thickness*wet(k)%width
+        fk = -0.5_wp*rho_water*s%cd*area*abs(vrel(:, k))*vrel(:, k)
         fk = fk - rho_water*gravity*wet(k)%area*h%thickness*n3
-        f = f + matmul(fk, strip_partial_velocities(h%x(k)))
+        ! f_r += fk . (dv/du_r), eq. (20): only u2, u3 (pitch, yaw) and u4..u6 enter
+        f(2) = f(2) - h%x(k)*fk(3)
+        f(3) = f(3) + h%x(k)*fk(2)
+        f(4:6) = f(4:6) + fk
       end do
       sin_roll = n3(2)/max(hypot(n3(2), n3(3)), tiny(1.0_wp))
       f(1) = f(1) - rho_water*gravity*s%metacentric_height*sin_roll*volume
