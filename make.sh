@@ -83,13 +83,11 @@ demo() {
 # The decks behind the paper's figures and facts: Section III.B regular runs with and
 # without wind (Figs. 15-19, F7-F9), the frozen-ship run (F9), the III.A experiments
 # (Figs. 11-13, F2), the Fig. 13 transient (F2), the lowering, the Level 4/5 seas (Fig. 6)
-# and the ship's RAOs. The irregular III.B decks
-# (about 8 min each) only with PAPER_IRREGULAR=1.
+# and the ship's RAOs, and the irregular III.B decks (~4 s each with the slow clocks).
 paper_decks() {
   ls input/iiib_level?_???.nml input/iiib_level?_???_nowind.nml input/iiib_level5_090_frozen.nml \
      input/iiia_model_scale_?.nml input/fig13_tension.nml input/lowering.nml \
-     input/sea_level?_irregular.nml input/ship_rao.nml
-  if [ "${PAPER_IRREGULAR:-0}" = 1 ]; then ls input/iiib_level?_???_irregular.nml; fi
+     input/sea_level?_irregular.nml input/ship_rao.nml input/iiib_level?_???_irregular.nml
 }
 
 # One deck to out/<deck name>.h5, skipped when that file is newer than the deck and the
