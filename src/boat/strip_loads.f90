@@ -16,14 +16,11 @@ module davit_boat_strip_loads
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_elevation, wave_kinematics
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_cover, &
-                                    strip_cached, cached_elevation, cached_kinematics
+                                    cached_elevation, cached_kinematics
   implicit none
   private
   public :: strip_model_type, new_strip_model, strip_loads, strip_partial_velocities
-  public :: strip_velocity, max_strips
-
-  !> Most strips a hull may have (the deck's limit for `&boat strips`).
-  integer, parameter :: max_strips = 400
+  public :: strip_velocity
 
   type :: strip_model_type
     type(boat_hull_type) :: hull
@@ -87,9 +84,8 @@ contains
     real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
     real(wp), intent(out) :: f(6), volume
     type(strip_wave_cache_type), intent(in), optional :: cache
-    ! fixed-size locals: automatic arrays of size s%hull%n went through malloc per call
-    type(section_wet_type) :: wet(max_strips)
-    real(wp) :: vrel(3, max_strips), fk(3), p(3), q(3), area(3), eta, vw(3), aw(3), pw, a1max
+    type(section_wet_type) :: wet(s%hull%n)
+    real(wp) :: vrel(3, s%hull%n), fk(3), p(3), q(3), area(3), eta, vw(3), aw(3), pw, a1max
     real(wp) :: heave_rel
     real(wp) :: sin_roll
     integer :: k
@@ -112,7 +108,7 @@ contains
         if (wet(k)%area <= 0.0_wp) cycle
         vw = 0.0_wp
         cached = .false.
-        if (window) cached = strip_cached(cache, k)
+        if (window) cached = cache%sampled(k)
         ! wet centroid (x_k, y_c, z_c) in N, written out: an array constructor here costs
         ! a heap temporary per strip and stage
         q = r + c(:, 1)*h%x(k) + c(:, 2)*wet(k)%centroid(1) + c(:, 3)*wet(k)%centroid(2)

@@ -23,7 +23,7 @@ module davit_boat_strip_waves
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
-  public :: strip_waves_due, strip_waves_cover, strip_cached, cached_elevation
+  public :: strip_waves_due, strip_waves_cover, cached_elevation
   public :: cached_kinematics
   public :: elevation_sums, kinematic_sums
 
@@ -81,13 +81,6 @@ contains
     real(wp), intent(in) :: t
     strip_waves_cover = cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)
   end function strip_waves_cover
-
-  !> True when strip k's velocity was sampled in the current window.
-  pure logical function strip_cached(cache, k)
-    type(strip_wave_cache_type), intent(in) :: cache
-    integer, intent(in) :: k
-    strip_cached = cache%sampled(k)
-  end function strip_cached
 
   !> New window [t, t + h] for the boat at (c, r): references at the strip centres and at
   !> the wet centroids of the sections at t (the keel line of a dry section, where it

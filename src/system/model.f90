@@ -345,12 +345,8 @@ contains
         f = f + body_point_force(self%hooks(:, i), matmul(transpose(c), fh))
       end do
     end if
-    if (surely_dry(self%watch, self%water, t, c, r)) then
-      volume = 0.0_wp
-    else
-      call strip_loads(self%water, self%sea, t, c, r, u, fw, volume, self%waves)
-      f = f + fw
-    end if
+    call water_loads(self, t, c, r, u, fw, volume)
+    f = f + fw
     f(4:6) = f(4:6) + boat_wind_force(self%air, u(4:6) - matmul(wind_velocity(self%wind), c), &
                                       max(0.0_wp, 1.0_wp - volume/self%hull_volume))
     if (self%contact) then
@@ -359,12 +355,27 @@ contains
     end if
   end function boat_forces
 
+  !> Strip water loads (eqs. 18-25) and wet volume, exactly zero without forming them
+  !> while the surface watch proves the hull dry; from the strips' slow clock where it
+  !> covers t.
+  pure subroutine water_loads(self, t, c, r, u, f, volume)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
+    real(wp), intent(out) :: f(6), volume
+    if (surely_dry(self%watch, self%water, t, c, r)) then
+      f = 0.0_wp
+      volume = 0.0_wp
+    else
+      call strip_loads(self%water, self%sea, t, c, r, u, f, volume, self%waves)
+    end if
+  end subroutine water_loads
+
   !> Advance each fender's contact phase on the accepted state; note the first contact;
   !> on the davit, watch for waterborne and release the hooks.
   subroutine system_after_step(self, t, y)
     class(system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
-    real(wp) :: c(3, 3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
+    real(wp) :: c(3, 3), r(3), delta(self%fenders%nf), delta_dot(self%fenders%nf)
     integer :: deepest(self%fenders%nf), j
     logical :: due, maybe_wet(self%water%hull%n)
     if (self%with_ship) call self%ship%after_step(t, y(self%iship:self%iship + ship_nstate - 1))
@@ -378,12 +389,13 @@ contains
     call strip_waves_due(self%waves, t, due)
     if (due) then
       c = rotation_matrix(y(1:3))
+      r = matmul(c, y(4:6))
       do j = 1, self%water%hull%n
         maybe_wet(j) = .not. strip_surely_dry(self%watch, self%water, j, &
-                                              t + self%waves%window, c, matmul(c, y(4:6)))
+                                              t + self%waves%window, c, r)
       end do
       if (any(maybe_wet)) call strip_waves_refresh(self%waves, self%water%hull, self%sea, t, &
-                                                   c, matmul(c, y(4:6)), maybe_wet)
+                                                   c, r, maybe_wet)
     end if
     if (self%on_davit .and. self%release_time < 0.0_wp) call watch_waterborne(self, t, y)
     if (.not. self%contact) return
@@ -447,11 +459,7 @@ contains
     if (r(3) < -10.0_wp) return
     if (self%waterborne_time < 0.0_wp) then
       weight = self%boat%mass*gravity
-      ! the watch proves most of these steps dry: no strip sums then (exact)
-      volume = 0.0_wp
-      if (.not. surely_dry(self%watch, self%water, t, c, r)) &
-        call strip_loads(self%water, self%sea, t, c, r, y(boat_u(1):boat_u(2)), fw, volume, &
-                         self%waves)
+      call water_loads(self, t, c, r, y(boat_u(1):boat_u(2)), fw, volume)
       afloat = rho_water*gravity*volume >= weight
       if (.not. afloat) then
         call self%rigging_state(t, y, seg, sling, paid, lumps)
