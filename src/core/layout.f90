@@ -1,0 +1,98 @@
+!> The named layout of the state vector y = [... ; q_part ; u_part ; ...].
+!>
+!> Every body or subsystem registers its generalized coordinates q and speeds u (eqs. 3-4,
+!> 47, 66-67) as one part: its q block and then its u block are appended to y. A part
+!> with no speeds (the drum passage, prescribed by the winch; quasi-static block copies)
+!> registers q only. A subsystem with a layout of its own (the rigging) is appended whole,
+!> its parts shifted. This module alone turns names into index ranges: nothing else
+!> writes literal slices of y.
+module davit_core_layout
+  implicit none
+  private
+  public :: state_layout_type, state_part_type, max_parts
+
+  integer, parameter :: max_parts = 16
+
+  !> Index ranges [first, last] in y of a part's coordinates and speeds (last = first - 1
+  !> when empty).
+  type :: state_part_type
+    character(len=16) :: name = ""
+    integer :: q(2) = [1, 0], u(2) = [1, 0]
+  end type state_part_type
+
+  type :: state_layout_type
+    !> State length and number of speeds.
+    integer :: n = 0, nu = 0, nparts = 0
+    type(state_part_type) :: parts(max_parts)
+    !> Positions in y of every speed, in order: where eq. 89 writes u_dot.
+    integer, allocatable :: speeds(:)
+  contains
+    procedure :: add => layout_add
+    procedure :: append => layout_append
+    procedure :: part => layout_part
+    procedure :: offset => layout_offset
+  end type state_layout_type
+
+contains
+
+  !> Register a part of nq coordinates followed by nu speeds; returns its ranges.
+  subroutine layout_add(self, name, nq, nu, part)
+    class(state_layout_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: nq, nu
+    type(state_part_type), intent(out), optional :: part
+    type(state_part_type) :: p
+    integer :: k
+    p%name = name
+    p%q = [self%n + 1, self%n + nq]
+    p%u = [self%n + nq + 1, self%n + nq + nu]
+    self%nparts = self%nparts + 1
+    self%parts(self%nparts) = p
+    self%n = self%n + nq + nu
+    self%nu = self%nu + nu
+    if (.not. allocated(self%speeds)) allocate (self%speeds(0))
+    self%speeds = [self%speeds, [(k, k = p%u(1), p%u(2))]]
+    if (present(part)) part = p
+  end subroutine layout_add
+
+  !> Append every part of a subsystem's own layout; returns the offset of its first state
+  !> (its y(1) is this layout's y(offset + 1)).
+  subroutine layout_append(self, sub, offset)
+    class(state_layout_type), intent(inout) :: self
+    type(state_layout_type), intent(in) :: sub
+    integer, intent(out) :: offset
+    integer :: i
+    offset = self%n
+    do i = 1, sub%nparts
+      associate (p => sub%parts(i))
+        call self%add(p%name, p%q(2) - p%q(1) + 1, p%u(2) - p%u(1) + 1)
+      end associate
+    end do
+  end subroutine layout_append
+
+  !> The part registered as name (an empty part if there is none).
+  pure function layout_part(self, name) result(p)
+    class(state_layout_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    type(state_part_type) :: p
+    integer :: i
+    do i = 1, self%nparts
+      if (self%parts(i)%name == name) then
+        p = self%parts(i)
+        return
+      end if
+    end do
+  end function layout_part
+
+  !> Range [first, last] in y of the parts from `first` to `last` (by name), both included.
+  pure function layout_offset(self, first, last) result(r)
+    class(state_layout_type), intent(in) :: self
+    character(len=*), intent(in) :: first, last
+    integer :: r(2)
+    type(state_part_type) :: a, b
+    a = self%part(first)
+    b = self%part(last)
+    r = [a%q(1), max(b%q(2), b%u(2))]
+  end function layout_offset
+
+end module davit_core_layout
