@@ -10,10 +10,12 @@ import numpy as np  # noqa: E402
 from . import layout  # noqa: E402
 
 
-def _save(fig, outdir, name):
+def _save(fig, outdir, name, dpi=110):
+    """Write `fig` to outdir/name (the folder made if missing) at `dpi`, close it and
+    return the path. The one figure writer of postproc (study charts use dpi=120)."""
     os.makedirs(outdir, exist_ok=True)
     path = os.path.join(outdir, name)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
 
@@ -130,7 +132,7 @@ def spectrum(run, outdir, stem):
     run.require(layout.SEA, "sea")
     t = run.time
     dt = float(t[1] - t[0])
-    ramp_time = float(run.group_attrs.get("sea", {}).get("ramp_time", 0.0))
+    ramp_time = layout.sea_ramp_time(run)
     eta = run.get(layout.SEA_ELEVATION)[:, 0][t >= ramp_time]
     nseg = int(2 ** np.floor(np.log2(max(len(eta) // 8, 16))))
     omega, s = welch(eta, dt, nseg)

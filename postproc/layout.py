@@ -53,6 +53,13 @@ BOAT = (BOAT_POSITION, BOAT_EULER, BOAT_VELOCITY, BOAT_ANGULAR_VELOCITY, BOAT_AC
 SEA = (SEA_ELEVATION, SEA_PROBES, SEA_OMEGA, SEA_K, SEA_DIRECTION, SEA_AMPLITUDE, SEA_PHASE)
 ROOT_ATTRIBUTES = ("davit_version", "input_namelist", "seed", "steps", "rhs_evaluations",
                    "wall_time", "complete", "status")
+# root attributes read one by one (postproc.study's run metrics)
+WALL_TIME = "wall_time"
+RHS_EVALUATIONS = "rhs_evaluations"
+STEPS = "steps"
+COMPLETE = "complete"
+# group of the sea's attributes (ramp_time, wave_type) in Run.group_attrs
+SEA_GROUP = "sea"
 
 
 def _text(value):
@@ -85,7 +92,7 @@ class Run:
 
     @property
     def complete(self):
-        return int(self.attrs.get("complete", 0)) == 1
+        return int(self.attrs.get(COMPLETE, 0)) == 1
 
     @property
     def scene(self):
@@ -197,9 +204,14 @@ def to_plot_frame(xyz):
     return out
 
 
+def sea_ramp_time(run):
+    """The recorded sea's ramp time T [s] (attribute of /sea; 0 where it has none)."""
+    return float(run.group_attrs.get(SEA_GROUP, {}).get("ramp_time", 0.0))
+
+
 def sea_ramp(run, t):
     """The smooth-start factor (1 - cos(pi t/T))/2 of the recorded sea."""
-    ramp_time = float(run.group_attrs.get("sea", {}).get("ramp_time", 0.0))
+    ramp_time = sea_ramp_time(run)
     t = np.asarray(t, dtype=float)
     if ramp_time <= 0:
         return np.ones_like(t)
@@ -218,7 +230,7 @@ def sea_elevation(run, t, x, y):
     eta1 = np.sum(a * np.cos(theta), axis=-1)
     r = sea_ramp(run, t)
     eta = r * eta1
-    if run.group_attrs.get("sea", {}).get("wave_type") == "stokes2":
+    if run.group_attrs.get(SEA_GROUP, {}).get("wave_type") == "stokes2":
         eta = eta + 0.5 * k[0] * (r * a[0]) ** 2 * np.cos(2 * theta[..., 0])
     return eta
 
@@ -385,3 +397,40 @@ def load_sweep(path):
         data = {field: f[name][()] for field, name in SWEEP_FIELDS.items()}
     data["message"] = [_text(m).strip() for m in data["message"]]
     return Sweep(path=str(path), attrs=attrs, **data)
+
+
+# --- Study charts (`python -m postproc.study`) ----------------------------------------------
+# /study (STUDY_GROUP) holds one 1-D dataset per column, one entry per run: the run labels
+# (bytes), ok (1 where the run completed) and the numeric metrics; the study's settings
+# (kind, base, t_end, ...) are attributes of /study.
+STUDY_LABEL = "label"
+STUDY_OK = "ok"
+
+
+def write_study(path, attrs, labels, ok, columns):
+    """Write a study file: /study with `attrs` as its attributes, the run labels, the ok
+    flags and one float dataset per entry of `columns` ({name: values}, in that order)."""
+    with h5py.File(path, "w") as f:
+        g = f.create_group(STUDY_GROUP)
+        for key, value in attrs.items():
+            g.attrs[key] = value
+        g.create_dataset(STUDY_LABEL, data=np.array(labels, dtype="S"))
+        g.create_dataset(STUDY_OK, data=np.array(ok))
+        for key, values in columns.items():
+            g.create_dataset(key, data=np.array(values, dtype=float))
+
+
+def load_study(path, kind=None):
+    """{column: array} of a study file's /study datasets (label: list of str) plus
+    "attrs": the attributes of /study; None if the file has no /study, or (given `kind`)
+    if its kind is another."""
+    with h5py.File(path, "r") as f:
+        if STUDY_GROUP not in f:
+            return None
+        g = f[STUDY_GROUP]
+        if kind is not None and g.attrs.get("kind") != kind:
+            return None
+        data = {k: g[k][:] for k in g}
+        data[STUDY_LABEL] = [s.decode() for s in data[STUDY_LABEL]]
+        data["attrs"] = dict(g.attrs)
+    return data

@@ -13,7 +13,7 @@ A study deck is a namelist with one `&study` group:
     runs = 'rk4 dt=1e-3 dt_contact=1e-5', ...
 Each run string is an integrator name followed by key=value overrides of the base deck
 (the group of each key is looked up in KEY_GROUPS). The script runs `davit run` on each
-variant, compares with the reference and writes out/<study>.h5 (group /study) and a PNG
+variant, compares with the reference and writes out/<study>.h5 (layout.write_study) and a PNG
 chart. Timings are the runs' own single-thread wall times (root attribute wall_time).
 
 kind = 'damping' measures how much each method damps the boat's bounce on its slings: the
@@ -120,8 +120,9 @@ def metrics(path):
                    if layout.FIRST_CONTACT_TIME in f else -1.0)
         out = {"time": time, "x": f[layout.BOAT_POSITION][:],
                "a": f[layout.BOAT_ACCELERATION][:], "tension": tension, "contact": contact,
-               "wall": float(f.attrs["wall_time"]), "rhs": int(f.attrs["rhs_evaluations"]),
-               "steps": int(f.attrs["steps"]), "complete": int(f.attrs["complete"])}
+               "wall": float(f.attrs[layout.WALL_TIME]),
+               "rhs": int(f.attrs[layout.RHS_EVALUATIONS]),
+               "steps": int(f.attrs[layout.STEPS]), "complete": int(f.attrs[layout.COMPLETE])}
     return out
 
 
@@ -318,7 +319,7 @@ def motion_statistics(path):
         z = f[layout.BOAT_POSITION][:, 2]
         roll = f[layout.BOAT_EULER][:, 0]
         a = f[layout.BOAT_ACCELERATION][:]
-        wall = float(f.attrs["wall_time"])
+        wall = float(f.attrs[layout.WALL_TIME])
     return {"rms_heave": np.std(z), "rms_roll": np.std(roll),
             "peak_ah": np.hypot(a[:, 0], a[:, 1]).max(), "wall": wall}
 
@@ -351,21 +352,17 @@ def statistics(study, davit, workdir):
 
 
 def write_rows(path, study, rows, ref=None):
-    """/study/<column> datasets (one entry per run) and the study deck as attributes."""
-    with h5py.File(path, "w") as f:
-        g = f.create_group("study")
-        g.attrs["kind"] = study["kind"]
-        g.attrs["base"] = study["base"]
-        g.attrs["t_end"] = study["t_end"]
-        if ref is not None:
-            g.attrs["reference"] = study["reference"]
-            g.attrs["reference_wall_time"] = ref["wall"]
-            g.attrs["reference_first_contact"] = ref["contact"]
-        keys = sorted({k for r in rows for k in r if k not in ("label", "message", "ok")})
-        g.create_dataset("label", data=np.array([r["label"] for r in rows], dtype="S"))
-        g.create_dataset("ok", data=np.array([int(r["ok"]) if "ok" in r else 1 for r in rows]))
-        for k in keys:
-            g.create_dataset(k, data=np.array([r.get(k, np.nan) for r in rows], dtype=float))
+    """The study file (layout.write_study): one column per run metric, the study deck's
+    settings as attributes."""
+    attrs = {"kind": study["kind"], "base": study["base"], "t_end": study["t_end"]}
+    if ref is not None:
+        attrs["reference"] = study["reference"]
+        attrs["reference_wall_time"] = ref["wall"]
+        attrs["reference_first_contact"] = ref["contact"]
+    keys = sorted({k for r in rows for k in r if k not in ("label", "message", "ok")})
+    layout.write_study(path, attrs, [r["label"] for r in rows],
+                       [int(r["ok"]) if "ok" in r else 1 for r in rows],
+                       {k: [r.get(k, np.nan) for r in rows] for k in keys})
 
 
 def main(argv=None):

@@ -5,30 +5,26 @@ and the spurious damping of the bounce (measured against the stability functions
 Each function takes a study file and returns the PNG path, or None for another kind."""
 import os
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import layout  # noqa: E402
+from .figures import _save  # noqa: E402
+
 COLOURS = {"rk4": "tab:blue", "dopri5": "tab:orange", "rosenbrock": "tab:green"}
 
 
-def _load(path, kind):
-    with h5py.File(path, "r") as f:
-        if "study" not in f or f["study"].attrs.get("kind") != kind:
-            return None
-        g = f["study"]
-        data = {k: g[k][:] for k in g}
-        data["label"] = [s.decode() for s in data["label"]]
-        data["attrs"] = dict(g.attrs)
-    return data
+def _png_name(path):
+    """<study file stem>.png"""
+    return os.path.splitext(os.path.basename(path))[0] + ".png"
 
 
 def work_precision(path, outdir):
     """Smooth-phase CG error and peak-tension error against wall time, per run."""
-    d = _load(path, "work_precision")
+    d = layout.load_study(path, "work_precision")
     if d is None:
         return None
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
@@ -59,12 +55,12 @@ def work_precision(path, outdir):
     fig.suptitle(f"Work-precision on {os.path.basename(a['base'])}, {a['t_end']:.0f} s; "
                  f"reference: {a['reference']}")
     fig.tight_layout()
-    return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
+    return _save(fig, outdir, _png_name(path), dpi=120)
 
 
 def stability(path, outdir):
     """Largest stable RK4 step vs the analytic limit, and the adaptive methods' steps."""
-    d = _load(path, "stability")
+    d = layout.load_study(path, "stability")
     if d is None:
         return None
     x = np.arange(len(d["label"]))
@@ -86,13 +82,13 @@ def stability(path, outdir):
     ax.set_title(f"Stability map on {os.path.basename(d['attrs']['base'])}, "
                  f"{d['attrs']['t_end']:.1f} s runs")
     fig.tight_layout()
-    return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
+    return _save(fig, outdir, _png_name(path), dpi=120)
 
 
 def damping(path, outdir):
     """Apparent damping ratio of the bounce against omega h: measured (markers) and from
     each method's stability function (lines), with the physical value."""
-    d = _load(path, "damping")
+    d = layout.load_study(path, "damping")
     if d is None:
         return None
     from .study import stability_function
@@ -116,15 +112,7 @@ def damping(path, outdir):
     ax.legend(fontsize=8)
     ax.set_title(f"Spurious damping of the bounce on {os.path.basename(d['attrs']['base'])}")
     fig.tight_layout()
-    return _save(fig, outdir, os.path.splitext(os.path.basename(path))[0])
-
-
-def _save(fig, outdir, name):
-    os.makedirs(outdir, exist_ok=True)
-    path = os.path.join(outdir, name + ".png")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, outdir, _png_name(path), dpi=120)
 
 
 STUDY_FIGURES = {"work_precision": work_precision, "stability": stability,

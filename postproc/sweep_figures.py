@@ -7,7 +7,6 @@ colliding launches. min_distance (Figs. 20-23): the minimum fender-to-ship-side 
 of every launch by encounter angle, one row per level and one column per initial
 clearance; below zero is a collision.
 """
-import os
 
 import matplotlib
 
@@ -16,14 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import layout  # noqa: E402
-
-
-def _save(fig, outdir, name):
-    os.makedirs(outdir, exist_ok=True)
-    path = os.path.join(outdir, name)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+from .figures import _save  # noqa: E402
 
 
 def _finished(summary):

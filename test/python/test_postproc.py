@@ -31,3 +31,75 @@ def test_non_davit_file_is_refused(tmp_path, capsys):
     bogus.write_bytes(b"not hdf5")
     assert cli.main(["trajectory", str(bogus), "-o", str(tmp_path)]) == 1
     assert "postproc: error" in capsys.readouterr().err
+
+
+# --- layout.py is the one module that knows the HDF5 layout ---------------------------------
+import ast  # noqa: E402
+import pathlib  # noqa: E402
+import re  # noqa: E402
+
+POSTPROC = pathlib.Path(layout.__file__).parent
+# top-level groups of davit's files: those of layout's paths, and the ones named directly
+HDF5_GROUPS = ({value.split("/")[0] for name, value in vars(layout).items()
+                if name.isupper() and isinstance(value, str) and "/" in value}
+               | {layout.STUDY_GROUP, layout.RAO_GROUP, layout.SWEEP_GROUP, layout.SEA_GROUP}
+               | {"boat", "study", "rigging", "sweep", "bench", "ship", "sea", "time", "events",
+                  "diagnostics", "contact", "slings", "cases", "results", "rao"})
+_ABSOLUTE = re.compile(rf"^/({'|'.join(sorted(HDF5_GROUPS | {'input'}))})(/|$)")
+_RELATIVE = re.compile(rf"^({'|'.join(sorted(HDF5_GROUPS))})/\w")
+_H5_WRITERS = {"create_group", "create_dataset", "require_group", "require_dataset"}
+_ATTRIBUTE_HOLDERS = {"attrs", "group_attrs"}
+
+
+def _docstrings(tree):
+    nodes = [tree] + [n for n in ast.walk(tree)
+                      if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))]
+    return {id(n.body[0].value) for n in nodes
+            if n.body and isinstance(n.body[0], ast.Expr)
+            and isinstance(n.body[0].value, ast.Constant)}
+
+
+def _layout_literals(tree):
+    """(line, text) of every literal in `tree` that names an HDF5 path, group or attribute:
+    a string like "/boat/..." or "boat/position", the name given to create_group and the
+    like, and a literal key of an `.attrs` or `.group_attrs` lookup."""
+    skip = _docstrings(tree)
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in skip:
+            if _ABSOLUTE.match(node.value) or _RELATIVE.match(node.value):
+                found.append((node.lineno, node.value))
+        key = None
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.args
+                and (node.func.attr in _H5_WRITERS
+                     or (node.func.attr == "get" and isinstance(node.func.value, ast.Attribute)
+                         and node.func.value.attr in _ATTRIBUTE_HOLDERS))):
+            key = node.args[0]
+        elif (isinstance(node, ast.Subscript) and isinstance(node.value, ast.Attribute)
+              and node.value.attr in _ATTRIBUTE_HOLDERS):
+            key = node.slice
+        if isinstance(key, ast.Constant) and isinstance(key.value, str):
+            found.append((key.lineno, key.value))
+    return sorted(set(found))
+
+
+def test_only_layout_names_hdf5_paths():
+    offenders = [f"{path.name}:{line}: {text!r}"
+                 for path in sorted(POSTPROC.glob("*.py")) if path.name != "layout.py"
+                 for line, text in _layout_literals(ast.parse(path.read_text()))]
+    assert not offenders, "HDF5 names outside postproc/layout.py:\n" + "\n".join(offenders)
+
+
+def test_the_check_sees_raw_paths():
+    code = ('f["/boat/position"]; f["study"].attrs.get("kind"); f.create_group("study")\n'
+            'run.group_attrs.get("sea", {}); x = "results/status"\n'
+            'def g():\n    """Reads /study and boat/position."""\n    return run.deck("sea", "h")\n')
+    assert sorted(text for _, text in _layout_literals(ast.parse(code))) == \
+        ["/boat/position", "kind", "results/status", "sea", "study"]
+
+
+def test_one_figure_writer():
+    saves = [f"{path.name}:{node.lineno}" for path in sorted(POSTPROC.glob("*.py"))
+             for node in ast.walk(ast.parse(path.read_text()))
+             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.name == "_save"]
+    assert len(saves) == 1, f"def _save in postproc/: {saves}"
