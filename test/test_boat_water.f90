@@ -12,7 +12,8 @@ module test_boat_water
   use davit_boat_contact, only: hertz_peak, new_contact_law, law_hertz_elastoplastic
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, fender_probe
   use davit_core_rotation, only: cross
-  use davit_system_model, only: system_type, new_system, nstate
+  use davit_system_model, only: system_type
+  use system_fixture, only: new_test_system, nstate
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -158,8 +159,7 @@ contains
     cfg = deck_config(free_deck)
     cfg%boat%position = cg
     cfg%boat%euler = euler
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call sys%rhs(0.0_wp, y, dydt)
     c = rotation_matrix(euler)
     fb = cfg%boat%mass*(matmul(c, dydt(10:12)) - [0.0_wp, 0.0_wp, gravity])
@@ -181,8 +181,7 @@ contains
     cfg = deck_config(free_deck)
     draught = cfg%boat%mass/(rho_water*waterplane_area())
     cfg%boat%position = [0.0_wp, 0.0_wp, draught - 1.1_wp]
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     y0 = y
     call sys%rhs(0.0_wp, y, dydt)
     call note(state, "Archimedes draught (m)", draught)
@@ -205,8 +204,7 @@ contains
     cfg = deck_config(free_deck)
     cfg%boat%position = [0.0_wp, 0.0_wp, cfg%boat%mass/(rho_water*waterplane_area()) - 1.1_wp]
     cfg%boat%euler = [0.03_wp, 0.0_wp, 0.0_wp]
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call rk%init(nstate)
     dt = 2.0e-3_wp
     t = 0.0_wp
@@ -238,15 +236,13 @@ contains
     real(wp) :: y(nstate), vt, t
     cfg = deck_config(free_deck//" &boat position = 0.0, 0.0, -5000.0 /")
     cfg%boat%wind_drag_coefficient = 0.0_wp
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call run(sys, y, 0.01_wp, 500)
     call check(state, y(6) + 5000.0_wp, 0.5_wp*gravity*25.0_wp, "drop in 5 s, no drag", &
                rel_tol=1e-12_wp)
     call check(state, y(12), gravity*5.0_wp, "speed after 5 s, no drag", rel_tol=1e-12_wp)
     cfg%boat%wind_drag_coefficient = 0.5_wp
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call run(sys, y, 0.01_wp, 2000)
     t = 20.0_wp
     vt = sqrt(2.0_wp*cfg%boat%mass*gravity/(rho_air*26.2_wp*0.5_wp))
@@ -273,8 +269,7 @@ contains
                       "&contact fender_z = 0.0, 0.0 / "// &
                       "&boat position = 0.0, 11.81, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                       "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call rk%init(nstate)
     dt = 2.0e-6_wp
     t = 0.0_wp
@@ -285,13 +280,13 @@ contains
       call sys%contact_state(y, clearance, force)
       fpeak = max(fpeak, maxval(force))
     end do
-    call hertz_peak(sys%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
     call note(state, "rebound speed (m/s)", y(11))
     call note(state, "peak force per fender (N)", fpeak)
-    call note(state, "first contact (s)", sys%first_contact_time)
+    call note(state, "first contact (s)", sys%hist%first_contact_time)
     call check(state, y(11), 0.8_wp, "rebound = e_r v0", rel_tol=1e-3_wp)
     call check(state, fpeak, fm, "peak force = Hertz(m/2)", rel_tol=1e-3_wp)
-    call check(state, sys%first_contact_time, 0.01_wp, "first contact", abs_tol=2.0_wp*dt)
+    call check(state, sys%hist%first_contact_time, 0.01_wp, "first contact", abs_tol=2.0_wp*dt)
     call check(state, maxval(abs(y(7:9))), 0.0_wp, "no rotation", abs_tol=1e-9_wp)
     call check_true(state, clearance > 0.0_wp, "separated at the end")
   end subroutine fender_impact
@@ -316,8 +311,7 @@ contains
                         "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 / "// &
                         "&simulation dt = 1e-3, dt_contact = 2e-6, contact_approach = '"// &
                         trim(rule(j))//"' /")
-      call new_system(sys, cfg)
-      y = sys%initial_state(cfg)
+      y = new_test_system(sys, cfg)
       call rk%init(nstate)
       t = 0.0_wp
       fpeak = 0.0_wp
@@ -326,14 +320,14 @@ contains
         h = sys%max_step(t, y, 1.0e-3_wp)
         call rk%step(sys, t, y, h)
         call sys%after_step(t, y)
-        if (sys%first_contact_time < 0.0_wp) before = before + 1
+        if (sys%hist%first_contact_time < 0.0_wp) before = before + 1
         call sys%contact_state(y, clearance, force)
         fpeak = max(fpeak, maxval(force))
         if (t > 0.03_wp) exit
       end do
-      call hertz_peak(sys%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+      call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
       call note(state, rule(j)//": steps before contact", real(before, wp))
-      call check(state, sys%first_contact_time, 0.01_wp, rule(j)//": first contact", &
+      call check(state, sys%hist%first_contact_time, 0.01_wp, rule(j)//": first contact", &
                  abs_tol=2.0_wp*2.0e-6_wp)
       call check(state, y(11), 0.8_wp, rule(j)//": rebound = e_r v0", rel_tol=1e-3_wp)
       call check(state, fpeak, fm, rule(j)//": peak force = Hertz(m/2)", rel_tol=2e-3_wp)
@@ -414,10 +408,11 @@ contains
     type(config_type) :: cfg
     type(system_type) :: sys
     real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), u(6), f(6), volume, t, z, x(9)
+    real(wp), allocatable :: y0(:)
     integer :: i, dry, missed
     cfg = deck_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
                       "&slings attached = .false. / &contact enabled = .false. /")
-    call new_system(sys, cfg)
+    y0 = new_test_system(sys, cfg)
     dry = 0
     missed = 0
     u = 0.0_wp
@@ -426,18 +421,18 @@ contains
       z = -12.0_wp + 13.0_wp*x(1)
       c0 = rotation_matrix([0.2_wp*(x(2) - 0.5_wp), 0.1_wp*(x(3) - 0.5_wp), 6.0_wp*x(4)])
       r0 = [50.0_wp*x(5), 50.0_wp*x(6), z]
-      call watch_refresh(sys%watch, sys%water, sys%sea, 10.0_wp*x(7), c0, r0)
-      t = sys%watch%t + 0.05_wp*x(8)
+      call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 10.0_wp*x(7), c0, r0)
+      t = sys%hist%watch%t + 0.05_wp*x(8)
       c = matmul(rotation_matrix(0.1_wp*[x(9), 1.0_wp - x(9), x(3)]), c0)
       r = r0 + 0.3_wp*[x(9) - 0.5_wp, x(2) - 0.5_wp, x(4) - 0.5_wp]
-      if (.not. surely_dry(sys%watch, sys%water, t, c, r)) cycle
+      if (.not. surely_dry(sys%hist%watch, sys%par%water, t, c, r)) cycle
       dry = dry + 1
-      call strip_loads(sys%water, sys%sea, t, c, r, u, f, volume)
+      call strip_loads(sys%par%water, sys%par%sea, t, c, r, u, f, volume)
       if (volume /= 0.0_wp .or. any(f /= 0.0_wp)) missed = missed + 1
     end do
     call note(state, "poses called dry", real(dry, wp))
-    call note(state, "rate bound (m/s)", sys%watch%rate_bound)
-    call note(state, "slope bound (-)", sys%watch%slope_bound)
+    call note(state, "rate bound (m/s)", sys%hist%watch%rate_bound)
+    call note(state, "slope bound (-)", sys%hist%watch%slope_bound)
     call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
     call check_true(state, dry > 1000, "the watch skips the high poses")
   end subroutine surface_watch

@@ -5,7 +5,8 @@ module test_hanging
   use davit_kinds, only: wp, pi, gravity
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
-  use davit_system_model, only: system_type, new_system, nstate
+  use davit_system_model, only: system_type
+  use system_fixture, only: new_test_system, nstate
   use davit_solve_rk4, only: rk4_type
   use test_problems, only: oscillator
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -118,8 +119,7 @@ contains
     type(system_type) :: sys
     real(wp) :: y(nstate), tension(2), weight
     cfg = hanging_config(3.0_wp, 1.0e4_wp, unstretched=.true.)
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call integrate(sys, y, 1.0e-3_wp, 30000, 3)
     tension = sys%sling_tensions(y)
     weight = cfg%boat%mass*gravity
@@ -142,8 +142,7 @@ contains
     real(wp) :: y(nstate), s(0:20000)
     cfg = hanging_config(fall, 0.0_wp, unstretched=.false.)
     cfg%boat%velocity = [0.05_wp, 0.0_wp, 0.0_wp]
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call integrate(sys, y, dt, ubound(s, 1), 1, s)
     call note(state, "surge period [s]", period_of(s, dt))
     call note(state, "2 pi sqrt(L/g) [s]", 2.0_wp*pi*sqrt(fall/gravity))
@@ -186,8 +185,7 @@ contains
         ! hook y = L alpha; CG y = L alpha + h psi; roll = -psi (eq. 2 sign convention)
         cfg%boat%position(2) = cfg%slings%anchor_fore(2) + l*v(1) + h*v(2)
         cfg%boat%euler = [-v(2), 0.0_wp, 0.0_wp]
-        call new_system(sys, cfg)
-        y = sys%initial_state(cfg)
+        y = new_test_system(sys, cfg)
         n = nint(4.5_wp*2*pi/sqrt(w2(mode))/dt)
         if (allocated(s)) deallocate (s)
         allocate (s(0:n))
@@ -211,8 +209,7 @@ contains
     real(wp) :: y(nstate), s(0:10000), ea, omega
     cfg = hanging_config(3.0_wp, 0.0_wp, unstretched=.false.)
     cfg%boat%velocity = [0.0_wp, 0.0_wp, 0.01_wp]
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     call integrate(sys, y, dt, ubound(s, 1), 3, s)
     ea = cfg%slings%youngs_modulus*pi*cfg%slings%diameter**2/4.0_wp
     omega = sqrt(2.0_wp*ea/cfg%slings%length/cfg%boat%mass)
@@ -234,8 +231,7 @@ contains
     cfg = hanging_config(3.0_wp, 0.0_wp, unstretched=.false.)
     cfg%boat%velocity = [0.3_wp, 0.5_wp, 0.0_wp]
     cfg%boat%angular_velocity = [0.05_wp, 0.0_wp, 0.03_wp]
-    call new_system(sys, cfg)
-    y = sys%initial_state(cfg)
+    y = new_test_system(sys, cfg)
     e0 = sys%energy(y)
     ke0 = 0.5_wp*(cfg%boat%mass*0.34_wp + cfg%boat%inertia(1)*0.05_wp**2 + &
                   cfg%boat%inertia(3)*0.03_wp**2)
@@ -286,8 +282,7 @@ contains
     cfg = hanging_config(3.0_wp, 1.0e4_wp, unstretched=.true.)
     cfg%boat%velocity = [0.3_wp, 0.5_wp, 0.0_wp]
     cfg%boat%angular_velocity = [0.05_wp, 0.0_wp, 0.03_wp]
-    call new_system(sys, cfg)
-    y0 = sys%initial_state(cfg)
+    y0 = new_test_system(sys, cfg)
     do k = 1, 3
       dt = 4.0e-3_wp/2**(k - 1)
       y(:, k) = y0

@@ -16,11 +16,12 @@ module test_rigging
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_factory, only: new_integrator
   use davit_io_config, only: config_type, read_config
-  use davit_system_model, only: system_type, new_system
-  use davit_system_recorders, only: boat_recorder
-  use davit_system_run_summary, only: run_summary
-  use davit_system_driver, only: integrate
-  use davit_system_linear_modes, only: linear_modes
+  use davit_system_model, only: system_type
+  use system_fixture, only: new_test_system
+  use davit_run_recorders, only: boat_recorder
+  use davit_run_run_summary, only: run_summary
+  use davit_run_driver, only: integrate
+  use davit_run_linear_modes, only: linear_modes
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -777,13 +778,12 @@ contains
     call linear_modes(cfg, rate_m, omega, error)
     cfg%rigging%blocks = "quasi_static"
     call linear_modes(cfg, rate_q, omega, error)
-    call new_system(sys, cfg, error)
-    y = sys%initial_state(cfg)
-    br = sys%rig%block_positions(y(13:))
+    y = new_test_system(sys, cfg)
+    br = sys%par%rig%block_positions(y(13:))
     drop = br(3, 1) - cfg%rigging%head_fore(3)
     cosa = drop/hypot(drop, 0.5_wp*cfg%rigging%head_spacing)
-    ea = sys%rig%cables(1)%ea
-    l0 = sys%rig%unstretched_length(y(13:), 1)
+    ea = sys%par%rig%cables(1)%ea
+    l0 = sys%par%rig%unstretched_length(y(13:), 1)
     k_s = ea/cfg%rigging%sling_length
     k_c = (2.0_wp*cosa)**2*ea/l0
     omega_block = sqrt((k_s + 2.0_wp*k_c)/cfg%rigging%block_mass)
@@ -822,17 +822,13 @@ contains
     call check_true(state, .not. allocated(error), "deck read")
     if (allocated(error)) return
     cfg%simulation%dt = 1.0e-3_wp
-    call new_system(sys_m, cfg, error)
-    y = sys_m%initial_state(cfg)
-    rec_m%sys => sys_m
-    call integrate(cfg, sys_m, y, rec_m, sum_m, run_error, error)
+    y = new_test_system(sys_m, cfg)
+    call integrate(cfg%simulation, sys_m, y, rec_m, sum_m, run_error, error)
     call check_true(state, .not. allocated(run_error), "massive reference runs")
     cfg%rigging%blocks = "quasi_static"
     cfg%simulation%dt = 1.0e-2_wp
-    call new_system(sys_q, cfg, error)
-    y = sys_q%initial_state(cfg)
-    rec_q%sys => sys_q
-    call integrate(cfg, sys_q, y, rec_q, sum_q, run_error, error)
+    y = new_test_system(sys_q, cfg)
+    call integrate(cfg%simulation, sys_q, y, rec_q, sum_q, run_error, error)
     call check_true(state, .not. allocated(run_error), "quasi-static at dt = 1e-2 runs")
     n = min(rec_m%n, rec_q%n)
     call check_true(state, n == rec_m%n .and. rec_m%n == nint(100.0_wp/0.02_wp) + 1, &
@@ -843,12 +839,12 @@ contains
     k6 = nint(60.0_wp/0.02_wp) + 1
     speed = (rec_q%position(3, k6) - rec_q%position(3, k4))/(rec_q%time(k6) - rec_q%time(k4))
     call check(state, speed, 0.7_wp/4.0_wp, "boat comes down at drum/4", rel_tol=0.01_wp)
-    call check(state, sys_q%waterborne_time, sys_m%waterborne_time, "waterborne", &
+    call check(state, sys_q%hist%waterborne_time, sys_m%hist%waterborne_time, "waterborne", &
                abs_tol=1.0e-2_wp)
-    call check(state, sys_q%release_time, sys_m%release_time, "release", abs_tol=1.0e-2_wp)
+    call check(state, sys_q%hist%release_time, sys_m%hist%release_time, "release", abs_tol=1.0e-2_wp)
     call note(state, "max CG difference over 100 s [m]", diff)
-    call note(state, "waterborne massive [s]", sys_m%waterborne_time)
-    call note(state, "waterborne quasi-static [s]", sys_q%waterborne_time)
+    call note(state, "waterborne massive [s]", sys_m%hist%waterborne_time)
+    call note(state, "waterborne quasi-static [s]", sys_q%hist%waterborne_time)
     call note(state, "RHS massive dt=1e-3", real(sum_m%rhs_evaluations, wp))
     call note(state, "RHS quasi-static dt=1e-2", real(sum_q%rhs_evaluations, wp))
     call note(state, "wall massive [s]", sum_m%wall_time)
@@ -902,16 +898,12 @@ contains
     cfg = base
     cfg%rigging%block_mass = m_b
     cfg%simulation%dt = dt
-    call new_system(sys_m, cfg, error)
-    y = sys_m%initial_state(cfg)
-    rec_m%sys => sys_m
-    call integrate(cfg, sys_m, y, rec_m, summary, run_error, error)
+    y = new_test_system(sys_m, cfg)
+    call integrate(cfg%simulation, sys_m, y, rec_m, summary, run_error, error)
     cfg%rigging%blocks = "quasi_static"
     cfg%simulation%dt = 1.0e-2_wp
-    call new_system(sys_q, cfg, error)
-    y = sys_q%initial_state(cfg)
-    rec_q%sys => sys_q
-    call integrate(cfg, sys_q, y, rec_q, summary, run_error, error)
+    y = new_test_system(sys_q, cfg)
+    call integrate(cfg%simulation, sys_q, y, rec_q, summary, run_error, error)
     n = min(rec_m%n, rec_q%n)
     d = maxval(norm2(rec_m%position(:, 1:n) - rec_q%position(:, 1:n), 1))
   end function cg_difference
@@ -926,12 +918,10 @@ contains
     type(run_summary) :: summary
     type(error_type), allocatable :: error, run_error
     real(wp), allocatable :: y(:)
-    call new_system(sys, cfg, error)
-    y = sys%initial_state(cfg)
-    rec%sys => sys
-    call integrate(cfg, sys, y, rec, summary, run_error, error)
+    y = new_test_system(sys, cfg)
+    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error)
     ok = .not. allocated(run_error) .and. .not. allocated(error)
-    release = sys%release_time
+    release = sys%hist%release_time
   end subroutine launch
 
 end module test_rigging

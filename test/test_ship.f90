@@ -11,9 +11,9 @@ module test_ship
   use davit_io_config, only: config_type, parse_config
   use davit_ship_hull, only: hull_type, new_hull, hull_natural_periods
   use davit_ship_ship_model, only: ship_system_type
-  use davit_system_ship_scene, only: build_ship_scene
+  use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
-  use davit_system_rao, only: rao_case
+  use davit_run_rao, only: rao_case
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private

@@ -7,10 +7,11 @@ module test_sweep
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
   use davit_boat_contact, only: hertz_peak
-  use davit_system_model, only: system_type, new_system
-  use davit_system_recorders, only: boat_recorder
-  use davit_system_run_summary, only: run_summary
-  use davit_system_driver, only: integrate
+  use davit_system_model, only: system_type
+  use system_fixture, only: new_test_system
+  use davit_run_recorders, only: boat_recorder
+  use davit_run_run_summary, only: run_summary
+  use davit_run_driver, only: integrate
   use davit_sweep_keys, only: sweep_config, parse_sweep
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance, &
                                splitmix64, case_seed
@@ -156,10 +157,8 @@ contains
       call check(state, clearance, cases(i)%clearance_b*2.8_wp, "clearance = c B", &
                  abs_tol=1e-12_wp)
     end do
-    call new_system(sys, cfg, error)
-    y = sys%initial_state(cfg)
-    rec%sys => sys
-    call integrate(cfg, sys, y, rec, summary, run_error, error)
+    y = new_test_system(sys, cfg)
+    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error)
     speed = maxval(norm2(rec%velocity(:, 1:rec%n), 1))
     call note(state, "largest boat speed over 1 s at 2 B (m/s)", speed)
     call check(state, speed, 0.0_wp, "at rest at 2 B", abs_tol=1e-6_wp)
@@ -185,13 +184,10 @@ contains
                       "&contact fender_z = 0.0, 0.0 / "// &
                       "&boat position = 0.0, 11.81, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                       "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
-    call new_system(sys, cfg, error)
-    y = sys%initial_state(cfg)
-    rec%sys => sys
-    metrics%sys => sys
-    call integrate(cfg, sys, y, rec, summary, run_error, error, metrics)
+    y = new_test_system(sys, cfg)
+    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     r = metrics%result()
-    call hertz_peak(sys%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
     call note(state, "peak horizontal acceleration (m/s^2)", r%peak_horizontal_acceleration)
     call note(state, "min clearance (m)", r%min_clearance)
     call check_true(state, .not. allocated(run_error), "run completes")
@@ -224,16 +220,13 @@ contains
                       "zeta = 0.1, 0.1, 0.1 / &wind speed = 0.0 / &sea wave_type = 'calm' / "// &
                       "&rigging head_fore = 4.6, 13.3, -7.55, head_aft = -4.6, 13.3, -7.55, "// &
                       "lead_sheave = 0.0, 11.5, -8.0, drum_position = 0.0, 8.0, -3.5 /")
-    call new_system(sys, cfg, error)
-    y = sys%initial_state(cfg)
-    rec%sys => sys
-    metrics%sys => sys
-    call integrate(cfg, sys, y, rec, summary, run_error, error, metrics)
+    y = new_test_system(sys, cfg)
+    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     r = metrics%result()
     call note(state, "waterborne (s)", r%waterborne_time)
     call note(state, "end of the lowering window (s)", r%end_time)
     call check_true(state, r%waterborne_time > 0.0_wp, "waterborne")
-    call check(state, r%end_time, sys%release_time, "window ends at release", abs_tol=0.0_wp)
+    call check(state, r%end_time, sys%hist%release_time, "window ends at release", abs_tol=0.0_wp)
     call check(state, r%end_time, r%waterborne_time + 1.0_wp, "release 1 s after waterborne", &
                abs_tol=2.0_wp*cfg%simulation%dt)
     call check(state, rec%time(rec%n), r%end_time, "run stopped there", abs_tol=0.0_wp)

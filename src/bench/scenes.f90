@@ -7,11 +7,12 @@ module davit_bench_scenes
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type, read_config
   use davit_io_deck_reader, only: fmt_real
-  use davit_system_model, only: system_type, new_system
-  use davit_system_recorders, only: boat_recorder
-  use davit_system_run_summary, only: run_summary
-  use davit_system_driver, only: integrate
-  use davit_system_linear_modes, only: linear_modes
+  use davit_system_model, only: system_type
+  use davit_system_build, only: new_system, initial_state
+  use davit_run_recorders, only: boat_recorder
+  use davit_run_run_summary, only: run_summary
+  use davit_run_driver, only: integrate
+  use davit_run_linear_modes, only: linear_modes
   use davit_bench_timing, only: timed_run
   implicit none
   private
@@ -74,7 +75,7 @@ contains
     type(config_type), intent(in) :: cfg
     type(timed_run), intent(inout) :: run
     type(error_type), allocatable, intent(out) :: error
-    type(system_type), target :: sys
+    type(system_type) :: sys
     type(boat_recorder) :: rec
     type(run_summary) :: summary
     type(error_type), allocatable :: run_error
@@ -88,9 +89,9 @@ contains
     end select
     call new_system(sys, cfg, error)
     if (allocated(error)) return
-    y = sys%initial_state(cfg)
-    rec%sys => sys
-    call integrate(cfg, sys, y, rec, summary, run_error, error)
+    call initial_state(sys, cfg, y, error)
+    if (allocated(error)) return
+    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error)
     if (allocated(error)) return
     if (allocated(run_error)) then
       call fatal_error(error, cfg%filename//" (dt = "//fmt_real(cfg%simulation%dt)// &

@@ -8,7 +8,7 @@ module davit_bench_sweep
   use davit_io_config, only: config_type
   use davit_io_namelist, only: int_to_str
   use davit_system_model, only: system_type
-  use davit_system_recorders, only: boat_recorder
+  use davit_run_recorders, only: boat_recorder
   use davit_sweep_keys, only: sweep_config, read_sweep
   use davit_sweep_cases, only: sweep_case, case_config
   use davit_sweep_driver, only: prepare_cases, run_case

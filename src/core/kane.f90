@@ -10,7 +10,7 @@ module davit_core_kane
   use davit_kinds, only: wp
   implicit none
   private
-  public :: kane_v, kane_w_phi, kane_f, kane_rates
+  public :: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
 
   !> Rows of the Kane block array kane(3, n).
   integer, parameter :: kane_v = 1, kane_w_phi = 2, kane_f = 3
@@ -24,5 +24,15 @@ contains
     real(wp), intent(inout) :: dydt(:)
     dydt(speeds) = (kane(kane_f, speeds) - kane(kane_w_phi, speeds))/kane(kane_v, speeds)
   end subroutine kane_rates
+
+  !> A part that does not move (a frozen ship, the falls after hook release): q_dot = 0 and
+  !> blocks V = 1, W phi = F = 0, so eq. 89 gives u_dot = 0 too.
+  pure subroutine kane_at_rest(qdot, kane)
+    real(wp), intent(out) :: qdot(:), kane(:, :)
+    qdot = 0.0_wp
+    kane(kane_v, :) = 1.0_wp
+    kane(kane_w_phi, :) = 0.0_wp
+    kane(kane_f, :) = 0.0_wp
+  end subroutine kane_at_rest
 
 end module davit_core_kane

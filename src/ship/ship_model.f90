@@ -5,13 +5,16 @@
 !> (G10-G12), zero-speed cross-flow drag for sway and yaw, surge resistance, and wind
 !> (eq. 46, G14). One-way coupled: the davit loads do not act on the ship (review §1.11).
 !>
-!> State y(1:12): Euler angles (roll, pitch, yaw; eq. 2), CG position in the inertial
-!> frame (the MMG convention; qdot = C v), angular velocity and velocity in ship axes.
+!> One state part "ship": q = Euler angles (roll, pitch, yaw; eq. 2) and CG position in the
+!> inertial frame (the MMG convention; qdot = C v); u = angular velocity and velocity in
+!> ship axes. ship_kane_blocks gives its Kane blocks to whichever system holds it.
 module davit_ship_ship_model
   use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix, euler_rates, cross
   use davit_core_fastmath, only: fast_sincos
+  use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
+  use davit_core_layout, only: state_layout_type
   use davit_solve_integrator, only: ode_problem
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp
   use davit_sea_wind, only: wind_type, wind_velocity
@@ -20,7 +23,7 @@ module davit_ship_ship_model
   use davit_ship_wind_load, only: ship_wind_load
   implicit none
   private
-  public :: ship_system_type, new_ship_system, ship_nstate, ship_loads
+  public :: ship_system_type, new_ship_system, ship_nstate, ship_loads, ship_state
 
   integer, parameter :: ship_nstate = 12
   !> Surge resistance coefficient on the wetted surface (review G12; Mumford's surface).
@@ -58,8 +61,11 @@ module davit_ship_ship_model
     real(wp) :: wave_dt = 0.0_wp
     logical :: wave_cached = .false.
     real(wp) :: wave_t(2) = 0.0_wp, wave_f(6, 2) = 0.0_wp, wave_d(6, 2) = 0.0_wp
+    !> The ship alone ('ship' scene, RAO runs): one part "ship".
+    type(state_layout_type) :: layout
   contains
     procedure :: rhs => ship_rhs
+    procedure :: kane_blocks => ship_kane_blocks
     procedure :: refresh_heading
     procedure :: after_step => ship_after_step
     procedure :: set_mooring
@@ -96,7 +102,16 @@ contains
     self%thrust = -(water(1) + air(1))
     allocate (self%fk_sin(6, sea%n), self%fk_cos(6, sea%n))
     call self%refresh_heading(heading)
+    call self%layout%add("ship", 6, 6)
   end subroutine new_ship_system
+
+  !> The state part of a ship at attitude euler, CG position, angular velocity omega and
+  !> velocity v (ship axes): q then u, as the layout registers them.
+  pure function ship_state(euler, position, omega, v) result(y)
+    real(wp), intent(in) :: euler(3), position(3), omega(3), v(3)
+    real(wp) :: y(ship_nstate)
+    y = [euler, position, omega, v]
+  end function ship_state
 
   !> Recompute the heading-dependent Froude-Krylov coefficients (chi = gamma - psi). The
   !> time loop calls this when the yaw has drifted, so the RHS stays free of it.
@@ -126,18 +141,22 @@ contains
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: period(3), zeta, y(:)
     real(wp) :: inertia(3)
+    associate (q => y(self%layout%parts(1)%q(1):self%layout%parts(1)%q(2)))
+      self%anchor = [q(4), q(5), q(3)]
+    end associate
     inertia = [self%hull%mass + self%hull%added_mass(1:2), &
                self%hull%inertia(3) + self%hull%added_inertia(3)]
     self%moor_k = inertia*(2.0_wp*pi/period)**2
     self%moor_c = 2.0_wp*zeta*sqrt(self%moor_k*inertia)
-    self%anchor = [y(4), y(5), y(3)]
   end subroutine set_mooring
 
   subroutine ship_after_step(self, t, y)
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
-    if (abs(y(3) - self%psi_ref) > heading_tolerance) then
-      call self%refresh_heading(y(3))
+    real(wp) :: yaw
+    yaw = y(self%layout%parts(1)%q(1) + 2)
+    if (abs(yaw - self%psi_ref) > heading_tolerance) then
+      call self%refresh_heading(yaw)
       self%wave_cached = .false.
     end if
     if (self%wave_dt > 0.0_wp .and. self%phase_at_initial .and. &
@@ -199,18 +218,34 @@ contains
            h11*h*self%wave_d(:, 2)
   end function fk_interpolated
 
+  !> The ship alone: its Kane blocks and eq. 89.
   subroutine ship_rhs(self, t, y, dydt)
     class(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
+    real(wp) :: kane(3, size(y))
+    associate (p => self%layout%parts(1))
+      call self%kane_blocks(t, y(p%q(1):p%q(2)), y(p%u(1):p%u(2)), dydt(p%q(1):p%q(2)), &
+                            kane(:, p%u(1):p%u(2)))
+    end associate
+    call kane_rates(self%layout%speeds, kane, dydt)
+  end subroutine ship_rhs
+
+  !> Kane blocks of the ship (eqs. 35-41 with review §1.2): q_dot from eq. (5) and the MMG
+  !> q_dot = C v; V = rigid-body plus added mass and inertia; W phi = omega x (I_g omega)
+  !> and omega x (M v); F = all external loads. A frozen ship has no rates.
+  subroutine ship_kane_blocks(self, t, q, u, qdot, kane)
+    class(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t, q(6), u(6)
+    real(wp), intent(out) :: qdot(6), kane(3, 6)
     real(wp) :: c(3, 3), load(6), mt(3), it(3), ig(3)
     if (self%frozen) then
-      dydt = 0.0_wp
+      call kane_at_rest(qdot, kane)
       return
     end if
-    c = rotation_matrix(y(1:3))
-    load = ship_loads(self, t, y, c)
+    c = rotation_matrix(q(1:3))
+    load = ship_loads(self, t, q, u, c)
     mt = self%hull%mass + self%hull%added_mass
     it = self%hull%inertia + self%hull%added_inertia
     ! Gyroscopic term with the rigid-body inertia plus only the manoeuvring yaw added
@@ -218,50 +253,53 @@ contains
     ! quantities, not rigid-body ones, and in omega x (I omega) their product p q (A55 - A44)
     ! made a spurious mean yaw moment of MN m that turned the ship 19 deg in 135 deg seas.
     ig = self%hull%inertia + [0.0_wp, 0.0_wp, self%hull%added_inertia(3)]
-    dydt(1:3) = euler_rates(y(1:3), y(7:9))
-    dydt(4:6) = matmul(c, y(10:12))
-    dydt(7:9) = (load(4:6) - cross(y(7:9), ig*y(7:9)))/it
-    dydt(10:12) = (load(1:3) - cross(y(7:9), mt*y(10:12)))/mt
-  end subroutine ship_rhs
+    qdot(1:3) = euler_rates(q(1:3), u(1:3))
+    qdot(4:6) = matmul(c, u(4:6))
+    kane(kane_v, :) = [it, mt]
+    kane(kane_w_phi, 1:3) = cross(u(1:3), ig*u(1:3))
+    kane(kane_w_phi, 4:6) = cross(u(1:3), mt*u(4:6))
+    kane(kane_f, 1:3) = load(4:6)
+    kane(kane_f, 4:6) = load(1:3)
+  end subroutine ship_kane_blocks
 
   !> All external loads (X, Y, Z, K, M, N) in ship axes about G.
-  function ship_loads(self, t, y, c) result(load)
+  function ship_loads(self, t, q, u, c) result(load)
     class(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: t, y(:), c(3, 3)
+    real(wp), intent(in) :: t, q(6), u(6), c(3, 3)
     real(wp) :: load(6)
     real(wp) :: fz, wz, p, vrel(3)
-    associate (h => self%hull, om => y(7:9), v => y(10:12))
+    associate (h => self%hull, om => u(1:3), v => u(4:6))
       ! hydrostatic restoring about the equilibrium (weight and buoyancy cancel there)
-      fz = -h%c33*(y(6) - self%z_eq)
+      fz = -h%c33*(q(6) - self%z_eq)
       ! radiation damping of heave acts on the vertical velocity in N
       wz = dot_product(c(3, :), v)
       fz = fz - h%b33*wz
       load(1:3) = fz*c(3, :)
       p = om(1)
-      load(4) = -h%c44*(y(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
-      load(5) = -h%c55*(y(2) - h%trim) - h%b55*om(2)
+      load(4) = -h%c44*(q(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
+      load(5) = -h%c55*(q(2) - h%trim) - h%b55*om(2)
       load(6) = 0.0_wp
       load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
       load(1) = load(1) + self%thrust
-      if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, y, c), &
-                                                                    y(1:3), c)
+      if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, q, c), &
+                                                                    q(1:3), c)
       vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
       load = load + ship_wind_load(h%wind, vrel)
-      if (any(self%moor_k > 0.0_wp)) load = load + mooring(self, y, c)
+      if (any(self%moor_k > 0.0_wp)) load = load + mooring(self, q, u, c)
     end associate
   end function ship_loads
 
   !> Horizontal spring-dashpot on the CG (inertial x, y) and on the yaw angle.
-  pure function mooring(self, y, c) result(load)
+  pure function mooring(self, q, u, c) result(load)
     class(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: y(:), c(3, 3)
+    real(wp), intent(in) :: q(6), u(6), c(3, 3)
     real(wp) :: load(6), f(3), vn(3)
-    vn = matmul(c, y(10:12))
-    f(1:2) = -self%moor_k(1:2)*(y(4:5) - self%anchor(1:2)) - self%moor_c(1:2)*vn(1:2)
+    vn = matmul(c, u(4:6))
+    f(1:2) = -self%moor_k(1:2)*(q(4:5) - self%anchor(1:2)) - self%moor_c(1:2)*vn(1:2)
     f(3) = 0.0_wp
     load(1:3) = matmul(transpose(c), f)
     load(4:5) = 0.0_wp
-    load(6) = -self%moor_k(3)*(y(3) - self%anchor(3)) - self%moor_c(3)*y(9)
+    load(6) = -self%moor_k(3)*(q(3) - self%anchor(3)) - self%moor_c(3)*u(3)
   end function mooring
 
   !> The box loads are those of the upright box at the ship's heading (linear seakeeping):
@@ -311,9 +349,9 @@ contains
 
   !> Froude-Krylov loads of all components at the ship's position: the phase of each
   !> component at O' (review §1.8, "position phase").
-  function wave_loads(self, t, y, c) result(load)
+  function wave_loads(self, t, q, c) result(load)
     class(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: t, y(:), c(3, 3)
+    real(wp), intent(in) :: t, q(6), c(3, 3)
     real(wp) :: load(6), o(3), s(self%sea%n), cs(self%sea%n)
     integer :: j
     associate (sea => self%sea)
@@ -324,7 +362,7 @@ contains
       if (self%phase_at_initial) then
         o(1:2) = self%origin
       else
-        o = y(4:6) - matmul(c, [self%hull%cg_x, 0.0_wp, self%hull%cg_z])
+        o = q(4:6) - matmul(c, [self%hull%cg_x, 0.0_wp, self%hull%cg_z])
       end if
       call fast_sincos(sea%omega*t + sea%phase - sea%kx*o(1) - sea%ky*o(2), s, cs)
       do j = 1, 6

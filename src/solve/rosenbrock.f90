@@ -18,7 +18,7 @@
 module davit_solve_rosenbrock
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem, integrator_type
-  use davit_solve_step_control, only: error_norm, initial_step, record_failure, &
+  use davit_solve_step_control, only: error_norm, initial_step, record_failure, stretch_to, &
                                       is_finite_real, substep_allowed
   implicit none
   private
@@ -228,8 +228,7 @@ contains
     rejected = .false.
     tries = 0
     do
-      ! Take the rest of the macro step when it is within 1 % of h: no sliver steps.
-      last = 1.01_wp*self%h >= t_end - tc
+      last = stretch_to(self%h, t_end - tc)
       h = merge(t_end - tc, self%h, last)
       tries = tries + 1
       if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit

@@ -8,6 +8,7 @@ module davit_solve_step_control
   implicit none
   private
   public :: error_norm, initial_step, record_failure, is_finite_real, substep_allowed
+  public :: stretch_to
 
 contains
 
@@ -24,6 +25,14 @@ contains
     end do
     err = sqrt(err/real(max(1, size(e)), wp))
   end function error_norm
+
+  !> The step rule of every time loop: a step h that falls short of a target (a sample
+  !> time, the end of a macro step) by less than 1 % of h is stretched to land on it,
+  !> rather than leave a sliver step after it.
+  pure logical function stretch_to(h, remaining)
+    real(wp), intent(in) :: h, remaining
+    stretch_to = 1.01_wp*h >= remaining
+  end function stretch_to
 
   pure logical function is_finite_real(x)
     real(wp), intent(in) :: x

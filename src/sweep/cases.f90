@@ -15,7 +15,8 @@ module davit_sweep_cases
   use davit_core_random, only: rng_type, new_rng, rng_uniform
   use davit_core_rotation, only: rotation_matrix
   use davit_sea_spectrum, only: spectrum_peak_omega
-  use davit_system_model, only: system_type, new_system
+  use davit_system_model, only: system_type
+  use davit_system_build, only: new_system, initial_state
   use davit_sweep_keys, only: sweep_config, wave_type_names
   implicit none
   private
@@ -151,8 +152,9 @@ contains
     clearance = 0.0_wp
     call new_system(sys, cfg, error)
     if (allocated(error)) return
-    y = sys%initial_state(cfg)
-    allocate (force(sys%fenders%nf))
+    call initial_state(sys, cfg, y, error)
+    if (allocated(error)) return
+    allocate (force(sys%par%fenders%nf))
     call sys%contact_state(y, clearance, force)
   end subroutine initial_clearance
 

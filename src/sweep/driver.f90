@@ -16,10 +16,11 @@ module davit_sweep_driver
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_io_namelist, only: int_to_str
   use davit_io_deck_reader, only: fmt_real
-  use davit_system_model, only: system_type, new_system
-  use davit_system_recorders, only: boat_recorder
-  use davit_system_run_summary, only: run_summary, write_root_attributes
-  use davit_system_driver, only: integrate
+  use davit_system_model, only: system_type
+  use davit_system_build, only: new_system, initial_state
+  use davit_run_recorders, only: boat_recorder
+  use davit_run_run_summary, only: run_summary, write_root_attributes
+  use davit_run_driver, only: integrate
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
@@ -158,7 +159,7 @@ contains
     type(sweep_state), intent(inout) :: state
     character(len=*), intent(in) :: out_path
     type(config_type) :: cfg
-    type(system_type), target :: sys
+    type(system_type) :: sys
     type(boat_recorder) :: rec
     type(case_result) :: row
     type(error_type), allocatable :: run_error
@@ -167,7 +168,7 @@ contains
     !$omp critical (davit_sweep_io)
     call store_case(s, cases, c, row, opts, state, out_path)
     if (len(series(opts)) > 0 .and. allocated(rec%time)) &
-      call write_series(series_path(opts, c), cfg, rec, row, run_error, state)
+      call write_series(series_path(opts, c), cfg, sys, rec, row, run_error, state)
     !$omp end critical (davit_sweep_io)
   end subroutine run_and_store
 
@@ -176,7 +177,7 @@ contains
   subroutine run_case(cfg, stop_at_release, sys, rec, row, run_error)
     type(config_type), intent(in) :: cfg
     logical, intent(in) :: stop_at_release
-    type(system_type), intent(out), target :: sys
+    type(system_type), intent(out) :: sys
     type(boat_recorder), intent(out) :: rec
     type(case_result), intent(out) :: row
     type(error_type), allocatable, intent(out) :: run_error
@@ -187,12 +188,10 @@ contains
     integer(i8) :: clock0, clock1, rate
     call system_clock(clock0, rate)
     call new_system(sys, cfg, error)
+    if (.not. allocated(error)) call initial_state(sys, cfg, y, error)
     if (.not. allocated(error)) then
-      y = sys%initial_state(cfg)
-      rec%sys => sys
-      metrics%sys => sys
       metrics%stop_at_release = stop_at_release
-      call integrate(cfg, sys, y, rec, summary, run_error, error, metrics)
+      call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     end if
     if (allocated(error)) call move_alloc(error, run_error)
     if (allocated(run_error)) then
@@ -262,9 +261,10 @@ contains
 
   !> The case's time series (the run file layout) under the series folder; inside the
   !> critical section.
-  subroutine write_series(path, cfg, rec, row, run_error, state)
+  subroutine write_series(path, cfg, sys, rec, row, run_error, state)
     character(len=*), intent(in) :: path
     type(config_type), intent(in) :: cfg
+    type(system_type), intent(in) :: sys
     type(boat_recorder), intent(in) :: rec
     type(case_result), intent(in) :: row
     type(error_type), allocatable, intent(in) :: run_error
@@ -279,7 +279,7 @@ contains
       summary%wall_time = row%wall_time
       summary%samples = rec%n
       summary%complete = row%status == status_ok
-      call rec%write(w)
+      call rec%write(sys, w)
       call write_root_attributes(w, cfg, summary, cfg%simulation%integrator, run_error)
       call w%close(error)
     end if

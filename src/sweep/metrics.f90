@@ -18,8 +18,9 @@ module davit_sweep_metrics
   use davit_kinds, only: wp, i8
   use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact, only: phase_compression, phase_restitution
-  use davit_system_model, only: system_type, boat_u
-  use davit_system_step_monitor, only: step_monitor
+  use davit_solve_integrator, only: ode_problem
+  use davit_system_model, only: system_type
+  use davit_run_step_monitor, only: step_monitor
   implicit none
   private
   public :: launch_metrics, case_result, status_not_run, status_ok, status_failed
@@ -42,14 +43,12 @@ module davit_sweep_metrics
   end type case_result
 
   type, extends(step_monitor) :: launch_metrics
-    !> The integrated system (its fender phases and events are read, never changed).
-    type(system_type), pointer :: sys => null()
     logical :: stop_at_release = .true.
     !> False once the lowering is over: later steps change nothing.
     logical :: open = .true.
     real(wp) :: min_clearance = huge(1.0_wp), peak_horizontal = 0.0_wp
     real(wp) :: peak_vertical = 0.0_wp, peak_tension = 0.0_wp
-    real(wp) :: first_contact_time = -1.0_wp, end_time = 0.0_wp
+    real(wp) :: first_contact_time = -1.0_wp, end_time = 0.0_wp, waterborne_time = -1.0_wp
     integer :: impacts = 0
     logical :: touching = .false.
     !> Inertial CG velocity and time of the previous step.
@@ -80,32 +79,40 @@ contains
     r%impacts = -1
   end function not_run_result
 
-  subroutine metrics_watch(self, t, y, done)
+  !> The integrated launch system's state after a step (its fender phases and events are
+  !> read, never changed).
+  subroutine metrics_watch(self, problem, t, y, done)
     class(launch_metrics), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:)
     logical, intent(out) :: done
     done = .false.
     if (.not. self%open) return
-    self%end_time = t
-    call watch_contact(self, t, y)
-    call watch_acceleration(self, t, y)
-    self%peak_tension = max(self%peak_tension, largest_tension(self%sys, t, y))
-    if (lowering_over(self%sys)) then
-      self%open = .false.
-      done = self%stop_at_release
-    end if
+    select type (sys => problem)
+    type is (system_type)
+      self%end_time = t
+      call watch_contact(self, sys, t, y)
+      call watch_acceleration(self, sys, t, y)
+      self%peak_tension = max(self%peak_tension, largest_tension(sys, t, y))
+      self%waterborne_time = sys%hist%waterborne_time
+      if (lowering_over(sys)) then
+        self%open = .false.
+        done = self%stop_at_release
+      end if
+    end select
   end subroutine metrics_watch
 
   !> Clearance and contact episodes (fender phases are advanced before the monitor).
-  subroutine watch_contact(self, t, y)
+  subroutine watch_contact(self, sys, t, y)
     type(launch_metrics), intent(inout) :: self
+    type(system_type), intent(in) :: sys
     real(wp), intent(in) :: t, y(:)
-    real(wp) :: clearance, force(self%sys%fenders%nf)
+    real(wp) :: clearance, force(sys%par%fenders%nf)
     logical :: touching
-    call self%sys%contact_state(y, clearance, force)
+    call sys%contact_state(y, clearance, force)
     self%min_clearance = min(self%min_clearance, clearance)
-    touching = any(self%sys%fender_states%phase == phase_compression .or. &
-                   self%sys%fender_states%phase == phase_restitution)
+    touching = any(sys%hist%fender_states%phase == phase_compression .or. &
+                   sys%hist%fender_states%phase == phase_restitution)
     if (touching .and. .not. self%touching) then
       self%impacts = self%impacts + 1
       if (self%first_contact_time < 0.0_wp) self%first_contact_time = t
@@ -114,11 +121,15 @@ contains
   end subroutine watch_contact
 
   !> Mean CG acceleration over the last step, Delta v/Delta t (inertial frame).
-  subroutine watch_acceleration(self, t, y)
+  subroutine watch_acceleration(self, sys, t, y)
     type(launch_metrics), intent(inout) :: self
+    type(system_type), intent(in) :: sys
     real(wp), intent(in) :: t, y(:)
     real(wp) :: v(3), a(3)
-    v = matmul(rotation_matrix(y(1:3)), y(boat_u(1) + 3:boat_u(2)))
+    associate (q => y(sys%par%boat_part%q(1):sys%par%boat_part%q(2)), &
+               u => y(sys%par%boat_part%u(1):sys%par%boat_part%u(2)))
+      v = matmul(rotation_matrix(q(1:3)), u(4:6))
+    end associate
     if (self%t_prev >= 0.0_wp .and. t > self%t_prev) then
       a = (v - self%v_prev)/(t - self%t_prev)
       self%peak_horizontal = max(self%peak_horizontal, norm2(a(1:2)))
@@ -132,10 +143,10 @@ contains
   real(wp) function largest_tension(sys, t, y) result(tension)
     type(system_type), intent(in) :: sys
     real(wp), intent(in) :: t, y(:)
-    real(wp) :: seg(sys%rig%nseg), sling(sys%rig%nlump + 1, 2), paid
-    real(wp) :: lumps(3, sys%rig%nlump, 2)
-    if (sys%on_davit) then
-      if (sys%release_time >= 0.0_wp) then
+    real(wp) :: seg(sys%par%rig%nseg), sling(sys%par%rig%nlump + 1, 2), paid
+    real(wp) :: lumps(3, sys%par%rig%nlump, 2)
+    if (sys%par%on_davit) then
+      if (sys%hist%release_time >= 0.0_wp) then
         tension = 0.0_wp
         return
       end if
@@ -150,8 +161,9 @@ contains
   !> boat is waterborne).
   pure logical function lowering_over(sys)
     type(system_type), intent(in) :: sys
-    lowering_over = sys%on_davit .and. (sys%release_time >= 0.0_wp .or. &
-                                        (.not. sys%release .and. sys%waterborne_time >= 0.0_wp))
+    lowering_over = sys%par%on_davit .and. (sys%hist%release_time >= 0.0_wp .or. &
+                                            (.not. sys%par%release .and. &
+                                             sys%hist%waterborne_time >= 0.0_wp))
   end function lowering_over
 
   !> The measured quantities as a summary row of status ok.
@@ -167,7 +179,7 @@ contains
     r%peak_vertical_acceleration = self%peak_vertical
     r%peak_segment_tension = self%peak_tension
     r%first_contact_time = self%first_contact_time
-    r%waterborne_time = self%sys%waterborne_time
+    r%waterborne_time = self%waterborne_time
     r%end_time = self%end_time
   end function metrics_result
 

@@ -2,7 +2,7 @@
 !> phasors are computed once and the time phasors advanced by rotation (recomputed exactly
 !> every `resync` samples so round-off cannot accumulate), so a sample costs one dot
 !> product per probe.
-module davit_system_sea_run
+module davit_run_sea_run
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type
   use davit_io_config, only: config_type
@@ -10,7 +10,7 @@ module davit_system_sea_run
   use davit_sea_wave_field, only: wave_field_type, point_phasors, time_phasors, &
                                   rotation_phasors, advance_phasors, elevation_from_phasors
   use davit_sea_builder, only: build_wave_field
-  use davit_system_run_summary, only: run_summary, write_root_attributes
+  use davit_run_run_summary, only: run_summary, write_root_attributes
   implicit none
   private
   public :: run_sea
@@ -91,4 +91,4 @@ contains
                     "Phase eps in cos(w t + eps - k (x cos g + y sin g))")
   end subroutine write_components
 
-end module davit_system_sea_run
+end module davit_run_sea_run

@@ -1,6 +1,6 @@
 !> What every run reports: integrator statistics, completion, and the root attributes of
 !> the output file, shared by all scenes.
-module davit_system_run_summary
+module davit_run_run_summary
   use davit_kinds, only: wp, i8, davit_version
   use davit_error, only: error_type
   use davit_io_config, only: config_type
@@ -43,4 +43,4 @@ contains
     end if
   end subroutine write_root_attributes
 
-end module davit_system_run_summary
+end module davit_run_run_summary

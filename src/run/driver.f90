@@ -3,22 +3,24 @@
 !> and write the HDF5 file. One time loop serves every scene; each scene brings its recorder.
 !> A non-finite state (or an unphysical speed) stops the run with a diagnostic naming the
 !> time and the offending quantity; the partial record is still written, marked incomplete.
-module davit_system_driver
+module davit_run_driver
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
-  use davit_io_config, only: config_type
+  use davit_io_config, only: config_type, simulation_config
   use davit_io_deck_reader, only: fmt_real
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_solve_integrator, only: integrator_type, ode_problem
   use davit_solve_factory, only: new_integrator
-  use davit_system_model, only: system_type, new_system
-  use davit_system_run_summary, only: run_summary, write_root_attributes
-  use davit_system_sea_run, only: run_sea
-  use davit_system_recorders, only: recorder_type, boat_recorder, ship_recorder
-  use davit_system_ship_scene, only: build_ship_scene
-  use davit_system_step_monitor, only: step_monitor
-  use davit_ship_ship_model, only: ship_system_type, ship_nstate
+  use davit_solve_step_control, only: stretch_to
+  use davit_system_model, only: system_type
+  use davit_system_build, only: new_system, initial_state
+  use davit_run_run_summary, only: run_summary, write_root_attributes
+  use davit_run_sea_run, only: run_sea
+  use davit_run_recorders, only: recorder_type, boat_recorder, ship_recorder
+  use davit_run_ship_scene, only: build_ship_scene
+  use davit_run_step_monitor, only: step_monitor
+  use davit_ship_ship_model, only: ship_system_type
   implicit none
   private
   public :: run_simulation, integrate
@@ -34,7 +36,7 @@ contains
     character(len=*), intent(in) :: out_path
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
-    type(system_type), target :: boat
+    type(system_type) :: boat
     type(ship_system_type) :: ship
     type(boat_recorder) :: brec
     type(ship_recorder) :: srec
@@ -49,8 +51,8 @@ contains
     case default
       call new_system(boat, cfg, error)
       if (allocated(error)) return
-      y = boat%initial_state(cfg)
-      brec%sys => boat
+      call initial_state(boat, cfg, y, error)
+      if (allocated(error)) return
       call integrate_scene(cfg, boat, y, brec, out_path, summary, error)
     end select
   end subroutine run_simulation
@@ -58,7 +60,7 @@ contains
   !> Integrate a scene into its recorder and write `out_path`.
   subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error)
     type(config_type), intent(in) :: cfg
-    class(ode_problem), intent(inout), target :: problem
+    class(ode_problem), intent(inout) :: problem
     real(wp), intent(inout) :: y(:)
     class(recorder_type), intent(inout) :: rec
     character(len=*), intent(in) :: out_path
@@ -69,12 +71,12 @@ contains
 
     call writer%create(out_path, error)
     if (allocated(error)) return
-    call integrate(cfg, problem, y, rec, summary, run_error, error)
+    call integrate(cfg%simulation, problem, y, rec, summary, run_error, error)
     if (allocated(error)) then
       call writer%discard()
       return
     end if
-    call rec%write(writer)
+    call rec%write(problem, writer)
     call write_root_attributes(writer, cfg, summary, cfg%simulation%integrator, run_error)
     call writer%close(io_error)
     if (allocated(run_error)) then
@@ -90,9 +92,9 @@ contains
   !> monitor ends the run, sampling `rec` (in memory) at exact multiples of the output
   !> interval. A divergence or a failed step ends the loop with its message in run_error and
   !> the record so far kept; `error` reports a set-up failure only.
-  subroutine integrate(cfg, problem, y, rec, summary, run_error, error, monitor)
-    type(config_type), intent(in) :: cfg
-    class(ode_problem), intent(inout), target :: problem
+  subroutine integrate(sim, problem, y, rec, summary, run_error, error, monitor)
+    type(simulation_config), intent(in) :: sim
+    class(ode_problem), intent(inout) :: problem
     real(wp), intent(inout) :: y(:)
     class(recorder_type), intent(inout) :: rec
     type(run_summary), intent(out) :: summary
@@ -104,47 +106,46 @@ contains
     integer :: bad
     logical :: done
 
-    call new_integrator(cfg%simulation%integrator, size(y), integ, error, &
-                        cfg%simulation%rtol, cfg%simulation%atol, &
-                        fixed_step=cfg%simulation%fixed_step)
+    call new_integrator(sim%integrator, size(y), integ, error, sim%rtol, sim%atol, &
+                        fixed_step=sim%fixed_step)
     if (allocated(error)) return
     ! Samples at exact multiples of the output interval; each step is the deck's dt or what
     ! the problem allows (problem%max_step, e.g. near a contact), shortened to land on the
     ! next sample (stretched by up to 1 % rather than leave a sliver step).
-    nsamples = int(cfg%simulation%t_end/cfg%simulation%output_interval + 1.0e-9_wp, i8)
-    call rec%init(int(nsamples) + 1)
+    nsamples = int(sim%t_end/sim%output_interval + 1.0e-9_wp, i8)
+    call rec%init(problem, int(nsamples) + 1)
     t = 0.0_wp
     k = 1
-    call rec%sample(t, y)
+    call rec%sample(problem, t, y)
     done = .false.
-    if (present(monitor)) call monitor%watch(t, y, done)
+    if (present(monitor)) call monitor%watch(problem, t, y, done)
     call system_clock(clock0, rate)
-    do while (t < cfg%simulation%t_end .and. .not. done)
-      t_next = min(real(k, wp)*cfg%simulation%output_interval, cfg%simulation%t_end)
-      h = problem%max_step(t, y, cfg%simulation%dt)
-      t_new = merge(t_next, t + h, t + 1.01_wp*h >= t_next)
+    do while (t < sim%t_end .and. .not. done)
+      t_next = min(real(k, wp)*sim%output_interval, sim%t_end)
+      h = problem%max_step(t, y, sim%dt)
+      t_new = merge(t_next, t + h, stretch_to(h, t_next - t))
       call integ%step(problem, t, y, t_new - t)
       if (integ%failed) then
         call fatal_error(run_error, "run stopped: "//integ%failure)
         exit
       end if
       t = t_new
-      bad = first_bad(y, rec%speed_range())
+      bad = first_bad(y, rec%speed_range(problem))
       if (bad > 0) then
         call fatal_error(run_error, "run diverged at t = "//fmt_real(t)//" s: "// &
-                         rec%state_name(bad)//" = "//fmt_real(y(bad))//" is not finite"// &
+                         rec%state_name(problem, bad)//" = "//fmt_real(y(bad))//" is not finite"// &
                          " or beyond "//fmt_real(speed_limit)//" (step size "// &
                          fmt_real(h)//" s may exceed the stability limit)")
         exit
       end if
       call problem%after_step(t, y)
-      if (present(monitor)) call monitor%watch(t, y, done)
+      if (present(monitor)) call monitor%watch(problem, t, y, done)
       if (t == t_next .and. k <= nsamples) then
-        call rec%sample(t, y)
+        call rec%sample(problem, t, y)
         k = k + 1
       else if (done) then
         ! a run the monitor ends between samples still records its last state
-        call rec%sample(t, y)
+        call rec%sample(problem, t, y)
       end if
     end do
     call system_clock(clock1)
@@ -171,4 +172,4 @@ contains
     end do
   end function first_bad
 
-end module davit_system_driver
+end module davit_run_driver

@@ -7,15 +7,15 @@
 !> position and heading: a free ship at zero speed otherwise turns by tens of degrees in
 !> oblique seas during a run (26 deg in 400 s at 135 deg, 7.5 s waves), which is not what
 !> an RAO describes.
-module davit_system_rao
+module davit_run_rao
   use davit_kinds, only: wp, pi, i8
   use davit_error, only: error_type
   use davit_io_config, only: config_type
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_solve_rk4, only: rk4_type
   use davit_ship_ship_model, only: ship_system_type
-  use davit_system_ship_scene, only: build_ship_scene
-  use davit_system_run_summary, only: run_summary, write_root_attributes
+  use davit_run_ship_scene, only: build_ship_scene
+  use davit_run_run_summary, only: run_summary, write_root_attributes
   implicit none
   private
   public :: rao_case, run_rao
@@ -73,7 +73,10 @@ contains
       t = real(i, wp)*dt
       call ship%after_step(t, y)
       if (i > n0) then
-        x = [y(4), y(5), -y(6), y(1), y(2), y(3)]
+        associate (q => y(ship%layout%parts(1)%q(1):ship%layout%parts(1)%q(2)))
+          ! surge, sway, heave (up), roll, pitch, yaw
+          x = [q(4), q(5), -q(6), q(1), q(2), q(3)]
+        end associate
         ca = ca + x*cos(omega*t)
         sa = sa + x*sin(omega*t)
         mean = mean + x
@@ -132,4 +135,4 @@ contains
     call writer%close(error)
   end subroutine run_rao
 
-end module davit_system_rao
+end module davit_run_rao

@@ -1,12 +1,13 @@
 !> `davit modes`: the fastest rates of a deck's system at its initial state, for the
 !> stability map (analytic RK4 limit 2.83/omega_max against the largest step that runs).
-module davit_system_linear_modes
+module davit_run_linear_modes
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
   use davit_solve_modes, only: jacobian_spectrum
-  use davit_system_model, only: system_type, new_system
-  use davit_system_ship_scene, only: build_ship_scene
+  use davit_system_model, only: system_type
+  use davit_system_build, only: new_system, initial_state
+  use davit_run_ship_scene, only: build_ship_scene
   use davit_ship_ship_model, only: ship_system_type
   implicit none
   private
@@ -37,10 +38,11 @@ contains
     case default
       call new_system(sys, cfg, error)
       if (allocated(error)) return
-      y = sys%initial_state(cfg)
+      call initial_state(sys, cfg, y, error)
+      if (allocated(error)) return
       call jacobian_spectrum(sys, 0.0_wp, y, rate_max, omega_max, info)
     end select
     if (info /= 0) call fatal_error(error, "LAPACK dgeev failed on the Jacobian")
   end subroutine linear_modes
 
-end module davit_system_linear_modes
+end module davit_run_linear_modes

@@ -1,8 +1,9 @@
 !> A watcher the time loop calls at t = 0 and after every accepted step, for results that
 !> need step resolution (peaks, minima, contact onsets) without recording every step. It
 !> may end the run early (e.g. once the quantity of interest can no longer change).
-module davit_system_step_monitor
+module davit_run_step_monitor
   use davit_kinds, only: wp
+  use davit_solve_integrator, only: ode_problem
   implicit none
   private
   public :: step_monitor
@@ -13,14 +14,16 @@ module davit_system_step_monitor
   end type step_monitor
 
   abstract interface
-    !> See the accepted state y at time t (after the problem's after_step); set `done` to
-    !> end the run after this step (the run still counts as complete).
-    subroutine watch_interface(self, t, y, done)
-      import :: step_monitor, wp
+    !> See the accepted state y at time t of the problem (after its after_step; read,
+    !> never changed); set `done` to end the run after this step (the run still counts as
+    !> complete).
+    subroutine watch_interface(self, problem, t, y, done)
+      import :: step_monitor, ode_problem, wp
       class(step_monitor), intent(inout) :: self
+      class(ode_problem), intent(in) :: problem
       real(wp), intent(in) :: t, y(:)
       logical, intent(out) :: done
     end subroutine watch_interface
   end interface
 
-end module davit_system_step_monitor
+end module davit_run_step_monitor

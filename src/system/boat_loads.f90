@@ -1,0 +1,83 @@
+!> The lifeboat's Kane blocks (eq. 12) and its generalized active forces: gravity (eq. 13),
+!> the foundation slings (eq. 26), water by strip theory (eqs. 18-25), wind (eqs. 14-17, at
+!> the CG) and fender contact with the ship's side (eq. 34). The davit rigging's hook
+!> forces (eq. 26) are added by the assembler, which evaluates the rigging.
+module davit_system_boat_loads
+  use davit_kinds, only: wp
+  use davit_core_rotation, only: rotation_matrix
+  use davit_core_kane, only: kane_v, kane_w_phi, kane_f
+  use davit_core_body, only: body_mass_diagonal, body_w_phi, body_qdot, &
+                             body_gravity_force, body_point_force, body_point_velocity
+  use davit_rigging_elastic_sling, only: sling_hook_force
+  use davit_sea_wind, only: wind_velocity
+  use davit_boat_strip_loads, only: strip_loads
+  use davit_boat_wind_loads, only: boat_wind_force
+  use davit_boat_fenders, only: side_plane_type, fender_loads
+  use davit_boat_surface_watch, only: surely_dry
+  use davit_system_parameters, only: system_params_type, nslings
+  use davit_system_history, only: system_history_type
+  implicit none
+  private
+  public :: boat_kane_blocks, water_loads
+
+contains
+
+  !> q_dot (eqs. 5-6) and the Kane blocks V, W phi, F of the boat at (q, u), with the ship's
+  !> side at `side`.
+  pure subroutine boat_kane_blocks(par, hist, t, q, u, side, qdot, kane)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: t, q(6), u(6)
+    type(side_plane_type), intent(in) :: side
+    real(wp), intent(out) :: qdot(6), kane(3, 6)
+    qdot = body_qdot(q, u)
+    kane(kane_v, :) = body_mass_diagonal(par%boat)
+    kane(kane_w_phi, :) = body_w_phi(par%boat, u)
+    kane(kane_f, :) = boat_forces(par, hist, t, q, u, side)
+  end subroutine boat_kane_blocks
+
+  !> Generalized active forces on the boat but the davit's hook forces.
+  pure function boat_forces(par, hist, t, q, u, side) result(f)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: t, q(6), u(6)
+    type(side_plane_type), intent(in) :: side
+    real(wp) :: f(6), c(3, 3), r(3), fh(3), tension, fw(6), volume, force(par%fenders%nf)
+    integer :: i
+    c = rotation_matrix(q(1:3))
+    r = matmul(c, q(4:6))
+    f = body_gravity_force(par%boat, c)
+    if (par%slings_attached) then
+      do i = 1, nslings
+        call sling_hook_force(par%slings(i), r + matmul(c, par%hooks(:, i)), &
+                              matmul(c, body_point_velocity(u, par%hooks(:, i))), fh, tension)
+        f = f + body_point_force(par%hooks(:, i), matmul(transpose(c), fh))
+      end do
+    end if
+    call water_loads(par, hist, t, c, r, u, fw, volume)
+    f = f + fw
+    f(4:6) = f(4:6) + boat_wind_force(par%air, u(4:6) - matmul(wind_velocity(par%wind), c), &
+                                      max(0.0_wp, 1.0_wp - volume/par%hull_volume))
+    if (par%contact) then
+      call fender_loads(par%fenders, hist%fender_states, side, c, r, u, fw, force)
+      f = f + fw
+    end if
+  end function boat_forces
+
+  !> Strip water loads (eqs. 18-25) and wet volume, exactly zero without forming them
+  !> while the surface watch proves the hull dry; from the strips' slow clock where it
+  !> covers t.
+  pure subroutine water_loads(par, hist, t, c, r, u, f, volume)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
+    real(wp), intent(out) :: f(6), volume
+    if (surely_dry(hist%watch, par%water, t, c, r)) then
+      f = 0.0_wp
+      volume = 0.0_wp
+    else
+      call strip_loads(par%water, par%sea, t, c, r, u, f, volume, hist%waves)
+    end if
+  end subroutine water_loads
+
+end module davit_system_boat_loads

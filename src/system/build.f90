@@ -1,0 +1,174 @@
+!> Build a launch system from a validated configuration: parameters and layout, history,
+!> contact step policy and (in the 'launch' scene) the 6-DOF ship; and its initial state.
+module davit_system_build
+  use davit_kinds, only: wp, gravity
+  use davit_error, only: error_type, fatal_error
+  use davit_core_rotation, only: rotation_matrix
+  use davit_core_pose, only: pose_type
+  use davit_io_config, only: config_type
+  use davit_rigging_elastic_sling, only: elastic_sling_type
+  use davit_sea_builder, only: build_wave_field, build_wind
+  use davit_boat_hull, only: new_boat_hull
+  use davit_boat_strip_loads, only: new_strip_model
+  use davit_boat_wind_loads, only: boat_wind_type, lift_symmetric, lift_literal
+  use davit_boat_contact, only: new_contact_law, law_hertz_elastoplastic, &
+                                law_lankarani_nikravesh
+  use davit_boat_fenders, only: new_fender_set
+  use davit_boat_strip_waves, only: new_strip_wave_cache
+  use davit_boat_surface_watch, only: new_surface_watch
+  use davit_rigging_rigging, only: new_rigging
+  use davit_ship_hull, only: hull_type, new_hull
+  use davit_ship_ship_model, only: new_ship_system, ship_state, ship_nstate
+  use davit_system_parameters, only: system_params_type, ship_pose, hook_kinematics, nslings
+  use davit_system_model, only: system_type
+  implicit none
+  private
+  public :: new_system, initial_state, ship_initial_state
+
+  !> Refresh interval of the surface watch [s]: long enough to cost nothing (one strip-load
+  !> evaluation per interval), short enough for its bound to stay well below the height
+  !> of a boat hanging 15 m up (rate bound ~30 m/s in a 1300-component Level 5 sea).
+  real(wp), parameter :: surface_watch_interval = 0.05_wp
+
+contains
+
+  !> Build the system from a validated configuration.
+  subroutine new_system(self, cfg, error)
+    type(system_type), intent(out) :: self
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    real(wp) :: ea
+    associate (par => self%par, s => cfg%slings)
+      par%boat%mass = cfg%boat%mass
+      par%boat%inertia = cfg%boat%inertia
+      call par%layout%add("boat", 6, 6, par%boat_part)
+      par%hooks(:, 1) = s%hook_fore
+      par%hooks(:, 2) = s%hook_aft
+      ea = s%youngs_modulus*acos(-1.0_wp)*s%diameter**2/4.0_wp
+      par%slings(1) = elastic_sling_type(s%anchor_fore, s%length, ea, s%damping)
+      par%slings(2) = elastic_sling_type(s%anchor_aft, s%length, ea, s%damping)
+      par%on_davit = cfg%simulation%scene == "lowering" .or. cfg%simulation%scene == "launch"
+      par%slings_attached = s%attached .and. .not. par%on_davit
+    end associate
+    call new_boat_environment(self, cfg)
+    call new_side_contact(self, cfg)
+    if (self%par%on_davit) then
+      call new_davit(self%par, cfg, error)
+      if (allocated(error)) return
+    end if
+    if (cfg%simulation%scene == "launch") call new_moving_ship(self, cfg, error)
+  end subroutine new_system
+
+  !> The davit rigging in place of the foundation slings, its parts after the boat's.
+  subroutine new_davit(par, cfg, error)
+    type(system_params_type), intent(inout) :: par
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    call new_rigging(par%rig, cfg%rigging, error)
+    if (allocated(error)) return
+    par%rig_offset = par%layout%n
+    call par%layout%add("rigging", par%rig%nstate, 0)
+    par%release = cfg%rigging%release
+    par%release_delay = cfg%rigging%release_delay
+  end subroutine new_davit
+
+  !> The 6-DOF ship of the 'launch' scene, in the same sea and wind as the boat.
+  subroutine new_moving_ship(self, cfg, error)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    type(hull_type) :: hull
+    call new_hull(hull, cfg%ship, error)
+    if (allocated(error)) return
+    call new_ship_system(self%ship, hull, self%par%sea, self%par%wind, cfg%ship%frozen, &
+                         cfg%ship%position, cfg%ship%heading, &
+                         cfg%ship%wave_phase == "initial", cfg%ship%headway)
+    self%ship%wave_dt = cfg%simulation%wave_update
+    self%par%with_ship = .true.
+    call self%par%layout%add("ship", 6, 6, self%par%ship_part)
+  end subroutine new_moving_ship
+
+  !> Strip hull, water and wind loads, and the sea and wind they act in.
+  subroutine new_boat_environment(self, cfg)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    associate (b => cfg%boat, par => self%par)
+      par%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
+                                                b%breadth_exponent, b%strips), &
+                                  b%drag_coefficients, b%metacentric_height, b%zeta, &
+                                  b%mass, b%inertia)
+      par%hull_volume = sum(par%water%hull%breadth)*par%water%hull%thickness*b%height
+      par%air = boat_wind_type(b%wind_areas, b%wind_drag_coefficient, b%lift_coefficient, &
+                               b%lift_diameter, b%length, &
+                               merge(lift_literal, lift_symmetric, b%lift_form == "literal"))
+      call build_wave_field(cfg%sea, cfg%simulation%seed, 0, par%sea)
+      par%wind = build_wind(cfg%wind)
+      self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, surface_watch_interval)
+      self%hist%waves = new_strip_wave_cache(par%sea, par%water%hull%n, &
+                                             cfg%simulation%wave_update)
+    end associate
+  end subroutine new_boat_environment
+
+  !> The ship's side plane at ship-frame y = side_y, normal +s2, for the ship at rest in its
+  !> deck attitude (list, trim, heading) and position; the fenders, their contact law and
+  !> the contact step policy.
+  subroutine new_side_contact(self, cfg)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    real(wp) :: cs(3, 3)
+    integer :: law
+    self%par%contact = cfg%contact%enabled
+    self%policy%dt_contact = cfg%simulation%dt_contact
+    self%policy%graded = cfg%simulation%contact_approach == "graded"
+    cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
+    self%par%ship_rest = pose_type(cfg%ship%position, cs, &
+                                   matmul(cs, [cfg%ship%headway, 0.0_wp, 0.0_wp]), 0.0_wp)
+    self%par%side_y = cfg%contact%side_y
+    associate (k => cfg%contact)
+      law = merge(law_lankarani_nikravesh, law_hertz_elastoplastic, &
+                  k%law == "lankarani_nikravesh")
+      self%par%fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, &
+                                        new_contact_law(law, k%youngs_boat, k%poisson_boat, &
+                                                        k%youngs_ship, k%poisson_ship, &
+                                                        k%radius_boat, k%radius_ship, &
+                                                        k%restitution))
+      allocate (self%hist%fender_states(size(k%fender_x)))
+    end associate
+  end subroutine new_side_contact
+
+  !> Initial y from inertial position/velocity and Euler angles / body rates; on the davit,
+  !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as
+  !> &rigging initial says; the quasi-static sheaves' unstretched lengths are set here).
+  subroutine initial_state(self, cfg, y, error)
+    type(system_type), intent(inout) :: self
+    type(config_type), intent(in) :: cfg
+    real(wp), allocatable, intent(out) :: y(:)
+    type(error_type), allocatable, intent(out) :: error
+    real(wp) :: c(3, 3), hook_pos(3, nslings), hook_vel(3, nslings), residual
+    type(pose_type) :: pose
+    allocate (y(self%par%layout%n))
+    associate (par => self%par, b => self%par%boat_part, s => self%par%ship_part)
+      if (par%with_ship) y(s%q(1):s%u(2)) = ship_initial_state(cfg)
+      c = rotation_matrix(cfg%boat%euler)
+      y(b%q(1):b%q(2)) = [cfg%boat%euler, matmul(transpose(c), cfg%boat%position)]
+      y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
+      if (.not. par%on_davit) return
+      call hook_kinematics(par, y, hook_pos, hook_vel)
+      pose = ship_pose(par, y)
+      call par%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
+                                 -0.5_wp*par%boat%mass*gravity], 2, 2), pose%r, pose%c, &
+                                 y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
+                                 residual)
+    end associate
+  end subroutine initial_state
+
+  !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's
+  !> position; making its headway.
+  pure function ship_initial_state(cfg) result(y)
+    type(config_type), intent(in) :: cfg
+    real(wp) :: y(ship_nstate)
+    y = ship_state([cfg%ship%list, cfg%ship%trim, cfg%ship%heading], cfg%ship%position, &
+                   [0.0_wp, 0.0_wp, 0.0_wp], [cfg%ship%headway, 0.0_wp, 0.0_wp])
+  end function ship_initial_state
+
+end module davit_system_build

@@ -1,0 +1,143 @@
+!> The after-step hook of the launch: the only writer of the history. On each accepted
+!> state it refreshes the surface watch and the strips' slow clock of the water, watches
+!> for the boat becoming waterborne and releases the hooks (review G24), and advances each
+!> fender's contact phase (eqs. 27-34), noting the first contact.
+module davit_system_events
+  use davit_kinds, only: wp, gravity, rho_water
+  use davit_core_rotation, only: rotation_matrix
+  use davit_boat_contact, only: fender_update, phase_compression
+  use davit_boat_fenders, only: fender_probe
+  use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh
+  use davit_boat_surface_watch, only: watch_refresh, strip_surely_dry
+  use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
+                                     hook_kinematics
+  use davit_system_history, only: system_history_type
+  use davit_system_boat_loads, only: water_loads
+  use davit_system_observables, only: rigging_state
+  implicit none
+  private
+  public :: advance_history
+
+contains
+
+  !> Advance the history on the accepted state (t, y).
+  subroutine advance_history(par, hist, t, y)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(inout) :: hist
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: c(3, 3)
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
+      if (.not. hist%watch%valid .or. t - hist%watch%t >= hist%watch%interval) then
+        c = rotation_matrix(q(1:3))
+        call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)))
+      end if
+      call refresh_strip_waves(par, hist, t, q)
+    end associate
+    if (par%on_davit .and. hist%release_time < 0.0_wp) call watch_waterborne(par, hist, t, y)
+    if (par%contact) call advance_contact(par, hist, t, y)
+  end subroutine advance_history
+
+  !> Sample the water at the strips the hull may wet within the window (the watch's bound
+  !> at its far end): otherwise the stages of a hull just above the crests would all take
+  !> the exact sums.
+  subroutine refresh_strip_waves(par, hist, t, q)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(inout) :: hist
+    real(wp), intent(in) :: t, q(6)
+    real(wp) :: c(3, 3), r(3)
+    logical :: due, maybe_wet(par%water%hull%n)
+    integer :: j
+    call strip_waves_due(hist%waves, t, due)
+    if (.not. due) return
+    c = rotation_matrix(q(1:3))
+    r = matmul(c, q(4:6))
+    do j = 1, par%water%hull%n
+      maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
+                                            t + hist%waves%window, c, r)
+    end do
+    if (any(maybe_wet)) call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, &
+                                                 c, r, maybe_wet)
+  end subroutine refresh_strip_waves
+
+  !> Each fender's contact phase on the accepted state; the first contact.
+  subroutine advance_contact(par, hist, t, y)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(inout) :: hist
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: c(3, 3), delta(par%fenders%nf), delta_dot(par%fenders%nf)
+    integer :: deepest(par%fenders%nf), j
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      call fender_probe(par%fenders, side_plane(par, ship_pose(par, y)), c, &
+                        matmul(c, q(4:6)), u, deepest, delta, delta_dot)
+    end associate
+    do j = 1, par%fenders%nf
+      call fender_update(par%fenders%law, hist%fender_states(j), delta(j), delta_dot(j))
+      if (hist%fender_states(j)%phase == phase_compression .and. &
+          hist%first_contact_time < 0.0_wp) hist%first_contact_time = t
+    end do
+  end subroutine advance_contact
+
+  !> Waterborne when rho g V >= W or the hooks carry < 1 % of W, held for 1 s; the hooks
+  !> open release_delay later. Checked only when the keel can reach the water (CG less
+  !> than 10 m above the still water), so the hanging phase costs nothing.
+  subroutine watch_waterborne(par, hist, t, y)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(inout) :: hist
+    real(wp), intent(in) :: t, y(:)
+    real(wp), parameter :: hold = 1.0_wp
+    real(wp) :: hook_vel(3, nslings)
+    if (.not. keel_can_reach_water(par, y)) return
+    if (hist%waterborne_time < 0.0_wp) then
+      if (.not. afloat(par, hist, t, y)) then
+        hist%afloat_since = -1.0_wp
+      else if (hist%afloat_since < 0.0_wp) then
+        hist%afloat_since = t
+      else if (t - hist%afloat_since >= hold) then
+        hist%waterborne_time = hist%afloat_since
+      end if
+    end if
+    if (par%release .and. hist%waterborne_time >= 0.0_wp .and. &
+        t >= hist%waterborne_time + hold + par%release_delay) then
+      hist%release_time = t
+      call hook_kinematics(par, y, hist%released_hooks, hook_vel)
+      hist%released_pose = ship_pose(par, y)
+    end if
+  end subroutine watch_waterborne
+
+  !> The CG is less than 10 m above the still water.
+  pure logical function keel_can_reach_water(par, y)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:)
+    real(wp) :: c(3, 3), r(3)
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
+      c = rotation_matrix(q(1:3))
+      r = matmul(c, q(4:6))
+    end associate
+    keel_can_reach_water = .not. r(3) < -10.0_wp
+  end function keel_can_reach_water
+
+  !> The buoyancy carries the weight, or the hooks carry less than 1 % of it.
+  logical function afloat(par, hist, t, y)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: t, y(:)
+    real(wp), parameter :: hook_fraction = 0.01_wp
+    real(wp) :: c(3, 3), r(3), fw(6), volume, weight
+    real(wp) :: seg(par%rig%nseg), sling(par%rig%nlump + 1, 2), paid
+    real(wp) :: lumps(3, par%rig%nlump, 2)
+    weight = par%boat%mass*gravity
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      r = matmul(c, q(4:6))
+      call water_loads(par, hist, t, c, r, u, fw, volume)
+    end associate
+    afloat = rho_water*gravity*volume >= weight
+    if (afloat) return
+    call rigging_state(par, hist, t, y, seg, sling, paid, lumps)
+    afloat = sum(sling(1, :)) < hook_fraction*weight
+  end function afloat
+
+end module davit_system_events

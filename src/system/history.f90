@@ -1,0 +1,33 @@
+!> What changes only between steps: the fenders' contact phases, the launch's events and
+!> the slow caches of the water at the boat. The after-step hook (davit_system_events) is
+!> the only writer; the right-hand side reads it as fixed for the step.
+module davit_system_history
+  use davit_kinds, only: wp
+  use davit_core_pose, only: pose_type
+  use davit_boat_contact, only: fender_state_type
+  use davit_boat_surface_watch, only: surface_watch_type
+  use davit_boat_strip_waves, only: strip_wave_cache_type
+  use davit_system_parameters, only: nslings
+  implicit none
+  private
+  public :: system_history_type
+
+  type :: system_history_type
+    type(fender_state_type), allocatable :: fender_states(:)
+    !> Time of the first fender contact [s]; negative while there has been none.
+    real(wp) :: first_contact_time = -1.0_wp
+    !> Events on the davit (review G24) [s], negative until they happen: waterborne (the
+    !> buoyancy carries the weight, or the hooks carry < 1 % of it, for 1 s; the time the
+    !> condition began) and hook release; after release the falls no longer act on the
+    !> boat and their states are frozen.
+    real(wp) :: waterborne_time = -1.0_wp, release_time = -1.0_wp, afloat_since = -1.0_wp
+    !> Where the hooks were and the ship's pose when the hooks let go (inertial).
+    real(wp) :: released_hooks(3, nslings) = 0.0_wp
+    type(pose_type) :: released_pose
+    !> Skips the strip loads while the hull is provably out of the water (exact).
+    type(surface_watch_type) :: watch
+    !> Slow clock of the water at the strips (`&simulation wave_update`, irregular seas).
+    type(strip_wave_cache_type) :: waves
+  end type system_history_type
+
+end module davit_system_history

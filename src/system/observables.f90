@@ -1,0 +1,137 @@
+!> What the recorders, the sweep metrics and the events read from a state: the boat's
+!> inertial kinematics, rigging tensions and lengths, foundation-sling tensions, contact
+!> clearance and forces, and the mechanical energy. Pure functions of (parameters,
+!> history, state); none changes anything.
+module davit_system_observables
+  use davit_kinds, only: wp, gravity
+  use davit_core_rotation, only: rotation_matrix, cross
+  use davit_core_pose, only: pose_type
+  use davit_core_body, only: body_point_velocity, body_inertial_position, body_kinetic_energy
+  use davit_rigging_elastic_sling, only: sling_hook_force, sling_energy
+  use davit_boat_fenders, only: side_plane_type, fender_probe, fender_loads
+  use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
+                                     hook_kinematics
+  use davit_system_history, only: system_history_type
+  implicit none
+  private
+  public :: boat_kinematics, rigging_state, sling_tensions, contact_state, energy
+
+contains
+
+  !> Inertial-frame observables of the boat at state y with rates dydt: position, velocity
+  !> and acceleration of the CG (a = C (u_dot + omega x v), eq. 8), Euler angles and body
+  !> angular velocity; out(:, 1:5) in that order of (position, euler, velocity,
+  !> angular_velocity, acceleration).
+  pure function boat_kinematics(par, y, dydt) result(out)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:), dydt(:)
+    real(wp) :: out(3, 5), c(3, 3)
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)), &
+               u_dot => dydt(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      out(:, 1) = body_inertial_position(q)
+      out(:, 2) = q(1:3)
+      out(:, 3) = matmul(c, u(4:6))
+      out(:, 4) = u(1:3)
+      out(:, 5) = matmul(c, u_dot(4:6) + cross(u(1:3), u(4:6)))
+    end associate
+  end function boat_kinematics
+
+  !> Rigging observables at state y: cable segment tensions [N], sling segment tensions
+  !> (row 1 at the hook; zero once the hooks are released) [N], paid-out length [m] and lump
+  !> positions (inertial) [m].
+  pure subroutine rigging_state(par, hist, t, y, seg, sling, paid, lumps)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
+    real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), tr
+    type(pose_type) :: pose
+    call hook_kinematics(par, y, hook_pos, hook_vel)
+    pose = ship_pose(par, y)
+    tr = t
+    if (hist%release_time >= 0.0_wp) then
+      ! The falls are not simulated after release (their states are frozen): report them
+      ! as they were when the hooks let go, not stretched by the boat and ship moving on.
+      hook_pos = hist%released_hooks
+      hook_vel = 0.0_wp
+      pose = hist%released_pose
+      tr = hist%release_time
+    end if
+    associate (yr => y(par%rig_offset + 1:par%rig_offset + par%rig%nstate))
+      call par%rig%observe(tr, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
+                           sling)
+      ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
+      ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
+      if (hist%release_time >= 0.0_wp) sling = 0.0_wp
+      paid = par%rig%paid_out(yr)
+      if (par%rig%nlump > 0) lumps = par%rig%lump_positions(yr)
+    end associate
+  end subroutine rigging_state
+
+  !> Tensions [N] of the foundation slings at state y (zero when detached or on the davit,
+  !> where rigging_state gives the sling tensions).
+  pure function sling_tensions(par, y) result(tension)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:)
+    real(wp) :: tension(nslings), hook_pos(3, nslings), hook_vel(3, nslings), fh(3)
+    integer :: i
+    tension = 0.0_wp
+    if (.not. par%slings_attached) return
+    call hook_kinematics(par, y, hook_pos, hook_vel)
+    do i = 1, nslings
+      call sling_hook_force(par%slings(i), hook_pos(:, i), hook_vel(:, i), fh, tension(i))
+    end do
+  end function sling_tensions
+
+  !> Smallest fender-to-side distance [m] (negative = penetration) and each fender's
+  !> normal force [N] at state y.
+  pure subroutine contact_state(par, hist, y, clearance, force)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: clearance, force(:)
+    real(wp) :: c(3, 3), r(3), delta(par%fenders%nf), delta_dot(par%fenders%nf), f(6)
+    integer :: deepest(par%fenders%nf)
+    type(side_plane_type) :: plane
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      r = matmul(c, q(4:6))
+      plane = side_plane(par, ship_pose(par, y))
+      call fender_probe(par%fenders, plane, c, r, u, deepest, delta, delta_dot)
+      clearance = -maxval(delta)
+      force = 0.0_wp
+      if (par%contact) call fender_loads(par%fenders, hist%fender_states, plane, c, r, u, f, &
+                                         force)
+    end associate
+  end subroutine contact_state
+
+  !> Mechanical energy of the conservative part in air: kinetic + gravity (N3 down, so
+  !> -m g z) + elastic slings [J].
+  pure function energy(par, y) result(e)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:)
+    real(wp) :: e, c(3, 3), r(3), hook_pos(3, nslings), hook_vel(3, nslings)
+    type(pose_type) :: pose
+    integer :: i
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      r = matmul(c, q(4:6))
+      e = body_kinetic_energy(par%boat, u) - par%boat%mass*gravity*r(3)
+    end associate
+    if (par%on_davit) then
+      pose = ship_pose(par, y)
+      e = e + par%rig%energy(y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
+                             spread(r, 2, 2) + matmul(c, par%hooks), pose%r, pose%c)
+    end if
+    if (.not. par%slings_attached) return
+    call hook_kinematics(par, y, hook_pos, hook_vel)
+    do i = 1, nslings
+      e = e + sling_energy(par%slings(i), hook_pos(:, i))
+    end do
+  end function energy
+
+end module davit_system_observables

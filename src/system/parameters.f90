@@ -1,0 +1,113 @@
+!> What never changes during a run: the bodies, force models and environment of the
+!> launch, and the layout of its state. Built once (davit_system_build), read by the
+!> right-hand side and the observables, never written after.
+!>
+!> The geometry helpers here turn a state into what the force models need: the ship's pose
+!> (at rest, or from its state part), the side plane it carries and the hooks' motion.
+module davit_system_parameters
+  use davit_kinds, only: wp
+  use davit_core_rotation, only: rotation_matrix
+  use davit_core_pose, only: pose_type
+  use davit_core_layout, only: state_layout_type, state_part_type
+  use davit_core_body, only: rigid_body_type, body_point_velocity
+  use davit_rigging_elastic_sling, only: elastic_sling_type
+  use davit_sea_wave_field, only: wave_field_type
+  use davit_sea_wind, only: wind_type
+  use davit_boat_strip_loads, only: strip_model_type
+  use davit_boat_wind_loads, only: boat_wind_type
+  use davit_boat_fenders, only: side_plane_type, fender_set_type
+  use davit_rigging_rigging, only: rigging_type
+  implicit none
+  private
+  public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics
+
+  integer, parameter :: nslings = 2
+
+  type :: system_params_type
+    !> The state: part "boat" (eqs. 3-4), the rigging's parts on the davit, part "ship"
+    !> in the 'launch' scene. boat and ship are their ranges; the rigging's slice is
+    !> y(rig_offset + 1 : rig_offset + rig%nstate).
+    type(state_layout_type) :: layout
+    type(state_part_type) :: boat_part, ship_part
+    integer :: rig_offset = 0
+    type(rigid_body_type) :: boat
+    !> Hook points in the boat frame, one column per sling.
+    real(wp) :: hooks(3, nslings) = 0.0_wp
+    !> Foundation slings (the 'hanging' scenes) and whether they hold the boat.
+    type(elastic_sling_type) :: slings(nslings)
+    logical :: slings_attached = .true.
+    type(strip_model_type) :: water
+    type(boat_wind_type) :: air
+    type(wave_field_type) :: sea
+    type(wind_type) :: wind
+    !> Hull volume (dry fraction of the wind loads) [m^3].
+    real(wp) :: hull_volume = 0.0_wp
+    logical :: contact = .false.
+    type(fender_set_type) :: fenders
+    !> Ship-frame y of the side plane [m].
+    real(wp) :: side_y = 0.0_wp
+    !> The full davit rigging ('lowering' and 'launch' scenes) in place of the foundation
+    !> slings.
+    logical :: on_davit = .false.
+    type(rigging_type) :: rig
+    !> The ship at rest in its deck pose, unless a 6-DOF ship moves ('launch'), one-way
+    !> coupled as in the paper (the davit loads do not act on it).
+    type(pose_type) :: ship_rest
+    logical :: with_ship = .false.
+    !> Hook release once waterborne (review G24), release_delay after it [s].
+    logical :: release = .true.
+    real(wp) :: release_delay = 0.0_wp
+  end type system_params_type
+
+contains
+
+  !> The ship's pose at state y: CG, rotation (ship -> N), velocity and angular velocity
+  !> (inertial components).
+  pure function ship_pose(par, y) result(pose)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:)
+    type(pose_type) :: pose
+    if (.not. par%with_ship) then
+      pose = par%ship_rest
+      return
+    end if
+    associate (q => y(par%ship_part%q(1):par%ship_part%q(2)), &
+               u => y(par%ship_part%u(1):par%ship_part%u(2)))
+      pose%c = rotation_matrix(q(1:3))
+      pose%r = q(4:6)
+      pose%v = matmul(pose%c, u(4:6))
+      pose%w = matmul(pose%c, u(1:3))
+    end associate
+  end function ship_pose
+
+  !> The ship's side plane (ship-frame y = side_y, normal +s2) carried by the ship.
+  pure function side_plane(par, pose) result(plane)
+    type(system_params_type), intent(in) :: par
+    type(pose_type), intent(in) :: pose
+    type(side_plane_type) :: plane
+    plane%origin = pose%r
+    plane%point = pose%r + pose%c(:, 2)*par%side_y
+    plane%normal = pose%c(:, 2)
+    plane%velocity = pose%v
+    plane%angular_velocity = pose%w
+  end function side_plane
+
+  !> Inertial positions and velocities of the two hooks at state y.
+  pure subroutine hook_kinematics(par, y, hook_pos, hook_vel)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: hook_pos(3, nslings), hook_vel(3, nslings)
+    real(wp) :: c(3, 3), r(3)
+    integer :: i
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      r = matmul(c, q(4:6))
+      do i = 1, nslings
+        hook_pos(:, i) = r + matmul(c, par%hooks(:, i))
+        hook_vel(:, i) = matmul(c, body_point_velocity(u, par%hooks(:, i)))
+      end do
+    end associate
+  end subroutine hook_kinematics
+
+end module davit_system_parameters
