@@ -7,14 +7,14 @@ program davit
   use davit_error, only: error_type
   use davit_io_config, only: config_type, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
-  use davit_system_driver, only: run_simulation
-  use davit_system_run_summary, only: run_summary
+  use davit_run_driver, only: run_simulation
+  use davit_run_run_summary, only: run_summary
   use davit_bench_suite, only: bench_options, run_bench
-  use davit_system_rao, only: run_rao
+  use davit_run_rao, only: run_rao
   use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
   use davit_sweep_cases, only: sweep_case
   use davit_sweep_driver, only: sweep_options, sweep_outcome, run_sweep, prepare_cases
-  use davit_system_linear_modes, only: linear_modes
+  use davit_run_linear_modes, only: linear_modes
   implicit none
 
   interface

@@ -9,7 +9,7 @@ module davit_run_sea_run
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_sea_wave_field, only: wave_field_type, point_phasors, time_phasors, &
                                   rotation_phasors, advance_phasors, elevation_from_phasors
-  use davit_sea_builder, only: build_wave_field
+  use davit_system_sea_builder, only: build_wave_field
   use davit_run_run_summary, only: run_summary, write_root_attributes
   implicit none
   private

@@ -4,7 +4,7 @@ module davit_run_ship_scene
   use davit_error, only: error_type
   use davit_io_config, only: config_type
   use davit_sea_wave_field, only: wave_field_type
-  use davit_sea_builder, only: build_wave_field, build_wind
+  use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_ship_model, only: ship_system_type, new_ship_system
   use davit_system_build, only: ship_initial_state

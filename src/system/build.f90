@@ -7,7 +7,7 @@ module davit_system_build
   use davit_core_pose, only: pose_type
   use davit_io_config, only: config_type
   use davit_rigging_elastic_sling, only: elastic_sling_type
-  use davit_sea_builder, only: build_wave_field, build_wind
+  use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
   use davit_boat_strip_loads, only: new_strip_model
   use davit_boat_wind_loads, only: boat_wind_type, lift_symmetric, lift_literal

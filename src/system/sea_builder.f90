@@ -1,5 +1,6 @@
-!> Build the wave field and wind of a run from the validated &sea / &wind configuration.
-module davit_sea_builder
+!> Build the wave field and wind of a run from the validated &sea / &wind configuration
+!> (here, in the build layer, so that src/sea never depends on src/io).
+module davit_system_sea_builder
   use davit_kinds, only: wp
   use davit_core_random, only: rng_type, new_rng
   use davit_io_config, only: sea_config, wind_config
@@ -42,4 +43,4 @@ contains
     w = new_wind(wind%speed, wind%direction)
   end function build_wind
 
-end module davit_sea_builder
+end module davit_system_sea_builder
