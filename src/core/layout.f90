@@ -30,7 +30,6 @@ module davit_core_layout
     procedure :: add => layout_add
     procedure :: append => layout_append
     procedure :: part => layout_part
-    procedure :: offset => layout_offset
   end type state_layout_type
 
 contains
@@ -83,16 +82,5 @@ contains
       end if
     end do
   end function layout_part
-
-  !> Range [first, last] in y of the parts from `first` to `last` (by name), both included.
-  pure function layout_offset(self, first, last) result(r)
-    class(state_layout_type), intent(in) :: self
-    character(len=*), intent(in) :: first, last
-    integer :: r(2)
-    type(state_part_type) :: a, b
-    a = self%part(first)
-    b = self%part(last)
-    r = [a%q(1), max(b%q(2), b%u(2))]
-  end function layout_offset
 
 end module davit_core_layout
