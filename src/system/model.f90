@@ -30,6 +30,7 @@ module davit_system_model
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, &
                                 fender_probe, fender_loads
   use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_core_pose, only: pose_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch, watch_refresh, &
@@ -129,6 +130,7 @@ contains
     type(error_type), allocatable, intent(out), optional :: error
     type(error_type), allocatable :: rig_error
     real(wp) :: ea
+    real(wp), allocatable :: y(:)
     self%boat%mass = cfg%boat%mass
     self%boat%inertia = cfg%boat%inertia
     self%hooks(:, 1) = cfg%slings%hook_fore
@@ -153,7 +155,20 @@ contains
       self%release_delay = cfg%rigging%release_delay
     end if
     if (cfg%simulation%scene == "launch") then
-      call new_moving_ship(self, cfg, error)
+      call new_moving_ship(self, cfg, rig_error)
+      if (allocated(rig_error)) then
+        if (present(error)) call move_alloc(rig_error, error)
+        return
+      end if
+    end if
+    if (self%on_davit) then
+      ! The rigging's initial equilibrium is checked here once, so that every caller of
+      ! new_system hears of a deck without one (initial_state reports it too).
+      y = self%initial_state(cfg, rig_error)
+      if (allocated(rig_error)) then
+        if (present(error)) call move_alloc(rig_error, error)
+        return
+      end if
     end if
   end subroutine new_system
 
@@ -228,9 +243,11 @@ contains
   !> Initial y from inertial position/velocity and Euler angles / body rates; on the davit,
   !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as
   !> &rigging initial says).
-  function initial_state(self, cfg) result(y)
+  function initial_state(self, cfg, error) result(y)
     class(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out), optional :: error
+    type(error_type), allocatable :: rig_error
     real(wp), allocatable :: y(:)
     real(wp) :: c(3, 3), hook_pos(3, 2), hook_vel(3, 2), residual
     type(ship_pose_type) :: pose
@@ -245,8 +262,10 @@ contains
     call self%hook_kinematics(y, hook_pos, hook_vel)
     pose = ship_pose(self, y)
     call self%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
-                                -0.5_wp*self%boat%mass*gravity], 2, 2), pose%r, pose%c, &
-                                y(nstate + 1:nstate + self%rig%nstate), residual)
+                                -0.5_wp*self%boat%mass*gravity], 2, 2), &
+                                pose_type(pose%r, pose%c, pose%v, pose%w), &
+                                y(nstate + 1:nstate + self%rig%nstate), residual, rig_error)
+    if (allocated(rig_error) .and. present(error)) call move_alloc(rig_error, error)
   end function initial_state
 
   !> The ship's pose at state y.
@@ -315,8 +334,9 @@ contains
         ! Eq. (26): the rigging's hook forces through the hooks' partial velocities.
         call self%hook_kinematics(y, hook_pos, hook_vel)
         j = nstate + self%rig%nstate
-        call self%rig%rhs(t, y(nstate + 1:j), hook_pos, hook_vel, pose%r, pose%c, pose%v, &
-                          pose%w, dydt(nstate + 1:j), hook_force)
+        call self%rig%rhs(t, y(nstate + 1:j), hook_pos, hook_vel, &
+                          pose_type(pose%r, pose%c, pose%v, pose%w), dydt(nstate + 1:j), &
+                          hook_force)
         c = rotation_matrix(q(1:3))
         do i = 1, nslings
           f = f + body_point_force(self%hooks(:, i), matmul(hook_force(:, i), c))
@@ -515,7 +535,7 @@ contains
     if (self%on_davit) then
       pose = ship_pose(self, y)
       e = e + self%rig%energy(y(nstate + 1:nstate + self%rig%nstate), spread(r, 2, 2) + &
-                              matmul(c, self%hooks), pose%r, pose%c)
+                              matmul(c, self%hooks), pose_type(pose%r, pose%c, pose%v, pose%w))
     end if
     if (.not. self%slings_attached) return
     do i = 1, nslings
@@ -544,8 +564,8 @@ contains
       tr = self%release_time
     end if
     associate (yr => y(nstate + 1:nstate + self%rig%nstate))
-      call self%rig%observe(tr, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
-                            sling)
+      call self%rig%observe(tr, yr, hook_pos, hook_vel, &
+                            pose_type(pose%r, pose%c, pose%v, pose%w), seg, sling)
       ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
       ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
       if (self%release_time >= 0.0_wp) sling = 0.0_wp
