@@ -30,7 +30,7 @@ module davit_system_model
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, &
                                 fender_probe, fender_loads
   use davit_rigging_rigging, only: rigging_type, new_rigging
-  use davit_core_pose, only: pose_type
+  use davit_core_pose, only: ship_pose_type => pose_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch, watch_refresh, &
@@ -52,11 +52,6 @@ module davit_system_model
   !> evaluation per interval), short enough for its bound to stay well below the height
   !> of a boat hanging 15 m up (rate bound ~30 m/s in a 1300-component Level 5 sea).
   real(wp), parameter :: surface_watch_interval = 0.05_wp
-
-  !> Where the ship is: CG, rotation (ship -> N), velocity and angular velocity (inertial).
-  type :: ship_pose_type
-    real(wp) :: r(3) = 0.0_wp, c(3, 3) = 0.0_wp, v(3) = 0.0_wp, w(3) = 0.0_wp
-  end type ship_pose_type
 
   type, extends(ode_problem) :: system_type
     type(rigid_body_type) :: boat
@@ -154,22 +149,10 @@ contains
       self%release = cfg%rigging%release
       self%release_delay = cfg%rigging%release_delay
     end if
-    if (cfg%simulation%scene == "launch") then
-      call new_moving_ship(self, cfg, rig_error)
-      if (allocated(rig_error)) then
-        if (present(error)) call move_alloc(rig_error, error)
-        return
-      end if
-    end if
-    if (self%on_davit) then
-      ! The rigging's initial equilibrium is checked here once, so that every caller of
-      ! new_system hears of a deck without one (initial_state reports it too).
-      y = self%initial_state(cfg, rig_error)
-      if (allocated(rig_error)) then
-        if (present(error)) call move_alloc(rig_error, error)
-        return
-      end if
-    end if
+    if (cfg%simulation%scene == "launch") call new_moving_ship(self, cfg, rig_error)
+    ! the rigging's initial equilibrium, checked once here for every caller of new_system
+    if (self%on_davit .and. .not. allocated(rig_error)) y = self%initial_state(cfg, rig_error)
+    if (allocated(rig_error) .and. present(error)) call move_alloc(rig_error, error)
   end subroutine new_system
 
   !> The 6-DOF ship of the 'ship' scene, in the same sea and wind as the boat.
@@ -262,8 +245,7 @@ contains
     call self%hook_kinematics(y, hook_pos, hook_vel)
     pose = ship_pose(self, y)
     call self%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
-                                -0.5_wp*self%boat%mass*gravity], 2, 2), &
-                                pose_type(pose%r, pose%c, pose%v, pose%w), &
+                                -0.5_wp*self%boat%mass*gravity], 2, 2), pose, &
                                 y(nstate + 1:nstate + self%rig%nstate), residual, rig_error)
     if (allocated(rig_error) .and. present(error)) call move_alloc(rig_error, error)
   end function initial_state
@@ -334,8 +316,7 @@ contains
         ! Eq. (26): the rigging's hook forces through the hooks' partial velocities.
         call self%hook_kinematics(y, hook_pos, hook_vel)
         j = nstate + self%rig%nstate
-        call self%rig%rhs(t, y(nstate + 1:j), hook_pos, hook_vel, &
-                          pose_type(pose%r, pose%c, pose%v, pose%w), dydt(nstate + 1:j), &
+        call self%rig%rhs(t, y(nstate + 1:j), hook_pos, hook_vel, pose, dydt(nstate + 1:j), &
                           hook_force)
         c = rotation_matrix(q(1:3))
         do i = 1, nslings
@@ -535,7 +516,7 @@ contains
     if (self%on_davit) then
       pose = ship_pose(self, y)
       e = e + self%rig%energy(y(nstate + 1:nstate + self%rig%nstate), spread(r, 2, 2) + &
-                              matmul(c, self%hooks), pose_type(pose%r, pose%c, pose%v, pose%w))
+                              matmul(c, self%hooks), pose)
     end if
     if (.not. self%slings_attached) return
     do i = 1, nslings
@@ -564,8 +545,7 @@ contains
       tr = self%release_time
     end if
     associate (yr => y(nstate + 1:nstate + self%rig%nstate))
-      call self%rig%observe(tr, yr, hook_pos, hook_vel, &
-                            pose_type(pose%r, pose%c, pose%v, pose%w), seg, sling)
+      call self%rig%observe(tr, yr, hook_pos, hook_vel, pose, seg, sling)
       ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
       ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
       if (self%release_time >= 0.0_wp) sling = 0.0_wp
