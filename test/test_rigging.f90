@@ -5,6 +5,8 @@ module test_rigging
   use davit_kinds, only: wp, gravity
   use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
+  use davit_core_pose, only: pose_type
+  use davit_core_kane, only: kane_v, kane_w_phi, kane_f
   use davit_core_body, only: rigid_body_type, body_mass_diagonal, body_w_phi, body_qdot, &
                              body_gravity_force, body_point_force, body_point_velocity, &
                              body_kinetic_energy
@@ -33,9 +35,11 @@ module test_rigging
   real(wp), parameter :: hooks_b(3, 2) = reshape([4.6_wp, 0.0_wp, -1.55_wp, &
                                                   -4.6_wp, 0.0_wp, -1.55_wp], [3, 2])
   !> Ship at rest at the origin, ship frame = inertial frame.
-  real(wp), parameter :: ship_r(3) = 0.0_wp, ship_v(3) = 0.0_wp, ship_w(3) = 0.0_wp
   real(wp), parameter :: ship_c(3, 3) = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                  0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [3, 3])
+  type(pose_type), parameter :: ship0 = pose_type([0.0_wp, 0.0_wp, 0.0_wp], ship_c, &
+                                                  [0.0_wp, 0.0_wp, 0.0_wp], &
+                                                  [0.0_wp, 0.0_wp, 0.0_wp])
 
   !> Boat (y(1:12) = q, u as in davit_system_model) plus the rigging (y(13:)).
   type, extends(ode_problem) :: hanging_problem
@@ -53,6 +57,8 @@ contains
     suite%cases = [new_case("dof_count_F1", dof_count), &
                    new_case("statics_W4_A6", statics), &
                    new_case("ship_pose_moves_davit", ship_pose), &
+                   new_case("kane_blocks_lump_weight_bearing_friction", kane_blocks), &
+                   new_case("initial_state_rejects_misplaced_head", misplaced_head), &
                    new_case("unstretched_start_settles_fig13_F2", settle), &
                    new_case("gearing_A7", gearing), &
                    new_case("energy_conservation_A8", energy_conservation), &
@@ -112,7 +118,8 @@ contains
     hook_pos(:, 2) = cg0 + hooks_b(:, 2)
     hook_force = 0.0_wp
     hook_force(3, :) = -0.5_wp*weight
-    call p%rig%initial_state(hook_pos, hook_force, ship_r, ship_c, y(13:), residual, mode)
+    call p%rig%initial_state(hook_pos, hook_force, ship0, y(13:), residual, error, mode)
+    call check_true(state, .not. allocated(error), "initial equilibrium")
   end subroutine setup
 
   !> Hook positions and velocities (inertial) of the boat state.
@@ -137,8 +144,7 @@ contains
     real(wp) :: hook_pos(3, 2), hook_vel(3, 2), c(3, 3), fh(3, 2), f(6)
     integer :: a
     call hooks(y, hook_pos, hook_vel, c)
-    call self%rig%rhs(t, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, ship_w, &
-                      dydt(13:), fh)
+    call self%rig%rhs(t, y(13:), hook_pos, hook_vel, ship0, dydt(13:), fh)
     f = body_gravity_force(self%boat, c)
     do a = 1, 2
       f = f + body_point_force(hooks_b(:, a), matmul(transpose(c), fh(:, a)))
@@ -155,7 +161,7 @@ contains
     call hooks(y, hook_pos, hook_vel, c)
     r = matmul(c, y(4:6))
     e = body_kinetic_energy(p%boat, y(7:12)) - boat_mass*gravity*r(3) + &
-        p%rig%energy(y(13:), hook_pos, ship_r, ship_c)
+        p%rig%energy(y(13:), hook_pos, ship0)
   end function total_energy
 
   !> Cable segment tensions at state y.
@@ -165,7 +171,7 @@ contains
     real(wp) :: f(p%rig%nseg), sl(p%rig%nlump + 1, 2), hook_pos(3, 2), hook_vel(3, 2)
     real(wp) :: c(3, 3)
     call hooks(y, hook_pos, hook_vel, c)
-    call p%rig%observe(t, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, ship_w, f, sl)
+    call p%rig%observe(t, y(13:), hook_pos, hook_vel, ship0, f, sl)
   end function tensions
 
   !> Static tension per cable part: each block hangs on two parts that meet at the block
@@ -270,24 +276,111 @@ contains
     real(wp), allocatable :: y(:), dydt(:)
     real(wp) :: hook_pos(3, 2), hook_vel(3, 2), c(3, 3), fh(3, 2), res, sr(3), sc(3, 3)
     real(wp) :: hook_force(3, 2)
+    type(error_type), allocatable :: error
     sr = [1.0_wp, 0.0_wp, -0.5_wp]
     call setup(p, "sheaves = 'rotating', lumps = 1", y, state, res)
     y(4:6) = y(4:6) + sr
     call hooks(y, hook_pos, hook_vel, c)
     hook_force = 0.0_wp
     hook_force(3, :) = -0.5_wp*weight
-    call p%rig%initial_state(hook_pos, hook_force, sr, ship_c, y(13:), res)
+    call p%rig%initial_state(hook_pos, hook_force, pose_type(sr, ship_c, ship0%v, ship0%w), &
+                             y(13:), res, error)
+    call check_true(state, .not. allocated(error), "initial equilibrium with moved ship")
     call check(state, res, 0.0_wp, "residual with moved ship", abs_tol=1.0e-12_wp)
     allocate (dydt(p%rig%nstate))
-    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, sr, ship_c, ship_v, ship_w, dydt, fh)
-    call check(state, maxval(abs(dydt(p%rig%ilv:p%rig%idr - 1))), 0.0_wp, &
+    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, pose_type(sr, ship_c, ship0%v, ship0%w), &
+                   dydt, fh)
+    call check(state, maxval(abs(dydt(p%rig%lumps%u(1):p%rig%drum%q(1) - 1))), 0.0_wp, &
                "rigging at rest with moved ship", abs_tol=1.0e-6_wp)
     call check(state, sum(fh(3, :)), -weight, "hooks carry W", rel_tol=1.0e-9_wp)
     sc = rotation_matrix([0.1_wp, 0.0_wp, 0.0_wp])
-    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, sr, sc, ship_v, ship_w, dydt, fh)
-    call check_true(state, maxval(abs(dydt(p%rig%ibv:p%rig%ibv + 5))) > 1.0_wp, &
+    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, pose_type(sr, sc, ship0%v, ship0%w), &
+                   dydt, fh)
+    call check_true(state, maxval(abs(dydt(p%rig%blocks%u(1):p%rig%blocks%u(2)))) > 1.0_wp, &
                     "rolled ship moves the blocks")
   end subroutine ship_pose
+
+  !> The rigging's Kane blocks (eqs. 53-54, 87), by hand. A lump at rest, pulled 2 cm
+  !> sideways off its equilibrium (~1 kN of net segment force against ~20 N of weight, so
+  !> a lost or flipped weight is 1e4 times the tolerance), feels its two segments' spring forces,
+  !> -T1 e1 + T2 e2 (T = k (D - l0), e along the sling upwards), plus its own weight
+  !> +m_p g N3 (z down): F = that, V = m_p, W phi = 0. A sheave turning at omega feels the
+  !> cable torque and the bearing's regularised Coulomb moment, which opposes the rotation:
+  !> F = torque - M_f tanh(omega/omega_f) (omega_f = 0.01 rad/s), V = I, W phi = 0; the
+  !> torque is the same rigging's F without bearing friction.
+  subroutine kane_blocks(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: mf = 20.0_wp, omega_f = 1.0e-2_wp
+    real(wp), parameter :: omega(2) = [0.02_wp, -0.005_wp]
+    type(hanging_problem) :: p, p0
+    real(wp), allocatable :: y(:), y0(:), dydt(:), kane(:, :), kane0(:, :)
+    real(wp) :: res, hook_pos(3, 2), hook_vel(3, 2), c(3, 3), fh(3, 2), r1(3), br(3, 2)
+    real(wp) :: d1(3), d2(3), f_exp(3)
+    integer :: iv, iom
+    call setup(p, "sheaves = 'rotating', lumps = 1, sling_damping = 0, bearing_friction = 20", &
+               y, state, res)
+    call setup(p0, "sheaves = 'rotating', lumps = 1, sling_damping = 0", y0, state, res)
+    associate (rig => p%rig)
+      ! lump 1 of sling 1 moved off its equilibrium; two sheaves set turning
+      y(12 + rig%lumps%q(1):12 + rig%lumps%q(1) + 2) = &
+        y(12 + rig%lumps%q(1):12 + rig%lumps%q(1) + 2) + [0.0_wp, 0.02_wp, 0.0_wp]
+      y(12 + rig%sheaves%u(1):12 + rig%sheaves%u(1) + 1) = omega
+      y0 = y
+      call hooks(y, hook_pos, hook_vel, c)
+      allocate (dydt(rig%nstate), kane(3, rig%nstate), kane0(3, rig%nstate))
+      kane = 0.0_wp
+      call rig%kane_blocks(0.0_wp, y(13:), hook_pos, hook_vel, ship0, dydt, kane, fh)
+      call p0%rig%kane_blocks(0.0_wp, y0(13:), hook_pos, hook_vel, ship0, dydt, kane0, fh)
+      r1 = y(12 + rig%lumps%q(1):12 + rig%lumps%q(1) + 2)
+      br = rig%block_positions(y(13:))
+      d1 = r1 - hook_pos(:, 1)
+      d2 = br(:, 1) - r1
+      f_exp = -rig%sling%k_seg*(norm2(d1) - rig%sling%l0_seg)*d1/norm2(d1) + &
+              rig%sling%k_seg*(norm2(d2) - rig%sling%l0_seg)*d2/norm2(d2)
+      f_exp(3) = f_exp(3) + rig%sling%m_lump*gravity
+      iv = rig%lumps%u(1)
+      call check(state, maxval(abs(kane(kane_f, iv:iv + 2) - f_exp))/norm2(f_exp), 0.0_wp, &
+                 "lump F = segment forces + m_p g N3", abs_tol=1.0e-9_wp)
+      call check(state, kane(kane_v, iv), rig%sling%m_lump, "lump V = m_p", rel_tol=0.0_wp)
+      call check(state, maxval(abs(kane(kane_w_phi, iv:iv + 2))), 0.0_wp, "lump W phi = 0", &
+                 abs_tol=0.0_wp)
+      iom = rig%sheaves%u(1)
+      call check(state, kane(kane_f, iom) - kane0(kane_f, iom), -mf*tanh(omega(1)/omega_f), &
+                 "sheave turning forwards: F = torque - M_f tanh(omega/omega_f)", &
+                 rel_tol=1.0e-9_wp)
+      call check(state, kane(kane_f, iom + 1) - kane0(kane_f, iom + 1), &
+                 -mf*tanh(omega(2)/omega_f), "sheave turning backwards: bearing opposes", &
+                 rel_tol=1.0e-9_wp)
+      call check_true(state, kane(kane_f, iom + 1) > kane0(kane_f, iom + 1), &
+                      "backwards: friction raises F")
+      call check(state, kane(kane_v, iom), rig%sheave_inertia, "sheave V = I", rel_tol=0.0_wp)
+      call check(state, kane(kane_w_phi, iom), 0.0_wp, "sheave W phi = 0", abs_tol=0.0_wp)
+    end associate
+  end subroutine kane_blocks
+
+  !> A fore davit head 2.5 m to the side of its hook (4 m above it) has the falls pull
+  !> some 40 deg off the block's vertical load (the block hangs on its 1 m sling, 3 m below
+  !> the head): the one tension of reeving A, fitted to both blocks, leaves most of block
+  !> 1's load unbalanced (residual ~0.7, beyond 0.2), and initial_state reports an error
+  !> instead of starting the run off its equilibrium.
+  subroutine misplaced_head(state)
+    type(case_state), intent(inout) :: state
+    type(hanging_problem) :: p
+    type(rigging_config) :: cfg
+    type(error_type), allocatable :: error
+    real(wp) :: y(100), hook_pos(3, 2), hook_force(3, 2), res
+    call make_config("head_fore = 4.6, 15.8, -20.55", cfg, state)
+    call new_rigging(p%rig, cfg, error)
+    call check_true(state, .not. allocated(error), "rigging built")
+    hook_pos(:, 1) = cg0 + hooks_b(:, 1)
+    hook_pos(:, 2) = cg0 + hooks_b(:, 2)
+    hook_force = 0.0_wp
+    hook_force(3, :) = -0.5_wp*weight
+    call p%rig%initial_state(hook_pos, hook_force, ship0, y(1:p%rig%nstate), res, error)
+    call check_true(state, allocated(error), "misplaced head reported")
+    call check_true(state, res > 0.2_wp, "residual beyond 0.2")
+    call note(state, "residual", res)
+  end subroutine misplaced_head
 
   !> Fig. 13 / F2: from an unstretched start (option A, rotating sheaves, n = 0, default
   !> cable dashpots 1e4 N s/m per segment, G26) the tension overshoots, then settles; mean
@@ -426,13 +519,14 @@ contains
     associate (yr => y(13:), rig => p%rig)
       do a = 1, 2
         do k = 1, n
-          ip = rig%ilr + 3*n*(a - 1) + 3*(k - 1)
-          frac = (yr(ip + 2) + 20.55_wp)/(hook_pos(3, a) + 20.55_wp)
-          yr(rig%ilv + ip - rig%ilr:rig%ilv + ip - rig%ilr + 2) = frac*hook_vel(:, a)
+          ! lump k of sling a: 3 entries at the same offset in the lumps' q and u ranges
+          ip = 3*n*(a - 1) + 3*(k - 1)
+          frac = (yr(rig%lumps%q(1) + ip + 2) + 20.55_wp)/(hook_pos(3, a) + 20.55_wp)
+          yr(rig%lumps%u(1) + ip:rig%lumps%u(1) + ip + 2) = frac*hook_vel(:, a)
         end do
-        ip = rig%ibr + 3*(a - 1)
-        frac = (yr(ip + 2) + 20.55_wp)/(hook_pos(3, a) + 20.55_wp)
-        yr(rig%ibv + 3*(a - 1):rig%ibv + 3*a - 1) = frac*hook_vel(:, a)
+        ip = 3*(a - 1)
+        frac = (yr(rig%block_r(1) + ip + 2) + 20.55_wp)/(hook_pos(3, a) + 20.55_wp)
+        yr(rig%block_v(1) + ip:rig%block_v(1) + ip + 2) = frac*hook_vel(:, a)
       end do
     end associate
   end subroutine perturb
@@ -616,11 +710,10 @@ contains
                       "blocks are no DOFs "//trim(decks(i)))
       br0 = p%rig%block_positions(y(13:))
       t_exp = static_tension(p, y)
-      y(13 + p%rig%ibr - 1:13 + p%rig%ibr + 1) = br0(:, 1) + offset
-      y(13 + p%rig%ibr + 2:13 + p%rig%ibr + 4) = br0(:, 2) - offset
+      y(12 + p%rig%block_r(1):12 + p%rig%block_r(1) + 2) = br0(:, 1) + offset
+      y(12 + p%rig%block_r(1) + 3:12 + p%rig%block_r(2)) = br0(:, 2) - offset
       call hooks(y, hook_pos, hook_vel, c)
-      call p%rig%block_state(0.0_wp, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, &
-                             ship_w, br, bv, solved, it)
+      call p%rig%block_state(0.0_wp, y(13:), hook_pos, hook_vel, ship0, br, bv, solved, it)
       call check_true(state, solved, "balance solved "//trim(decks(i)))
       call check(state, maxval(abs(br - br0)), 0.0_wp, "blocks at the static equilibrium "// &
                  trim(decks(i)), abs_tol=1.0e-9_wp)
@@ -629,8 +722,7 @@ contains
       call check(state, maxval(abs(f - t_exp))/t_exp, 0.0_wp, "t=0 parts = T "// &
                  trim(decks(i)), abs_tol=1.0e-9_wp)
       allocate (dydt(p%rig%nstate))
-      call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, ship_w, &
-                     dydt, fh)
+      call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, ship0, dydt, fh)
       deallocate (dydt)
       call check(state, fh(3, 1), -0.5_wp*weight, "fore hook W/2", rel_tol=1.0e-9_wp)
       call check(state, fh(3, 2), -0.5_wp*weight, "aft hook W/2", rel_tol=1.0e-9_wp)
@@ -672,15 +764,14 @@ contains
     call setup(p, "blocks = 'quasi_static', drum_speed = 0", y, state, res)
     call hooks(y, hook_pos, hook_vel, c)
     hook_pos(3, 1) = hook_pos(3, 1) - 0.6_wp
-    call p%rig%block_state(0.0_wp, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, &
-                           ship_w, br, bv, solved, it)
+    call p%rig%block_state(0.0_wp, y(13:), hook_pos, hook_vel, ship0, br, bv, solved, it)
     call check_true(state, solved, "balance solved")
     call note(state, "Newton iterations", real(it, wp))
     allocate (dydt(p%rig%nstate))
-    y(13 + p%rig%ibr - 1:13 + p%rig%ibr + 4) = reshape(br, [6])
-    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, ship_w, dydt, fh)
+    y(12 + p%rig%block_r(1):12 + p%rig%block_r(2)) = reshape(br, [6])
+    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, ship0, dydt, fh)
     allocate (f(p%rig%nseg), sl(1, 2))
-    call p%rig%observe(0.0_wp, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, ship_w, f, sl)
+    call p%rig%observe(0.0_wp, y(13:), hook_pos, hook_vel, ship0, f, sl)
     tension = f(4)
     head_z = -20.55_wp
     cos1 = (br(3, 1) - head_z)/hypot(br(3, 1) - head_z, 0.16_wp)
@@ -741,13 +832,11 @@ contains
       yp = y + h*dydt
       ym = y - h*dydt
       call hooks(yp, hook_pos, hook_vel, c)
-      call p%rig%block_state(t + h, yp(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, &
-                             ship_w, rp, vdum)
+      call p%rig%block_state(t + h, yp(13:), hook_pos, hook_vel, ship0, rp, vdum)
       call hooks(ym, hook_pos, hook_vel, c)
-      call p%rig%block_state(t - h, ym(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, &
-                             ship_w, rm, vdum)
+      call p%rig%block_state(t - h, ym(13:), hook_pos, hook_vel, ship0, rm, vdum)
       call hooks(y, hook_pos, hook_vel, c)
-      call p%rig%block_state(t, y(13:), hook_pos, hook_vel, ship_r, ship_c, ship_v, ship_w, &
+      call p%rig%block_state(t, y(13:), hook_pos, hook_vel, ship0, &
                              br, bv)
       err = maxval(abs((rp - rm)/(2.0_wp*h) - bv))/maxval(abs(bv))
       call check(state, err, 0.0_wp, "bv = d/dt of the balance "//trim(decks(i)), &

@@ -10,6 +10,7 @@
 module davit_rigging_cable
   use davit_kinds, only: wp
   use davit_core_rotation, only: cross
+  use davit_core_pose, only: pose_type
   implicit none
   private
   public :: cable_type, max_nodes, node_drum, node_fixed, node_block, node_dead
@@ -45,10 +46,9 @@ contains
 
   !> Inertial node positions and velocities: ship-fixed nodes p = r_s + C_s p_ship,
   !> v = v_s + w_s x (C_s p_ship) (w_s inertial components); block nodes from the blocks.
-  pure subroutine cable_node_kinematics(cab, ship_r, ship_c, ship_v, ship_w, block_r, &
-                                        block_v, p, v)
+  pure subroutine cable_node_kinematics(cab, ship, block_r, block_v, p, v)
     type(cable_type), intent(in) :: cab
-    real(wp), intent(in) :: ship_r(3), ship_c(3, 3), ship_v(3), ship_w(3)
+    type(pose_type), intent(in) :: ship
     real(wp), intent(in) :: block_r(3, 2), block_v(3, 2)
     real(wp), intent(out) :: p(3, max_nodes), v(3, max_nodes)
     real(wp) :: arm(3)
@@ -60,9 +60,9 @@ contains
         p(:, i) = block_r(:, cab%block(i))
         v(:, i) = block_v(:, cab%block(i))
       else
-        arm = matmul(ship_c, cab%p_ship(:, i))
-        p(:, i) = ship_r + arm
-        v(:, i) = ship_v + cross(ship_w, arm)
+        arm = matmul(ship%c, cab%p_ship(:, i))
+        p(:, i) = ship%r + arm
+        v(:, i) = ship%v + cross(ship%w, arm)
       end if
     end do
   end subroutine cable_node_kinematics
@@ -202,6 +202,8 @@ contains
   !> K_i = lam g^T + (f_i/l_i)(I - lam lam^T); and df/dL0 = -EA l/L0^2. What is left out,
   !> d f/d(node velocities) times accelerations, is the O(c a/k) lag of a massive block.
   pure subroutine cable_block_tangent_rotating(cab, lam, l, f, s, sdot, v, v_exo, jac, rate)
+    ! 10 arguments: the cable's evaluation as its callers hold it (chords, tensions,
+    ! passages), both node velocity sets and the two accumulators.
     type(cable_type), intent(in) :: cab
     real(wp), intent(in) :: lam(3, max_nodes - 1), l(max_nodes - 1), f(max_nodes - 1)
     real(wp), intent(in) :: s(max_nodes), sdot(max_nodes), v(3, max_nodes)
@@ -234,6 +236,8 @@ contains
   !> cable (reeving A: both): block a is pulled along u_a = sum (+-w_i lam_i).
   pure subroutine cable_block_tangent_quasi_static(cab, lam, l, f, l0_total, v_drum, ratio, &
                                                    v, v_exo, jac, rate)
+    ! 11 arguments: as cable_block_tangent_rotating, with the one-tension law's inputs
+    ! (unstretched length, drum speed, friction ratio) in place of the passages.
     type(cable_type), intent(in) :: cab
     real(wp), intent(in) :: lam(3, max_nodes - 1), l(max_nodes - 1), f(max_nodes - 1)
     real(wp), intent(in) :: l0_total, v_drum, ratio, v(3, max_nodes), v_exo(3, max_nodes)

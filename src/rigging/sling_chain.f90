@@ -1,8 +1,9 @@
 !> Lumped-mass sling (paper §II.D, eqs. 47-65, 80-81; review §1.6): n particles between the
 !> boat hook (node 0) and the movable block (node n+1), joined by n+1 tension-only
 !> spring-dashpot segments. Positions and velocities are inertial (N: z down), which the
-!> design allows instead of the paper's boat-frame components; accelerations are then plain
-!> F/m with gravity +m g N3 (corrected eq. 54). n = 0 gives a massless spring hook-block.
+!> design allows instead of the paper's boat-frame components; a lump's generalized active
+!> force is then its segment forces plus its weight +m g N3 (corrected eq. 54) and its Kane
+!> mass block m I (eq. 53). n = 0 gives a massless spring hook-block.
 module davit_rigging_sling_chain
   use davit_kinds, only: wp, gravity
   use davit_rigging_cable, only: ramp_factor, ramp_slope
@@ -56,14 +57,18 @@ contains
                     ramp_factor(dist - ch%l0_seg, ch%ramp))
   end subroutine segment
 
-  !> Accelerations of the lumps, forces on the top (block) and on the hook, and the segment
-  !> tensions (segment k joins node k-1 and node k; node 0 = hook, n+1 = top), eqs. 59-65.
-  pure subroutine chain_forces(ch, r_hook, v_hook, r_lump, v_lump, r_top, v_top, a_lump, &
+  !> Net segment forces on the lumps f_lump (their weight is the caller's: the Kane
+  !> blocks add it, eq. 54 corrected), forces on the top (block) and on the hook, and the
+  !> segment tensions (segment k joins node k-1 and node k; node 0 = hook, n+1 = top),
+  !> eqs. 59-65.
+  pure subroutine chain_forces(ch, r_hook, v_hook, r_lump, v_lump, r_top, v_top, f_lump, &
                                f_top, f_hook, tension)
+    ! 11 arguments: the chain's two ends and its lumps as they lie in the state, and its
+    ! four results; bundling them would copy the lump arrays at every evaluation.
     type(sling_chain_type), intent(in) :: ch
     real(wp), intent(in) :: r_hook(3), v_hook(3), r_top(3), v_top(3)
     real(wp), intent(in) :: r_lump(3, ch%nlump), v_lump(3, ch%nlump)
-    real(wp), intent(out) :: a_lump(3, ch%nlump), f_top(3), f_hook(3)
+    real(wp), intent(out) :: f_lump(3, ch%nlump), f_top(3), f_hook(3)
     real(wp), intent(out) :: tension(ch%nlump + 1)
     real(wp) :: r(3, 0:max_lumps + 1), v(3, 0:max_lumps + 1), fn(3, 0:max_lumps + 1), e(3)
     integer :: k, n
@@ -82,10 +87,7 @@ contains
     end do
     f_hook = fn(:, 0)
     f_top = fn(:, n + 1)
-    do k = 1, n
-      a_lump(:, k) = fn(:, k)/ch%m_lump
-      a_lump(3, k) = a_lump(3, k) + gravity
-    end do
+    f_lump = fn(:, 1:n)
   end subroutine chain_forces
 
   !> Kinetic + gravity (z down: -m g z) + elastic energy of the lumps and segments [J].
@@ -116,6 +118,7 @@ contains
   !> the change of f with r_top (spring, dashpot through the turning chord) and the chord
   !> turning the force. Moving r_low changes f_top by -jac times its displacement.
   pure subroutine top_segment_tangent(ch, r_low, v_low, r_top, v_top, f_top, f, f_real, jac)
+    ! 9 arguments: the segment's two ends (position, velocity) and its four results.
     type(sling_chain_type), intent(in) :: ch
     real(wp), intent(in) :: r_low(3), v_low(3), r_top(3), v_top(3)
     real(wp), intent(out) :: f_top(3), f, f_real, jac(3, 3)

@@ -2,7 +2,7 @@
 !> contact step policy and (in the 'launch' scene) the 6-DOF ship; and its initial state.
 module davit_system_build
   use davit_kinds, only: wp, gravity
-  use davit_error, only: error_type, fatal_error
+  use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
   use davit_io_config, only: config_type
@@ -66,8 +66,7 @@ contains
     type(error_type), allocatable, intent(out) :: error
     call new_rigging(par%rig, cfg%rigging, error)
     if (allocated(error)) return
-    par%rig_offset = par%layout%n
-    call par%layout%add("rigging", par%rig%nstate, 0)
+    call par%layout%append(par%rig%layout, par%rig_offset)
     par%release = cfg%rigging%release
     par%release_delay = cfg%rigging%release_delay
   end subroutine new_davit
@@ -156,9 +155,9 @@ contains
       call hook_kinematics(par, y, hook_pos, hook_vel)
       pose = ship_pose(par, y)
       call par%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
-                                 -0.5_wp*par%boat%mass*gravity], 2, 2), pose%r, pose%c, &
+                                 -0.5_wp*par%boat%mass*gravity], 2, 2), pose, &
                                  y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
-                                 residual)
+                                 residual, error)
     end associate
   end subroutine initial_state
 

@@ -90,8 +90,8 @@ contains
       return
     end if
     call hook_kinematics(self%par, y, hook_pos, hook_vel)
-    call self%par%rig%rhs(t, y(i0:i1), hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, &
-                          dydt(i0:i1), hook_force)
+    call self%par%rig%kane_blocks(t, y(i0:i1), hook_pos, hook_vel, pose, dydt(i0:i1), &
+                                  kane(:, i0:i1), hook_force)
     associate (b => self%par%boat_part)
       c = rotation_matrix(y(b%q(1):b%q(1) + 2))
       do i = 1, nslings

@@ -60,8 +60,7 @@ contains
       tr = hist%release_time
     end if
     associate (yr => y(par%rig_offset + 1:par%rig_offset + par%rig%nstate))
-      call par%rig%observe(tr, yr, hook_pos, hook_vel, pose%r, pose%c, pose%v, pose%w, seg, &
-                           sling)
+      call par%rig%observe(tr, yr, hook_pos, hook_vel, pose, seg, sling)
       ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
       ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
       if (hist%release_time >= 0.0_wp) sling = 0.0_wp
@@ -125,7 +124,7 @@ contains
     if (par%on_davit) then
       pose = ship_pose(par, y)
       e = e + par%rig%energy(y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
-                             spread(r, 2, 2) + matmul(c, par%hooks), pose%r, pose%c)
+                             spread(r, 2, 2) + matmul(c, par%hooks), pose)
     end if
     if (.not. par%slings_attached) return
     call hook_kinematics(par, y, hook_pos, hook_vel)
