@@ -12,10 +12,11 @@ module davit_rigging_block_balance
   use davit_kinds, only: wp, gravity
   use davit_core_pose, only: pose_type
   use davit_rigging_sling_chain, only: sling_chain_type, top_segment_tangent
-  use davit_rigging_cable, only: cable_type, max_nodes, node_block, cable_node_kinematics, &
+  use davit_rigging_cable, only: cable_type, cable_eval_type, max_nodes, node_block, &
+                                 cable_node_kinematics, &
                                  cable_node_forces, cable_block_tangent_rotating, &
                                  cable_block_tangent_quasi_static
-  use davit_rigging_falls, only: falls_type, drive_type, cable_eval_type, max_sheaves, &
+  use davit_rigging_falls, only: falls_type, drive_type, max_sheaves, &
                                  cable_tensions
   implicit none
   private
@@ -504,10 +505,9 @@ contains
         if (with_dashpots) call cable_node_forces(cab_el, ce%lam, -ce%f, -ce%g, &
                                                   falls%sheave_radius, damp_f, torque)
         if (falls%rotating) then
-          call cable_block_tangent_rotating(cab_el, ce%lam, ce%l, ce%f, ce%s, ce%sdot, vv, &
-                                            inp%vn(:, :, c), bal%jac, bal%rate)
+          call cable_block_tangent_rotating(cab_el, ce, vv, inp%vn(:, :, c), bal%jac, bal%rate)
         else
-          call cable_block_tangent_quasi_static(cab_el, ce%lam, ce%l, ce%f, &
+          call cable_block_tangent_quasi_static(cab_el, ce, &
                                                 falls%l0_total(c) + inp%drive%s_drum, &
                                                 inp%drive%v_drum, falls%friction_ratio, &
                                                 vv, inp%vn(:, :, c), bal%jac, bal%rate)

@@ -13,7 +13,7 @@ module davit_rigging_cable
   use davit_core_pose, only: pose_type
   implicit none
   private
-  public :: cable_type, max_nodes, node_drum, node_fixed, node_block, node_dead
+  public :: cable_type, cable_eval_type, max_nodes, node_drum, node_fixed, node_block, node_dead
   public :: cable_node_kinematics, cable_passages, cable_tensions_rotating
   public :: cable_tension_quasi_static, cable_node_forces, cable_energy_rotating
   public :: cable_geometry, cable_block_tangent_rotating, cable_block_tangent_quasi_static
@@ -41,6 +41,13 @@ module davit_rigging_cable
     !> a cable goes slack, or a massless block has no balance there (ramp_factor).
     real(wp) :: ramp = 0.0_wp
   end type cable_type
+
+  !> One cable's chords (lam, l), passages (s, sdot; rotating sheaves), segment tensions f
+  !> and the tensions g that drive the sheaves (cable_tensions_rotating).
+  type :: cable_eval_type
+    real(wp) :: lam(3, max_nodes - 1), l(max_nodes - 1), s(max_nodes), sdot(max_nodes)
+    real(wp) :: f(max_nodes - 1), g(max_nodes - 1)
+  end type cable_eval_type
 
 contains
 
@@ -201,30 +208,29 @@ contains
   !> the turning chord, dv = v_(i+1) - v_i at the actual velocities v), so the tangent is
   !> K_i = lam g^T + (f_i/l_i)(I - lam lam^T); and df/dL0 = -EA l/L0^2. What is left out,
   !> d f/d(node velocities) times accelerations, is the O(c a/k) lag of a massive block.
-  pure subroutine cable_block_tangent_rotating(cab, lam, l, f, s, sdot, v, v_exo, jac, rate)
-    ! 10 arguments: the cable's evaluation as its callers hold it (chords, tensions,
-    ! passages), both node velocity sets and the two accumulators.
+  pure subroutine cable_block_tangent_rotating(cab, ce, v, v_exo, jac, rate)
     type(cable_type), intent(in) :: cab
-    real(wp), intent(in) :: lam(3, max_nodes - 1), l(max_nodes - 1), f(max_nodes - 1)
-    real(wp), intent(in) :: s(max_nodes), sdot(max_nodes), v(3, max_nodes)
-    real(wp), intent(in) :: v_exo(3, max_nodes)
+    type(cable_eval_type), intent(in) :: ce
+    real(wp), intent(in) :: v(3, max_nodes), v_exo(3, max_nodes)
     real(wp), intent(inout) :: jac(6, 6), rate(6)
     real(wp) :: k(3, 3), l0, dl0, g(3), e, edot, phi, dphi
     integer :: i
-    do i = 1, cab%nnode - 1
-      if (f(i) <= 0.0_wp) cycle
-      l0 = max(cab%l0_init(i) + s(i) - s(i + 1), l0_floor)
-      dl0 = sdot(i) - sdot(i + 1)
-      e = l(i) - l0
-      edot = dot_product(lam(:, i), v(:, i + 1) - v(:, i)) - dl0
-      phi = ramp_factor(e, cab%ramp)
-      dphi = ramp_slope(e, cab%ramp)
-      g = (cab%ea/l0 + cab%damping*edot*dphi)*lam(:, i) + &
-          cab%damping*phi/l(i)*across(lam(:, i), v(:, i + 1) - v(:, i))
-      k = tangent(lam(:, i), g, f(i)/l(i))
-      call add_segment(cab, i, k, v_exo, &
-                       -(cab%ea*l(i)/l0**2 + cab%damping*edot*dphi)*dl0*lam(:, i), jac, rate)
-    end do
+    associate (lam => ce%lam, l => ce%l, f => ce%f, s => ce%s, sdot => ce%sdot)
+      do i = 1, cab%nnode - 1
+        if (f(i) <= 0.0_wp) cycle
+        l0 = max(cab%l0_init(i) + s(i) - s(i + 1), l0_floor)
+        dl0 = sdot(i) - sdot(i + 1)
+        e = l(i) - l0
+        edot = dot_product(lam(:, i), v(:, i + 1) - v(:, i)) - dl0
+        phi = ramp_factor(e, cab%ramp)
+        dphi = ramp_slope(e, cab%ramp)
+        g = (cab%ea/l0 + cab%damping*edot*dphi)*lam(:, i) + &
+            cab%damping*phi/l(i)*across(lam(:, i), v(:, i + 1) - v(:, i))
+        k = tangent(lam(:, i), g, f(i)/l(i))
+        call add_segment(cab, i, k, v_exo, &
+                         -(cab%ea*l(i)/l0**2 + cab%damping*edot*dphi)*dl0*lam(:, i), jac, rate)
+      end do
+    end associate
   end subroutine cable_block_tangent_rotating
 
   !> As cable_block_tangent_rotating for quasi-static sheaves: f_i = w_i T with one tension
@@ -234,66 +240,68 @@ contains
   !> and with L0 (growing at the drum speed) as -EA L^2/(A L0^2). Each segment adds its
   !> chord's turning w_i T/l_i (I - lam lam^T); the change of T couples every block on the
   !> cable (reeving A: both): block a is pulled along u_a = sum (+-w_i lam_i).
-  pure subroutine cable_block_tangent_quasi_static(cab, lam, l, f, l0_total, v_drum, ratio, &
-                                                   v, v_exo, jac, rate)
-    ! 11 arguments: as cable_block_tangent_rotating, with the one-tension law's inputs
+  pure subroutine cable_block_tangent_quasi_static(cab, ce, l0_total, v_drum, ratio, v, &
+                                                   v_exo, jac, rate)
+    ! 9 arguments: as cable_block_tangent_rotating, with the one-tension law's inputs
     ! (unstretched length, drum speed, friction ratio) in place of the passages.
     type(cable_type), intent(in) :: cab
-    real(wp), intent(in) :: lam(3, max_nodes - 1), l(max_nodes - 1), f(max_nodes - 1)
+    type(cable_eval_type), intent(in) :: ce
     real(wp), intent(in) :: l0_total, v_drum, ratio, v(3, max_nodes), v_exo(3, max_nodes)
     real(wp), intent(inout) :: jac(6, 6), rate(6)
     real(wp) :: w(max_nodes - 1), u(3, 2), q(3, 2), k(3, 3), t_i(3)
     real(wp) :: total, weighted, t_el, tdot, d_el, d_damp, phi, rate_l
     real(wp), parameter :: zero3(3) = 0.0_wp
     integer :: i, j, nseg, a, b, lo, hi
-    nseg = cab%nnode - 1
-    if (f(1) <= 0.0_wp) return
-    w = 1.0_wp
-    if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
+    associate (lam => ce%lam, l => ce%l, f => ce%f)
+      nseg = cab%nnode - 1
+      if (f(1) <= 0.0_wp) return
+      w = 1.0_wp
+      if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
+        do i = 1, nseg
+          w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
+        end do
+      end if
+      total = sum(l(1:nseg))
+      weighted = sum(w(1:nseg)*l(1:nseg))
+      t_el = cab%ea*(total - l0_total)*total/(l0_total*weighted)
+      d_el = cab%ea*(2.0_wp*total - l0_total)/(l0_total*weighted)
+      ! the dashpot's ramp in: d/dL of c (dL/dt - v_drum) phi(L - L0)/sum w
+      rate_l = -v_drum
       do i = 1, nseg
-        w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
+        rate_l = rate_l + dot_product(lam(:, i), v(:, i + 1) - v(:, i))
       end do
-    end if
-    total = sum(l(1:nseg))
-    weighted = sum(w(1:nseg)*l(1:nseg))
-    t_el = cab%ea*(total - l0_total)*total/(l0_total*weighted)
-    d_el = cab%ea*(2.0_wp*total - l0_total)/(l0_total*weighted)
-    ! the dashpot's ramp in: d/dL of c (dL/dt - v_drum) phi(L - L0)/sum w
-    rate_l = -v_drum
-    do i = 1, nseg
-      rate_l = rate_l + dot_product(lam(:, i), v(:, i + 1) - v(:, i))
-    end do
-    phi = ramp_factor(total - l0_total, cab%ramp)
-    d_damp = cab%damping*rate_l*ramp_slope(total - l0_total, cab%ramp)/sum(w(1:nseg))
-    d_el = d_el + d_damp
-    tdot = -(cab%ea*total**2/(weighted*l0_total**2) + d_damp)*v_drum
-    u = 0.0_wp
-    q = 0.0_wp
-    do i = 1, nseg
-      k = tangent(lam(:, i), zero3, f(i)/l(i))
-      call add_segment(cab, i, k, v_exo, zero3, jac, rate)
-      t_i = (d_el - t_el*w(i)/weighted)*lam(:, i) + &
-            cab%damping*phi/(l(i)*sum(w(1:nseg)))*across(lam(:, i), v(:, i + 1) - v(:, i))
-      tdot = tdot + dot_product(t_i, v_exo(:, i + 1) - v_exo(:, i))
-      if (cab%kind(i) == node_block) then
-        u(:, cab%block(i)) = u(:, cab%block(i)) + w(i)*lam(:, i)
-        q(:, cab%block(i)) = q(:, cab%block(i)) - t_i
-      end if
-      if (cab%kind(i + 1) == node_block) then
-        u(:, cab%block(i + 1)) = u(:, cab%block(i + 1)) - w(i)*lam(:, i)
-        q(:, cab%block(i + 1)) = q(:, cab%block(i + 1)) + t_i
-      end if
-    end do
-    do a = 1, 2
-      lo = 3*a - 2
-      hi = 3*a
-      rate(lo:hi) = rate(lo:hi) + u(:, a)*tdot
-      do b = 1, 2
-        do j = 1, 3
-          jac(lo:hi, 3*b - 3 + j) = jac(lo:hi, 3*b - 3 + j) + u(:, a)*q(j, b)
+      phi = ramp_factor(total - l0_total, cab%ramp)
+      d_damp = cab%damping*rate_l*ramp_slope(total - l0_total, cab%ramp)/sum(w(1:nseg))
+      d_el = d_el + d_damp
+      tdot = -(cab%ea*total**2/(weighted*l0_total**2) + d_damp)*v_drum
+      u = 0.0_wp
+      q = 0.0_wp
+      do i = 1, nseg
+        k = tangent(lam(:, i), zero3, f(i)/l(i))
+        call add_segment(cab, i, k, v_exo, zero3, jac, rate)
+        t_i = (d_el - t_el*w(i)/weighted)*lam(:, i) + &
+              cab%damping*phi/(l(i)*sum(w(1:nseg)))*across(lam(:, i), v(:, i + 1) - v(:, i))
+        tdot = tdot + dot_product(t_i, v_exo(:, i + 1) - v_exo(:, i))
+        if (cab%kind(i) == node_block) then
+          u(:, cab%block(i)) = u(:, cab%block(i)) + w(i)*lam(:, i)
+          q(:, cab%block(i)) = q(:, cab%block(i)) - t_i
+        end if
+        if (cab%kind(i + 1) == node_block) then
+          u(:, cab%block(i + 1)) = u(:, cab%block(i + 1)) - w(i)*lam(:, i)
+          q(:, cab%block(i + 1)) = q(:, cab%block(i + 1)) + t_i
+        end if
+      end do
+      do a = 1, 2
+        lo = 3*a - 2
+        hi = 3*a
+        rate(lo:hi) = rate(lo:hi) + u(:, a)*tdot
+        do b = 1, 2
+          do j = 1, 3
+            jac(lo:hi, 3*b - 3 + j) = jac(lo:hi, 3*b - 3 + j) + u(:, a)*q(j, b)
+          end do
         end do
       end do
-    end do
+    end associate
   end subroutine cable_block_tangent_quasi_static
 
   !> Share of the dashpot tension at stretch e: 0 at e <= 0, 1 from e = ramp on, and the

@@ -10,13 +10,14 @@ module davit_rigging_falls
   use davit_core_pose, only: pose_type
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_sling_chain, only: sling_chain_type
-  use davit_rigging_cable, only: cable_type, max_nodes, node_drum, node_fixed, node_block, &
+  use davit_rigging_cable, only: cable_type, cable_eval_type, max_nodes, node_drum, &
+                                 node_fixed, node_block, &
                                  node_dead, cable_node_kinematics, cable_passages, &
                                  cable_tensions_rotating, cable_tension_quasi_static, &
                                  cable_geometry, cable_energy_rotating
   implicit none
   private
-  public :: falls_type, drive_type, cable_eval_type, max_sheaves
+  public :: falls_type, drive_type, max_sheaves
   public :: build_reeving, cable_tensions, set_cable_lengths, add_cable_energy
   public :: cable_unstretched_length, at_rest
 
@@ -41,14 +42,6 @@ module davit_rigging_falls
     real(wp) :: s_drum = 0.0_wp, v_drum = 0.0_wp
     real(wp) :: theta(max_sheaves) = 0.0_wp, omega(max_sheaves) = 0.0_wp
   end type drive_type
-
-  !> One cable's chords (lam, l), passages (s, sdot; rotating sheaves), segment tensions f
-  !> and the tensions g that drive the sheaves (cable_tensions_rotating).
-  type :: cable_eval_type
-    real(wp) :: lam(3, max_nodes - 1), l(max_nodes - 1), s(max_nodes), sdot(max_nodes)
-    real(wp) :: f(max_nodes - 1), g(max_nodes - 1)
-  end type cable_eval_type
-
 
 contains
 

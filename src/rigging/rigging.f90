@@ -45,8 +45,9 @@ module davit_rigging_rigging
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_winch, only: winch_type, winch_speed
   use davit_rigging_sling_chain, only: max_lumps, chain_forces, chain_energy, new_sling_chain
-  use davit_rigging_cable, only: max_nodes, cable_node_kinematics, cable_node_forces
-  use davit_rigging_falls, only: falls_type, drive_type, cable_eval_type, max_sheaves, &
+  use davit_rigging_cable, only: max_nodes, cable_eval_type, cable_node_kinematics, &
+                                 cable_node_forces
+  use davit_rigging_falls, only: falls_type, drive_type, max_sheaves, &
                                  build_reeving, cable_tensions, set_cable_lengths, &
                                  add_cable_energy, cable_unstretched_length, at_rest
   use davit_rigging_block_balance, only: balance_input_type, solve_blocks
