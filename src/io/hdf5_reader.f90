@@ -1,5 +1,6 @@
 !> Reading back what davit_io_hdf5_writer wrote: 1-D real, integer and fixed-length string
-!> datasets and root string and integer attributes (a sweep resumes from its summary).
+!> datasets and root string and integer attributes (a sweep resumes from its summary); and
+!> numeric datasets of any rank as reals (a BEM database, netCDF4 = HDF5).
 !> Every failure names the file and the dataset or attribute. Not thread-safe (Debian's
 !> HDF5 is built without locking): call it from one thread at a time.
 module davit_io_hdf5_reader
@@ -20,6 +21,7 @@ module davit_io_hdf5_reader
     procedure :: close => reader_close
     procedure :: read_1d => reader_read_1d
     procedure :: read_1d_int => reader_read_1d_int
+    procedure :: read_array => reader_read_array
     procedure :: read_strings => reader_read_strings
     procedure :: attr_str => reader_attr_str
     procedure :: attr_int => reader_attr_int
@@ -113,6 +115,44 @@ contains
     call h5dclose_f(dset, hdferr)
     if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
   end subroutine reader_read_1d_int
+
+  !> Numeric dataset `name` of any rank (0-7) as reals (HDF5 converts integers), flattened
+  !> in Fortran order, with its extents in Fortran order (the reverse of what h5py shows).
+  subroutine reader_read_array(self, name, x, dims, error)
+    class(h5_reader_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    real(wp), allocatable, target, intent(out) :: x(:)
+    integer, allocatable, intent(out) :: dims(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer(hid_t) :: dset, space
+    integer(hsize_t) :: d(7), maxd(7)
+    type(c_ptr) :: buf
+    integer :: hdferr, rank, status
+    allocate (dims(0))
+    call h5dopen_f(self%file, name, dset, hdferr)
+    if (hdferr /= 0) then
+      call fatal_error(error, "'"//self%path//"': no dataset /"//name)
+      return
+    end if
+    call h5dget_space_f(dset, space, hdferr)
+    call h5sget_simple_extent_ndims_f(space, rank, hdferr)
+    d = 1
+    if (rank > 0 .and. rank <= 7) call h5sget_simple_extent_dims_f(space, d(1:rank), &
+                                                                   maxd(1:rank), hdferr)
+    call h5sclose_f(space, hdferr)
+    if (rank < 0 .or. rank > 7) then
+      call h5dclose_f(dset, hdferr)
+      call fatal_error(error, "'"//self%path//"': dataset /"//name//" has an unreadable rank")
+      return
+    end if
+    dims = int(d(1:rank))
+    allocate (x(product(dims)))
+    buf = c_loc(x)
+    status = 0
+    if (size(x) > 0) call h5dread_f(dset, H5T_NATIVE_DOUBLE, buf, status)
+    call h5dclose_f(dset, hdferr)
+    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+  end subroutine reader_read_array
 
   !> A fixed-length string dataset, returned blank-padded to its stored width.
   subroutine reader_read_strings(self, name, x, error)
