@@ -6,8 +6,11 @@
 !> forces F (eq. 12 for a rigid body; eqs. 53, 73 and 87 for lumps, blocks and sheaves),
 !> stored as kane(kane_v, i), kane(kane_w_phi, i) and kane(kane_f, i) at state index i.
 !> kane_rates then forms u_dot for every speed at once: eq. 89, the one place it is coded.
+!> Where a body's mass block is full (the layout's coupled blocks: a BEM ship with A(inf)),
+!> it fills V = 1 there, and the block's inverse turns F - W phi into u_dot.
 module davit_core_kane
   use davit_kinds, only: wp
+  use davit_core_layout, only: state_layout_type
   implicit none
   private
   public :: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
@@ -17,12 +20,22 @@ module davit_core_kane
 
 contains
 
-  !> Eq. (89): u_dot = (F - W phi)/V at the state positions `speeds`, V diagonal.
-  pure subroutine kane_rates(speeds, kane, dydt)
-    integer, intent(in) :: speeds(:)
+  !> Eq. (89): u_dot = V^-1 (F - W phi) at every speed of the layout: V diagonal, but for
+  !> the layout's coupled blocks.
+  pure subroutine kane_rates(layout, kane, dydt)
+    type(state_layout_type), intent(in) :: layout
     real(wp), intent(in) :: kane(:, :)
     real(wp), intent(inout) :: dydt(:)
-    dydt(speeds) = (kane(kane_f, speeds) - kane(kane_w_phi, speeds))/kane(kane_v, speeds)
+    integer :: k
+    associate (u => layout%speeds)
+      dydt(u) = (kane(kane_f, u) - kane(kane_w_phi, u))/kane(kane_v, u)
+    end associate
+    if (.not. allocated(layout%coupled)) return
+    do k = 1, size(layout%coupled)
+      associate (b => layout%coupled(k))
+        dydt(b%u(1):b%u(2)) = matmul(b%v_inv, dydt(b%u(1):b%u(2)))
+      end associate
+    end do
   end subroutine kane_rates
 
   !> A part that does not move (a frozen ship, the falls after hook release): q_dot = 0 and

@@ -6,10 +6,16 @@
 !> registers q only. A subsystem with a layout of its own (the rigging) is appended whole,
 !> its parts shifted. This module alone turns names into index ranges: nothing else
 !> writes literal slices of y.
+!>
+!> The mass matrix V of eq. 89 is diagonal (eq. 12) except where a body registers a coupled
+!> block of its speeds (a ship with its infinite-frequency added mass A(inf), whose
+!> surge-pitch and sway-roll-yaw terms are not zero): the layout keeps that block's
+!> inverse, and eq. 89 there reads u_dot = V^-1 (F - W phi).
 module davit_core_layout
+  use davit_kinds, only: wp
   implicit none
   private
-  public :: state_layout_type, state_part_type, max_parts
+  public :: state_layout_type, state_part_type, coupled_block_type, max_parts
 
   integer, parameter :: max_parts = 16
 
@@ -20,14 +26,22 @@ module davit_core_layout
     integer :: q(2) = [1, 0], u(2) = [1, 0]
   end type state_part_type
 
+  !> Speeds y(u(1):u(2)) whose mass block is full, and its inverse.
+  type :: coupled_block_type
+    integer :: u(2) = [1, 0]
+    real(wp), allocatable :: v_inv(:, :)
+  end type coupled_block_type
+
   type :: state_layout_type
     !> State length and number of speeds.
     integer :: n = 0, nu = 0, nparts = 0
     type(state_part_type) :: parts(max_parts)
     !> Positions in y of every speed, in order: where eq. 89 writes u_dot.
     integer, allocatable :: speeds(:)
+    type(coupled_block_type), allocatable :: coupled(:)
   contains
     procedure :: add => layout_add
+    procedure :: couple => layout_couple
     procedure :: append => layout_append
     procedure :: part => layout_part
   end type state_layout_type
@@ -67,7 +81,20 @@ contains
         call self%add(p%name, p%q(2) - p%q(1) + 1, p%u(2) - p%u(1) + 1)
       end associate
     end do
+    if (.not. allocated(sub%coupled)) return
+    do i = 1, size(sub%coupled)
+      call self%couple(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv)
+    end do
   end subroutine layout_append
+
+  !> The speeds y(u(1):u(2)) have the full mass block whose inverse is v_inv.
+  subroutine layout_couple(self, u, v_inv)
+    class(state_layout_type), intent(inout) :: self
+    integer, intent(in) :: u(2)
+    real(wp), intent(in) :: v_inv(:, :)
+    if (.not. allocated(self%coupled)) allocate (self%coupled(0))
+    self%coupled = [self%coupled, coupled_block_type(u, v_inv)]
+  end subroutine layout_couple
 
   !> The part registered as name (an empty part if there is none).
   pure function layout_part(self, name) result(p)

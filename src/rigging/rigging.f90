@@ -217,7 +217,7 @@ contains
     real(wp), intent(out) :: hook_force(3, 2)
     real(wp) :: kane(3, self%nstate)
     call self%kane_blocks(t, y, hook_pos, hook_vel, ship, dydt, kane, hook_force)
-    call kane_rates(self%layout%speeds, kane, dydt)
+    call kane_rates(self%layout, kane, dydt)
   end subroutine rigging_rhs
 
   !> Segment tensions [N] (cable 1 segments from the drum, then cable 2) and sling segment

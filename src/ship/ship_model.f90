@@ -229,7 +229,7 @@ contains
       call self%kane_blocks(t, y(p%q(1):p%q(2)), y(p%u(1):p%u(2)), dydt(p%q(1):p%q(2)), &
                             kane(:, p%u(1):p%u(2)))
     end associate
-    call kane_rates(self%layout%speeds, kane, dydt)
+    call kane_rates(self%layout, kane, dydt)
   end subroutine ship_rhs
 
   !> Kane blocks of the ship (eqs. 35-41 with review §1.2): q_dot from eq. (5) and the MMG

@@ -53,7 +53,7 @@ contains
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
     call kane_blocks(self, t, y, dydt, kane)
-    call kane_rates(self%par%layout%speeds, kane, dydt)
+    call kane_rates(self%par%layout, kane, dydt)
   end subroutine system_rhs
 
   !> Every body's q_dot and Kane blocks at (t, y): the ship, the boat and, on the davit,
