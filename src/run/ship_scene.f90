@@ -28,7 +28,7 @@ contains
                          cfg%ship%position, cfg%ship%heading, &
                          cfg%ship%wave_phase == "initial", cfg%ship%headway)
     ship%wave_dt = cfg%simulation%wave_update
-    y = ship_initial_state(cfg)
+    y = ship_initial_state(ship, cfg)
   end subroutine build_ship_scene
 
 end module davit_run_ship_scene

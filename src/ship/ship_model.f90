@@ -8,13 +8,21 @@
 !> One state part "ship": q = Euler angles (roll, pitch, yaw; eq. 2) and CG position in the
 !> inertial frame (the MMG convention; qdot = C v); u = angular velocity and velocity in
 !> ship axes. ship_kane_blocks gives its Kane blocks to whichever system holds it.
+!>
+!> Two levels of detail: the paper's box ('fk_box': Froude-Krylov box loads, constant
+!> strip-theory added masses, hydrostatic and damping coefficients from Table 1), and the
+!> BEM ship ('bem', davit_ship_bem_loads: Cummins' equation from a Capytaine database,
+!> whose radiation memory adds a second part "ship_radiation" of states to the layout).
+!> The manoeuvring, cross-flow, resistance, wind and heading-keeping loads serve both.
 module davit_ship_ship_model
   use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix, euler_rates, cross
   use davit_core_fastmath, only: fast_sincos
   use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
-  use davit_core_layout, only: state_layout_type
+  use davit_core_layout, only: state_layout_type, state_part_type
+  use davit_ship_bem_loads, only: bem_ship_type, bem_wave_coefficients, bem_restoring, &
+                                  bem_memory
   use davit_solve_integrator, only: ode_problem
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp
   use davit_sea_wind, only: wind_type, wind_velocity
@@ -61,8 +69,13 @@ module davit_ship_ship_model
     real(wp) :: wave_dt = 0.0_wp
     logical :: wave_cached = .false.
     real(wp) :: wave_t(2) = 0.0_wp, wave_f(6, 2) = 0.0_wp, wave_d(6, 2) = 0.0_wp
-    !> The ship alone ('ship' scene, RAO runs): one part "ship".
+    !> The ship's state: part "ship" (rigid body) and, for the BEM ship, part
+    !> "ship_radiation" (its memory states); body and radiation are their ranges.
     type(state_layout_type) :: layout
+    type(state_part_type) :: body, radiation
+    !> The BEM ship in place of the box's hydrodynamics.
+    logical :: bem = .false.
+    type(bem_ship_type) :: hydro
   contains
     procedure :: rhs => ship_rhs
     procedure :: kane_blocks => ship_kane_blocks
@@ -77,17 +90,25 @@ module davit_ship_ship_model
 contains
 
   subroutine new_ship_system(self, hull, sea, wind, frozen, position, heading, &
-                             phase_at_initial, headway)
+                             phase_at_initial, headway, bem)
+    ! 10 arguments: the ship's parts as the deck gives them (hull, sea, wind, pose, switches)
     type(ship_system_type), intent(out) :: self
     type(hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: sea
     type(wind_type), intent(in) :: wind
     logical, intent(in) :: frozen, phase_at_initial
     real(wp), intent(in) :: position(3), heading, headway
+    type(bem_ship_type), intent(in), optional :: bem
     real(wp) :: z_eq, water(6), air(6)
     z_eq = position(3)
     self%phase_at_initial = phase_at_initial
     self%origin = position(1:2) - [cos(heading), sin(heading)]*hull%cg_x
+    if (present(bem)) then
+      ! the database's loads are about the CG, their phases at its horizontal position
+      self%bem = .true.
+      self%hydro = bem
+      self%origin = position(1:2)
+    end if
     self%hull = hull
     self%sea = sea
     self%wind = wind
@@ -102,15 +123,20 @@ contains
     self%thrust = -(water(1) + air(1))
     allocate (self%fk_sin(6, sea%n), self%fk_cos(6, sea%n))
     call self%refresh_heading(heading)
-    call self%layout%add("ship", 6, 6)
+    call self%layout%add("ship", 6, 6, self%body)
+    if (.not. self%bem) return
+    call self%layout%add("ship_radiation", self%hydro%db%nrad, 0, self%radiation)
+    call self%layout%couple(self%body%u, self%hydro%v_inv)
   end subroutine new_ship_system
 
   !> The state part of a ship at attitude euler, CG position, angular velocity omega and
   !> velocity v (ship axes): q then u, as the layout registers them.
-  pure function ship_state(euler, position, omega, v) result(y)
+  pure function ship_state(self, euler, position, omega, v) result(y)
+    class(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: euler(3), position(3), omega(3), v(3)
-    real(wp) :: y(ship_nstate)
-    y = [euler, position, omega, v]
+    real(wp) :: y(self%layout%n)
+    y = 0.0_wp
+    y(self%body%q(1):self%body%u(2)) = [euler, position, omega, v]
   end function ship_state
 
   !> Recompute the heading-dependent Froude-Krylov coefficients (chi = gamma - psi). The
@@ -120,6 +146,11 @@ contains
     real(wp), intent(in) :: psi
     real(wp) :: raw(6)
     integer :: i
+    self%psi_ref = psi
+    if (self%bem) then
+      call bem_wave_coefficients(self%hydro, self%sea, psi, self%fk_sin, self%fk_cos)
+      return
+    end if
     associate (s => self%sea, h => self%hull)
       do i = 1, s%n
         ! X, Y, K, M go with sin(Phi), Z and N with cos(Phi); split before the transfer to
@@ -132,7 +163,6 @@ contains
         self%fk_cos(:, i) = fk_transfer(raw, h%cg_x, h%cg_z)
       end do
     end associate
-    self%psi_ref = psi
   end subroutine refresh_heading
 
   !> Soft mooring with the given natural periods [s] (surge, sway, yaw) and damping ratio,
@@ -141,12 +171,16 @@ contains
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: period(3), zeta, y(:)
     real(wp) :: inertia(3)
-    associate (q => y(self%layout%parts(1)%q(1):self%layout%parts(1)%q(2)))
+    associate (q => y(self%body%q(1):self%body%q(2)))
       self%anchor = [q(4), q(5), q(3)]
     end associate
     inertia = [self%hull%mass + self%hull%added_mass(1:2), &
                self%hull%inertia(3) + self%hull%added_inertia(3)]
-    self%moor_k = inertia*(2.0_wp*pi/period)**2
+    if (self%bem) inertia = [self%hydro%mass + self%hydro%db%added_mass_inf(1, 1), &
+                             self%hydro%mass + self%hydro%db%added_mass_inf(2, 2), &
+                             self%hydro%inertia(3) + self%hydro%db%added_mass_inf(6, 6)]
+    ! a period <= 0 leaves that motion free
+    self%moor_k = merge(inertia*(2.0_wp*pi/max(period, tiny(1.0_wp)))**2, 0.0_wp, period > 0.0_wp)
     self%moor_c = 2.0_wp*zeta*sqrt(self%moor_k*inertia)
   end subroutine set_mooring
 
@@ -154,7 +188,7 @@ contains
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp) :: yaw
-    yaw = y(self%layout%parts(1)%q(1) + 2)
+    yaw = y(self%body%q(1) + 2)
     if (abs(yaw - self%psi_ref) > heading_tolerance) then
       call self%refresh_heading(yaw)
       self%wave_cached = .false.
@@ -225,27 +259,48 @@ contains
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
-    associate (p => self%layout%parts(1))
-      call self%kane_blocks(t, y(p%q(1):p%q(2)), y(p%u(1):p%u(2)), dydt(p%q(1):p%q(2)), &
-                            kane(:, p%u(1):p%u(2)))
-    end associate
+    call self%kane_blocks(t, y, dydt, kane)
     call kane_rates(self%layout, kane, dydt)
   end subroutine ship_rhs
 
-  !> Kane blocks of the ship (eqs. 35-41 with review §1.2): q_dot from eq. (5) and the MMG
-  !> q_dot = C v; V = rigid-body plus added mass and inertia; W phi = omega x (I_g omega)
-  !> and omega x (M v); F = all external loads. A frozen ship has no rates.
-  subroutine ship_kane_blocks(self, t, q, u, qdot, kane)
+  !> Kane blocks of the ship over its own slice of the state (eqs. 35-41 with review
+  !> §1.2): q_dot from eq. (5) and the MMG q_dot = C v; V = rigid-body plus added mass and
+  !> inertia (the BEM ship: a full block with A(inf), V = 1 here and its inverse in the
+  !> layout); W phi = omega x (I_g omega) and omega x (M v); F = all external loads (the
+  !> BEM ship's minus its radiation memory, whose states it advances). A frozen ship has
+  !> no rates.
+  subroutine ship_kane_blocks(self, t, y, dydt, kane)
     class(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: t, q(6), u(6)
-    real(wp), intent(out) :: qdot(6), kane(3, 6)
-    real(wp) :: c(3, 3), load(6), mt(3), it(3), ig(3)
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(inout) :: dydt(:), kane(:, :)
+    real(wp) :: c(3, 3), load(6), mu(6)
     if (self%frozen) then
-      call kane_at_rest(qdot, kane)
+      call kane_at_rest(dydt, kane)
       return
     end if
-    c = rotation_matrix(q(1:3))
-    load = ship_loads(self, t, q, u, c)
+    associate (b => self%body, r => self%radiation)
+      associate (q => y(b%q(1):b%q(2)), u => y(b%u(1):b%u(2)))
+        c = rotation_matrix(q(1:3))
+        load = ship_loads(self, t, q, u, c)
+        dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
+        dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
+        if (self%bem) then
+          call bem_memory(self%hydro, y(r%q(1):r%q(2)), [u(4:6), u(1:3)], &
+                          dydt(r%q(1):r%q(2)), mu)
+          call bem_blocks(self, u, load - mu, kane(:, b%u(1):b%u(2)))
+        else
+          call box_blocks(self, u, load, kane(:, b%u(1):b%u(2)))
+        end if
+      end associate
+    end associate
+  end subroutine ship_kane_blocks
+
+  !> V, W phi, F of the box ship at speeds u (omega, v) under the loads `load`.
+  pure subroutine box_blocks(self, u, load, kane)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: u(6), load(6)
+    real(wp), intent(out) :: kane(3, 6)
+    real(wp) :: mt(3), it(3), ig(3)
     mt = self%hull%mass + self%hull%added_mass
     it = self%hull%inertia + self%hull%added_inertia
     ! Gyroscopic term with the rigid-body inertia plus only the manoeuvring yaw added
@@ -253,14 +308,26 @@ contains
     ! quantities, not rigid-body ones, and in omega x (I omega) their product p q (A55 - A44)
     ! made a spurious mean yaw moment of MN m that turned the ship 19 deg in 135 deg seas.
     ig = self%hull%inertia + [0.0_wp, 0.0_wp, self%hull%added_inertia(3)]
-    qdot(1:3) = euler_rates(q(1:3), u(1:3))
-    qdot(4:6) = matmul(c, u(4:6))
     kane(kane_v, :) = [it, mt]
     kane(kane_w_phi, 1:3) = cross(u(1:3), ig*u(1:3))
     kane(kane_w_phi, 4:6) = cross(u(1:3), mt*u(4:6))
     kane(kane_f, 1:3) = load(4:6)
     kane(kane_f, 4:6) = load(1:3)
-  end subroutine ship_kane_blocks
+  end subroutine box_blocks
+
+  !> The BEM ship's blocks: V = 1 (the full M + A(inf) is the layout's coupled block), the
+  !> rigid body's gyroscopic terms (added masses are frequency-domain quantities; as for
+  !> the box, they make no Munk moments here).
+  pure subroutine bem_blocks(self, u, load, kane)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: u(6), load(6)
+    real(wp), intent(out) :: kane(3, 6)
+    kane(kane_v, :) = 1.0_wp
+    kane(kane_w_phi, 1:3) = cross(u(1:3), self%hydro%inertia*u(1:3))
+    kane(kane_w_phi, 4:6) = self%hydro%mass*cross(u(1:3), u(4:6))
+    kane(kane_f, 1:3) = load(4:6)
+    kane(kane_f, 4:6) = load(1:3)
+  end subroutine bem_blocks
 
   !> All external loads (X, Y, Z, K, M, N) in ship axes about G.
   function ship_loads(self, t, q, u, c) result(load)
@@ -269,16 +336,22 @@ contains
     real(wp) :: load(6)
     real(wp) :: fz, wz, p, vrel(3)
     associate (h => self%hull, om => u(1:3), v => u(4:6))
-      ! hydrostatic restoring about the equilibrium (weight and buoyancy cancel there)
-      fz = -h%c33*(q(6) - self%z_eq)
-      ! radiation damping of heave acts on the vertical velocity in N
-      wz = dot_product(c(3, :), v)
-      fz = fz - h%b33*wz
-      load(1:3) = fz*c(3, :)
       p = om(1)
-      load(4) = -h%c44*(q(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
-      load(5) = -h%c55*(q(2) - h%trim) - h%b55*om(2)
-      load(6) = 0.0_wp
+      if (self%bem) then
+        ! the database's hydrostatics; radiation damping is the memory (ship_kane_blocks)
+        load = bem_restoring(self%hydro, q(6) - self%z_eq, q(1) - h%list, q(2) - h%trim, c)
+        load(4) = load(4) - self%hydro%b44*p - h%b44q*abs(p)*p
+      else
+        ! hydrostatic restoring about the equilibrium (weight and buoyancy cancel there)
+        fz = -h%c33*(q(6) - self%z_eq)
+        ! radiation damping of heave acts on the vertical velocity in N
+        wz = dot_product(c(3, :), v)
+        fz = fz - h%b33*wz
+        load(1:3) = fz*c(3, :)
+        load(4) = -h%c44*(q(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
+        load(5) = -h%c55*(q(2) - h%trim) - h%b55*om(2)
+        load(6) = 0.0_wp
+      end if
       load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
       load(1) = load(1) + self%thrust
       if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, q, c), &

@@ -18,7 +18,7 @@ module davit_system_build
   use davit_boat_surface_watch, only: new_surface_watch
   use davit_rigging_rigging, only: new_rigging
   use davit_ship_hull, only: hull_type, new_hull
-  use davit_ship_ship_model, only: new_ship_system, ship_state, ship_nstate
+  use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
   use davit_system_parameters, only: system_params_type, ship_pose, hook_kinematics, nslings
   use davit_system_model, only: system_type
   implicit none
@@ -77,6 +77,7 @@ contains
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
     type(hull_type) :: hull
+    integer :: offset
     call new_hull(hull, cfg%ship, error)
     if (allocated(error)) return
     call new_ship_system(self%ship, hull, self%par%sea, self%par%wind, cfg%ship%frozen, &
@@ -84,7 +85,9 @@ contains
                          cfg%ship%wave_phase == "initial", cfg%ship%headway)
     self%ship%wave_dt = cfg%simulation%wave_update
     self%par%with_ship = .true.
-    call self%par%layout%add("ship", 6, 6, self%par%ship_part)
+    call self%par%layout%append(self%ship%layout, offset)
+    self%par%ship_part = self%par%layout%part("ship")
+    self%par%ship_slice = [offset + 1, offset + self%ship%layout%n]
   end subroutine new_moving_ship
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
@@ -147,7 +150,8 @@ contains
     type(pose_type) :: pose
     allocate (y(self%par%layout%n))
     associate (par => self%par, b => self%par%boat_part, s => self%par%ship_part)
-      if (par%with_ship) y(s%q(1):s%u(2)) = ship_initial_state(cfg)
+      if (par%with_ship) y(par%ship_slice(1):par%ship_slice(2)) = &
+        ship_initial_state(self%ship, cfg)
       c = rotation_matrix(cfg%boat%euler)
       y(b%q(1):b%q(2)) = [cfg%boat%euler, matmul(transpose(c), cfg%boat%position)]
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
@@ -162,12 +166,14 @@ contains
   end subroutine initial_state
 
   !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's
-  !> position; making its headway.
-  pure function ship_initial_state(cfg) result(y)
+  !> position; making its headway; no radiation memory yet.
+  pure function ship_initial_state(ship, cfg) result(y)
+    type(ship_system_type), intent(in) :: ship
     type(config_type), intent(in) :: cfg
-    real(wp) :: y(ship_nstate)
-    y = ship_state([cfg%ship%list, cfg%ship%trim, cfg%ship%heading], cfg%ship%position, &
-                   [0.0_wp, 0.0_wp, 0.0_wp], [cfg%ship%headway, 0.0_wp, 0.0_wp])
+    real(wp) :: y(ship%layout%n)
+    y = ship_state(ship, [cfg%ship%list, cfg%ship%trim, cfg%ship%heading], &
+                   cfg%ship%position, [0.0_wp, 0.0_wp, 0.0_wp], &
+                   [cfg%ship%headway, 0.0_wp, 0.0_wp])
   end function ship_initial_state
 
 end module davit_system_build

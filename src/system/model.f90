@@ -64,10 +64,10 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     type(pose_type) :: pose
-    associate (par => self%par, b => self%par%boat_part, s => self%par%ship_part)
+    associate (par => self%par, b => self%par%boat_part, s => self%par%ship_slice)
       pose = ship_pose(par, y)
-      if (par%with_ship) call self%ship%kane_blocks(t, y(s%q(1):s%q(2)), y(s%u(1):s%u(2)), &
-                                                    dydt(s%q(1):s%q(2)), kane(:, s%u(1):s%u(2)))
+      if (par%with_ship) call self%ship%kane_blocks(t, y(s(1):s(2)), dydt(s(1):s(2)), &
+                                                    kane(:, s(1):s(2)))
       call boat_kane_blocks(par, self%hist, t, y(b%q(1):b%q(2)), y(b%u(1):b%u(2)), &
                             side_plane(par, pose), dydt(b%q(1):b%q(2)), kane(:, b%u(1):b%u(2)))
       if (par%on_davit) call rigging_blocks(self, t, y, pose, dydt, kane)
@@ -106,8 +106,8 @@ contains
   subroutine system_after_step(self, t, y)
     class(system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
-    associate (s => self%par%ship_part)
-      if (self%par%with_ship) call self%ship%after_step(t, y(s%q(1):s%u(2)))
+    associate (s => self%par%ship_slice)
+      if (self%par%with_ship) call self%ship%after_step(t, y(s(1):s(2)))
     end associate
     call advance_history(self%par, self%hist, t, y)
   end subroutine system_after_step

@@ -1,0 +1,172 @@
+!> The ship from a BEM database in the time domain: Cummins' equation (Cummins 1962)
+!>   (M + A(inf)) u' + mu(t) + C eta = F_exc + F_visc + F_other,
+!>   mu_i(t) = sum_j int_0^t K_ij(t - tau) u_j(tau) dtau,
+!> with the memory mu from the database's fitted state-space models (x' = A_s x + B_s u_j,
+!> mu_ij = C_s x; Perez & Fossen 2008), the first-order wave load per component from the
+!> database's X(omega, beta) (Froude-Krylov + diffraction), the hydrostatic stiffness C
+!> of the mesh, and a viscous roll damping as a fraction of critical (potential flow has
+!> almost none in roll). M and A(inf) couple surge-pitch and sway-roll-yaw: the mass block
+!> is full, registered with the state layout as a coupled block (eq. 89 with V^-1).
+!>
+!> Speeds here in DOF order (surge, sway, heave, roll, pitch, yaw) = (v, omega); the Kane
+!> speeds of a rigid body are (omega, v) (eq. 4), hence the permutations.
+module davit_ship_bem_loads
+  use davit_kinds, only: wp
+  use davit_error, only: error_type, fatal_error
+  use davit_ship_bem_database, only: bem_database_type, bem_excitation
+  use davit_sea_wave_field, only: wave_field_type
+  implicit none
+  private
+  public :: bem_ship_type, new_bem_ship, bem_wave_coefficients, bem_restoring, &
+            bem_memory, to_kane_order, bem_roll_damping
+
+  type :: bem_ship_type
+    type(bem_database_type) :: db
+    !> Rigid-body mass [kg] and principal inertia about the CG [kg m^2] (the database's).
+    real(wp) :: mass = 0.0_wp, inertia(3) = 0.0_wp
+    !> (M + A(inf))^-1 in Kane order (omega, v).
+    real(wp) :: v_inv(6, 6) = 0.0_wp
+    !> Linear viscous roll damping [N m s].
+    real(wp) :: b44 = 0.0_wp
+  end type bem_ship_type
+
+  !> Kane order (omega, v) of the DOF indices: position k of the Kane speeds is DOF perm(k).
+  integer, parameter :: perm(6) = [4, 5, 6, 1, 2, 3]
+
+  interface
+    subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+      import :: wp
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgesv
+  end interface
+
+contains
+
+  !> The BEM ship of database db with viscous roll damping zeta_roll of critical:
+  !> B44 = zeta 2 sqrt(C44 (I44 + A44(w_roll))), w_roll = sqrt(C44/(I44 + A44(w_roll))).
+  subroutine new_bem_ship(db, zeta_roll, ship, error)
+    type(bem_database_type), intent(in) :: db
+    real(wp), intent(in) :: zeta_roll
+    type(bem_ship_type), intent(out) :: ship
+    type(error_type), allocatable, intent(out) :: error
+    real(wp) :: m(6, 6)
+    integer :: info
+    ship%db = db
+    ship%mass = db%mass(1, 1)
+    ship%inertia = [db%mass(4, 4), db%mass(5, 5), db%mass(6, 6)]
+    m = to_kane_order(db%mass + db%added_mass_inf)
+    call invert(m, ship%v_inv, info)
+    if (info /= 0 .or. ship%mass <= 0.0_wp .or. any(ship%inertia <= 0.0_wp)) then
+      call fatal_error(error, "BEM database '"//db%path//"': the mass matrix plus A(inf) "// &
+                       "is not positive definite")
+      return
+    end if
+    ship%b44 = bem_roll_damping(db, zeta_roll)
+  end subroutine new_bem_ship
+
+  !> Viscous roll damping zeta of critical at the undamped roll resonance of the database.
+  pure real(wp) function bem_roll_damping(db, zeta) result(b44)
+    type(bem_database_type), intent(in) :: db
+    real(wp), intent(in) :: zeta
+    real(wp) :: w, a44
+    integer :: k
+    b44 = 0.0_wp
+    if (db%stiffness(4, 4) <= 0.0_wp) return
+    w = sqrt(db%stiffness(4, 4)/(db%mass(4, 4) + db%added_mass_inf(4, 4)))
+    do k = 1, 50
+      a44 = interpolate(db%omega, db%added_mass(4, 4, :), w)
+      w = sqrt(db%stiffness(4, 4)/(db%mass(4, 4) + a44))
+    end do
+    b44 = zeta*2.0_wp*sqrt(db%stiffness(4, 4)*(db%mass(4, 4) + a44))
+  end function bem_roll_damping
+
+  !> A 6 x 6 DOF-order matrix in Kane order (omega, v).
+  pure function to_kane_order(m) result(k)
+    real(wp), intent(in) :: m(6, 6)
+    real(wp) :: k(6, 6)
+    k = m(perm, perm)
+  end function to_kane_order
+
+  !> Wave-load coefficients of every sea component for the ship at heading psi, in the
+  !> heading frame (level ship axes), so that the load is
+  !> sum_i fk_sin(:, i) sin(Phi_i) + fk_cos(:, i) cos(Phi_i), Phi_i the component's phase at
+  !> the CG's initial position: a Re(X e^(i Phi)) = a Re X cos Phi - a Im X sin Phi.
+  pure subroutine bem_wave_coefficients(ship, sea, psi, fk_sin, fk_cos)
+    type(bem_ship_type), intent(in) :: ship
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: psi
+    real(wp), intent(out) :: fk_sin(:, :), fk_cos(:, :)
+    complex(wp) :: x(6)
+    integer :: i
+    do i = 1, sea%n
+      x = bem_excitation(ship%db, sea%omega(i), sea%direction(i) - psi)
+      fk_cos(:, i) = sea%amplitude(i)*real(x, wp)
+      fk_sin(:, i) = -sea%amplitude(i)*aimag(x)
+    end do
+  end subroutine bem_wave_coefficients
+
+  !> Hydrostatic restoring -C delta (load order X, Y, Z, K, M, N, ship axes) for the heave
+  !> z - z_eq and the roll and pitch from the static list and trim; the vertical force acts
+  !> along the inertial vertical (row 3 of c in ship axes), as the weight and buoyancy do.
+  pure function bem_restoring(ship, dz, droll, dpitch, c) result(load)
+    type(bem_ship_type), intent(in) :: ship
+    real(wp), intent(in) :: dz, droll, dpitch, c(3, 3)
+    real(wp) :: load(6), f(6)
+    f = -matmul(ship%db%stiffness, [0.0_wp, 0.0_wp, dz, droll, dpitch, 0.0_wp])
+    load(1:3) = f(3)*c(3, :)
+    load(4:6) = f(4:6)
+  end function bem_restoring
+
+  !> The radiation memory: rates of the states x and the memory load mu (DOF order) for
+  !> the speeds u_dof (DOF order).
+  pure subroutine bem_memory(ship, x, u_dof, xdot, mu)
+    type(bem_ship_type), intent(in) :: ship
+    real(wp), intent(in) :: x(:), u_dof(6)
+    real(wp), intent(out) :: xdot(:), mu(6)
+    integer :: k
+    mu = 0.0_wp
+    do k = 1, size(ship%db%pairs)
+      associate (p => ship%db%pairs(k), i0 => ship%db%pairs(k)%first)
+        associate (xs => x(i0:i0 + p%n - 1))
+          xdot(i0:i0 + p%n - 1) = matmul(p%a, xs) + p%b*u_dof(p%j)
+          mu(p%i) = mu(p%i) + dot_product(p%c, xs)
+        end associate
+      end associate
+    end do
+  end subroutine bem_memory
+
+  !> Linear interpolation of y(x) at v (clamped).
+  pure real(wp) function interpolate(x, y, v) result(r)
+    real(wp), intent(in) :: x(:), y(:), v
+    integer :: i
+    if (v <= x(1)) then
+      r = y(1)
+    else if (v >= x(size(x))) then
+      r = y(size(y))
+    else
+      i = 1
+      do while (v > x(i + 1))
+        i = i + 1
+      end do
+      r = y(i) + (y(i + 1) - y(i))*(v - x(i))/(x(i + 1) - x(i))
+    end if
+  end function interpolate
+
+  !> Inverse of a small matrix by LAPACK (dgesv on the identity).
+  subroutine invert(a, a_inv, info)
+    real(wp), intent(in) :: a(:, :)
+    real(wp), intent(out) :: a_inv(:, :)
+    integer, intent(out) :: info
+    real(wp) :: lu(size(a, 1), size(a, 1))
+    integer :: ipiv(size(a, 1)), k
+    lu = a
+    a_inv = 0.0_wp
+    do k = 1, size(a, 1)
+      a_inv(k, k) = 1.0_wp
+    end do
+    call dgesv(size(a, 1), size(a, 1), lu, size(a, 1), ipiv, a_inv, size(a, 1), info)
+  end subroutine invert
+
+end module davit_ship_bem_loads
