@@ -7,6 +7,7 @@ module davit_io_config
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_rigging_keys, only: rigging_config, read_rigging
+  use davit_io_ship_keys, only: ship_config, read_ship
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
@@ -32,16 +33,6 @@ module davit_io_config
     logical :: jitter, independent_frequencies
     real(wp), allocatable :: probes_x(:), probes_y(:)
   end type sea_config
-
-  !> Ship of Table 1 and the review's gaps G9-G15 (derived quantities in davit_ship_hull).
-  type :: ship_config
-    real(wp) :: loa, lwl, lpp, beam, draught, depth, gm, cg_x, cg_z, cb, cwp, displacement
-    real(wp) :: zeta_heave, zeta_roll, zeta_pitch, roll_quadratic, crossflow_cd
-    real(wp) :: area_front, area_lateral, wind_height, list, trim
-    real(wp) :: position(3), heading, headway
-    logical :: frozen
-    character(len=:), allocatable :: wave_phase
-  end type ship_config
 
   !> Response amplitude operators of the ship (`davit rao`).
   type :: rao_config
@@ -422,73 +413,6 @@ contains
                 default_text="&sea direction_deg")
     w%direction = w%direction*pi/180.0_wp
   end subroutine read_wind
-
-  subroutine read_ship(r, s)
-    type(deck_reader_type), intent(inout) :: r
-    type(ship_config), intent(inout) :: s
-    character(len=*), parameter :: g = "ship"
-    real(wp), parameter :: deg = pi/180.0_wp
-    call r%real(g, "length_overall", s%loa, 139.8_wp, 1.0_wp, 500.0_wp, "m", &
-                "Length over all, L_oa (Table 1; wind yaw moment, eq. 46).")
-    call r%real(g, "length_waterline", s%lwl, 130.55_wp, 1.0_wp, 500.0_wp, "m", &
-                "Waterline length L_wl (Table 1); box length l = sqrt(C_b) L_wl (review G15).")
-    call r%real(g, "length_pp", s%lpp, 126.0_wp, 1.0_wp, 500.0_wp, "m", &
-                "Length between perpendiculars (Table 1; radii of gyration, cross-flow drag).")
-    call r%real(g, "beam", s%beam, 20.8_wp, 1.0_wp, 100.0_wp, "m", "Beam B (Table 1).")
-    call r%real(g, "draught", s%draught, 4.4_wp, 0.1_wp, 30.0_wp, "m", "Draught d (Table 1).")
-    call r%real(g, "depth", s%depth, 11.4_wp, 0.1_wp, 50.0_wp, "m", &
-                "Moulded depth (Table 1); the side plane spans the freeboard above the water.")
-    call r%real(g, "gm", s%gm, 5.57_wp, 0.01_wp, 20.0_wp, "m", &
-                "Transverse metacentric height (Table 1): C44 = Delta g GM.")
-    call r%real(g, "cg_x", s%cg_x, 0.0_wp, -100.0_wp, 100.0_wp, "m", &
-                "CG forward of midship. Table 1's '2.3 m between centre of gravity and "// &
-                "centre' is ambiguous (review §1.12); 0 keeps the paper's CG at the origin.")
-    call r%real(g, "cg_z", s%cg_z, 0.0_wp, -20.0_wp, 20.0_wp, "m", &
-                "CG below the still waterline (z down); 0 = on the waterline, as the paper "// &
-                "places the ship CG at (0, 0, 0).")
-    call r%real(g, "block_coefficient", s%cb, 0.68_wp, 0.3_wp, 1.0_wp, "-", &
-                "C_b (Table 1).")
-    call r%real(g, "waterplane_coefficient", s%cwp, 0.83_wp, 0.3_wp, 1.0_wp, "-", &
-                "C_wp (Table 1; reported only, the box uses l B).")
-    call r%real(g, "displacement", s%displacement, 7.55e6_wp, 1.0e3_wp, 1.0e9_wp, "kg", &
-                "Mass Delta (Table 1).")
-    call r%real(g, "zeta_heave", s%zeta_heave, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear heave damping as a fraction of critical (review G12).")
-    call r%real(g, "zeta_roll", s%zeta_roll, 0.05_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear roll damping as a fraction of critical (review G12).")
-    call r%real(g, "zeta_pitch", s%zeta_pitch, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear pitch damping as a fraction of critical (review G12).")
-    call r%real(g, "roll_quadratic", s%roll_quadratic, 0.0_wp, 0.0_wp, 1.0e12_wp, &
-                "N m s^2", "Quadratic roll damping B44q |p| p (0 = off).")
-    call r%real(g, "crossflow_cd", s%crossflow_cd, 0.8_wp, 0.0_wp, 5.0_wp, "-", &
-                "Cross-flow drag coefficient for sway and yaw at zero speed (review G12).")
-    call r%real(g, "area_front", s%area_front, 400.0_wp, 0.0_wp, 1.0e5_wp, "m^2", &
-                "Frontal windage area A_F (review G14).")
-    call r%real(g, "area_lateral", s%area_lateral, 1600.0_wp, 0.0_wp, 1.0e5_wp, "m^2", &
-                "Lateral windage area A_L (review G14).")
-    call r%real(g, "wind_height", s%wind_height, 7.0_wp, 0.0_wp, 100.0_wp, "m", &
-                "Height h_z of the lateral wind force above G (eq. 46, review G14).")
-    call r%real(g, "list_deg", s%list, 0.0_wp, -20.0_wp, 20.0_wp, "deg", &
-                "Static list (equilibrium roll), positive to starboard (SOLAS/LSA: 20 deg).")
-    s%list = s%list*deg
-    call r%real(g, "trim_deg", s%trim, 0.0_wp, -10.0_wp, 10.0_wp, "deg", &
-                "Static trim (equilibrium pitch), positive bow up (SOLAS/LSA: 10 deg).")
-    s%trim = s%trim*deg
-    call r%real_vec(g, "position", s%position, [0.0_wp, 0.0_wp, 0.0_wp], -1.0e5_wp, &
-                    1.0e5_wp, "m", "Initial CG position in the inertial frame (paper: origin).")
-    call r%real(g, "heading_deg", s%heading, 0.0_wp, -360.0_wp, 360.0_wp, "deg", &
-                "Initial heading psi (s1 from N1 towards N2).")
-    s%heading = s%heading*deg
-    call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 2.6_wp, "m/s", &
-                "Initial forward speed, held by a constant thrust equal to the resistance "// &
-                "(SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s).")
-    call r%logical(g, "frozen", s%frozen, .false., &
-                   "Hold the ship fixed (III.A's fixed platform; or to isolate the boat).")
-    call r%choice(g, "wave_phase", s%wave_phase, "initial", &
-                  [character(len=8) :: "initial", "current"], &
-                  "Where the wave phase of the ship's wave loads is taken: at the initial "// &
-                  "position (linear seakeeping) or the current one (drift feeds back).")
-  end subroutine read_ship
 
   !> Wave height H of a sea-state level's preset [m] (review G19: upper bounds of the level).
   pure real(wp) function level_wave_height(level)

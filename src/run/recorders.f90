@@ -71,8 +71,9 @@ module davit_run_recorders
     !> Full rigging only: cable segment tensions, paid-out length, sheave angles, lumps.
     real(wp), allocatable :: segment_tension(:, :), paid_out(:), pulley_angle(:, :)
     real(wp), allocatable :: lumps(:, :, :)
-    !> Moving ship only: its CG position and Euler angles.
-    real(wp), allocatable :: ship_position(:, :), ship_euler(:, :)
+    !> Moving ship only: its CG position, Euler angles and heading error (yaw minus the
+    !> heading it keeps).
+    real(wp), allocatable :: ship_position(:, :), ship_euler(:, :), heading_error(:)
   contains
     procedure :: init => boat_init
     procedure :: sample => boat_sample
@@ -119,7 +120,8 @@ contains
         if (par%on_davit) allocate (self%segment_tension(rig%nseg, nmax), &
                                     self%paid_out(nmax), self%pulley_angle(rig%nsheave, nmax), &
                                     self%lumps(3, 2*rig%nlump, nmax))
-        if (par%with_ship) allocate (self%ship_position(3, nmax), self%ship_euler(3, nmax))
+        if (par%with_ship) allocate (self%ship_position(3, nmax), self%ship_euler(3, nmax), &
+                                     self%heading_error(nmax))
       end associate
     end select
   end subroutine boat_init
@@ -143,6 +145,7 @@ contains
         associate (q => y(sys%par%ship_part%q(1):sys%par%ship_part%q(2)))
           self%ship_euler(:, k) = q(1:3)
           self%ship_position(:, k) = q(4:6)
+          self%heading_error(k) = q(3) - sys%ship%anchor(3)
         end associate
       end if
       self%energy(k) = sys%energy(y)
@@ -193,6 +196,9 @@ contains
                         "Ship CG position, inertial frame N (z down)")
         call w%write_2d("ship/euler", self%ship_euler(:, 1:n), "rad", &
                         "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+        call w%write_1d("ship/heading_error", self%heading_error(1:n), "rad", &
+                        "Ship yaw minus the heading it keeps (its initial heading; "// &
+                        "&ship heading_period)")
       end if
       call w%group("contact")
       call w%write_1d("contact/clearance", self%clearance(1:n), "m", &

@@ -5,9 +5,8 @@ module davit_run_ship_scene
   use davit_io_config, only: config_type
   use davit_sea_wave_field, only: wave_field_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
-  use davit_ship_hull, only: hull_type, new_hull
-  use davit_ship_ship_model, only: ship_system_type, new_ship_system
-  use davit_system_build, only: ship_initial_state
+  use davit_ship_ship_model, only: ship_system_type
+  use davit_system_build, only: ship_initial_state, new_ship
   implicit none
   private
   public :: build_ship_scene
@@ -19,15 +18,10 @@ contains
     type(ship_system_type), intent(out) :: ship
     real(wp), allocatable, intent(out) :: y(:)
     type(error_type), allocatable, intent(out) :: error
-    type(hull_type) :: hull
     type(wave_field_type) :: sea
-    call new_hull(hull, cfg%ship, error)
-    if (allocated(error)) return
     call build_wave_field(cfg%sea, cfg%simulation%seed, 0, sea)
-    call new_ship_system(ship, hull, sea, build_wind(cfg%wind), cfg%ship%frozen, &
-                         cfg%ship%position, cfg%ship%heading, &
-                         cfg%ship%wave_phase == "initial", cfg%ship%headway)
-    ship%wave_dt = cfg%simulation%wave_update
+    call new_ship(ship, cfg, sea, build_wind(cfg%wind), error)
+    if (allocated(error)) return
     y = ship_initial_state(ship, cfg)
   end subroutine build_ship_scene
 

@@ -58,9 +58,14 @@ module davit_ship_ship_model
     logical :: phase_at_initial = .true.
     real(wp) :: origin(2) = 0.0_wp
     !> Optional soft mooring of surge, sway and yaw (stiffness and damping), used by the RAO
-    !> runs to hold the mean position and heading as a frequency-domain RAO assumes; off
-    !> (zero) in simulations. Anchored at `anchor` (x, y, yaw).
-    real(wp) :: moor_k(3) = 0.0_wp, moor_c(3) = 0.0_wp, anchor(3) = 0.0_wp
+    !> runs to hold the mean position and heading as a frequency-domain RAO assumes, and as
+    !> the heading (and station) keeping of the 'launch' scene, where an integral term
+    !> (moor_i, on the states of part "ship_control": the time integrals of the errors)
+    !> takes out steady offsets such as the wind's yaw moment (a PID autopilot or DP).
+    !> Anchored at `anchor` (x, y, yaw); zero = off.
+    real(wp) :: moor_k(3) = 0.0_wp, moor_c(3) = 0.0_wp, moor_i(3) = 0.0_wp
+    real(wp) :: anchor(3) = 0.0_wp
+    type(state_part_type) :: control
     !> Slow clock of the Froude-Krylov loads (`&simulation wave_update`; 0: off): with the
     !> phases at the initial position they depend on time alone, so they are sampled with
     !> their rates on the grid k wave_dt and interpolated by cubic Hermite in between
@@ -166,10 +171,12 @@ contains
   end subroutine refresh_heading
 
   !> Soft mooring with the given natural periods [s] (surge, sway, yaw) and damping ratio,
-  !> anchored at the current state.
-  pure subroutine set_mooring(self, period, zeta, y)
+  !> anchored at the current state; with `integral`, a PID: integral gain k w/10 (integral
+  !> time 10/w, slow against the period), its states registered as part "ship_control".
+  subroutine set_mooring(self, period, zeta, y, integral)
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: period(3), zeta, y(:)
+    logical, intent(in), optional :: integral
     real(wp) :: inertia(3)
     associate (q => y(self%body%q(1):self%body%q(2)))
       self%anchor = [q(4), q(5), q(3)]
@@ -182,6 +189,10 @@ contains
     ! a period <= 0 leaves that motion free
     self%moor_k = merge(inertia*(2.0_wp*pi/max(period, tiny(1.0_wp)))**2, 0.0_wp, period > 0.0_wp)
     self%moor_c = 2.0_wp*zeta*sqrt(self%moor_k*inertia)
+    if (.not. present(integral)) return
+    if (.not. integral .or. self%control%q(2) >= self%control%q(1)) return
+    self%moor_i = self%moor_k*sqrt(self%moor_k/inertia)/10.0_wp
+    call self%layout%add("ship_control", 3, 0, self%control)
   end subroutine set_mooring
 
   subroutine ship_after_step(self, t, y)
@@ -284,6 +295,9 @@ contains
         load = ship_loads(self, t, q, u, c)
         dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
         dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
+        if (self%control%q(2) >= self%control%q(1)) &
+          call integral_control(self, q, c, y(self%control%q(1):self%control%q(2)), load, &
+                                dydt(self%control%q(1):self%control%q(2)))
         if (self%bem) then
           call bem_memory(self%hydro, y(r%q(1):r%q(2)), [u(4:6), u(1:3)], &
                           dydt(r%q(1):r%q(2)), mu)
@@ -294,6 +308,18 @@ contains
       end associate
     end associate
   end subroutine ship_kane_blocks
+
+  !> The integral term of the heading and station keeping: its states z integrate the
+  !> errors (inertial x, y of the CG; yaw), and -k_i z adds to the loads (ship axes).
+  pure subroutine integral_control(self, q, c, z, load, zdot)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: q(6), c(3, 3), z(3)
+    real(wp), intent(inout) :: load(6)
+    real(wp), intent(out) :: zdot(3)
+    zdot = [q(4) - self%anchor(1), q(5) - self%anchor(2), q(3) - self%anchor(3)]
+    load(1:3) = load(1:3) + matmul(transpose(c), [-self%moor_i(1:2)*z(1:2), 0.0_wp])
+    load(6) = load(6) - self%moor_i(3)*z(3)
+  end subroutine integral_control
 
   !> V, W phi, F of the box ship at speeds u (omega, v) under the loads `load`.
   pure subroutine box_blocks(self, u, load, kane)

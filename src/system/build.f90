@@ -19,11 +19,15 @@ module davit_system_build
   use davit_rigging_rigging, only: new_rigging
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
+  use davit_ship_bem_database, only: bem_database_type, read_bem_database
+  use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
+  use davit_sea_wave_field, only: wave_field_type
+  use davit_sea_wind, only: wind_type
   use davit_system_parameters, only: system_params_type, ship_pose, hook_kinematics, nslings
   use davit_system_model, only: system_type
   implicit none
   private
-  public :: new_system, initial_state, ship_initial_state
+  public :: new_system, initial_state, ship_initial_state, new_ship
 
   !> Refresh interval of the surface watch [s]: long enough to cost nothing (one strip-load
   !> evaluation per interval), short enough for its bound to stay well below the height
@@ -71,24 +75,69 @@ contains
     par%release_delay = cfg%rigging%release_delay
   end subroutine new_davit
 
-  !> The 6-DOF ship of the 'launch' scene, in the same sea and wind as the boat.
+  !> The 6-DOF ship of the 'launch' scene, in the same sea and wind as the boat, keeping
+  !> its heading (and station) as the deck says.
   subroutine new_moving_ship(self, cfg, error)
     type(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
-    type(hull_type) :: hull
     integer :: offset
-    call new_hull(hull, cfg%ship, error)
+    call new_ship(self%ship, cfg, self%par%sea, self%par%wind, error)
     if (allocated(error)) return
-    call new_ship_system(self%ship, hull, self%par%sea, self%par%wind, cfg%ship%frozen, &
-                         cfg%ship%position, cfg%ship%heading, &
-                         cfg%ship%wave_phase == "initial", cfg%ship%headway)
-    self%ship%wave_dt = cfg%simulation%wave_update
+    associate (s => cfg%ship)
+      call self%ship%set_mooring([s%station_period, s%station_period, s%heading_period], &
+                                 s%heading_damping, ship_initial_state(self%ship, cfg), &
+                                 integral=.true.)
+    end associate
     self%par%with_ship = .true.
     call self%par%layout%append(self%ship%layout, offset)
     self%par%ship_part = self%par%layout%part("ship")
     self%par%ship_slice = [offset + 1, offset + self%ship%layout%n]
   end subroutine new_moving_ship
+
+  !> The ship of the deck in the sea and wind given: the paper's box or (&ship model =
+  !> 'bem') the BEM ship of its database.
+  subroutine new_ship(ship, cfg, sea, wind, error)
+    type(ship_system_type), intent(out) :: ship
+    type(config_type), intent(in) :: cfg
+    type(wave_field_type), intent(in) :: sea
+    type(wind_type), intent(in) :: wind
+    type(error_type), allocatable, intent(out) :: error
+    type(hull_type) :: hull
+    type(bem_database_type) :: db
+    type(bem_ship_type) :: bem
+    call new_hull(hull, cfg%ship, error)
+    if (allocated(error)) return
+    associate (s => cfg%ship)
+      if (s%model == "bem") then
+        call read_bem_database(beside(cfg%filename, s%database), db, error)
+        if (.not. allocated(error)) call new_bem_ship(db, s%zeta_roll, bem, error)
+        if (allocated(error)) then
+          error%message = cfg%filename//": &ship: database = '"//s%database//"': "// &
+                          error%message
+          return
+        end if
+        call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
+                             s%wave_phase == "initial", s%headway, bem)
+      else
+        call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
+                             s%wave_phase == "initial", s%headway)
+      end if
+    end associate
+    ship%wave_dt = cfg%simulation%wave_update
+  end subroutine new_ship
+
+  !> `path` as given if absolute, else in the folder of file `deck`.
+  pure function beside(deck, path) result(full)
+    character(len=*), intent(in) :: deck, path
+    character(len=:), allocatable :: full
+    integer :: slash
+    full = path
+    if (len(path) == 0) return
+    if (path(1:1) == "/") return
+    slash = index(deck, "/", back=.true.)
+    if (slash > 0) full = deck(1:slash)//path
+  end function beside
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
   subroutine new_boat_environment(self, cfg)
