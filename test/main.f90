@@ -13,6 +13,7 @@ program main
   use test_integrators, only: collect_integrators
   use test_sweep, only: collect_sweep
   use test_strip_waves, only: collect_strip_waves
+  use test_bem_ship, only: collect_bem_ship
   implicit none
   type(suite_type), allocatable :: suites(:)
   character(len=256) :: filter
@@ -22,7 +23,8 @@ program main
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
             collect_ship(), collect_boat(), collect_boat_water(), collect_rigging(), &
-            collect_integrators(), collect_sweep(), collect_strip_waves()]
+            collect_integrators(), collect_sweep(), collect_strip_waves(), &
+            collect_bem_ship()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

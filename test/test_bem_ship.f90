@@ -1,0 +1,362 @@
+!> The ship from the BEM database (input/ship_bem.nc, the paper's equivalent box): what
+!> davit reads is consistent with itself and with hydrostatics, and its time-domain
+!> Cummins ship reproduces the frequency domain's natural periods and long-wave limits.
+module test_bem_ship
+  use davit_kinds, only: wp, pi, gravity, rho_water
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type, parse_config
+  use davit_ship_bem_database, only: bem_database_type, read_bem_database, bem_excitation
+  use davit_ship_ship_model, only: ship_system_type
+  use davit_run_ship_scene, only: build_ship_scene
+  use davit_run_rao, only: rao_case
+  use davit_solve_rk4, only: rk4_type
+  use harness, only: suite_type, case_state, new_case, check, check_true, note
+  implicit none
+  private
+  public :: collect_bem_ship
+
+
+  character(len=*), parameter :: database = "input/ship_bem.nc"
+  !> The equivalent box of Table 1: l = sqrt(C_b) L_wl, B, d.
+  real(wp), parameter :: box(3) = [sqrt(0.68_wp)*130.55_wp, 20.8_wp, 4.4_wp]
+
+contains
+
+  function collect_bem_ship() result(suite)
+    type(suite_type) :: suite
+    suite%name = "bem_ship"
+    suite%cases = [new_case("database_hydrostatics_and_mass", hydrostatics), &
+                   new_case("database_memory_kernels_stable_at_zero", kernels), &
+                   new_case("free_decay_roll_period_vs_frequency_domain", free_decay), &
+                   new_case("rao_vs_frequency_domain_solution", rao_vs_fd), &
+                   new_case("long_wave_limits", long_wave)]
+  end function collect_bem_ship
+
+  subroutine load(db)
+    type(bem_database_type), intent(out) :: db
+    type(error_type), allocatable :: error
+    call read_bem_database(database, db, error)
+    if (allocated(error)) error stop error%message
+  end subroutine load
+
+  !> Closed-form box hydrostatics (CG on the waterline, as the database is built): V = l B d,
+  !> C33 = rho g l B, C44 = rho g V GM_T with GM_T = KB + B^2/(12 d) - KG, C55 alike with
+  !> l^2/(12 d); mass = rho V (free floating); A(inf) symmetric.
+  subroutine hydrostatics(state)
+    type(case_state), intent(inout) :: state
+    type(bem_database_type) :: db
+    real(wp) :: v, gm_t, gm_l
+    call load(db)
+    v = product(box)
+    gm_t = box(3)/2.0_wp + box(2)**2/(12.0_wp*box(3)) - box(3)
+    gm_l = box(3)/2.0_wp + box(1)**2/(12.0_wp*box(3)) - box(3)
+    call check(state, db%volume, v, "displaced volume l B d", rel_tol=0.01_wp)
+    call check(state, db%mass(1, 1), rho_water*db%volume, "mass = rho V", rel_tol=1e-9_wp)
+    call check(state, db%stiffness(3, 3), rho_water*gravity*box(1)*box(2), "C33 = rho g A_wp", &
+               rel_tol=0.01_wp)
+    call check(state, db%stiffness(4, 4), rho_water*gravity*v*gm_t, "C44 = rho g V GM_T", &
+               rel_tol=0.01_wp)
+    call check(state, db%stiffness(5, 5), rho_water*gravity*v*gm_l, "C55 = rho g V GM_L", &
+               rel_tol=0.01_wp)
+    call check(state, maxval(abs(db%added_mass_inf - transpose(db%added_mass_inf))), 0.0_wp, &
+               "A(inf) symmetric", abs_tol=1e-3_wp*maxval(abs(db%added_mass_inf)))
+    call check_true(state, size(db%pairs) > 0 .and. db%nrad > 0, "memory kernels fitted")
+  end subroutine hydrostatics
+
+  !> Each fitted kernel is stable (exp(A t) has died out by t = 1024 s, by repeated
+  !> squaring); it reproduces the BEM's B_ij(w) and A_ij(w) = A_ij(inf) + Im K(i w)/w,
+  !> K(i w) = C_s (i w - A_s)^-1 B_s, within 5 % of their largest values at every database
+  !> frequency up to 1.5 rad/s (the band of the seas); and the memory of a constant
+  !> velocity dies out: K(0) = -C_s A_s^-1 B_s ~ 0 (a ship moving steadily makes no waves
+  !> in this linear model).
+  subroutine kernels(state)
+    type(case_state), intent(inout) :: state
+    type(bem_database_type) :: db
+    real(wp), allocatable :: x(:)
+    real(wp) :: peak_b, peak_a, err_b, err_a
+    complex(wp) :: kw
+    integer :: k, m
+    call load(db)
+    do k = 1, size(db%pairs)
+      associate (p => db%pairs(k))
+        call check_true(state, maxval(abs(flow(p%a, 1024.0_wp))) < 1.0e-3_wp, &
+                        "stable: exp(A t) -> 0")
+        peak_b = maxval(abs(db%damping(p%i, p%j, :)))
+        peak_a = maxval(abs(db%added_mass(p%i, p%j, :) - db%added_mass_inf(p%i, p%j)))
+        err_b = 0.0_wp
+        err_a = 0.0_wp
+        do m = 1, size(db%omega)
+          if (db%omega(m) > 1.5_wp) exit
+          kw = kernel_response(p%a, p%b, p%c, db%omega(m))
+          err_b = max(err_b, abs(real(kw, wp) - db%damping(p%i, p%j, m)))
+          err_a = max(err_a, abs(db%added_mass_inf(p%i, p%j) + aimag(kw)/db%omega(m) - &
+                                 db%added_mass(p%i, p%j, m)))
+        end do
+        call check(state, err_b/peak_b, 0.0_wp, "fit reproduces B(w)", abs_tol=0.05_wp)
+        call check(state, err_a/peak_a, 0.0_wp, "fit reproduces A(w)", abs_tol=0.05_wp)
+        x = static_response(p%a, p%b)
+        call check(state, dot_product(p%c, x), 0.0_wp, "K(0) ~ 0 against B peak", &
+                   abs_tol=0.05_wp*peak_b)
+      end associate
+    end do
+  end subroutine kernels
+
+  !> C (i w - A)^-1 B.
+  pure complex(wp) function kernel_response(a, b, c, w) result(kw)
+    real(wp), intent(in) :: a(:, :), b(:), c(:), w
+    complex(wp) :: m(size(b), size(b)), x(size(b))
+    integer :: i
+    m = -cmplx(a, 0.0_wp, wp)
+    do i = 1, size(b)
+      m(i, i) = m(i, i) + cmplx(0.0_wp, w, wp)
+    end do
+    x = cmplx(b, 0.0_wp, wp)
+    call complex_solve(m, x)
+    kw = sum(c*x)
+  end function kernel_response
+
+  !> exp(A t) as (I + A h + (A h)^2/2)^(2^m), h = t/2^20.
+  pure function flow(a, t) result(e)
+    real(wp), intent(in) :: a(:, :), t
+    real(wp) :: e(size(a, 1), size(a, 1)), h
+    integer :: m
+    h = t/2.0_wp**20
+    e = identity(size(a, 1)) + a*h + 0.5_wp*matmul(a, a)*h**2
+    do m = 1, 20
+      e = matmul(e, e)
+    end do
+  end function flow
+
+  pure function identity(n) result(e)
+    integer, intent(in) :: n
+    real(wp) :: e(n, n)
+    integer :: i
+    e = 0.0_wp
+    do i = 1, n
+      e(i, i) = 1.0_wp
+    end do
+  end function identity
+
+  !> x = -int_0^inf exp(A t) b dt by midpoint-rule steps of 0.01 s over 2000 s (A stable).
+  pure function static_response(a, b) result(x)
+    real(wp), intent(in) :: a(:, :), b(:)
+    real(wp) :: x(size(b)), z(size(b)), h
+    integer :: i
+    h = 0.01_wp
+    z = b
+    x = 0.5_wp*h*z
+    do i = 1, 200000
+      z = z + h*matmul(a, z + 0.5_wp*h*matmul(a, z))
+      x = x + h*z
+    end do
+    x = -x
+  end function static_response
+
+  !> Damped frequency w sqrt(1 - zeta^2) of DOF i alone, zeta = B_ii(w)/(2 (M + A(w)) w).
+  pure real(wp) function damped_omega(db, i) result(wd)
+    type(bem_database_type), intent(in) :: db
+    integer, intent(in) :: i
+    real(wp) :: w, zeta
+    w = natural_omega(db, i)
+    zeta = at(db, db%damping(i, i, :), w)/(2.0_wp*(db%mass(i, i) + &
+                                                    at(db, db%added_mass(i, i, :), w))*w)
+    wd = w*sqrt(1.0_wp - zeta**2)
+  end function damped_omega
+
+  !> y(omega) of the database's grid at w, linearly.
+  pure real(wp) function at(db, y, w)
+    type(bem_database_type), intent(in) :: db
+    real(wp), intent(in) :: y(:), w
+    real(wp) :: s
+    integer :: k
+    k = 1
+    do while (k < size(db%omega) - 1 .and. w > db%omega(k + 1))
+      k = k + 1
+    end do
+    s = min(1.0_wp, max(0.0_wp, (w - db%omega(k))/(db%omega(k + 1) - db%omega(k))))
+    at = (1.0_wp - s)*y(k) + s*y(k + 1)
+  end function at
+
+  !> Undamped natural frequency w = sqrt(C_ii/(M_ii + A_ii(w))) iterated on the database.
+  pure real(wp) function natural_omega(db, i) result(w)
+    type(bem_database_type), intent(in) :: db
+    integer, intent(in) :: i
+    integer :: it
+    w = sqrt(db%stiffness(i, i)/(db%mass(i, i) + db%added_mass_inf(i, i)))
+    do it = 1, 100
+      w = sqrt(db%stiffness(i, i)/(db%mass(i, i) + at(db, db%added_mass(i, i, :), w)))
+    end do
+  end function natural_omega
+
+  !> Free decay of roll in calm water: its period (between the 1st and 3rd zero crossings)
+  !> within 2 % of the frequency domain's damped period 2 pi/w_d from the database:
+  !> w_d = w sqrt(1 - zeta^2), w = sqrt(C/(M + A(w))) iterated, zeta = B(w)/(2 (M + A(w)) w).
+  !> Heave and pitch are damped 13-16 % of critical by the waves they make, with A and B
+  !> changing fast near resonance: their decay is not one damped sinusoid (successive
+  !> zero-crossing periods 6.91, 6.25 s in heave and 7.25, 6.96 s in pitch around the
+  !> frequency domain's 6.92 and 6.88 s), so their resonances are checked where they are
+  !> defined, as the peaks of the forced response (rao_vs_frequency_domain_solution).
+  subroutine free_decay(state)
+    type(case_state), intent(inout) :: state
+    character(len=*), parameter :: deck = "&ship model = 'bem', database = '"//database// &
+      "', zeta_roll = 0, crossflow_cd = 0 / &wind speed = 0 /"
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(ship_system_type) :: ship
+    type(bem_database_type) :: db
+    real(wp), allocatable :: y(:)
+    real(wp) :: period, expected
+    call load(db)
+    call parse_config("t.nml", deck, cfg, error)
+    if (allocated(error)) error stop error%message
+    call build_ship_scene(cfg, ship, y, error)
+    if (allocated(error)) error stop error%message
+    y(ship%body%q(1)) = 0.02_wp
+    period = decay_period(ship, y, ship%body%q(1))
+    expected = 2.0_wp*pi/damped_omega(db, 4)
+    call note(state, "roll period, time domain [s]", period)
+    call note(state, "roll 2 pi/w_d, frequency domain [s]", expected)
+    call check(state, period, expected, "roll period", rel_tol=0.02_wp)
+  end subroutine free_decay
+
+  !> davit's time-domain RAOs (davit rao's fit over whole periods, 5 cm waves, soft
+  !> mooring) against the 6 x 6 frequency-domain solution from the same database, all
+  !> couplings: [-w^2 (M + A(w)) + i w (B(w) + B_visc) + C] xi = X(w, beta), with the
+  !> same viscous roll damping (5 % of critical at the roll resonance). Heave, roll and
+  !> pitch amplitudes within 3 % of the frequency domain's, or 1 % of its peak where the
+  !> response is small, at 9 frequencies across the peaks and 3 headings.
+  subroutine rao_vs_fd(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: omegas(9) = [0.4_wp, 0.6_wp, 0.7_wp, 0.75_wp, 0.8_wp, 0.85_wp, &
+                                        0.9_wp, 1.0_wp, 1.2_wp]
+    real(wp), parameter :: headings(3) = [0.5_wp*pi, 0.75_wp*pi, pi]
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(bem_database_type) :: db
+    real(wp) :: td(6, 9, 3), fd(6, 9, 3), phase(6), peak, b44
+    integer :: iw, ib, d
+    integer, parameter :: dofs(3) = [3, 4, 5]
+    character(len=5), parameter :: names(3) = ["heave", "roll ", "pitch"]
+    call load(db)
+    call parse_config("t.nml", "&ship model = 'bem', database = '"//database//"', "// &
+                      "zeta_roll = 0.05, crossflow_cd = 0 / &rao amplitude = 0.05, "// &
+                      "settle_time = 120, measure_periods = 8, dt = 0.05 / &wind speed = 0 /", &
+                      cfg, error)
+    if (allocated(error)) error stop error%message
+    b44 = 0.05_wp*2.0_wp*sqrt(db%stiffness(4, 4)*db%stiffness(4, 4)/natural_omega(db, 4)**2)
+    do ib = 1, 3
+      do iw = 1, 9
+        call rao_case(cfg, omegas(iw), headings(ib), td(:, iw, ib), phase, error)
+        fd(:, iw, ib) = abs(fd_response(db, b44, omegas(iw), headings(ib)))
+      end do
+    end do
+    do d = 1, 3
+      do ib = 1, 3
+        peak = maxval(fd(dofs(d), :, ib))
+        do iw = 1, 9
+          call check(state, td(dofs(d), iw, ib), fd(dofs(d), iw, ib), trim(names(d))// &
+                     " RAO", abs_tol=max(0.03_wp*fd(dofs(d), iw, ib), 0.01_wp*peak))
+        end do
+        if (peak > 1.0e-6_wp) call note(state, trim(names(d))//" largest |td/fd - 1|", &
+                  maxval(abs(td(dofs(d), :, ib)/max(fd(dofs(d), :, ib), 1e-12_wp) - 1.0_wp), &
+                         mask=fd(dofs(d), :, ib) > 0.01_wp*peak))
+      end do
+    end do
+  end subroutine rao_vs_fd
+
+  !> The frequency-domain response xi (DOF order; heave positive down) per unit amplitude.
+  function fd_response(db, b44, w, beta) result(xi)
+    type(bem_database_type), intent(in) :: db
+    real(wp), intent(in) :: b44, w, beta
+    complex(wp) :: xi(6), m(6, 6)
+    real(wp) :: a(6, 6), b(6, 6)
+    integer :: i, j
+    do i = 1, 6
+      do j = 1, 6
+        a(i, j) = at(db, db%added_mass(i, j, :), w)
+        b(i, j) = at(db, db%damping(i, j, :), w)
+      end do
+    end do
+    b(4, 4) = b(4, 4) + b44
+    m = cmplx(-w**2*(db%mass + a) + db%stiffness, w*b, wp)
+    xi = bem_excitation(db, w, beta)
+    call complex_solve(m, xi)
+  end function fd_response
+
+  !> Solve m x = x in place by Gaussian elimination with partial pivoting.
+  pure subroutine complex_solve(m, x)
+    complex(wp), intent(inout) :: m(:, :), x(:)
+    complex(wp) :: f, row(size(x)), xi
+    integer :: i, j, n, piv
+    n = size(x)
+    do j = 1, n
+      piv = j - 1 + maxloc(abs(m(j:, j)), 1)
+      row = m(j, :)
+      m(j, :) = m(piv, :)
+      m(piv, :) = row
+      xi = x(j)
+      x(j) = x(piv)
+      x(piv) = xi
+      do i = j + 1, n
+        f = m(i, j)/m(j, j)
+        m(i, :) = m(i, :) - f*m(j, :)
+        x(i) = x(i) - f*x(j)
+      end do
+    end do
+    do i = n, 1, -1
+      x(i) = (x(i) - sum(m(i, i + 1:)*x(i + 1:)))/m(i, i)
+    end do
+  end subroutine complex_solve
+
+  !> Time from the 1st to the 3rd zero crossing of the offset.
+  real(wp) function decay_period(ship, y0, k) result(period)
+    type(ship_system_type), intent(inout) :: ship
+    real(wp), intent(in) :: y0(:)
+    integer, intent(in) :: k
+    real(wp), parameter :: dt = 0.01_wp
+    type(rk4_type) :: rk
+    real(wp) :: y(size(y0)), t, prev, mean, crossings(3)
+    integer :: i, nc
+    y = y0
+    mean = 0.0_wp
+    call rk%init(size(y))
+    t = 0.0_wp
+    nc = 0
+    prev = y(k) - mean
+    do i = 1, 6000
+      call rk%step(ship, t, y, dt)
+      t = real(i, wp)*dt
+      call ship%after_step(t, y)
+      if (sign(1.0_wp, y(k) - mean) /= sign(1.0_wp, prev)) then
+        nc = nc + 1
+        crossings(nc) = t - dt*(y(k) - mean)/(y(k) - mean - prev)
+        if (nc == 3) exit
+      end if
+      prev = y(k) - mean
+    end do
+    period = crossings(3) - crossings(1)
+  end function decay_period
+
+  !> Long waves: heave follows the surface (RAO 1) in head seas, roll the wave slope k a in
+  !> beam seas, pitch the slope in head seas (w = 0.15 rad/s, k = w^2/g).
+  subroutine long_wave(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    real(wp) :: amp(6), phase(6), k
+    real(wp), parameter :: w = 0.15_wp
+    call parse_config("t.nml", "&ship model = 'bem', database = '"//database//"' / "// &
+                      "&rao omegas = 0.15, headings_deg = 180, amplitude = 0.05, "// &
+                      "settle_time = 100, measure_periods = 3, dt = 0.1 / &wind speed = 0 /", &
+                      cfg, error)
+    if (allocated(error)) error stop error%message
+    k = w**2/gravity
+    call rao_case(cfg, w, pi, amp, phase, error)
+    call check(state, amp(3), 1.0_wp, "head seas: heave RAO -> 1", rel_tol=0.03_wp)
+    call check(state, amp(5), k, "head seas: pitch RAO -> k", rel_tol=0.05_wp)
+    call rao_case(cfg, w, 0.5_wp*pi, amp, phase, error)
+    call check(state, amp(3), 1.0_wp, "beam seas: heave RAO -> 1", rel_tol=0.03_wp)
+    call check(state, amp(4), k, "beam seas: roll RAO -> k", rel_tol=0.05_wp)
+  end subroutine long_wave
+
+end module test_bem_ship
