@@ -207,7 +207,7 @@ contains
                      180.0_wp], -360.0_wp, 360.0_wp, "deg", "Wave directions relative to "// &
                      "the ship's heading (0 = following, 90 = from port, 180 = head).", 1, 72)
     s%headings = s%headings*pi/180.0_wp
-    call r%real(g, "amplitude", s%amplitude, 0.5_wp, 0.0_wp, 5.0_wp, "m", &
+    call r%real(g, "amplitude", s%amplitude, 0.05_wp, 0.0_wp, 5.0_wp, "m", &
                 "Regular-wave amplitude of each run (responses are divided by it).", &
                 lo_open=.true.)
     call r%real(g, "settle_time", s%settle_time, 250.0_wp, 0.0_wp, 1.0e4_wp, "s", &

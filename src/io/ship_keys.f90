@@ -56,7 +56,9 @@ contains
     call r%real(g, "zeta_heave", s%zeta_heave, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
                 "Linear heave damping as a fraction of critical (review G12).")
     call r%real(g, "zeta_roll", s%zeta_roll, 0.05_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear roll damping as a fraction of critical (review G12).")
+                "Linear roll damping as a fraction of critical (review G12); with model = "// &
+                "'bem' the viscous part added to the radiation damping, at the roll "// &
+                "resonance of the database.")
     call r%real(g, "zeta_pitch", s%zeta_pitch, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
                 "Linear pitch damping as a fraction of critical (review G12).")
     call r%real(g, "roll_quadratic", s%roll_quadratic, 0.0_wp, 0.0_wp, 1.0e12_wp, &
