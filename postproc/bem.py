@@ -19,6 +19,11 @@
       conventions and the output layout); prints the undamped natural periods of heave,
       roll and pitch.
 
+  python -m postproc.bem compare FINE COARSE
+      mesh convergence: max change of A, B, the excitation and the RAO peak of heave, roll
+      and pitch within 0.2 rad/s of their natural frequencies (postproc.bem_compare), as a
+      Markdown table.
+
 Exit status 0 on success, 1 on an unreadable input or a failed solve.
 """
 import argparse
@@ -74,6 +79,10 @@ def _parser():
     r.add_argument("--headings-deg", type=float, nargs="+", default=None,
                    help="default: 0, 45, 90, 135, 180")
     r.add_argument("-o", "--output", default=None, help="FILE.h5 or FILE.csv")
+
+    c = sub.add_parser("compare", help="mesh convergence between two databases")
+    c.add_argument("fine")
+    c.add_argument("coarse")
     return parser
 
 
@@ -140,11 +149,26 @@ def _rao(args):
     return 0
 
 
+def _compare(args):
+    from . import bem_compare
+    try:
+        fine, coarse = bem_db.Database(args.fine), bem_db.Database(args.coarse)
+        rows = bem_compare.compare(fine, coarse)
+    except (OSError, ValueError) as exc:
+        return _error(exc)
+    print(bem_compare.markdown(
+        rows, f"{int(np.ravel(fine.attrs['panels'])[0])} panels",
+        f"{int(np.ravel(coarse.attrs['panels'])[0])} panels"))
+    return 0
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     args = _parser().parse_args(argv)
     if args.command == "build":
         return _build(args, argv)
+    if args.command == "compare":
+        return _compare(args)
     return _rao(args)
 
 

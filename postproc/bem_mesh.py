@@ -63,12 +63,6 @@ def box_resolution(length, beam, draught, panels):
     return best[:3]
 
 
-def _quarter_rectangle(cpt, size_x, size_y, z, nx, ny):
-    """Quarter (x <= 0, y <= 0) of a horizontal rectangle centred on the origin, normal down."""
-    return cpt.mesh_rectangle(size=(size_y / 2, size_x / 2), resolution=(ny, nx),
-                              center=(-size_x / 4, -size_y / 4, z), normal=(0.0, 0.0, -1.0))
-
-
 def _both_symmetries(quarter, name):
     from capytaine.meshes.symmetric_meshes import ReflectionSymmetricMesh
     half = ReflectionSymmetricMesh(quarter, plane="yOz", name=f"half_of_{name}")
@@ -81,25 +75,94 @@ def lid_position(length, beam, omega_max, g=9.81):
     p = np.hypot(1.0 / length, 1.0 / beam)
     arg = np.pi * g * p / omega_max**2
     if arg >= 1.0:
-        return -0.5  # any depth works; stay close to the surface
+        return -np.inf  # any depth keeps them above omega_max
     return float(-0.9 * np.arctanh(arg) / (np.pi * p))
 
 
+def _grid(n, cluster):
+    """n + 1 points in [0, 1]: uniform (cluster 0), or blended with a spacing that refines
+    towards 1 (cluster 1: towards the end; 2: towards both ends)."""
+    s = np.linspace(0.0, 1.0, n + 1)
+    if cluster == 1:
+        t = np.sin(0.5 * np.pi * s)
+    elif cluster == 2:
+        t = 0.5 * (1.0 - np.cos(np.pi * s))
+    else:
+        return s
+    return 0.5 * (s + t)
+
+
+def _quads(p, q, r):
+    """Quads of a structured patch whose vertices are p(i, j), q(i, j), r(i, j) (x, y, z)."""
+    ni, nj = p.shape
+    vertices = np.stack([p.ravel(), q.ravel(), r.ravel()], axis=1)
+    idx = np.arange(ni * nj).reshape(ni, nj)
+    faces = [[idx[i, j], idx[i + 1, j], idx[i + 1, j + 1], idx[i, j + 1]]
+             for i in range(ni - 1) for j in range(nj - 1)]
+    return vertices, faces
+
+
+def _box_quarter(cpt, length, beam, draught, nx, ny, nz, cluster):
+    """Quarter x <= 0, y <= 0 of the open box, panels refined towards the bilge and end
+    edges and the waterline (the flow is singular at the sharp edges)."""
+    cx = 1 if cluster else 0
+    x = -0.5 * length * _grid(nx // 2, cx)
+    y = -0.5 * beam * _grid(ny // 2, cx)
+    z = -draught * (_grid(nz, 2 if cluster else 0))
+    patches = []
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    patches.append((_quads(X, Y, np.full_like(X, -draught)), (0.0, 0.0, -1.0)))   # bottom
+    X, Z = np.meshgrid(x, z, indexing="ij")
+    patches.append((_quads(X, np.full_like(X, y[-1]), Z), (0.0, -1.0, 0.0)))        # side
+    Y, Z = np.meshgrid(y, z, indexing="ij")
+    patches.append((_quads(np.full_like(Y, x[-1]), Y, Z), (-1.0, 0.0, 0.0)))        # end
+    return _join_patches(cpt, patches, "quarter_of_box")
+
+
+def _box_lid_quarter(cpt, length, beam, z, nx, ny, cluster):
+    """Quarter of the lid at depth z on the bottom's grid (conforming with the hull)."""
+    cx = 1 if cluster else 0
+    X, Y = np.meshgrid(-0.5 * length * _grid(nx // 2, cx), -0.5 * beam * _grid(ny // 2, cx),
+                       indexing="ij")
+    return _join_patches(cpt, [(_quads(X, Y, np.full_like(X, z)), (0.0, 0.0, -1.0))],
+                         "quarter_of_lid")
+
+
+def _join_patches(cpt, patches, name):
+    meshes = []
+    for (vertices, faces), normal in patches:
+        m = cpt.Mesh(vertices, faces)
+        if np.dot(m.faces_normals[0], normal) < 0:
+            m = cpt.Mesh(vertices, [f[::-1] for f in faces])
+        meshes.append(m)
+    if len(meshes) == 1:
+        return meshes[0]
+    return meshes[0].join_meshes(*meshes[1:], name=name)
+
+
 def box_hull(length=BOX_LENGTH, beam=BEAM, draught=DRAUGHT, panels=2000, omega_max=2.0,
-             lid=True):
-    """Rectangular barge l x B x d, open at the waterline, with a lid at lid_position."""
+             lid=True, cluster=True):
+    """Rectangular barge l x B x d, open at the waterline, panels refined towards its edges
+    and the waterline. The lid lies on the bottom's grid at a z-level of the side panels
+    (conforming with the hull), at mid-draught or, if that is deeper than lid_position
+    allows for omega_max, the deepest level that it allows. (A lid at -0.1 d, or one with
+    its own coarser grid, changed the sway and heave damping at 0.6-1 rad/s by 5-20 %
+    against the no-lid solution; this one by <= 6 % at 4,000 panels and converges.)"""
     import capytaine as cpt
     nx, ny, nz = box_resolution(length, beam, draught, panels)
-    mesh = cpt.mesh_parallelepiped(size=(length, beam, draught), center=(0.0, 0.0, -draught / 2),
-                                   resolution=(nx, ny, nz), missing_sides={"top"},
-                                   reflection_symmetry=True, name="box")
+    mesh = _both_symmetries(_box_quarter(cpt, length, beam, draught, nx, ny, nz, cluster),
+                            "box")
     lid_mesh, zl = None, float("nan")
     if lid:
-        zl = max(lid_position(length, beam, omega_max), -0.8 * draught)
-        lid_mesh = _both_symmetries(_quarter_rectangle(cpt, length, beam, zl,
-                                                       max(1, nx // 4), max(1, ny // 4)), "lid")
+        levels = -draught * _grid(nz, 2 if cluster else 0)
+        allowed = levels[(levels >= lid_position(length, beam, omega_max))
+                         & (levels >= -0.5 * draught - 1e-9) & (levels < 0.0)]
+        zl = float(allowed.min()) if allowed.size else float(levels[1])
+        lid_mesh = _both_symmetries(_box_lid_quarter(cpt, length, beam, zl, nx, ny, cluster),
+                                    "lid")
     return Hull("box", mesh, lid_mesh, length, beam, draught, zl,
-                extra={"resolution_x_y_z": np.array([nx, ny, nz], dtype=np.int32)})
+                extra={"resolution_x_y_z": np.array([nx, ny, nz], dtype=np.int32),
+                       "panels_refined_to_edges": np.int32(cluster)})
 
 
 def ship_form(block_coefficient, exponent=SHIP_SECTION_EXPONENT):
@@ -157,7 +220,7 @@ def ship_hull(length=L_PP, beam=BEAM, draught=DRAUGHT, block_coefficient=BLOCK_C
     lid_mesh, zl = None, float("nan")
     if lid:
         zl = max(lid_position(length * (xi_p + 2 * (1 - xi_p) / 3), beam, omega_max),
-                 -0.8 * draught)
+                 -0.5 * draught)
         lid_mesh = _both_symmetries(_ship_lid_quarter(cpt, length, beam, draught, xi_p,
                                                       exponent, zl, max(2, nxq // 3),
                                                       max(2, nz // 2)), "lid")
@@ -202,7 +265,7 @@ def file_hull(path, omega_max=2.0, lid=True):
     draught = float(-v[:, 2].min())
     lid_mesh, zl = None, float("nan")
     if lid:
-        zl = max(lid_position(length, beam, omega_max), -0.8 * draught)
+        zl = max(lid_position(length, beam, omega_max), -0.5 * draught)
         lid_mesh = mesh.generate_lid(z=zl)
         if lid_mesh.nb_faces == 0:
             lid_mesh, zl = None, float("nan")
