@@ -11,7 +11,7 @@
       (+ 0 and inf), headings 0..360 deg every 15 deg.
       --hull ship: L_pp 126 m, B 20.8 m, T 4.4 m, C_b 0.68 (postproc.bem_mesh.ship_hull).
       --mesh FILE: any mesh Capytaine or meshio reads, in Capytaine's frame (x forward,
-      y port, z up, waterline z = 0); give --cg.
+      y port, z up, waterline z = 0); give --cg (and --mesh-format nemoh for .dat).
 
   python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--omegas W ...]
                              [--headings-deg B ...] [-o FILE.h5|FILE.csv]
@@ -42,6 +42,9 @@ def _parser():
     b = sub.add_parser("build", help="mesh, solve and write a BEM database")
     b.add_argument("--hull", choices=("box", "ship"), default="box")
     b.add_argument("--mesh", default=None, help="mesh file (overrides --hull)")
+    b.add_argument("--mesh-format", default=None,
+                   help="format of --mesh when its extension is ambiguous (e.g. nemoh for "
+                        ".dat; Capytaine's load_mesh names)")
     b.add_argument("--panels", type=int, default=2000,
                    help="approximate number of hull panels (default 2000)")
     b.add_argument("--length", type=float, default=None,
@@ -97,7 +100,11 @@ def _build(args, argv):
     from . import bem_build
     omega_max = 2.0 if args.omegas is None else max(args.omegas)
     if args.mesh:
-        hull = bem_mesh.file_hull(args.mesh, omega_max=omega_max, lid=not args.no_lid)
+        try:
+            hull = bem_mesh.file_hull(args.mesh, omega_max=omega_max, lid=not args.no_lid,
+                                      file_format=args.mesh_format)
+        except (OSError, ValueError) as exc:
+            return _error(f"{args.mesh}: {exc}")
     elif args.hull == "ship":
         hull = bem_mesh.ship_hull(length=args.length or bem_mesh.L_PP, beam=args.beam,
                                   draught=args.draught,
@@ -157,8 +164,8 @@ def _compare(args):
     except (OSError, ValueError) as exc:
         return _error(exc)
     print(bem_compare.markdown(
-        rows, f"{int(np.ravel(fine.attrs['panels'])[0])} panels",
-        f"{int(np.ravel(coarse.attrs['panels'])[0])} panels"))
+        rows, f"{int(np.ravel(fine.attrs[bem_db.ATTR_PANELS])[0])} panels",
+        f"{int(np.ravel(coarse.attrs[bem_db.ATTR_PANELS])[0])} panels"))
     return 0
 
 

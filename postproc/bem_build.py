@@ -227,13 +227,13 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
                                 progress)
     attrs = {
         "title": "davit ship hydrodynamics (Capytaine BEM database)",
-        "hull_kind": hull.kind, "length": hull.length, "beam": hull.beam,
-        "draught": hull.draught, "panels": np.int32(hull.panels),
-        "lid_panels": np.int32(hull.lid_panels), "lid": np.int32(hull.lid is not None),
+        db.ATTR_HULL_KIND: hull.kind, db.ATTR_LENGTH: hull.length, db.ATTR_BEAM: hull.beam,
+        db.ATTR_DRAUGHT: hull.draught, db.ATTR_PANELS: np.int32(hull.panels),
+        db.ATTR_LID_PANELS: np.int32(hull.lid_panels), "lid": np.int32(hull.lid is not None),
         "lid_z": hull.lid_z, "rho": rho, "g": g, "mass": hydro["mass"],
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
-        "command_line": command, "solve_time_s": elapsed,
+        db.ATTR_COMMAND_LINE: command, db.ATTR_SOLVE_TIME: elapsed,
         "davit_conventions": db.__doc__.strip(),
         "frame_of_capytaine_variables": "Capytaine's (x forward, y port, z up; e^{-i w t}; "
                                         "wave_direction from x towards y, port)",

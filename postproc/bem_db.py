@@ -43,6 +43,16 @@ SS_FIT_ERROR_RETARDATION = "davit_ss_fit_error_retardation"
 RETARDATION_TIME = "davit_retardation_time"
 RETARDATION = "davit_retardation"
 
+# root attributes of the database read back (the full list: postproc.bem_build.build)
+ATTR_HULL_KIND = "hull_kind"
+ATTR_LENGTH = "length"
+ATTR_BEAM = "beam"
+ATTR_DRAUGHT = "draught"
+ATTR_PANELS = "panels"
+ATTR_LID_PANELS = "lid_panels"
+ATTR_COMMAND_LINE = "command_line"
+ATTR_SOLVE_TIME = "solve_time_s"
+
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 DOF_SIGN = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])
 VECTOR_SIGN = np.array([1.0, -1.0, -1.0])

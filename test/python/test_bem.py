@@ -30,7 +30,7 @@ def base():
 
 
 def _box(base):
-    return base.attrs["length"], base.attrs["beam"], base.attrs["draught"]
+    return base.attrs[db.ATTR_LENGTH], base.attrs[db.ATTR_BEAM], base.attrs[db.ATTR_DRAUGHT]
 
 
 def _scalar(value):
@@ -38,11 +38,11 @@ def _scalar(value):
 
 
 def test_database_is_the_default_box(base):
-    assert base.attrs["hull_kind"] == "box"
+    assert base.attrs[db.ATTR_HULL_KIND] == "box"
     l, b, d = (_scalar(v) for v in _box(base))
     assert l == pytest.approx(np.sqrt(0.68) * 130.55, rel=1e-6)
     assert (b, d) == (20.8, 4.4)
-    assert 1000 <= _scalar(base.attrs["panels"]) <= 2500
+    assert 1000 <= _scalar(base.attrs[db.ATTR_PANELS]) <= 2500
     assert np.allclose(base[db.CG], 0.0)
     assert base.omega.size >= 40 and base.omega[0] == pytest.approx(0.1)
     assert base.omega[-1] == pytest.approx(2.0)
