@@ -45,6 +45,24 @@ RAO_AMPLITUDE = "rao/amplitude"
 RAO_PHASE = "rao/phase"
 RAO = (RAO_OMEGA, RAO_HEADING, RAO_AMPLITUDE, RAO_PHASE)
 RAO_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+# `python -m postproc.bem rao` (postproc.bem_rao): frequency-domain RAOs from the BEM
+# database, davit's body frame (z down); root datasets, numpy shapes: omega (nw) [rad/s],
+# heading (nb) [rad], rao_re, rao_im, amplitude (nw, nb, 6), phase (nw, nb, 6) [rad],
+# natural_period (6) [s]; root attributes: the database's path, the roll damping ratio and
+# B44_visc [N m s]. (The BEM database itself is Capytaine's format: postproc.bem_db.)
+BEM_RAO_OMEGA = "omega"
+BEM_RAO_HEADING = "heading"
+BEM_RAO_RE = "rao_re"
+BEM_RAO_IM = "rao_im"
+BEM_RAO_AMPLITUDE = "amplitude"
+BEM_RAO_PHASE = "phase"
+BEM_RAO_NATURAL_PERIOD = "natural_period"
+BEM_RAO_DATABASE = "database"
+BEM_RAO_ROLL_DAMPING_RATIO = "roll_damping_ratio"
+BEM_RAO_ROLL_DAMPING_VISC = "roll_damping_visc"
+# the attributes of every dataset
+UNITS = "units"
+DESCRIPTION = "description"
 SHIP_POSITION = "ship/position"
 SHIP_EULER = "ship/euler"
 SHIP = (SHIP_POSITION, SHIP_EULER)

@@ -1,0 +1,183 @@
+"""Ship hydrodynamics from a BEM database (Capytaine).
+
+  python -m postproc.bem build [--hull box|ship | --mesh FILE] [--panels N]
+                               [--omegas W ...] [--headings-deg B ...] [-o input/ship_bem.nc]
+      mesh a hull, solve radiation (6 DOF) and diffraction with Capytaine, fit the radiation
+      memory as state-space models, and write the database: Capytaine's dataset plus the
+      davit_ variables (postproc.bem_db; davit's frame and conventions).
+      Default: the paper's equivalent box l = sqrt(C_b) L_wl = 107.65 m, B = 20.8 m,
+      d = 4.4 m, ~2,000 panels + lid, CG midship on the waterline (KG = d), mass = displaced
+      mass, gyradii 0.38 B (roll) and 32.6375 m (pitch, yaw); 48 frequencies 0.1..2 rad/s
+      (+ 0 and inf), headings 0..360 deg every 15 deg.
+      --hull ship: L_pp 126 m, B 20.8 m, T 4.4 m, C_b 0.68 (postproc.bem_mesh.ship_hull).
+      --mesh FILE: any mesh Capytaine or meshio reads, in Capytaine's frame (x forward,
+      y port, z up, waterline z = 0); give --cg (and --mesh-format nemoh for .dat).
+
+  python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--omegas W ...]
+                             [--headings-deg B ...] [-o FILE.h5|FILE.csv]
+      6-DOF frequency-domain RAOs from the database (postproc.bem_rao documents the
+      conventions and the output layout); prints the undamped natural periods of heave,
+      roll and pitch.
+
+  python -m postproc.bem compare FINE COARSE
+      mesh convergence: max change of A, B, the excitation and the RAO peak of heave, roll
+      and pitch within 0.2 rad/s of their natural frequencies (postproc.bem_compare), as a
+      Markdown table.
+
+Exit status 0 on success, 1 on an unreadable input or a failed solve.
+"""
+import argparse
+import shlex
+import sys
+
+import numpy as np
+
+from . import bem_db, bem_mesh, bem_rao
+
+
+def _parser():
+    parser = argparse.ArgumentParser(prog="python -m postproc.bem", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    b = sub.add_parser("build", help="mesh, solve and write a BEM database")
+    b.add_argument("--hull", choices=("box", "ship"), default="box")
+    b.add_argument("--mesh", default=None, help="mesh file (overrides --hull)")
+    b.add_argument("--mesh-format", default=None,
+                   help="format of --mesh when its extension is ambiguous (e.g. nemoh for "
+                        ".dat; Capytaine's load_mesh names)")
+    b.add_argument("--panels", type=int, default=2000,
+                   help="approximate number of hull panels (default 2000)")
+    b.add_argument("--length", type=float, default=None,
+                   help="waterline length [m] (box: 107.65, ship: L_pp 126)")
+    b.add_argument("--beam", type=float, default=bem_mesh.BEAM)
+    b.add_argument("--draught", type=float, default=bem_mesh.DRAUGHT)
+    b.add_argument("--block-coefficient", type=float, default=bem_mesh.BLOCK_COEFFICIENT,
+                   help="ship hull only")
+    b.add_argument("--no-lid", action="store_true", help="no irregular-frequency lid")
+    b.add_argument("--cg", type=float, nargs=3, default=(0.0, 0.0, 0.0),
+                   metavar=("X", "Y", "Z"),
+                   help="CG = rotation centre in the mesh frame (z up; default 0 0 0: "
+                        "midship, centreline, on the waterline)")
+    b.add_argument("--mass", type=float, default=None, help="[kg] (default: displaced mass)")
+    b.add_argument("--roll-gyradius", type=float, default=None, help="[m] (default 0.38 B)")
+    b.add_argument("--pitch-gyradius", type=float, default=32.6375, help="[m]")
+    b.add_argument("--yaw-gyradius", type=float, default=32.6375, help="[m]")
+    b.add_argument("--rho", type=float, default=1025.0)
+    b.add_argument("--omegas", type=float, nargs="+", default=None, help="[rad/s]")
+    b.add_argument("--headings-deg", type=float, nargs="+", default=None,
+                   help="relative headings, davit's convention (0 following, 90 waves to "
+                        "starboard, 180 head seas)")
+    b.add_argument("--nmax", type=int, default=12, help="largest state-space order")
+    b.add_argument("--fit-tol", type=float, default=0.02,
+                   help="target max relative error of the fitted A and B")
+    b.add_argument("-o", "--output", default="input/ship_bem.nc")
+    b.add_argument("-q", "--quiet", action="store_true")
+
+    r = sub.add_parser("rao", help="frequency-domain RAOs from a database")
+    r.add_argument("database")
+    r.add_argument("--roll-damping", type=float, default=0.05,
+                   help="linear roll damping ratio zeta (default 0.05)")
+    r.add_argument("--omegas", type=float, nargs="+", default=None,
+                   help="[rad/s] (default: the database's)")
+    r.add_argument("--headings-deg", type=float, nargs="+", default=None,
+                   help="default: 0, 45, 90, 135, 180")
+    r.add_argument("-o", "--output", default=None, help="FILE.h5 or FILE.csv")
+
+    c = sub.add_parser("compare", help="mesh convergence between two databases")
+    c.add_argument("fine")
+    c.add_argument("coarse")
+    return parser
+
+
+def _error(message):
+    print(f"bem: error: {message}", file=sys.stderr)
+    return 1
+
+
+def _build(args, argv):
+    import logging
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    from . import bem_build
+    omega_max = 2.0 if args.omegas is None else max(args.omegas)
+    if args.mesh:
+        try:
+            hull = bem_mesh.file_hull(args.mesh, omega_max=omega_max, lid=not args.no_lid,
+                                      file_format=args.mesh_format)
+        except (OSError, ValueError) as exc:
+            return _error(f"{args.mesh}: {exc}")
+    elif args.hull == "ship":
+        hull = bem_mesh.ship_hull(length=args.length or bem_mesh.L_PP, beam=args.beam,
+                                  draught=args.draught,
+                                  block_coefficient=args.block_coefficient,
+                                  panels=args.panels, omega_max=omega_max,
+                                  lid=not args.no_lid)
+    else:
+        hull = bem_mesh.box_hull(length=args.length or bem_mesh.BOX_LENGTH, beam=args.beam,
+                                 draught=args.draught, panels=args.panels,
+                                 omega_max=omega_max, lid=not args.no_lid)
+    gyradii = (args.roll_gyradius or bem_build.ROLL_GYRADIUS_FACTOR * hull.beam,
+               args.pitch_gyradius, args.yaw_gyradius)
+    command = "python -m postproc.bem " + " ".join(shlex.quote(a) for a in argv)
+    bem_build.build(hull, args.output, cg=args.cg, mass=args.mass, gyradii=gyradii,
+                    omegas=args.omegas, headings_deg=args.headings_deg, rho=args.rho,
+                    nmax=args.nmax, tol=args.fit_tol, command=command,
+                    progress=not args.quiet)
+    return 0
+
+
+def _rao(args):
+    try:
+        base = bem_db.Database(args.database)
+    except (OSError, ValueError) as exc:
+        return _error(exc)
+    headings = np.radians(args.headings_deg if args.headings_deg is not None
+                          else [0.0, 45.0, 90.0, 135.0, 180.0])
+    omegas = base.omega if args.omegas is None else np.asarray(args.omegas)
+    try:
+        xi, b44 = bem_rao.raos(base, omegas, headings, args.roll_damping)
+    except ValueError as exc:
+        return _error(exc)
+    periods = bem_rao.natural_periods(base)
+    for dof in bem_rao.RESTORED:
+        print(f"bem: undamped natural period {bem_db.DOFS[dof]:>5s}: {periods[dof]:.3f} s "
+              f"(omega {2 * np.pi / periods[dof]:.4f} rad/s)")
+    print(f"bem: roll damping zeta {args.roll_damping:g}: B44_visc = {b44:.4g} N m s")
+    if args.output:
+        bem_rao.write(args.output, omegas, headings, xi, periods, args.database,
+                      args.roll_damping, b44)
+        print(f"bem: wrote {args.output}")
+    else:
+        print("omega  heading  |heave| |roll|/k |pitch|/k  (amplitude per unit wave amplitude)")
+        for n, w in enumerate(omegas):
+            k = w**2 / 9.81
+            for m, h in enumerate(headings):
+                print(f"{w:6.3f} {np.degrees(h):6.1f}  {abs(xi[n, m, 2]):7.4f} "
+                      f"{abs(xi[n, m, 3]) / k:8.4f} {abs(xi[n, m, 4]) / k:8.4f}")
+    return 0
+
+
+def _compare(args):
+    from . import bem_compare
+    try:
+        fine, coarse = bem_db.Database(args.fine), bem_db.Database(args.coarse)
+        rows = bem_compare.compare(fine, coarse)
+    except (OSError, ValueError) as exc:
+        return _error(exc)
+    print(bem_compare.markdown(
+        rows, f"{int(np.ravel(fine.attrs[bem_db.ATTR_PANELS])[0])} panels",
+        f"{int(np.ravel(coarse.attrs[bem_db.ATTR_PANELS])[0])} panels"))
+    return 0
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = _parser().parse_args(argv)
+    if args.command == "build":
+        return _build(args, argv)
+    if args.command == "compare":
+        return _compare(args)
+    return _rao(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

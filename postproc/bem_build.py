@@ -1,0 +1,247 @@
+"""Solve a hull with Capytaine and write the BEM database (see postproc.bem_db).
+
+The frequencies are solved one at a time (6 radiation problems and one diffraction problem
+per heading share one factorised matrix), and Capytaine's per-matrix LRU cache of the
+symmetric-mesh blocks is cleared after each, so memory stays flat (~0.3 GB for 2,000
+panels); omega = 0 and omega = inf are solved for radiation only.
+"""
+import os
+import sys
+import time as _time
+
+import numpy as np
+
+from . import bem_db as db
+from . import bem_fit, layout
+
+RHO = 1025.0
+G = 9.81
+ROLL_GYRADIUS_FACTOR = 0.38      # k_xx = 0.38 B (review G9)
+PITCH_GYRADIUS = 32.6375         # k_yy = k_zz = 0.25 L_wl [m]
+RETARDATION_DT = 0.1             # [s]
+RETARDATION_END = 60.0           # [s]
+FIT_WINDOW = 30.0                # [s] of the K(t) error
+
+
+def default_omegas():
+    """55 frequencies in 0.1..2.0 rad/s: every 0.05 below 0.5, 0.025 over 0.5..1.2 and
+    0.0125 over 0.7..0.95, where the default box's roll (undamped natural frequency 0.80
+    rad/s), heave and pitch (0.92 rad/s) respond; every 0.1 above 1.2."""
+    w = np.concatenate([np.arange(0.1, 0.5, 0.05), np.arange(0.5, 1.2, 0.025),
+                        np.arange(0.7, 0.95, 0.0125), np.arange(1.2, 2.0001, 0.1)])
+    return np.unique(np.round(w, 6))
+
+
+def default_headings_deg():
+    """0..360 deg every 15 deg (360 is a copy of 0, for interpolation without wrapping)."""
+    return np.arange(0.0, 360.0001, 15.0)
+
+
+def mass_matrix(mass, gyradii):
+    """Diagonal 6x6 rigid-body mass matrix about the CG (the same in both frames)."""
+    return np.diag([mass, mass, mass] + [mass * r**2 for r in gyradii])
+
+
+def _clear_capytaine_cache():
+    from capytaine.tools.block_circulant_matrices import NestedBlockCirculantMatrix
+    clear = getattr(NestedBlockCirculantMatrix.to_BlockCirculantMatrix, "cache_clear", None)
+    if clear is not None:
+        clear()
+
+
+def _sign_matrix(m):
+    return db.DOF_SIGN[:, None] * m * db.DOF_SIGN[None, :]
+
+
+def _ordered(da, dofs):
+    return da.sel(influenced_dof=list(dofs), radiating_dof=list(dofs))
+
+
+def make_body(hull, cg, mass=None, gyradii=None, rho=RHO, g=G):
+    """Capytaine FloatingBody with 6 rigid DOFs about cg, the mass matrix, and Capytaine's
+    hydrostatic stiffness; returns (body, mass matrix, hydrostatics dict)."""
+    import capytaine as cpt
+    import xarray as xr
+    cg = np.asarray(cg, float)
+    body = cpt.FloatingBody(mesh=hull.mesh, lid_mesh=hull.lid,
+                            dofs=cpt.rigid_body_dofs(rotation_center=cg), center_of_mass=cg,
+                            name=hull.kind)
+    volume = float(body.disp_volume)
+    if mass is None:
+        mass = rho * volume
+    body.mass = mass
+    if gyradii is None:
+        gyradii = (ROLL_GYRADIUS_FACTOR * hull.beam, PITCH_GYRADIUS, PITCH_GYRADIUS)
+    m6 = mass_matrix(mass, gyradii)
+    dofs = list(body.dofs)
+    body.inertia_matrix = xr.DataArray(m6, dims=["influenced_dof", "radiating_dof"],
+                                       coords={"influenced_dof": dofs, "radiating_dof": dofs})
+    body.hydrostatic_stiffness = body.compute_hydrostatic_stiffness(rho=rho, g=g)
+    hydro = {"volume": volume, "waterplane_area": float(body.waterplane_area),
+             "centre_of_buoyancy": np.asarray(body.center_of_buoyancy, float),
+             "gm_t": float(body.transversal_metacentric_height),
+             "gm_l": float(body.longitudinal_metacentric_height),
+             "mass": float(mass), "gyradii": np.asarray(gyradii, float)}
+    return body, m6, hydro
+
+
+def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
+    """Radiation + diffraction over omegas x headings (davit's relative headings, deg),
+    frequency by frequency; then radiation at omega = 0 and inf. Returns
+    (dataset of the finite frequencies, dataset of 0 and inf, solve time [s])."""
+    import capytaine as cpt
+    solver = cpt.BEMSolver()
+    directions = np.unique(np.mod(-np.radians(headings_deg), 2 * np.pi).round(12))
+    results, t0 = [], _time.time()
+    for n, w in enumerate(omegas):
+        t = _time.time()
+        problems = [cpt.RadiationProblem(body=body, radiating_dof=d, omega=w, rho=rho, g=g)
+                    for d in body.dofs]
+        problems += [cpt.DiffractionProblem(body=body, wave_direction=b, omega=w, rho=rho, g=g)
+                     for b in directions]
+        results += solver.solve_all(problems, progress_bar=False)
+        _clear_capytaine_cache()
+        if progress:
+            print(f"bem: omega {w:.4f} rad/s ({n + 1}/{len(omegas)}) {_time.time() - t:.1f} s",
+                  file=sys.stderr, flush=True)
+    special = []
+    for w in (0.0, np.inf):
+        special += solver.solve_all([cpt.RadiationProblem(body=body, radiating_dof=d, omega=w,
+                                                          rho=rho, g=g) for d in body.dofs],
+                                    progress_bar=False)
+        _clear_capytaine_cache()
+    elapsed = _time.time() - t0
+    ds = cpt.assemble_dataset(results, hydrostatics=True)
+    ds_special = cpt.assemble_dataset(special, hydrostatics=False)
+    return ds, ds_special, elapsed
+
+
+def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12, tol=0.02,
+                    progress=True):
+    """The davit_ variables (name -> numpy array) from Capytaine's datasets."""
+    dofs = list(body.dofs)
+    cg = np.asarray(body.center_of_mass, float)
+    omega = ds.omega.values
+    k = omega**2 / g
+    a_c = _ordered(ds.added_mass, dofs).transpose("omega", "influenced_dof", "radiating_dof")
+    b_c = _ordered(ds.radiation_damping, dofs).transpose("omega", "influenced_dof",
+                                                         "radiating_dof")
+    added_mass = _sign_matrix(a_c.values)
+    damping = _sign_matrix(b_c.values)
+    a_sp = _ordered(ds_special.added_mass, dofs)
+    a_zero = _sign_matrix(a_sp.sel(omega=0.0).values)
+    a_inf = _sign_matrix(a_sp.sel(omega=np.inf).values)
+
+    beta = np.radians(headings_deg)
+    beta_c = np.mod(-beta, 2 * np.pi)
+    dirs = ds.wave_direction.values
+    index = [int(np.argmin(np.abs(np.angle(np.exp(1j * (dirs - b)))))) for b in beta_c]
+
+    def convert(force):
+        f = force.sel(influenced_dof=dofs).transpose("omega", "wave_direction",
+                                                     "influenced_dof").values[:, index, :]
+        # Capytaine: F = Re[X e^{-i w t}] for eta = Re[e^{i (k.x - w t)}] at the origin;
+        # davit: F = Re[X e^{i (w t - k.x_G)}], so X_davit = S conj(X_cpt) e^{+i k.x_G}
+        shift = np.exp(1j * np.outer(k, cg[0] * np.cos(beta_c) + cg[1] * np.sin(beta_c)))
+        return np.conj(f) * shift[:, :, None] * db.DOF_SIGN[None, None, :]
+
+    excitation = convert(ds.excitation_force)
+    froude_krylov = convert(ds.Froude_Krylov_force)
+    stiffness = _sign_matrix(_ordered(ds.hydrostatic_stiffness.squeeze(drop=True),
+                                      dofs).values)
+
+    time = np.arange(0.0, RETARDATION_END + 0.5 * RETARDATION_DT, RETARDATION_DT)
+    kernel = bem_fit.retardation(omega, damping, time)
+    fits = bem_fit.fit_all(omega, added_mass, damping, a_inf, time, kernel, nmax=nmax,
+                           tol=tol, window=FIT_WINDOW)
+    order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
+    if progress:
+        print_fit_report(fits)
+    return {
+        db.OMEGA: omega, db.HEADING: beta, db.WAVENUMBER: k,
+        db.ADDED_MASS: added_mass, db.DAMPING: damping,
+        db.ADDED_MASS_INF: a_inf, db.ADDED_MASS_ZERO: a_zero,
+        db.EXCITATION_RE: excitation.real, db.EXCITATION_IM: excitation.imag,
+        db.FROUDE_KRYLOV_RE: froude_krylov.real, db.FROUDE_KRYLOV_IM: froude_krylov.imag,
+        db.STIFFNESS: stiffness, db.MASS: m6,
+        db.VOLUME: np.float64(hydro["volume"]),
+        db.WATERPLANE_AREA: np.float64(hydro["waterplane_area"]),
+        db.BUOYANCY_CENTRE: db.VECTOR_SIGN * (hydro["centre_of_buoyancy"] - cg),
+        db.CG: cg,
+        db.SS_ORDER: order, db.SS_A: ss_a, db.SS_B: ss_b, db.SS_C: ss_c,
+        db.SS_FIT_ERROR: np.maximum(err[0], err[1]),
+        db.SS_FIT_ERROR_ADDED_MASS: err[0], db.SS_FIT_ERROR_DAMPING: err[1],
+        db.SS_FIT_ERROR_RETARDATION: err[2],
+        db.RETARDATION_TIME: time, db.RETARDATION: kernel,
+    }
+
+
+def print_fit_report(fits, file=sys.stderr):
+    print("bem: state-space fits (pair i,j: order, max err A, max err B, L2 err K(t) 0-30 s)",
+          file=file)
+    for (i, j), f in sorted(fits.items()):
+        print(f"bem:   {db.DOFS[i]:>5s}-{db.DOFS[j]:<5s} n={f.order:2d}  "
+              f"A {f.error_added_mass:7.2%}  B {f.error_damping:7.2%}  "
+              f"K(t) {f.error_retardation:7.2%}  max Re(pole) "
+              f"{max(p.real for p in f.poles):.3g}", file=file)
+
+
+def write(path, ds, variables, attrs):
+    """Capytaine's dataset (complex values split) plus the davit variables, netCDF4/HDF5,
+    written to a temporary name and renamed when complete."""
+    import xarray as xr
+    from capytaine.io.xarray import separate_complex_values
+    out = separate_complex_values(ds)
+    out["radiating_dof"] = out["radiating_dof"].astype(str)
+    out["influenced_dof"] = out["influenced_dof"].astype(str)
+    for name, value in variables.items():
+        dims, units, description = db.VARIABLES[name]
+        value = np.asarray(value)
+        if name == db.SS_ORDER:
+            value = value.astype(np.int32)
+        else:
+            value = value.astype(np.float64)
+        out[name] = xr.DataArray(value, dims=dims,
+                                 attrs={layout.UNITS: units, layout.DESCRIPTION: description})
+    out.attrs = {k: v for k, v in out.attrs.items()}
+    out.attrs.update(attrs)
+    tmp = f"{path}.tmp{os.getpid()}"
+    out.to_netcdf(tmp, engine="h5netcdf", invalid_netcdf=False)
+    os.replace(tmp, path)
+
+
+def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
+          headings_deg=None, rho=RHO, g=G, nmax=12, tol=0.02, command="", progress=True):
+    """Mesh -> BEM solve -> davit variables -> database file. Returns (variables, attrs)."""
+    import capytaine as cpt
+    omegas = default_omegas() if omegas is None else np.sort(np.asarray(omegas, float))
+    headings_deg = (default_headings_deg() if headings_deg is None
+                    else np.asarray(headings_deg, float))
+    body, m6, hydro = make_body(hull, cg, mass, gyradii, rho, g)
+    if progress:
+        print(f"bem: {hull.kind} hull {hull.length:.2f} x {hull.beam:.2f} x {hull.draught:.2f} m, "
+              f"{hull.panels} panels + {hull.lid_panels} lid panels (z = {hull.lid_z:.2f} m), "
+              f"{len(omegas)} frequencies x {len(headings_deg)} headings", file=sys.stderr)
+    ds, ds_special, elapsed = solve(body, omegas, headings_deg, rho, g, progress)
+    variables = davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g, nmax, tol,
+                                progress)
+    attrs = {
+        "title": "davit ship hydrodynamics (Capytaine BEM database)",
+        db.ATTR_HULL_KIND: hull.kind, db.ATTR_LENGTH: hull.length, db.ATTR_BEAM: hull.beam,
+        db.ATTR_DRAUGHT: hull.draught, db.ATTR_PANELS: np.int32(hull.panels),
+        db.ATTR_LID_PANELS: np.int32(hull.lid_panels), "lid": np.int32(hull.lid is not None),
+        "lid_z": hull.lid_z, "rho": rho, "g": g, "mass": hydro["mass"],
+        "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
+        "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
+        db.ATTR_COMMAND_LINE: command, db.ATTR_SOLVE_TIME: elapsed,
+        "davit_conventions": db.__doc__.strip(),
+        "frame_of_capytaine_variables": "Capytaine's (x forward, y port, z up; e^{-i w t}; "
+                                        "wave_direction from x towards y, port)",
+    }
+    for key, value in hull.extra.items():
+        attrs[key] = value
+    write(out, ds, variables, attrs)
+    if progress:
+        size = os.path.getsize(out) / 1e6
+        print(f"bem: wrote {out} ({size:.1f} MB), solve {elapsed:.0f} s", file=sys.stderr)
+    return variables, attrs

@@ -1,0 +1,267 @@
+"""Radiation memory of the BEM database: retardation functions and state-space fits.
+
+Cummins' equation: (M + A_inf) u' + mu + C eta = F, with the memory force
+mu_i(t) = sum_j int_0^t K_ij(t - tau) u_j(tau) dtau and the retardation function
+K_ij(t) = (2/pi) int_0^inf B_ij(w) cos(w t) dw. Its transfer function (Fourier transform,
+e^{+i w t}) is K_ij(i w) = B_ij(w) + i w (A_ij(w) - A_ij(inf)), so a fit K_fit reproduces
+B_fit(w) = Re K_fit(i w) and A_fit(w) = A_inf + Im K_fit(i w) / w.
+
+Each pair (i, j) is fitted on its own by vector fitting (Gustavsen and Semlyen 1999:
+iterated pole relocation of a partial-fraction model, unstable poles reflected into the
+left half-plane) with the structure of a radiation kernel imposed: strictly proper
+(relative degree >= 1, no constant or s term) and K(0) = 0 exactly (one linear constraint
+on the residues in the final least-squares step). The order grows until the frequency-domain
+error drops below a tolerance. The realisation is real and block-diagonal: a real pole p
+with residue c gives [p], [1], [c]; a complex pair p, conj(p) with residue c gives
+A = [[Re p, -Im p], [Im p, Re p]], B = [1, 0], C = [2 Re c, -2 Im c].
+numpy only (no scipy), so that the RAO tool and the tests need no more than numpy and h5py.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+# Tail of B(w) beyond the last grid frequency in the cosine transform: B_N (w_N / w)^p,
+# p = 2 as in the fitted models (relative degree 1: Re K(i w) ~ 1/w^2)
+TAIL_POWER = 2.0
+TAIL_FACTOR = 10.0         # the tail is integrated up to TAIL_FACTOR * w_N
+DW_FINE = 2.0e-3           # [rad/s] quadrature step of the cosine transform
+
+
+def retardation(omega, damping, time, damping_zero=None):
+    """K(t) = (2/pi) int_0^inf B(w) cos(w t) dw for B given at omega (ascending, > 0),
+    shape (nw, ...) -> (nt, ...). B is piecewise linear between the grid points and from
+    B(0) (damping_zero, default 0: no wave radiation at w = 0) to the first point, and
+    decays as (w_N / w)^TAIL_POWER beyond the last one."""
+    omega = np.asarray(omega, float)
+    b = np.asarray(damping, float)
+    shape = b.shape[1:]
+    b = b.reshape(len(omega), -1)
+    b0 = np.zeros(b.shape[1]) if damping_zero is None else np.asarray(damping_zero).reshape(-1)
+    wg = np.concatenate([[0.0], omega])
+    bg = np.vstack([b0[None, :], b])
+    w_fine = np.arange(0.0, omega[-1], DW_FINE)
+    w_fine = np.append(w_fine, omega[-1])
+    b_fine = np.stack([np.interp(w_fine, wg, bg[:, k]) for k in range(b.shape[1])], axis=1)
+    w_tail = np.arange(omega[-1], TAIL_FACTOR * omega[-1], DW_FINE)
+    b_tail = b[-1][None, :] * (omega[-1] / w_tail[:, None])**TAIL_POWER
+    w_all = np.concatenate([w_fine, w_tail[1:]])
+    b_all = np.vstack([b_fine, b_tail[1:]])
+    weights = np.gradient(w_all)  # trapezoid-like weights on a near-uniform grid
+    weights[0] *= 0.5
+    weights[-1] *= 0.5
+    k = (2.0 / np.pi) * np.cos(np.outer(time, w_all)) @ (weights[:, None] * b_all)
+    return k.reshape((len(time),) + shape)
+
+
+def _split_poles(poles):
+    """Poles as a list of (real pole) or (pair with Im > 0), each with its column count."""
+    return [(p, 1) if p.imag == 0.0 else (p, 2) for p in poles]
+
+
+def _basis(s, poles):
+    """Real-coefficient partial-fraction basis at s: 1/(s - p) for a real pole; for a pair,
+    1/(s - p) + 1/(s - p*) and i/(s - p) - i/(s - p*)."""
+    cols = []
+    for p, m in _split_poles(poles):
+        if m == 1:
+            cols.append(1.0 / (s - p.real))
+        else:
+            cols.append(1.0 / (s - p) + 1.0 / (s - np.conj(p)))
+            cols.append(1j / (s - p) - 1j / (s - np.conj(p)))
+    return np.array(cols).T
+
+
+def realisation(poles, coef):
+    """(A, B, C) of sum of the basis functions weighted by coef (see the module doc)."""
+    n = len(coef)
+    a, b, c = np.zeros((n, n)), np.zeros(n), np.zeros(n)
+    k = 0
+    for p, m in _split_poles(poles):
+        if m == 1:
+            a[k, k], b[k], c[k] = p.real, 1.0, coef[k]
+        else:
+            a[k:k + 2, k:k + 2] = [[p.real, -p.imag], [p.imag, p.real]]
+            b[k] = 1.0
+            c[k], c[k + 1] = 2.0 * coef[k], -2.0 * coef[k + 1]
+        k += m
+    return a, b, c
+
+
+def _relocate(zeros, min_damping):
+    """Canonical stable pole list from the eigenvalues of the sigma function: real ones and
+    one of each conjugate pair, reflected into the left half-plane with Re p <=
+    -min_damping |p|."""
+    poles = []
+    scale = np.max(np.abs(zeros)) if len(zeros) else 1.0
+    for z in zeros:
+        if abs(z.imag) <= 1e-9 * max(abs(z), scale * 1e-6):
+            re = -max(abs(z.real), min_damping * scale)
+            poles.append(complex(re, 0.0))
+        elif z.imag > 0:
+            re = -max(abs(z.real), min_damping * abs(z))
+            poles.append(complex(re, z.imag))
+    return poles
+
+
+def _initial_poles(order, w_lo, w_hi):
+    poles = []
+    npair = order // 2
+    for beta in np.linspace(w_lo, w_hi, max(npair, 1))[:npair]:
+        poles.append(complex(-beta / 100.0, beta))
+    if order % 2:
+        poles.append(complex(-0.5 * (w_lo + w_hi), 0.0))
+    return poles
+
+
+def _lstsq_real(m, rhs):
+    mr = np.vstack([m.real, m.imag])
+    rr = np.concatenate([rhs.real, rhs.imag])
+    scale = np.linalg.norm(mr, axis=0)
+    scale[scale == 0.0] = 1.0
+    x = np.linalg.lstsq(mr / scale, rr, rcond=None)[0]
+    return x / scale
+
+
+def vector_fit(s, f, order, iterations=40, min_damping=1e-3):
+    """Stable strictly proper rational fit of f(s) with f(0) = 0 of the given order.
+    Returns (poles, coef) with the real coefficients of _basis."""
+    w = np.abs(s.imag)
+    wpos = w[w > 0]
+    poles = _initial_poles(order, wpos.min(), wpos.max())
+    for _ in range(iterations):
+        phi = _basis(s, poles)
+        x = _lstsq_real(np.hstack([phi, -f[:, None] * phi]), f)
+        a, b, c = realisation(poles, x[order:])
+        zeros = np.linalg.eigvals(a - np.outer(b, c))
+        new = _relocate(zeros, min_damping)
+        if sum(m for _, m in _split_poles(new)) != order:
+            break
+        poles = new
+    # residues with K(0) = 0: coef = N y, N spanning the null space of the row basis(0)
+    phi = _basis(s, poles)
+    g = _basis(np.array([0.0 + 0.0j]), poles).real[0]
+    _, _, vt = np.linalg.svd(g[None, :])
+    null = vt[1:].T
+    y = _lstsq_real(phi @ null, f)
+    return poles, null @ y
+
+
+def evaluate(poles, coef, s):
+    return _basis(np.atleast_1d(s), poles) @ coef
+
+
+def impulse_response(poles, coef, time):
+    """K(t) = C exp(A t) B of the realisation."""
+    k = np.zeros(len(time))
+    i = 0
+    for p, m in _split_poles(poles):
+        if m == 1:
+            k += coef[i] * np.exp(p.real * time)
+        else:
+            c = coef[i] + 1j * coef[i + 1]
+            k += 2.0 * np.real(c * np.exp(p * time))
+        i += m
+    return k
+
+
+@dataclass
+class PairFit:
+    order: int
+    a: np.ndarray           # (n, n)
+    b: np.ndarray           # (n,)
+    c: np.ndarray           # (n,)
+    poles: list
+    coef: np.ndarray
+    error_added_mass: float     # max |A_fit - A| / max |A - A_inf| over the grid
+    error_damping: float        # max |B_fit - B| / max |B| over the grid
+    error_retardation: float    # ||K_ss - K|| / ||K|| (L2 over 0..30 s), nan if not computed
+
+    @property
+    def error(self):
+        return max(self.error_added_mass, self.error_damping)
+
+
+def fit_errors(poles, coef, omega, added_mass, damping, added_mass_inf):
+    kf = evaluate(poles, coef, 1j * omega)
+    a_fit = added_mass_inf + kf.imag / omega
+    b_fit = kf.real
+    scale_a = max(np.max(np.abs(added_mass - added_mass_inf)), 1e-300)
+    scale_b = max(np.max(np.abs(damping)), 1e-300)
+    return (float(np.max(np.abs(a_fit - added_mass)) / scale_a),
+            float(np.max(np.abs(b_fit - damping)) / scale_b))
+
+
+def fit_pair(omega, added_mass, damping, added_mass_inf, nmax=12, tol=0.02):
+    """Lowest order in 2..nmax whose A and B errors are both below tol (else the best one);
+    the data are K(0) = 0 and the grid."""
+    omega = np.asarray(omega, float)
+    s = np.concatenate([[0.0], omega]) * 1j
+    k = np.concatenate([[0.0], damping + 1j * omega * (added_mass - added_mass_inf)])
+    scale = np.max(np.abs(k))
+    best = None
+    for order in range(2, nmax + 1):
+        try:
+            poles, coef = vector_fit(s, k / scale, order)
+        except np.linalg.LinAlgError:
+            continue
+        coef = coef * scale
+        ea, eb = fit_errors(poles, coef, omega, added_mass, damping, added_mass_inf)
+        if best is None or max(ea, eb) < best[0] - 1e-12:
+            best = (max(ea, eb), order, poles, coef, ea, eb)
+        if max(ea, eb) < tol:
+            break
+    _, order, poles, coef, ea, eb = best
+    a, b, c = realisation(poles, coef)
+    return PairFit(order, a, b, c, poles, coef, ea, eb, float("nan"))
+
+
+def significant_pairs(kernel, relative=1e-3):
+    """(6, 6) bool: pairs whose max |K_ij| exceeds `relative` times the geometric mean of
+    max |K_ii| and max |K_jj| (the scale of the diagonal kernels of the same two DOFs)."""
+    peak = np.max(np.abs(kernel), axis=0)
+    diag = np.sqrt(np.outer(np.diag(peak), np.diag(peak)))
+    return peak > relative * diag
+
+
+def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, tol=0.02,
+            relative=1e-3, window=30.0):
+    """Fits of every significant pair: dict (i, j) -> PairFit, with the retardation error
+    over 0..window s filled in."""
+    sig = significant_pairs(kernel, relative)
+    mask = time <= window
+    fits = {}
+    for i in range(6):
+        for j in range(6):
+            if not sig[i, j]:
+                continue
+            fit = fit_pair(omega, added_mass[:, i, j], damping[:, i, j], added_mass_inf[i, j],
+                           nmax=nmax, tol=tol)
+            kss = impulse_response(fit.poles, fit.coef, time[mask])
+            kref = kernel[mask, i, j]
+            fit.error_retardation = float(np.linalg.norm(kss - kref) /
+                                          max(np.linalg.norm(kref), 1e-300))
+            fits[(i, j)] = fit
+    return fits
+
+
+def pack(fits):
+    """Zero-padded arrays (order (6, 6) int32, a (6, 6, n, n), b (6, 6, n), c (6, 6, n),
+    errors (3, 6, 6): added mass, damping, retardation) of a dict of PairFit."""
+    nmax = max([f.order for f in fits.values()] + [1])
+    order = np.zeros((6, 6), np.int32)
+    a = np.zeros((6, 6, nmax, nmax))
+    b = np.zeros((6, 6, nmax))
+    c = np.zeros((6, 6, nmax))
+    err = np.zeros((3, 6, 6))
+    for (i, j), f in fits.items():
+        n = f.order
+        order[i, j] = n
+        a[i, j, :n, :n], b[i, j, :n], c[i, j, :n] = f.a, f.b, f.c
+        err[:, i, j] = f.error_added_mass, f.error_damping, f.error_retardation
+    return order, a, b, c, err
+
+
+def transfer(a, b, c, s):
+    """C (s I - A)^-1 B of one (zero-padded) realisation at the points s."""
+    n = a.shape[0]
+    return np.array([c @ np.linalg.solve(si * np.eye(n) - a, b) for si in np.atleast_1d(s)])
