@@ -27,16 +27,29 @@ contains
     real(wp), intent(in) :: kane(:, :)
     real(wp), intent(inout) :: dydt(:)
     integer :: k
-    associate (u => layout%speeds)
-      dydt(u) = (kane(kane_f, u) - kane(kane_w_phi, u))/kane(kane_v, u)
-    end associate
+    ! part by part: each part's speeds are contiguous, so this is whole-array work on
+    ! sections, with no gathered temporaries
+    do k = 1, layout%nparts
+      associate (u1 => layout%parts(k)%u(1), u2 => layout%parts(k)%u(2))
+        dydt(u1:u2) = (kane(kane_f, u1:u2) - kane(kane_w_phi, u1:u2))/kane(kane_v, u1:u2)
+      end associate
+    end do
     if (.not. allocated(layout%coupled)) return
     do k = 1, size(layout%coupled)
       associate (b => layout%coupled(k))
-        dydt(b%u(1):b%u(2)) = matmul(b%v_inv, dydt(b%u(1):b%u(2)))
+        call apply_inverse(b%v_inv, dydt(b%u(1):b%u(2)))
       end associate
     end do
   end subroutine kane_rates
+
+  !> x = v_inv x.
+  pure subroutine apply_inverse(v_inv, x)
+    real(wp), intent(in) :: v_inv(:, :)
+    real(wp), intent(inout) :: x(:)
+    real(wp) :: b(size(x))
+    b = x
+    x = matmul(v_inv, b)
+  end subroutine apply_inverse
 
   !> A part that does not move (a frozen ship, the falls after hook release): q_dot = 0 and
   !> blocks V = 1, W phi = F = 0, so eq. 89 gives u_dot = 0 too.

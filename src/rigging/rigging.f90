@@ -247,8 +247,10 @@ contains
     type(drive_type) :: drive
     logical :: solved
     drive = rigging_drive(self, y, winch_speed(self%winch, t))
-    br = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
-    bv = reshape(y(self%block_v(1):self%block_v(2)), [3, 2])
+    br(:, 1) = y(self%block_r(1):self%block_r(1) + 2)
+    br(:, 2) = y(self%block_r(1) + 3:self%block_r(2))
+    bv(:, 1) = y(self%block_v(1):self%block_v(1) + 2)
+    bv(:, 2) = y(self%block_v(1) + 3:self%block_v(2))
     solved = .true.
     if (self%static_blocks) then
       call solve_blocks(self%falls_type, balance_input(self, y, hook_pos, hook_vel, drive), &
@@ -325,7 +327,9 @@ contains
       dydt(il(1):il(2)) = y(iv(1):iv(2))
       kane(kane_v, iv(1):iv(2)) = self%sling%m_lump
       kane(kane_w_phi, iv(1):iv(2)) = 0.0_wp
-      kane(kane_f, iv(1):iv(2)) = reshape(f_lump(:, 1:n), [3*n])
+      do k = 1, n
+        kane(kane_f, iv(1) + 3*(k - 1):iv(1) + 3*k - 1) = f_lump(:, k)
+      end do
       out%block_f(:, a) = out%block_f(:, a) + f_top
     end do
   end subroutine lump_kane
@@ -353,7 +357,8 @@ contains
       dydt(self%block_r(1):self%block_r(2)) = y(self%block_v(1):self%block_v(2))
       kane(kane_v, self%block_v(1):self%block_v(2)) = self%block_mass
       kane(kane_w_phi, self%block_v(1):self%block_v(2)) = 0.0_wp
-      kane(kane_f, self%block_v(1):self%block_v(2)) = reshape(block_f, [6])
+      kane(kane_f, self%block_v(1):self%block_v(1) + 2) = block_f(:, 1)
+      kane(kane_f, self%block_v(1) + 3:self%block_v(2)) = block_f(:, 2)
     end if
   end subroutine block_kane
 

@@ -192,7 +192,7 @@ contains
     if (.not. present(integral)) return
     if (.not. integral .or. self%control%q(2) >= self%control%q(1)) return
     self%moor_i = self%moor_k*sqrt(self%moor_k/inertia)/10.0_wp
-    call self%layout%add("ship_control", 3, 0, self%control)
+    if (any(self%moor_i > 0.0_wp)) call self%layout%add("ship_control", 3, 0, self%control)
   end subroutine set_mooring
 
   subroutine ship_after_step(self, t, y)
