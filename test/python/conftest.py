@@ -9,6 +9,10 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
+# Decks copied to temporary folders still find their data files (the BEM database of
+# &ship model = 'bem') in the project's input/ (davit searches DAVIT_PATH after the
+# deck's own folder).
+os.environ.setdefault("DAVIT_PATH", str(ROOT / "input"))
 
 SHORT_DECK = """! short swing for the Python tests
 &simulation t_end = 2.0, dt = 1.0e-3, output_interval = 0.002 /
