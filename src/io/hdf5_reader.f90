@@ -53,17 +53,17 @@ contains
     self%is_open = .false.
   end subroutine reader_close
 
-  !> Open 1-D dataset `name` and return its length.
-  subroutine open_1d(self, name, dset, n, error)
+  !> Open dataset `name` (rank 0-7) and return its extents in Fortran order.
+  subroutine open_dataset(self, name, dset, dims, error)
     type(h5_reader_type), intent(in) :: self
     character(len=*), intent(in) :: name
     integer(hid_t), intent(out) :: dset
-    integer, intent(out) :: n
+    integer, allocatable, intent(out) :: dims(:)
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: space
-    integer(hsize_t) :: dims(1), maxdims(1)
+    integer(hsize_t) :: d(7), maxd(7)
     integer :: hdferr, rank
-    n = 0
+    allocate (dims(0))
     call h5dopen_f(self%file, name, dset, hdferr)
     if (hdferr /= 0) then
       call fatal_error(error, "'"//self%path//"': no dataset /"//name)
@@ -71,15 +71,36 @@ contains
     end if
     call h5dget_space_f(dset, space, hdferr)
     call h5sget_simple_extent_ndims_f(space, rank, hdferr)
-    if (rank /= 1) then
-      call h5sclose_f(space, hdferr)
+    d = 1
+    if (rank > 0 .and. rank <= 7) call h5sget_simple_extent_dims_f(space, d(1:rank), &
+                                                                   maxd(1:rank), hdferr)
+    call h5sclose_f(space, hdferr)
+    if (rank < 0 .or. rank > 7) then
+      call h5dclose_f(dset, hdferr)
+      call fatal_error(error, "'"//self%path//"': dataset /"//name//" has an unreadable rank")
+      return
+    end if
+    dims = int(d(1:rank))
+  end subroutine open_dataset
+
+  !> Open 1-D dataset `name` and return its length.
+  subroutine open_1d(self, name, dset, n, error)
+    type(h5_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(out) :: dset
+    integer, intent(out) :: n
+    type(error_type), allocatable, intent(out) :: error
+    integer, allocatable :: dims(:)
+    integer :: hdferr
+    n = 0
+    call open_dataset(self, name, dset, dims, error)
+    if (allocated(error)) return
+    if (size(dims) /= 1) then
       call h5dclose_f(dset, hdferr)
       call fatal_error(error, "'"//self%path//"': dataset /"//name//" is not 1-D")
       return
     end if
-    call h5sget_simple_extent_dims_f(space, dims, maxdims, hdferr)
-    call h5sclose_f(space, hdferr)
-    n = int(dims(1))
+    n = dims(1)
   end subroutine open_1d
 
   subroutine reader_read_1d(self, name, x, error)
@@ -124,28 +145,11 @@ contains
     real(wp), allocatable, target, intent(out) :: x(:)
     integer, allocatable, intent(out) :: dims(:)
     type(error_type), allocatable, intent(out) :: error
-    integer(hid_t) :: dset, space
-    integer(hsize_t) :: d(7), maxd(7)
+    integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: hdferr, rank, status
-    allocate (dims(0))
-    call h5dopen_f(self%file, name, dset, hdferr)
-    if (hdferr /= 0) then
-      call fatal_error(error, "'"//self%path//"': no dataset /"//name)
-      return
-    end if
-    call h5dget_space_f(dset, space, hdferr)
-    call h5sget_simple_extent_ndims_f(space, rank, hdferr)
-    d = 1
-    if (rank > 0 .and. rank <= 7) call h5sget_simple_extent_dims_f(space, d(1:rank), &
-                                                                   maxd(1:rank), hdferr)
-    call h5sclose_f(space, hdferr)
-    if (rank < 0 .or. rank > 7) then
-      call h5dclose_f(dset, hdferr)
-      call fatal_error(error, "'"//self%path//"': dataset /"//name//" has an unreadable rank")
-      return
-    end if
-    dims = int(d(1:rank))
+    integer :: hdferr, status
+    call open_dataset(self, name, dset, dims, error)
+    if (allocated(error)) return
     allocate (x(product(dims)))
     buf = c_loc(x)
     status = 0

@@ -10,10 +10,8 @@
 !> steps rather than 2 dt/dt_contact, which matters at large dt (quasi-static blocks).
 module davit_system_contact_policy
   use davit_kinds, only: wp
-  use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact, only: phase_free
-  use davit_boat_fenders, only: fender_probe
-  use davit_system_parameters, only: system_params_type, ship_pose, side_plane
+  use davit_system_parameters, only: system_params_type, fender_gaps
   use davit_system_history, only: system_history_type
   implicit none
   private
@@ -34,20 +32,15 @@ contains
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(in) :: hist
     real(wp), intent(in) :: y(:), dt
-    real(wp) :: c(3, 3), delta(par%fenders%nf), delta_dot(par%fenders%nf)
-    integer :: deepest(par%fenders%nf), j
+    real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+    integer :: j
     h = dt
     if (.not. par%contact .or. policy%dt_contact <= 0.0_wp .or. policy%dt_contact >= dt) return
     if (any(hist%fender_states%phase /= phase_free)) then
       h = policy%dt_contact
       return
     end if
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
-               u => y(par%boat_part%u(1):par%boat_part%u(2)))
-      c = rotation_matrix(q(1:3))
-      call fender_probe(par%fenders, side_plane(par, ship_pose(par, y)), c, &
-                        matmul(c, q(4:6)), u, deepest, delta, delta_dot)
-    end associate
+    call fender_gaps(par, y, delta, delta_dot)
     if (policy%graded) then
       ! half the predicted time to contact -delta/delta_dot of each approaching fender:
       ! the gap is halved each step, down to dt_contact

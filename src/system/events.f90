@@ -6,11 +6,10 @@ module davit_system_events
   use davit_kinds, only: wp, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact, only: fender_update, phase_compression
-  use davit_boat_fenders, only: fender_probe
   use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: watch_refresh, strip_surely_dry
-  use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics
+  use davit_system_parameters, only: system_params_type, nslings, ship_pose, &
+                                     hook_kinematics, fender_gaps
   use davit_system_history, only: system_history_type
   use davit_system_boat_loads, only: water_loads
   use davit_system_observables, only: rigging_state
@@ -64,14 +63,9 @@ contains
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(inout) :: hist
     real(wp), intent(in) :: t, y(:)
-    real(wp) :: c(3, 3), delta(par%fenders%nf), delta_dot(par%fenders%nf)
-    integer :: deepest(par%fenders%nf), j
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
-               u => y(par%boat_part%u(1):par%boat_part%u(2)))
-      c = rotation_matrix(q(1:3))
-      call fender_probe(par%fenders, side_plane(par, ship_pose(par, y)), c, &
-                        matmul(c, q(4:6)), u, deepest, delta, delta_dot)
-    end associate
+    real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+    integer :: j
+    call fender_gaps(par, y, delta, delta_dot)
     do j = 1, par%fenders%nf
       call fender_update(par%fenders%law, hist%fender_states(j), delta(j), delta_dot(j))
       if (hist%fender_states(j)%phase == phase_compression .and. &

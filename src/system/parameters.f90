@@ -15,11 +15,11 @@ module davit_system_parameters
   use davit_sea_wind, only: wind_type
   use davit_boat_strip_loads, only: strip_model_type
   use davit_boat_wind_loads, only: boat_wind_type
-  use davit_boat_fenders, only: side_plane_type, fender_set_type
+  use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_probe
   use davit_rigging_rigging, only: rigging_type
   implicit none
   private
-  public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics
+  public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics, fender_gaps
 
   integer, parameter :: nslings = 2
 
@@ -110,5 +110,21 @@ contains
       end do
     end associate
   end subroutine hook_kinematics
+
+  !> Each fender's signed distance into the ship's side delta (> 0: indentation) and its
+  !> rate delta_dot at state y (eqs. 29-33).
+  pure subroutine fender_gaps(par, y, delta, delta_dot)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+    real(wp) :: c(3, 3)
+    integer :: deepest(par%fenders%nf)
+    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
+               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      call fender_probe(par%fenders, side_plane(par, ship_pose(par, y)), c, &
+                        matmul(c, q(4:6)), u, deepest, delta, delta_dot)
+    end associate
+  end subroutine fender_gaps
 
 end module davit_system_parameters
