@@ -36,8 +36,6 @@ module davit_core_layout
     !> State length and number of speeds.
     integer :: n = 0, nu = 0, nparts = 0
     type(state_part_type) :: parts(max_parts)
-    !> Positions in y of every speed, in order: where eq. 89 writes u_dot.
-    integer, allocatable :: speeds(:)
     type(coupled_block_type), allocatable :: coupled(:)
   contains
     procedure :: add => layout_add
@@ -55,7 +53,6 @@ contains
     integer, intent(in) :: nq, nu
     type(state_part_type), intent(out), optional :: part
     type(state_part_type) :: p
-    integer :: k
     p%name = name
     p%q = [self%n + 1, self%n + nq]
     p%u = [self%n + nq + 1, self%n + nq + nu]
@@ -63,8 +60,6 @@ contains
     self%parts(self%nparts) = p
     self%n = self%n + nq + nu
     self%nu = self%nu + nu
-    if (.not. allocated(self%speeds)) allocate (self%speeds(0))
-    self%speeds = [self%speeds, [(k, k = p%u(1), p%u(2))]]
     if (present(part)) part = p
   end subroutine layout_add
 
