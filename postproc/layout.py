@@ -452,3 +452,20 @@ def load_study(path, kind=None):
         data[STUDY_LABEL] = [s.decode() for s in data[STUDY_LABEL]]
         data["attrs"] = dict(g.attrs)
     return data
+
+
+SENSITIVITY_FIELDS = {"wave_height": SWEEP_CASE_WAVE_HEIGHT,
+                      "wave_period": SWEEP_CASE_WAVE_PERIOD, "angle_deg": SWEEP_CASE_ANGLE,
+                      "status": SWEEP_STATUS, "collided": SWEEP_COLLIDED,
+                      "min_clearance": SWEEP_MIN_CLEARANCE}
+
+
+def load_sweep_columns(path, fields):
+    """{field: 1-D array} of a sweep summary's datasets `fields` (field -> dataset name);
+    a missing one is an error naming the file and the dataset."""
+    with _open(path) as f:
+        missing = [name for name in fields.values() if name not in f]
+        if missing:
+            raise ValueError(f"{path}: not a complete davit sweep summary "
+                             f"(missing dataset {', '.join('/' + m for m in missing)})")
+        return {field: np.ravel(f[name][()]) for field, name in fields.items()}

@@ -20,6 +20,8 @@ module davit_io_ship_keys
     character(len=:), allocatable :: model, database
     !> Heading keeping and station keeping: natural periods [s] (0 = off), damping ratio.
     real(wp) :: heading_period, heading_damping, station_period
+    !> BEM ship: roll radius of gyration in place of the database's [m] (0 = the database's).
+    real(wp) :: roll_gyradius
   end type ship_config
 
 contains
@@ -107,6 +109,10 @@ contains
     call r%string(g, "database", s%database, "ship_bem.nc", &
                   "BEM database of model = 'bem' (python -m postproc.bem build), relative "// &
                   "to the deck's folder unless absolute.")
+    call r%real(g, "roll_gyradius", s%roll_gyradius, 0.0_wp, 0.0_wp, 50.0_wp, "m", &
+                "BEM ship: roll radius of gyration about the CG in place of the "// &
+                "database's (0 = the database's, 0.38 B for input/ship_bem.nc): the roll "// &
+                "inertia, hence the roll period, that the paper does not give (review G9).")
     call r%real(g, "heading_period", s%heading_period, 30.0_wp, 0.0_wp, 1000.0_wp, "s", &
                 "Heading keeping in the 'launch' scene (autopilot or DP: a PD yaw moment "// &
                 "on the ship towards its initial heading): natural period of the held "// &

@@ -111,6 +111,7 @@ contains
     associate (s => cfg%ship)
       if (s%model == "bem") then
         call read_bem_database(beside(cfg%filename, s%database), db, error)
+        if (s%roll_gyradius > 0.0_wp) db%mass(4, 4) = db%mass(1, 1)*s%roll_gyradius**2
         if (.not. allocated(error)) call new_bem_ship(db, s%zeta_roll, bem, error)
         if (allocated(error)) then
           error%message = cfg%filename//": &ship: database = '"//s%database//"': "// &

@@ -103,3 +103,27 @@ def test_one_figure_writer():
              for node in ast.walk(ast.parse(path.read_text()))
              if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.name == "_save"]
     assert len(saves) == 1, f"def _save in postproc/: {saves}"
+
+
+def test_sensitivity_counts_collisions_per_sea_state_and_angle(tmp_path):
+    """postproc.sensitivity: a made-up summary of 2 sea states x 2 angles x 3 launches, one
+    of them failed (status 2, not counted), gives the collided/finished counts by hand."""
+    import h5py
+    from postproc import layout, sensitivity
+    h = [2.5] * 6 + [4.0] * 6
+    t = [10.0] * 6 + [12.7] * 6
+    a = [45.0, 45.0, 45.0, 90.0, 90.0, 90.0] * 2
+    status = [1] * 12
+    status[5] = 2
+    collided = [1, 0, 1, 0, 0, 1, 0, 0, 0, 1, 1, 1]
+    path = tmp_path / "s.h5"
+    with h5py.File(path, "w") as f:
+        for name, values in ((layout.SWEEP_CASE_WAVE_HEIGHT, h), (layout.SWEEP_CASE_WAVE_PERIOD, t),
+                             (layout.SWEEP_CASE_ANGLE, a), (layout.SWEEP_STATUS, status),
+                             (layout.SWEEP_COLLIDED, collided),
+                             (layout.SWEEP_MIN_CLEARANCE, [0.0] * 12)):
+            f[name] = values
+    p = sensitivity.pattern(path)
+    assert p == {(2.5, 10.0, 45.0): (2, 3), (2.5, 10.0, 90.0): (0, 2),
+                 (4.0, 12.7, 45.0): (0, 3), (4.0, 12.7, 90.0): (3, 3)}
+    assert "| s | 2/3 | 0/2 | 0/3 | 3/3 |" in sensitivity.table([path])
