@@ -187,7 +187,8 @@ contains
                              self%hydro%mass + self%hydro%db%added_mass_inf(2, 2), &
                              self%hydro%inertia(3) + self%hydro%db%added_mass_inf(6, 6)]
     ! a period <= 0 leaves that motion free
-    self%moor_k = merge(inertia*(2.0_wp*pi/max(period, tiny(1.0_wp)))**2, 0.0_wp, period > 0.0_wp)
+    self%moor_k = 0.0_wp
+    where (period > 0.0_wp) self%moor_k = inertia*(2.0_wp*pi/period)**2
     self%moor_c = 2.0_wp*zeta*sqrt(self%moor_k*inertia)
     if (.not. present(integral)) return
     if (.not. integral .or. self%control%q(2) >= self%control%q(1)) return
