@@ -12,9 +12,10 @@ module test_ship
   use davit_ship_hull, only: hull_type, new_hull, hull_natural_periods
   use davit_ship_ship_model, only: ship_system_type
   use davit_run_ship_scene, only: build_ship_scene
+  use davit_system_build, only: ship_initial_state
   use davit_solve_rk4, only: rk4_type
   use davit_run_rao, only: rao_case
-  use harness, only: suite_type, case_state, new_case, check, note
+  use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
   public :: collect_ship
@@ -36,7 +37,8 @@ contains
                    new_case("beam_wind_motion", beam_wind_motion), &
                    new_case("rao_long_wave_heave_and_roll_peak", rao_checks), &
                    new_case("headway_held_straight", headway), &
-                   new_case("oblique_roll_rao_follows_excitation", oblique_roll)]
+                   new_case("oblique_roll_rao_follows_excitation", oblique_roll), &
+                   new_case("heading_keeping_period_and_integral", heading_keeping)]
   end function collect_ship
 
   !> Gauss-Legendre nodes and weights on (-1, 1) by Newton iteration on P_n.
@@ -475,5 +477,93 @@ contains
       fk_roll = load(4)
     end function fk_roll
   end subroutine oblique_roll
+
+  !> Heading keeping (the launch scene's PID yaw moment, set_mooring): (1) as a pure
+  !> spring (no damping, no integral, calm, no cross-flow drag) the yaw released 0.05 rad
+  !> off swings with the set period T = 2 pi sqrt((I_zz + A_66)/k) (first zero crossing at
+  !> T/4 within 1 %); (2) in a steady oblique wind, whose yaw moment N holds a PD-kept ship
+  !> off by N/k, the integral term takes the mean error out (< 5 % of the PD offset over the
+  !> last 100 s of 600 s).
+  subroutine heading_keeping(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(ship_system_type) :: ship
+    real(wp), allocatable :: y(:)
+    real(wp) :: t_cross, offset_pd, offset_pid
+    real(wp), parameter :: period = 30.0_wp
+    call parse_config("t.nml", "&ship crossflow_cd = 0 / &wind speed = 0 /", cfg, error)
+    call build_ship_scene(cfg, ship, y, error)
+    call ship%set_mooring([0.0_wp, 0.0_wp, period], 0.0_wp, y)
+    y(ship%body%q(1) + 2) = 0.05_wp
+    t_cross = first_crossing(ship, y, ship%body%q(1) + 2, ship%anchor(3))
+    call note(state, "first zero crossing / (T/4)", t_cross/(0.25_wp*period))
+    call check(state, t_cross, 0.25_wp*period, "spring period", rel_tol=0.01_wp)
+    call parse_config("t.nml", "&ship heading_deg = 0 / &wind speed = 15, direction_deg = 60 /"// &
+                      " &sea wave_type = 'calm' /", cfg, error)
+    offset_pd = kept_offset(cfg, .false.)
+    offset_pid = kept_offset(cfg, .true.)
+    call note(state, "PD offset in the wind [deg]", offset_pd*180.0_wp/pi)
+    call note(state, "PID offset in the wind [deg]", offset_pid*180.0_wp/pi)
+    call check_true(state, abs(offset_pd) > 0.1_wp*pi/180.0_wp, &
+                    "the wind holds a PD ship off (> 0.1 deg)")
+    call check(state, offset_pid, 0.0_wp, "the integral takes the offset out", &
+               abs_tol=0.05_wp*abs(offset_pd))
+  end subroutine heading_keeping
+
+  !> Time of the first crossing of y(k) through level, from rest.
+  real(wp) function first_crossing(ship, y0, k, level) result(tc)
+    type(ship_system_type), intent(inout) :: ship
+    real(wp), intent(in) :: y0(:), level
+    integer, intent(in) :: k
+    type(rk4_type) :: rk
+    real(wp) :: y(size(y0)), t, prev, dt
+    integer :: i
+    dt = 0.01_wp
+    y = y0
+    call rk%init(size(y))
+    t = 0.0_wp
+    tc = -1.0_wp
+    prev = y(k) - level
+    do i = 1, 10000
+      call rk%step(ship, t, y, dt)
+      t = real(i, wp)*dt
+      call ship%after_step(t, y)
+      if (sign(1.0_wp, y(k) - level) /= sign(1.0_wp, prev)) then
+        tc = t - dt*(y(k) - level)/(y(k) - level - prev)
+        return
+      end if
+      prev = y(k) - level
+    end do
+  end function first_crossing
+
+  !> Mean yaw error over the last 100 s of 600 s with heading keeping (30 s, 0.7), PD or PID.
+  real(wp) function kept_offset(cfg, integral) result(mean)
+    type(config_type), intent(in) :: cfg
+    logical, intent(in) :: integral
+    type(error_type), allocatable :: error
+    type(ship_system_type) :: ship
+    type(rk4_type) :: rk
+    real(wp), allocatable :: y(:)
+    real(wp) :: t
+    integer :: i, n
+    call build_ship_scene(cfg, ship, y, error)
+    call ship%set_mooring([0.0_wp, 0.0_wp, 30.0_wp], 0.7_wp, y, integral=integral)
+    y = ship_initial_state(ship, cfg)
+    call rk%init(size(y))
+    t = 0.0_wp
+    mean = 0.0_wp
+    n = 0
+    do i = 1, 12000
+      call rk%step(ship, t, y, 0.05_wp)
+      t = real(i, wp)*0.05_wp
+      call ship%after_step(t, y)
+      if (t > 500.0_wp) then
+        mean = mean + y(ship%body%q(1) + 2) - ship%anchor(3)
+        n = n + 1
+      end if
+    end do
+    mean = mean/n
+  end function kept_offset
 
 end module test_ship
