@@ -280,12 +280,7 @@ def load_summary_fields(path):
     """{field: 1-D array} of the SUMMARY_FIELDS of a sweep summary; a missing dataset is an
     error naming the file and the dataset (a half-written or foreign file must not pass as
     'no collisions')."""
-    with _open(path) as f:
-        missing = [name for name in SUMMARY_FIELDS.values() if name not in f]
-        if missing:
-            raise ValueError(f"{path}: not a complete davit sweep summary "
-                             f"(missing dataset {', '.join('/' + m for m in missing)})")
-        return {field: np.ravel(f[name][()]) for field, name in SUMMARY_FIELDS.items()}
+    return load_sweep_columns(path, SUMMARY_FIELDS)
 
 
 def chinese_spectrum(omega, height):
