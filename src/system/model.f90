@@ -138,7 +138,7 @@ contains
   pure real(wp) function system_energy(self, y) result(e)
     class(system_type), intent(in) :: self
     real(wp), intent(in) :: y(:)
-    e = energy(self%par, y)
+    e = energy(self%par, self%hist, y)
   end function system_energy
 
   pure function system_sling_tensions(self, y) result(tension)

@@ -108,9 +108,12 @@ contains
   end subroutine contact_state
 
   !> Mechanical energy of the conservative part in air: kinetic + gravity (N3 down, so
-  !> -m g z) + elastic slings [J].
-  pure function energy(par, y) result(e)
+  !> -m g z) + elastic slings [J]. Once the hooks are released the falls' energy is that of
+  !> their frozen states at the released hooks (the boat has left them), not the stretch
+  !> to wherever the boat drifts.
+  pure function energy(par, hist, y) result(e)
     type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
     real(wp), intent(in) :: y(:)
     real(wp) :: e, c(3, 3), r(3), hook_pos(3, nslings), hook_vel(3, nslings)
     type(pose_type) :: pose
@@ -123,8 +126,13 @@ contains
     end associate
     if (par%on_davit) then
       pose = ship_pose(par, y)
+      hook_pos = spread(r, 2, 2) + matmul(c, par%hooks)
+      if (hist%release_time >= 0.0_wp) then
+        hook_pos = hist%released_hooks
+        pose = hist%released_pose
+      end if
       e = e + par%rig%energy(y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
-                             spread(r, 2, 2) + matmul(c, par%hooks), pose)
+                             hook_pos, pose)
     end if
     if (.not. par%slings_attached) return
     call hook_kinematics(par, y, hook_pos, hook_vel)

@@ -355,3 +355,18 @@ def test_iiia_full_scale_lowering_tension_and_release(davit, tmp_path):
     assert abs(events["release_time"] - (events["waterborne_time"] + 1.0)) < 1e-3
     released = t > events["release_time"]
     assert released.any() and not run.get(layout.SLING_TENSION)[released].any()
+
+
+def test_energy_after_release_counts_the_falls_where_they_were_left(davit, tmp_path):
+    """After the hooks let go (iiib_level5_090, regular 4 m waves), /diagnostics/energy is
+    the boat's kinetic and potential energy plus the falls' frozen elastic energy: it can
+    change by at most what the boat's motion on the waves gives, m g (H + 1 m) ~ 4e5 J,
+    not by the stretch of the released slings to wherever the boat drifts (9e8 J before)."""
+    run = _run_deck(davit, tmp_path, "iiib_level5_090.nml")
+    t = run.get(layout.TIME)
+    e = run.get(layout.ENERGY)
+    release = float(np.ravel(run.get("events/release_time"))[0])
+    assert release > 0
+    after = t > release
+    at_release = e[np.searchsorted(t, release) - 1]
+    assert np.max(np.abs(e[after] - at_release)) < 8500.0 * 9.81 * (4.0 + 1.0)
