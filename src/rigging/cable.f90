@@ -150,12 +150,7 @@ contains
     integer :: i, nseg
     nseg = cab%nnode - 1
     f = 0.0_wp
-    w = 1.0_wp
-    if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
-      do i = 1, nseg
-        w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
-      end do
-    end if
+    w = friction_weights(nseg, ratio, v_drum)
     total = sum(l(1:nseg))
     stretch = total - l0_total
     if (stretch <= 0.0_wp) return
@@ -255,12 +250,7 @@ contains
     associate (lam => ce%lam, l => ce%l, f => ce%f)
       nseg = cab%nnode - 1
       if (f(1) <= 0.0_wp) return
-      w = 1.0_wp
-      if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
-        do i = 1, nseg
-          w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
-        end do
-      end if
+      w = friction_weights(nseg, ratio, v_drum)
       total = sum(l(1:nseg))
       weighted = sum(w(1:nseg)*l(1:nseg))
       t_el = cab%ea*(total - l0_total)*total/(l0_total*weighted)
@@ -303,6 +293,22 @@ contains
       end do
     end associate
   end subroutine cable_block_tangent_quasi_static
+
+  !> Weights w_i of the quasi-static sheaves' one tension, f_i = w_i T: the bearing friction
+  !> ratio to the power of the segment's place from the drum, against the drum's motion
+  !> (all 1 when the drum is held or there is no friction).
+  pure function friction_weights(nseg, ratio, v_drum) result(w)
+    integer, intent(in) :: nseg
+    real(wp), intent(in) :: ratio, v_drum
+    real(wp) :: w(max_nodes - 1)
+    integer :: i
+    w = 1.0_wp
+    if (ratio /= 1.0_wp .and. v_drum /= 0.0_wp) then
+      do i = 1, nseg
+        w(i) = ratio**(sign(1.0_wp, v_drum)*real(i - 1, wp))
+      end do
+    end if
+  end function friction_weights
 
   !> Share of the dashpot tension at stretch e: 0 at e <= 0, 1 from e = ramp on, and the
   !> smooth step 3x^2 - 2x^3 (x = e/ramp) between (always 1 with ramp = 0). Multiplying
