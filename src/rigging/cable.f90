@@ -147,7 +147,7 @@ contains
     real(wp), intent(in) :: l0_total, v_drum, ratio
     real(wp), intent(out) :: f(max_nodes - 1)
     real(wp) :: w(max_nodes - 1), stretch, total, lengths, t
-    integer :: i, nseg
+    integer :: nseg
     nseg = cab%nnode - 1
     f = 0.0_wp
     w = friction_weights(nseg, ratio, v_drum)

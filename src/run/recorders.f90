@@ -162,7 +162,7 @@ contains
     real(wp) :: sling(sys%par%rig%nlump + 1, 2), lumps(3, sys%par%rig%nlump, 2)
     call sys%rigging_state(t, y, self%segment_tension(:, k), sling, self%paid_out(k), lumps)
     self%tension(:, k) = sling(1, :)
-    self%pulley_angle(:, k) = sys%par%rig%sheave_angles(y(sys%par%rig_offset + 1:))
+    self%pulley_angle(:, k) = sys%par%rig%sheave_angles(y(sys%par%rig_slice(1):sys%par%rig_slice(2)))
     self%lumps(:, :, k) = reshape(lumps, [3, 2*sys%par%rig%nlump])
   end subroutine sample_rigging
 
@@ -261,7 +261,7 @@ contains
         if (sys%par%with_ship .and. k >= s%q(1)) then
           name = "ship "//trim(body_names(k - s%q(1) + 1))
         else if (k > b%u(2)) then
-          name = "rigging state "//int_to_str(k - sys%par%rig_offset)//" of "// &
+          name = "rigging state "//int_to_str(k - sys%par%rig_slice(1) + 1)//" of "// &
                  int_to_str(sys%par%rig%nstate)
         else
           name = "boat "//trim(body_names(k - b%q(1) + 1))

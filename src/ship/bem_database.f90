@@ -14,7 +14,6 @@ module davit_ship_bem_database
   use davit_kinds, only: wp, pi
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_reader, only: h5_reader_type
-  use davit_io_text, only: fmt_real
   implicit none
   private
   public :: bem_database_type, radiation_pair_type, read_bem_database, bem_excitation

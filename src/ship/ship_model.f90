@@ -31,9 +31,8 @@ module davit_ship_ship_model
   use davit_ship_wind_load, only: ship_wind_load
   implicit none
   private
-  public :: ship_system_type, new_ship_system, ship_nstate, ship_loads, ship_state
+  public :: ship_system_type, new_ship_system, ship_loads, ship_state
 
-  integer, parameter :: ship_nstate = 12
   !> Surge resistance coefficient on the wetted surface (review G12; Mumford's surface).
   real(wp), parameter :: surge_ct = 0.003_wp
   !> Gauss points along the hull for the cross-flow drag integral.

@@ -68,9 +68,11 @@ contains
     type(system_params_type), intent(inout) :: par
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
+    integer :: offset
     call new_rigging(par%rig, cfg%rigging, error)
     if (allocated(error)) return
-    call par%layout%append(par%rig%layout, par%rig_offset)
+    call par%layout%append(par%rig%layout, offset)
+    par%rig_slice = [offset + 1, offset + par%rig%nstate]
     par%release = cfg%rigging%release
     par%release_delay = cfg%rigging%release_delay
   end subroutine new_davit
@@ -232,7 +234,7 @@ contains
       pose = ship_pose(par, y)
       call par%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
                                  -0.5_wp*par%boat%mass*gravity], 2, 2), pose, &
-                                 y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
+                                 y(par%rig_slice(1):par%rig_slice(2)), &
                                  residual, error)
     end associate
   end subroutine initial_state

@@ -11,7 +11,7 @@ module davit_system_model
   use davit_kinds, only: wp
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
-  use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
+  use davit_core_kane, only: kane_f, kane_rates, kane_at_rest
   use davit_core_body, only: body_point_force
   use davit_solve_integrator, only: ode_problem
   use davit_ship_ship_model, only: ship_system_type
@@ -83,8 +83,8 @@ contains
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), hook_force(3, nslings), c(3, 3)
     integer :: i, i0, i1
-    i0 = self%par%rig_offset + 1
-    i1 = self%par%rig_offset + self%par%rig%nstate
+    i0 = self%par%rig_slice(1)
+    i1 = self%par%rig_slice(2)
     if (self%hist%release_time >= 0.0_wp) then
       call kane_at_rest(dydt(i0:i1), kane(:, i0:i1))
       return

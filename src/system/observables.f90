@@ -6,7 +6,7 @@ module davit_system_observables
   use davit_kinds, only: wp, gravity
   use davit_core_rotation, only: rotation_matrix, cross
   use davit_core_pose, only: pose_type
-  use davit_core_body, only: body_point_velocity, body_inertial_position, body_kinetic_energy
+  use davit_core_body, only: body_inertial_position, body_kinetic_energy
   use davit_rigging_elastic_sling, only: sling_hook_force, sling_energy
   use davit_boat_fenders, only: side_plane_type, fender_probe, fender_loads
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
@@ -59,7 +59,7 @@ contains
       pose = hist%released_pose
       tr = hist%release_time
     end if
-    associate (yr => y(par%rig_offset + 1:par%rig_offset + par%rig%nstate))
+    associate (yr => y(par%rig_slice(1):par%rig_slice(2)))
       call par%rig%observe(tr, yr, hook_pos, hook_vel, pose, seg, sling)
       ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
       ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
@@ -131,7 +131,7 @@ contains
         hook_pos = hist%released_hooks
         pose = hist%released_pose
       end if
-      e = e + par%rig%energy(y(par%rig_offset + 1:par%rig_offset + par%rig%nstate), &
+      e = e + par%rig%energy(y(par%rig_slice(1):par%rig_slice(2)), &
                              hook_pos, pose)
     end if
     if (.not. par%slings_attached) return

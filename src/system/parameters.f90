@@ -26,11 +26,11 @@ module davit_system_parameters
   type :: system_params_type
     !> The state: part "boat" (eqs. 3-4), the rigging's parts on the davit, the ship's
     !> parts in the 'launch' scene. boat and ship are their rigid bodies' ranges; the
-    !> rigging's slice is y(rig_offset + 1 : rig_offset + rig%nstate), the ship's
+    !> rigging's slice is y(rig_slice(1) : rig_slice(2)), the ship's
     !> y(ship_slice(1) : ship_slice(2)).
     type(state_layout_type) :: layout
     type(state_part_type) :: boat_part, ship_part
-    integer :: rig_offset = 0, ship_slice(2) = [1, 0]
+    integer :: rig_slice(2) = [1, 0], ship_slice(2) = [1, 0]
     type(rigid_body_type) :: boat
     !> Hook points in the boat frame, one column per sling.
     real(wp) :: hooks(3, nslings) = 0.0_wp
