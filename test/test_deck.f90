@@ -42,7 +42,8 @@ contains
     integer :: i
     table = [ &
       bad("&simulation"//nl//"  dtt = 0.001"//nl//"/", &
-          "t.nml:2: &simulation: unknown key 'dtt'; allowed keys: t_end dt dt_contact wave_update scene integrator"), &
+          "t.nml:2: &simulation: unknown key 'dtt'; allowed keys: t_end after_release dt "// &
+          "dt_contact wave_update scene integrator"), &
       bad("&simulation dt = 'abc' /", &
           "t.nml:1: &simulation: dt = 'abc': not a real number; allowed: 0 < dt <= 1 [s]"), &
       bad("&simulation"//nl//nl//" dt = -1.0 /", &

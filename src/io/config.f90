@@ -8,6 +8,7 @@ module davit_io_config
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_rigging_keys, only: rigging_config, read_rigging
   use davit_io_ship_keys, only: ship_config, read_ship
+  use davit_io_limits_keys, only: limits_config, read_limits
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
@@ -17,6 +18,8 @@ module davit_io_config
 
   type :: simulation_config
     real(wp) :: t_end, dt, output_interval, dt_contact, wave_update
+    !> Time the run goes on after the hooks are released [s] (review G24).
+    real(wp) :: after_release
     character(len=:), allocatable :: integrator, scene, contact_approach
     integer :: seed
     real(wp) :: rtol, atol
@@ -90,6 +93,7 @@ module davit_io_config
     type(rao_config) :: rao
     type(contact_config) :: contact
     type(rigging_config) :: rigging
+    type(limits_config) :: limits
   end type config_type
 
 contains
@@ -155,7 +159,30 @@ contains
     call read_rao(r, cfg%rao)
     call read_contact(r, cfg%contact, cfg%ship)
     call read_rigging(r, cfg%rigging)
+    call read_limits(r, cfg%limits)
+    if (cfg%simulation%t_end == 0.0_wp) cfg%simulation%t_end = default_end_time(cfg)
   end subroutine read_all
+
+  !> The run's end when the deck gives none: for a launch, review G24's hard limit, the
+  !> lowering (CG height above the still water over the boat's lowering speed) with a 30 %
+  !> margin after the winch has started and ramped up, plus the time kept after release;
+  !> 60 s for the other scenes.
+  pure real(wp) function default_end_time(cfg) result(t)
+    type(config_type), intent(in) :: cfg
+    real(wp) :: speed
+    t = 60.0_wp
+    if (cfg%simulation%scene /= "launch" .and. cfg%simulation%scene /= "lowering") return
+    associate (rig => cfg%rigging)
+      if (rig%winch_mode == "boat") then
+        speed = rig%lowering_speed
+      else
+        speed = rig%drum_speed/merge(4.0_wp, 2.0_wp, rig%reeving == "a")
+      end if
+      if (speed <= 0.0_wp) return
+      t = rig%winch_start + rig%ramp_time + 1.3_wp*max(-cfg%boat%position(3), 1.0_wp)/speed + &
+          cfg%simulation%after_release
+    end associate
+  end function default_end_time
 
   subroutine read_contact(r, s, ship)
     type(deck_reader_type), intent(inout) :: r
@@ -190,9 +217,10 @@ contains
                     "Boat-frame z span of each fender (z down, G16).")
     call r%int(g, "fender_points", s%fender_points, 5, 1, 100, "-", &
                "Points n_d per fender; one contact per fender at its deepest point.")
-    call r%real(g, "side_y", s%side_y, 0.5_wp*ship%beam, -100.0_wp, 100.0_wp, "m", &
-                "Ship-frame y of the side plane (normal +s2, towards the boat); default "// &
-                "half the &ship beam.", default_text="&ship beam/2 (10.4)")
+    call r%real(g, "side_y", s%side_y, 0.5_wp*ship%beam + 0.1_wp, -100.0_wp, 100.0_wp, &
+                "m", "Ship-frame y of the side plane (normal +s2, towards the boat); default "// &
+                "the paper's y1 = 10.5 m (III.B, review F12; starboard, so +): half the "// &
+                "&ship beam plus 0.1 m.", default_text="&ship beam/2 + 0.1 (10.5)")
   end subroutine read_contact
 
   subroutine read_rao(r, s)
@@ -222,8 +250,13 @@ contains
     type(deck_reader_type), intent(inout) :: r
     type(simulation_config), intent(inout) :: s
     character(len=*), parameter :: g = "simulation"
-    call r%real(g, "t_end", s%t_end, 60.0_wp, 0.0_wp, 1.0e5_wp, "s", &
-                "Simulated time span from t = 0.", lo_open=.true.)
+    call r%real(g, "t_end", s%t_end, 0.0_wp, 0.0_wp, 1.0e5_wp, "s", &
+                "Simulated time span from t = 0; 0 = derived: 'launch' and 'lowering' "// &
+                "end at review G24's limit, winch start + ramp + 1.3 x (CG height above "// &
+                "the water)/(boat lowering speed) + after_release; other scenes 60 s.", &
+                default_text="0 (derived)")
+    call r%real(g, "after_release", s%after_release, 5.0_wp, 0.0_wp, 1.0e4_wp, "s", &
+                "A launch ends this long after the hooks are released (review G24).")
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
     call r%real(g, "dt_contact", s%dt_contact, 0.0_wp, 0.0_wp, 1.0_wp, "s", &

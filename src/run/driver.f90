@@ -20,6 +20,7 @@ module davit_run_driver
   use davit_run_recorders, only: recorder_type, boat_recorder, ship_recorder
   use davit_run_ship_scene, only: build_ship_scene
   use davit_run_step_monitor, only: step_monitor
+  use davit_run_launch_log, only: launch_log, new_launch_log
   use davit_ship_ship_model, only: ship_system_type
   implicit none
   private
@@ -40,6 +41,7 @@ contains
     type(ship_system_type) :: ship
     type(boat_recorder) :: brec
     type(ship_recorder) :: srec
+    type(launch_log) :: log
     real(wp), allocatable :: y(:)
     select case (cfg%simulation%scene)
     case ("sea")
@@ -53,12 +55,13 @@ contains
       if (allocated(error)) return
       call initial_state(boat, cfg, y, error)
       if (allocated(error)) return
-      call integrate_scene(cfg, boat, y, brec, out_path, summary, error)
+      log = new_launch_log(cfg, boat)
+      call integrate_scene(cfg, boat, y, brec, out_path, summary, error, log)
     end select
   end subroutine run_simulation
 
   !> Integrate a scene into its recorder and write `out_path`.
-  subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error)
+  subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error, monitor)
     type(config_type), intent(in) :: cfg
     class(ode_problem), intent(inout) :: problem
     real(wp), intent(inout) :: y(:)
@@ -66,17 +69,19 @@ contains
     character(len=*), intent(in) :: out_path
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
+    class(step_monitor), intent(inout), optional :: monitor
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: run_error, io_error
 
     call writer%create(out_path, error)
     if (allocated(error)) return
-    call integrate(cfg%simulation, problem, y, rec, summary, run_error, error)
+    call integrate(cfg%simulation, problem, y, rec, summary, run_error, error, monitor)
     if (allocated(error)) then
       call writer%discard()
       return
     end if
     call rec%write(problem, writer)
+    if (present(monitor)) call monitor%write(problem, writer)
     call write_root_attributes(writer, cfg, summary, cfg%simulation%integrator, run_error)
     call writer%close(io_error)
     if (allocated(run_error)) then

@@ -4,6 +4,7 @@
 module davit_run_step_monitor
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem
+  use davit_io_hdf5_writer, only: h5_writer_type
   implicit none
   private
   public :: step_monitor
@@ -11,6 +12,8 @@ module davit_run_step_monitor
   type, abstract :: step_monitor
   contains
     procedure(watch_interface), deferred :: watch
+    !> What it found, into the run's output file (by default nothing).
+    procedure :: write => write_nothing
   end type step_monitor
 
   abstract interface
@@ -25,5 +28,13 @@ module davit_run_step_monitor
       logical, intent(out) :: done
     end subroutine watch_interface
   end interface
+
+contains
+
+  subroutine write_nothing(self, problem, w)
+    class(step_monitor), intent(in) :: self
+    class(ode_problem), intent(in) :: problem
+    type(h5_writer_type), intent(inout) :: w
+  end subroutine write_nothing
 
 end module davit_run_step_monitor

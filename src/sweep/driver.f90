@@ -21,6 +21,7 @@ module davit_sweep_driver
   use davit_run_recorders, only: boat_recorder
   use davit_run_run_summary, only: run_summary, write_root_attributes
   use davit_run_driver, only: integrate
+  use davit_run_launch_log, only: new_launch_log
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
@@ -191,6 +192,7 @@ contains
     if (.not. allocated(error)) call initial_state(sys, cfg, y, error)
     if (.not. allocated(error)) then
       metrics%stop_at_release = stop_at_release
+      metrics%log = new_launch_log(cfg, sys)
       call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     end if
     if (allocated(error)) call move_alloc(error, run_error)
@@ -199,7 +201,7 @@ contains
       row%status = status_failed
       row%message = run_error%message
     else
-      row = metrics%result()
+      row = metrics%result(sys)
     end if
     row%steps = summary%steps
     row%rhs_evaluations = summary%rhs_evaluations

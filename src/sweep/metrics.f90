@@ -13,6 +13,10 @@
 !>   instantaneous peak for a mode omega, 1e-3 for a 6 ms fender contact at dt = 2e-4 s,
 !>   and free of an extra RHS evaluation); horizontal = |(a_x, a_y)|, vertical = |a_z|.
 !> * tension: largest tension of any cable segment or sling segment (or foundation sling).
+!> * the launch log's (davit_run_launch_log) peaks, limits and outcome over the run: the peak
+!>   sling and fall (cable segment) tensions, the fastest impact, the seat's filtered peak
+!>   acceleration, when the safe working load, the breaking load and the impact speed
+!>   limit were first exceeded, and how the launch ended.
 module davit_sweep_metrics
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use davit_kinds, only: wp, i8
@@ -21,6 +25,8 @@ module davit_sweep_metrics
   use davit_solve_integrator, only: ode_problem
   use davit_system_model, only: system_type
   use davit_run_step_monitor, only: step_monitor
+  use davit_run_launch_log, only: launch_log
+  use davit_run_impact_events, only: impact_tracker
   implicit none
   private
   public :: launch_metrics, case_result, status_not_run, status_ok, status_failed
@@ -38,6 +44,14 @@ module davit_sweep_metrics
     real(wp) :: peak_vertical_acceleration = 0.0_wp, peak_segment_tension = 0.0_wp
     real(wp) :: first_contact_time = -1.0_wp, waterborne_time = -1.0_wp
     real(wp) :: end_time = 0.0_wp, wall_time = 0.0_wp
+    !> From the launch log: peak sling and fall tensions [N], fastest impact [m/s], filtered
+    !> seat peak [m/s^2], first times beyond the safe working load, the breaking load and
+    !> the impact speed limit [s] (-1 = never), and the outcome in words.
+    real(wp) :: peak_sling_tension = 0.0_wp, peak_fall_tension = 0.0_wp
+    real(wp) :: max_impact_speed = 0.0_wp, peak_seat_acceleration = 0.0_wp
+    real(wp) :: swl_exceeded_time = -1.0_wp, mbl_exceeded_time = -1.0_wp
+    real(wp) :: impact_speed_exceeded_time = -1.0_wp
+    character(len=:), allocatable :: outcome
     integer :: collided = -1, impacts = -1
     integer(i8) :: steps = 0, rhs_evaluations = 0
   end type case_result
@@ -53,6 +67,8 @@ module davit_sweep_metrics
     logical :: touching = .false.
     !> Inertial CG velocity and time of the previous step.
     real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp
+    !> Peaks, limits and outcome over the run (set up by the caller: new_launch_log).
+    type(launch_log) :: log
   contains
     procedure :: watch => metrics_watch
     procedure :: result => metrics_result
@@ -75,6 +91,15 @@ contains
     r%waterborne_time = nan
     r%end_time = nan
     r%wall_time = nan
+    r%peak_sling_tension = nan
+    r%peak_fall_tension = nan
+    r%max_impact_speed = nan
+    r%peak_seat_acceleration = nan
+    r%swl_exceeded_time = nan
+    r%mbl_exceeded_time = nan
+    r%impact_speed_exceeded_time = nan
+    r%outcome = ""
+
     r%collided = -1
     r%impacts = -1
   end function not_run_result
@@ -86,8 +111,13 @@ contains
     class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:)
     logical, intent(out) :: done
+    logical :: log_done
+    call self%log%watch(problem, t, y, log_done)
     done = .false.
-    if (.not. self%open) return
+    if (.not. self%open) then
+      done = log_done
+      return
+    end if
     select type (sys => problem)
     type is (system_type)
       self%end_time = t
@@ -166,10 +196,14 @@ contains
                                              sys%hist%waterborne_time >= 0.0_wp))
   end function lowering_over
 
-  !> The measured quantities as a summary row of status ok.
-  function metrics_result(self) result(r)
+  !> The measured quantities as a summary row of status ok (`sys`: the system integrated).
+  function metrics_result(self, sys) result(r)
     class(launch_metrics), intent(in) :: self
+    type(system_type), intent(in) :: sys
     type(case_result) :: r
+    type(impact_tracker) :: impacts
+    real(wp), allocatable :: a(:, :)
+    real(wp) :: seat(2)
     r%status = status_ok
     r%message = "ok"
     r%min_clearance = self%min_clearance
@@ -181,6 +215,18 @@ contains
     r%first_contact_time = self%first_contact_time
     r%waterborne_time = self%waterborne_time
     r%end_time = self%end_time
+    r%outcome = ""
+    if (.not. allocated(self%log%impacts%open)) return
+    impacts = self%log%impacts
+    call self%log%seat_peaks(a, impacts, seat)
+    r%peak_seat_acceleration = seat(1)
+    r%peak_sling_tension = max(0.0_wp, maxval(self%log%loads%sling))
+    r%peak_fall_tension = max(0.0_wp, maxval(self%log%loads%segment))
+    r%max_impact_speed = self%log%loads%max_impact_speed
+    r%swl_exceeded_time = self%log%loads%swl%first
+    r%mbl_exceeded_time = self%log%loads%mbl%first
+    r%impact_speed_exceeded_time = self%log%loads%impact%first
+    r%outcome = self%log%outcome(sys)
   end function metrics_result
 
 end module davit_sweep_metrics

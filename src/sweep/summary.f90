@@ -116,12 +116,46 @@ contains
                     "became waterborne (review G24); -1 = never"//defined)
     call w%write_1d("results/end_time", r%end_time, "s", "End of the lowering window: "// &
                     "hook release, or the end of the run"//defined)
+    call write_log_columns(w, r)
     call w%write_1d("results/wall_time", r%wall_time, "s", &
                     "Compute time of the case (one thread); NaN if not run")
     call w%write_1d_int("results/steps", r%steps, "-", "Integrator steps")
     call w%write_1d_int("results/rhs_evaluations", r%rhs_evaluations, "-", &
                         "Right-hand-side evaluations of the integrator")
   end subroutine write_results
+
+  !> The launch log's columns: peaks, limits and outcome over the run.
+  subroutine write_log_columns(w, r)
+    type(h5_writer_type), intent(inout) :: w
+    type(case_result), intent(in) :: r(:)
+    character(len=:), allocatable :: outcomes(:)
+    integer :: i, width
+    call w%write_1d("results/peak_sling_tension", r%peak_sling_tension, "N", "Largest "// &
+                    "sling tension over every step until release"//defined)
+    call w%write_1d("results/peak_fall_tension", r%peak_fall_tension, "N", "Largest "// &
+                    "cable-segment (fall) tension over every step until release"//defined)
+    call w%write_1d("results/max_impact_speed", r%max_impact_speed, "m/s", "Fastest "// &
+                    "normal impact on the ship's side (0 = none)"//defined)
+    call w%write_1d("results/peak_seat_acceleration", r%peak_seat_acceleration, "m/s^2", &
+                    "Largest filtered seat acceleration (&limits seat, seat_filter)"//defined)
+    call w%write_1d("results/swl_exceeded_time", r%swl_exceeded_time, "s", "First time "// &
+                    "a wire tension exceeded the safe working load; -1 = never"//defined)
+    call w%write_1d("results/mbl_exceeded_time", r%mbl_exceeded_time, "s", "First time "// &
+                    "a wire tension exceeded the minimum breaking load; -1 = never"//defined)
+    call w%write_1d("results/impact_speed_exceeded_time", r%impact_speed_exceeded_time, &
+                    "s", "First impact faster than &limits impact_speed; -1 = never"//defined)
+    width = 1
+    do i = 1, size(r)
+      if (allocated(r(i)%outcome)) width = max(width, len(r(i)%outcome))
+    end do
+    allocate (character(len=width) :: outcomes(size(r)))
+    do i = 1, size(r)
+      outcomes(i) = ""
+      if (allocated(r(i)%outcome)) outcomes(i) = r(i)%outcome
+    end do
+    call w%write_strings("results/outcome", outcomes, "-", "How the launch ended: "// &
+                         "released, waterborne, or not waterborne and why; empty if not run")
+  end subroutine write_log_columns
 
   !> The results of an earlier summary of the same sweep (resume). Fails with a clear
   !> message when the file is not a summary of this sweep deck and base deck.
@@ -207,6 +241,35 @@ contains
     if (.not. allocated(error)) r%end_time = rv
     if (.not. allocated(error)) call f%read_1d("results/wall_time", rv, error)
     if (.not. allocated(error)) r%wall_time = rv
+    if (.not. allocated(error)) call read_log_columns(f, r, error)
   end subroutine read_rows
+
+  subroutine read_log_columns(f, r, error)
+    type(h5_reader_type), intent(inout) :: f
+    type(case_result), intent(inout) :: r(:)
+    type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: rv(:)
+    character(len=:), allocatable :: sv(:)
+    integer :: i
+    call f%read_1d("results/peak_sling_tension", rv, error)
+    if (.not. allocated(error)) r%peak_sling_tension = rv
+    if (.not. allocated(error)) call f%read_1d("results/peak_fall_tension", rv, error)
+    if (.not. allocated(error)) r%peak_fall_tension = rv
+    if (.not. allocated(error)) call f%read_1d("results/max_impact_speed", rv, error)
+    if (.not. allocated(error)) r%max_impact_speed = rv
+    if (.not. allocated(error)) call f%read_1d("results/peak_seat_acceleration", rv, error)
+    if (.not. allocated(error)) r%peak_seat_acceleration = rv
+    if (.not. allocated(error)) call f%read_1d("results/swl_exceeded_time", rv, error)
+    if (.not. allocated(error)) r%swl_exceeded_time = rv
+    if (.not. allocated(error)) call f%read_1d("results/mbl_exceeded_time", rv, error)
+    if (.not. allocated(error)) r%mbl_exceeded_time = rv
+    if (.not. allocated(error)) call f%read_1d("results/impact_speed_exceeded_time", rv, error)
+    if (.not. allocated(error)) r%impact_speed_exceeded_time = rv
+    if (.not. allocated(error)) call f%read_strings("results/outcome", sv, error)
+    if (allocated(error)) return
+    do i = 1, size(r)
+      r(i)%outcome = trim(sv(i))
+    end do
+  end subroutine read_log_columns
 
 end module davit_sweep_summary

@@ -1,0 +1,258 @@
+!> What a designer reads from a launch, resolved at every accepted step: each impact as an
+!> event, the peak sling and cable-segment tensions, the occupant's seat acceleration
+!> (raw and filtered), the wire's and the impact's limits, and how the launch ended. It is
+!> the step monitor of every run of the boat scenes and of every sweep case.
+!>
+!> The launch ends `after_release` after the hooks let go (review G24). One that does not get
+!> waterborne is reported with its cause, judged over about the last 10 s (exponential
+!> averages): still lowering, pinned against the ship's side, or riding the waves in slack
+!> and snatching falls.
+module davit_run_launch_log
+  use davit_kinds, only: wp, gravity
+  use davit_core_rotation, only: rotation_matrix
+  use davit_core_body, only: body_point_velocity
+  use davit_io_config, only: config_type
+  use davit_io_deck_reader, only: fmt_real
+  use davit_io_limits_keys, only: minimum_breaking_load
+  use davit_io_namelist, only: int_to_str
+  use davit_solve_integrator, only: ode_problem
+  use davit_system_parameters, only: fender_gaps
+  use davit_system_model, only: system_type
+  use davit_run_step_monitor, only: step_monitor
+  use davit_run_impact_events, only: impact_tracker
+  use davit_run_load_peaks, only: load_peaks
+  use davit_run_seat_trace, only: seat_trace
+  use davit_run_launch_report, only: write_impacts, write_loads, write_seat
+  use davit_io_hdf5_writer, only: h5_writer_type
+  implicit none
+  private
+  public :: launch_log, new_launch_log
+
+  !> Time constant of the averages the outcome is judged on [s].
+  real(wp), parameter :: judge_time = 10.0_wp
+
+  type, extends(step_monitor) :: launch_log
+    real(wp) :: after_release = 5.0_wp, weight = 0.0_wp, seat_point(3) = 0.0_wp
+    type(impact_tracker) :: impacts
+    type(load_peaks) :: loads
+    type(seat_trace) :: seat
+    !> CG: inertial velocity of the last step, its peak step-mean acceleration and when.
+    real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp, peak_cg = 0.0_wp, peak_cg_time = -1.0_wp
+    !> Outcome: shares of time in contact and with slack falls (averages over ~judge_time),
+    !> snatches (slack to taut), lowest CG height above the still water [m], last time [s].
+    real(wp) :: contact_share = 0.0_wp, slack_share = 0.0_wp, lowest = huge(1.0_wp)
+    real(wp) :: t_last = 0.0_wp
+    integer :: snatches = 0
+    logical :: slack = .false.
+  contains
+    procedure :: watch => log_watch
+    procedure :: outcome => log_outcome
+    procedure :: write => log_write
+    procedure :: seat_peaks => log_seat_peaks
+  end type launch_log
+
+contains
+
+  !> The log of a run of `sys` built from `cfg`: limits from the deck's wire (the full
+  !> rigging's, or the foundation slings').
+  function new_launch_log(cfg, sys) result(log)
+    type(config_type), intent(in) :: cfg
+    type(system_type), intent(in) :: sys
+    type(launch_log) :: log
+    real(wp) :: d
+    integer :: nseg
+    d = merge(cfg%rigging%wire_diameter, cfg%slings%diameter, sys%par%on_davit)
+    nseg = merge(sys%par%rig%nseg, 0, sys%par%on_davit)
+    call log%loads%init(nseg, 2, minimum_breaking_load(cfg%limits, d), &
+                        cfg%limits%safety_factor, cfg%limits%impact_speed)
+    call log%impacts%init(merge(sys%par%fenders%nf, 0, sys%par%contact))
+    log%seat%dt = cfg%limits%seat_interval
+    log%seat%cutoff = cfg%limits%seat_filter
+    log%seat_point = cfg%limits%seat
+    log%after_release = cfg%simulation%after_release
+    log%weight = sys%par%boat%mass*gravity
+  end function new_launch_log
+
+  subroutine log_watch(self, problem, t, y, done)
+    class(launch_log), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:)
+    logical, intent(out) :: done
+    done = .false.
+    if (.not. allocated(self%impacts%open)) return
+    select type (sys => problem)
+    type is (system_type)
+      call watch_motion(self, sys, t, y)
+      call watch_loads(self, sys, t, y)
+      self%t_prev = t
+      self%t_last = t
+      done = sys%hist%release_time >= 0.0_wp .and. &
+             t >= sys%hist%release_time + self%after_release
+    end select
+  end subroutine log_watch
+
+  !> CG and seat accelerations (step means), the seat's trace, and the impacts.
+  subroutine watch_motion(self, sys, t, y)
+    type(launch_log), intent(inout) :: self
+    type(system_type), intent(in) :: sys
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: c(3, 3), v(3), a_cg
+    integer :: started
+    associate (q => y(sys%par%boat_part%q(1):sys%par%boat_part%q(2)), &
+               u => y(sys%par%boat_part%u(1):sys%par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      v = matmul(c, u(4:6))
+      self%lowest = min(self%lowest, -dot_product(c(3, :), q(4:6)))
+      call self%seat%add(t, matmul(c, body_point_velocity(u, self%seat_point)))
+    end associate
+    a_cg = 0.0_wp
+    if (self%t_prev >= 0.0_wp .and. t > self%t_prev) a_cg = norm2(v - self%v_prev)/(t - self%t_prev)
+    if (a_cg > self%peak_cg) then
+      self%peak_cg = a_cg
+      self%peak_cg_time = t
+    end if
+    self%v_prev = v
+    if (size(self%impacts%open) == 0) return
+    block
+      real(wp) :: clearance, force(size(self%impacts%open)), delta(size(force))
+      real(wp) :: delta_dot(size(force))
+      integer :: k
+      call sys%contact_state(y, clearance, force)
+      call fender_gaps(sys%par, y, delta, delta_dot)
+      call self%impacts%track(t, force, delta_dot, a_cg, self%seat%last_raw, started)
+      do k = self%impacts%n - started + 1, self%impacts%n
+        call self%loads%impact_at(t, self%impacts%events(k)%speed)
+      end do
+      call average(self%contact_share, merge(1.0_wp, 0.0_wp, any(force > 0.0_wp)), &
+                   t - self%t_prev)
+    end block
+  end subroutine watch_motion
+
+  !> Sling and cable-segment tensions until the hooks are released; slack and snatches.
+  subroutine watch_loads(self, sys, t, y)
+    type(launch_log), intent(inout) :: self
+    type(system_type), intent(in) :: sys
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: seg(sys%par%rig%nseg), sling(sys%par%rig%nlump + 1, 2), paid
+    real(wp) :: lumps(3, sys%par%rig%nlump, 2), fall
+    if (sys%hist%release_time >= 0.0_wp) return
+    if (.not. sys%par%on_davit) then
+      if (sys%par%slings_attached) call self%loads%update(t, [real(wp) ::], &
+                                                           sys%sling_tensions(y))
+      return
+    end if
+    call sys%rigging_state(t, y, seg, sling, paid, lumps)
+    call self%loads%update(t, seg, maxval(sling, dim=1))
+    fall = max(max(0.0_wp, maxval(seg)), maxval(sling))
+    if (self%slack .and. fall > 0.1_wp*self%weight) self%snatches = self%snatches + 1
+    if (fall < 0.01_wp*self%weight) then
+      self%slack = .true.
+    else if (fall > 0.1_wp*self%weight) then
+      self%slack = .false.
+    end if
+    if (self%t_prev >= 0.0_wp) call average(self%slack_share, &
+                                            merge(1.0_wp, 0.0_wp, fall < 0.01_wp*self%weight), &
+                                            t - self%t_prev)
+  end subroutine watch_loads
+
+  !> Exponential average over judge_time of an indicator x held over a step h.
+  pure subroutine average(share, x, h)
+    real(wp), intent(inout) :: share
+    real(wp), intent(in) :: x, h
+    share = share + (x - share)*(1.0_wp - exp(-max(h, 0.0_wp)/judge_time))
+  end subroutine average
+
+  !> Events, peaks, limits, the seat's filtered acceleration and the outcome (root
+  !> attribute `outcome`), after the recorder has written its groups.
+  subroutine log_write(self, problem, w)
+    class(launch_log), intent(in) :: self
+    class(ode_problem), intent(in) :: problem
+    type(h5_writer_type), intent(inout) :: w
+    type(impact_tracker) :: impacts
+    real(wp), allocatable :: a(:, :)
+    real(wp) :: peak(2)
+    if (.not. allocated(self%impacts%open)) return
+    select type (sys => problem)
+    type is (system_type)
+      impacts = self%impacts
+      call self%seat_peaks(a, impacts, peak)
+      call write_impacts(w, impacts)
+      call write_loads(w, self%loads)
+      call write_seat(w, self%seat, a, self%seat_point)
+      call w%write_1d("peaks/cg_acceleration", [self%peak_cg, self%peak_cg_time], &
+                      "m/s^2, s", "Largest step-mean CG acceleration |Delta v/Delta t| "// &
+                      "over every step, and when (the sampled /boat/acceleration misses it)")
+      call w%write_1d("peaks/seat_acceleration", peak, "m/s^2, s", "Largest filtered "// &
+                      "seat acceleration (/seat) and when")
+      call w%attr_str("/", "outcome", self%outcome(sys))
+    end select
+  end subroutine log_write
+
+  !> The seat's filtered acceleration a (3, n), each impact's filtered peak from its onset
+  !> to 0.2 s after its end, and the largest filtered value with its time.
+  subroutine log_seat_peaks(self, a, impacts, peak)
+    class(launch_log), intent(in) :: self
+    real(wp), allocatable, intent(out) :: a(:, :)
+    type(impact_tracker), intent(inout) :: impacts
+    real(wp), intent(out) :: peak(2)
+    real(wp), allocatable :: mag(:)
+    integer :: k, i1, i2
+    a = self%seat%filtered()
+    mag = norm2(a, dim=1)
+    peak = [0.0_wp, -1.0_wp]
+    if (size(mag) > 0) peak = [maxval(mag), (real(maxloc(mag, 1), wp) - 0.5_wp)*self%seat%dt]
+    do k = 1, impacts%n
+      associate (e => impacts%events(k))
+        i1 = max(1, int(e%time/self%seat%dt))
+        i2 = min(size(mag), int((e%time + e%duration + 0.2_wp)/self%seat%dt) + 1)
+        if (i2 >= i1) e%peak_seat = maxval(mag(i1:i2))
+      end associate
+    end do
+  end subroutine log_seat_peaks
+
+  !> How the launch ended, in words (empty for a boat that is not on the davit).
+  function log_outcome(self, sys) result(text)
+    class(launch_log), intent(in) :: self
+    type(system_type), intent(in) :: sys
+    character(len=:), allocatable :: text
+    text = ""
+    if (.not. sys%par%on_davit) return
+    if (sys%hist%release_time >= 0.0_wp) then
+      text = "released at t = "//fmt_real(sys%hist%release_time)//" s (waterborne at "// &
+             fmt_real(sys%hist%waterborne_time)//" s)"
+    else if (sys%hist%waterborne_time >= 0.0_wp) then
+      text = "waterborne at t = "//fmt_real(sys%hist%waterborne_time)//" s; hooks not "// &
+             "released (&rigging release = .false. or its delay not over)"
+    else
+      text = "not waterborne by t = "//fmt_real(self%t_last)//" s: "//stuck_cause(self)
+    end if
+  end function log_outcome
+
+  !> Why a launch is not waterborne at its end.
+  function stuck_cause(self) result(text)
+    type(launch_log), intent(in) :: self
+    character(len=:), allocatable :: text
+    if (self%lowest > 3.0_wp) then
+      text = "still lowering (CG never lower than "//fmt_real(self%lowest)//" m above "// &
+             "the still water; t_end is shorter than the lowering)"
+    else if (self%contact_share > 0.3_wp) then
+      text = "pinned against the ship's side (a fender in contact "// &
+             percent(self%contact_share)//" of the last ~10 s; "// &
+             int_to_str(self%impacts%n)//" impacts)"
+    else if (self%slack_share > 0.2_wp) then
+      text = "riding the waves in slack, snatching falls (slack "// &
+             percent(self%slack_share)//" of the last ~10 s; "//int_to_str(self%snatches)// &
+             " snatches): never afloat for 1 s"
+    else
+      text = "hanging at the water in taut falls (neither buoyancy >= weight nor hooks < "// &
+             "1 % of it held for 1 s)"
+    end if
+  end function stuck_cause
+
+  pure function percent(x) result(text)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: text
+    text = int_to_str(nint(100.0_wp*x))//" %"
+  end function percent
+
+end module davit_run_launch_log
