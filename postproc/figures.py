@@ -58,26 +58,75 @@ def sling_tension(run, outdir, stem):
     fig, ax = plt.subplots(figsize=(9, 4.5))
     for k, label in enumerate(("fore", "aft")[: tension.shape[1]]):
         ax.plot(t, tension[:, k] / 1e3, lw=0.8, label=label)
-    ax.set(xlabel="t [s]", ylabel="tension [kN]", title="Sling tension")
+    title = "Sling tension"
+    peak, when = run.get(layout.PEAK_SLING_TENSION), run.get(layout.PEAK_SLING_TENSION_TIME)
+    if peak is not None and len(peak):
+        ax.plot(when, peak / 1e3, "v", color="crimson", label="peak over every step")
+        _mark_limits(ax, run, float(np.max(peak)) / 1e3)
+        title += f": resolved peak {np.max(peak) / 1e3:.1f} kN"
+    ax.set(xlabel="t [s]", ylabel="tension [kN]", title=title + _title_outcome(run))
     ax.grid(True, alpha=0.3)
     ax.legend()
     fig.tight_layout()
     return _save(fig, outdir, f"{stem}_sling_tension.png")
 
 
+def _title_outcome(run):
+    """The run's outcome (launches), for a figure's title."""
+    text = run.attrs.get(layout.OUTCOME, "")
+    return f"\n{text}" if text else ""
+
+
+def _mark_impacts(ax, run, values, label, fmt="{:.0f}"):
+    """Mark each impact event (resolved at every step) at its onset with `values`."""
+    t = run.get(layout.IMPACT_TIME)
+    if t is None or len(t) == 0:
+        return
+    ax.plot(t, values, "v", color="crimson", ms=5, label=label)
+    k = int(np.argmax(values))
+    ax.annotate(fmt.format(values[k]), (t[k], values[k]), textcoords="offset points",
+                xytext=(4, 4), fontsize=8, color="crimson")
+
+
 def acceleration(run, outdir, stem):
-    """Horizontal and vertical CG acceleration (inertial frame, gravity not subtracted)."""
+    """Horizontal and vertical CG acceleration at the output samples (inertial frame,
+    gravity not subtracted), the seat's filtered acceleration, and the peaks resolved at
+    every step: each impact's CG peak and the largest step-mean CG acceleration, which
+    the samples miss."""
     run.require([layout.BOAT_ACCELERATION], "boat acceleration")
     a = run.get(layout.BOAT_ACCELERATION)
     t = run.time
     fig, ax = plt.subplots(figsize=(9, 4.5))
-    ax.plot(t, np.hypot(a[:, 0], a[:, 1]), lw=0.8, label="horizontal |a_xy|")
-    ax.plot(t, -a[:, 2], lw=0.8, label="vertical a_z1 (up)")
-    ax.set(xlabel="t [s]", ylabel="acceleration [m/s^2]", title="Boat acceleration")
+    ax.plot(t, np.hypot(a[:, 0], a[:, 1]), lw=0.8, label="CG horizontal |a_xy| (sampled)")
+    ax.plot(t, -a[:, 2], lw=0.8, label="CG vertical a_z1 (up, sampled)")
+    seat = run.get(layout.SEAT_ACCELERATION)
+    if seat is not None and len(seat):
+        hz = float(np.ravel(run.group_attrs[layout.SEAT_GROUP]["filter_hz"])[0])
+        ax.plot(run.seat_time(), np.linalg.norm(seat, axis=1), lw=0.8,
+                label=f"seat |a|, {hz:g} Hz phaseless Butterworth")
+    _mark_impacts(ax, run, run.get(layout.IMPACT_PEAK_ACCELERATION),
+                  "impact: CG peak (every step)")
+    peak = run.get(layout.PEAK_CG_ACCELERATION)
+    title = "Boat acceleration"
+    if peak is not None:
+        sampled = float(np.max(np.linalg.norm(a, axis=1))) if len(a) else 0.0
+        title += (f": resolved CG peak {peak[0]:.0f} m/s^2 at {peak[1]:.2f} s "
+                  f"(samples show {sampled:.0f})")
+    ax.set(xlabel="t [s]", ylabel="acceleration [m/s^2]", title=title + _title_outcome(run))
     ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
     fig.tight_layout()
     return _save(fig, outdir, f"{stem}_acceleration.png")
+
+
+def _mark_limits(ax, run, peak_kn):
+    """The wire's safe working load, and its breaking load where a peak comes near it."""
+    swl, mbl = run.limit("safe_working_load"), run.limit("minimum_breaking_load")
+    if swl is not None:
+        ax.axhline(swl / 1e3, color="darkorange", ls="--", lw=0.8,
+                   label=f"SWL = MBL/6 = {swl / 1e3:.1f} kN")
+    if mbl is not None and peak_kn > 0.5 * mbl / 1e3:
+        ax.axhline(mbl / 1e3, color="red", ls="--", lw=0.8, label=f"MBL = {mbl / 1e3:.0f} kN")
 
 
 def _sea_height(run):
@@ -189,6 +238,11 @@ def segment_tension(run, outdir, stem):
     fig, ax = plt.subplots(figsize=(9, 4.5))
     for k in range(tension.shape[1]):
         ax.plot(t[:n], tension[:n, k] / 1e3, lw=0.7, label=f"segment {k + 1}")
+    peak = run.get(layout.PEAK_SEGMENT_TENSION)
+    if peak is not None and len(peak):
+        ax.plot(run.get(layout.PEAK_SEGMENT_TENSION_TIME), peak / 1e3, "v", color="crimson",
+                label=f"peaks over every step (max {np.max(peak) / 1e3:.1f} kN)")
+        _mark_limits(ax, run, float(np.max(peak)) / 1e3)
     ax.axhline(mass * layout.GRAVITY / 4e3, color="k", ls="--", lw=0.8,
                label=f"W/4 = {mass * layout.GRAVITY / 4e3:.2f} kN")
     ax.axhline((mass + rigging) * layout.GRAVITY / 4e3, color="k", ls=":", lw=0.8,
@@ -214,6 +268,13 @@ def contact(run, outdir, stem):
             "(clearance < 0: indentation)")
     for k in range(force.shape[1]):
         bottom.plot(t, force[:, k] / 1e3, lw=0.8, label=f"fender {k + 1}")
+    peak = run.get(layout.IMPACT_PEAK_FORCE)
+    if peak is not None and len(peak):
+        _mark_impacts(bottom, run, peak / 1e3, "impact peak (every step)")
+        speed = run.get(layout.IMPACT_SPEED)
+        limit = run.limit("impact_speed") or 3.5
+        top.set_title(f"Fenders against the ship's side: {len(peak)} impacts, fastest "
+                      f"{np.max(speed):.2f} m/s (limit {limit:g} m/s)" + _title_outcome(run))
     bottom.set(xlabel="t [s]", ylabel="normal force [kN]")
     for ax in (top, bottom):
         ax.grid(True, alpha=0.3)

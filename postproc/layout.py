@@ -27,6 +27,33 @@ WATERBORNE_TIME = "events/waterborne_time"
 RELEASE_TIME = "events/release_time"
 END_TIME = "events/end_time"
 CONTACT = (CONTACT_CLEARANCE, CONTACT_FORCE)
+# The launch log (src/run/launch_log.f90), resolved at every step: one row per impact, peak
+# tensions per sling and cable segment with their times, [value, time] pairs of the CG and
+# seat peaks, limits as [first time (-1 never), time beyond, excursions] with the limit
+# values in the group's attributes, and the seat's filtered acceleration (3, n) at
+# t = (k - 1/2) interval (attributes of group "seat").
+IMPACT_TIME = "events/impacts/time"
+IMPACT_FENDER = "events/impacts/fender"
+IMPACT_SPEED = "events/impacts/speed"
+IMPACT_PEAK_FORCE = "events/impacts/peak_force"
+IMPACT_DURATION = "events/impacts/duration"
+IMPACT_PEAK_ACCELERATION = "events/impacts/peak_acceleration"
+IMPACT_PEAK_SEAT = "events/impacts/peak_seat_acceleration"
+IMPACTS = (IMPACT_TIME, IMPACT_FENDER, IMPACT_SPEED, IMPACT_PEAK_FORCE, IMPACT_DURATION,
+           IMPACT_PEAK_ACCELERATION, IMPACT_PEAK_SEAT)
+PEAK_SLING_TENSION = "peaks/sling_tension"
+PEAK_SLING_TENSION_TIME = "peaks/sling_tension_time"
+PEAK_SEGMENT_TENSION = "peaks/segment_tension"
+PEAK_SEGMENT_TENSION_TIME = "peaks/segment_tension_time"
+PEAK_CG_ACCELERATION = "peaks/cg_acceleration"
+PEAK_SEAT_ACCELERATION = "peaks/seat_acceleration"
+SEAT_ACCELERATION = "seat/acceleration"
+SEAT_GROUP = "seat"
+LIMITS_GROUP = "limits"
+LIMIT_SWL = "limits/safe_working_load"
+LIMIT_MBL = "limits/minimum_breaking_load"
+LIMIT_IMPACT = "limits/impact_speed"
+OUTCOME = "outcome"
 RIGGING_SEGMENT_TENSION = "rigging/segment_tension"
 RIGGING_PAID_OUT = "rigging/paid_out"
 RIGGING_PULLEY_ANGLE = "rigging/pulley_angle"
@@ -124,6 +151,20 @@ class Run:
             return None
         value = float(np.ravel(value)[0])
         return value if value >= 0 else None
+
+    def limit(self, name):
+        """A limit's value from /limits' attributes (minimum_breaking_load,
+        safe_working_load, impact_speed), or None where the file has none."""
+        value = self.group_attrs.get(LIMITS_GROUP, {}).get(name)
+        return None if value is None else float(np.ravel(value)[0])
+
+    def seat_time(self):
+        """Times of the seat's filtered acceleration samples, or None."""
+        a = self.get(SEAT_ACCELERATION)
+        if a is None:
+            return None
+        dt = float(np.ravel(self.group_attrs[SEAT_GROUP]["interval"])[0])
+        return (np.arange(a.shape[0]) + 0.5) * dt
 
     def deck(self, group, key, default=None):
         """A key of the deck this file was run from (root attribute input_namelist)."""

@@ -148,7 +148,7 @@ def test_f2_tension_settles_on_coupled_model(davit, tmp_path):
     unstretched falls the cable tension settles to its static value (the equilibrium start,
     W/4 plus block weights over the parts' angle) within 5 % after 3 s."""
     base = (ROOT / "input" / "iiib_level5_090.nml").read_text().replace(
-        "t_end = 100.0", "t_end = 5.0").replace("drum_speed = 0.7", "drum_speed = 0.0")
+        "t_end = 0.0 ", "t_end = 5.0 ").replace("drum_speed = 0.7", "drum_speed = 0.0")
     static = _run_text(davit, tmp_path, "f2_eq.nml", base)
     loose = _run_text(davit, tmp_path, "f2_loose.nml",
                       base.replace("reeving = 'a'", "reeving = 'a'\n  initial = 'unstretched'"))
@@ -182,7 +182,7 @@ def test_rk4_fourth_order_on_coupled_launch(davit, tmp_path):
     the ramping waves, boat on the falls, no contact): halving dt divides the change of the
     end state (boat CG, attitude, cable tensions / 1e4 N) by 2^4 = 16 (± 20 %)."""
     base = (ROOT / "input" / "iiib_level5_090.nml").read_text().replace(
-        "t_end = 100.0", "t_end = 2.0").replace("output_interval = 0.02", "output_interval = 0.4")
+        "t_end = 0.0 ", "t_end = 2.0 ").replace("output_interval = 0.02", "output_interval = 0.4")
     ends = []
     for dt in ("8.0e-4", "4.0e-4", "2.0e-4"):
         run = _run_text(davit, tmp_path, f"order_{dt}.nml", base.replace("dt = 1.0e-3", f"dt = {dt}"))
@@ -218,7 +218,7 @@ def test_ship_wave_load_slow_clock_is_fourth_order(davit, tmp_path):
     Hermite: the boat CG error against evaluation at every stage falls as wave_update^4
     (halving it divides the error by 16, +-35 %) on 8 s of the irregular Level 5 launch."""
     base = (ROOT / "input" / "iiib_level5_090_irregular.nml").read_text().replace(
-        "t_end = 100.0", "t_end = 8.0").replace("output_interval = 0.02", "output_interval = 0.1")
+        "t_end = 0.0 ", "t_end = 8.0 ").replace("output_interval = 0.02", "output_interval = 0.1")
     # the irregular decks set wave_update themselves: replace their line
     runs = [_run_text(davit, tmp_path, f"wu{i}.nml",
                       _set_line(base, "wave_update", f"  wave_update = {wu}"))

@@ -16,7 +16,7 @@ from postproc import __main__ as cli
 from postproc import dispatch, layout, paper, regress
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-SHORT = {"t_end = 100.0": "t_end = 0.4", "output_interval = 0.02": "output_interval = 0.01"}
+SHORT = {"t_end = 0.0 ": "t_end = 0.4 ", "output_interval = 0.02": "output_interval = 0.01"}
 # Colliding set-up: the ship's side moved out to 5 cm from the fenders (fender y = 13.3 -
 # 1.4 = 11.9 m), the boat moving towards it at 0.5 m/s: contact after about 0.1 s.
 GAP, SPEED = 0.05, 0.5
