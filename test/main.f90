@@ -8,6 +8,7 @@ program main
   use test_sea, only: collect_sea
   use test_ship, only: collect_ship
   use test_boat, only: collect_boat
+  use test_fenders, only: collect_fenders
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
   use test_integrators, only: collect_integrators
@@ -23,9 +24,9 @@ program main
   filter = ""
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
-            collect_ship(), collect_boat(), collect_boat_water(), collect_rigging(), &
-            collect_integrators(), collect_sweep(), collect_strip_waves(), &
-            collect_bem_ship(), collect_launch_log()]
+            collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
+            collect_rigging(), collect_integrators(), collect_sweep(), &
+            collect_strip_waves(), collect_bem_ship(), collect_launch_log()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

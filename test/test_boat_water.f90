@@ -266,7 +266,7 @@ contains
     real(wp) :: y(nstate), t, dt, clearance, force(2), fpeak, dm, fm
     integer :: i
     cfg = deck_config("&slings attached = .false. / &wind speed = 0.0 / "// &
-                      "&contact fender_z = 0.0, 0.0 / "// &
+                      "&contact law = 'hertz_elastoplastic', fender_z = 0.0, 0.0 / "// &
                       "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                       "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
     y = new_test_system(sys, cfg)
@@ -306,7 +306,7 @@ contains
     character(len=6), parameter :: rule(2) = ["window", "graded"]
     do j = 1, 2
       cfg = deck_config("&slings attached = .false. / &wind speed = 0.0 / "// &
-                        "&contact fender_z = 0.0, 0.0 / "// &
+                        "&contact law = 'hertz_elastoplastic', fender_z = 0.0, 0.0 / "// &
                         "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                         "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 / "// &
                         "&simulation dt = 1e-3, dt_contact = 2e-6, contact_approach = '"// &

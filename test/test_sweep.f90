@@ -182,7 +182,7 @@ contains
     real(wp) :: dm, fm
     cfg = deck_config("&simulation t_end = 0.03, dt = 2.0e-6, output_interval = 0.001 / "// &
                       "&slings attached = .false. / &wind speed = 0.0 / "// &
-                      "&contact fender_z = 0.0, 0.0 / "// &
+                      "&contact law = 'hertz_elastoplastic', fender_z = 0.0, 0.0 / "// &
                       "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                       "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
     y = new_test_system(sys, cfg)

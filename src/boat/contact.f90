@@ -6,6 +6,10 @@
 !> delta - delta_m is singular there). The smooth alternative is Lankarani-Nikravesh,
 !> f = K delta^(3/2) (1 + 3 (1 - e^2)/4 delta_dot/v0), clipped at zero.
 !>
+!> The default law is a rubber fender instead (`law_rubber_fender`, davit_boat_rubber_fender):
+!> a published reaction-deflection curve loading and a hysteresis unloading path that
+!> returns e^2 of the work; the Hertz laws stay as the paper-literal levels of detail.
+!>
 !> The phase of each fender is history, not a function of the state: the force routine
 !> reads it, and fender_update advances it after every accepted step. After the force
 !> vanishes at the permanent set delta_p the fender is "separated" until it is back out
@@ -13,13 +17,17 @@
 !> indentation while it moves out, and push it out faster (e = 0.833 instead of 0.8).
 module davit_boat_contact
   use davit_kinds, only: wp
+  use davit_boat_rubber_fender, only: rubber_loading, rubber_unloading, &
+                                      rubber_unloading_exponent
   implicit none
   private
   public :: contact_law_type, fender_state_type, new_contact_law, contact_force
   public :: fender_update, hertz_peak, law_hertz_elastoplastic, law_lankarani_nikravesh
+  public :: law_rubber_fender, new_rubber_fender_law
   public :: phase_free, phase_compression, phase_restitution, phase_separated
 
-  integer, parameter :: law_hertz_elastoplastic = 1, law_lankarani_nikravesh = 2
+  integer, parameter :: law_hertz_elastoplastic = 1, law_lankarani_nikravesh = 2, &
+                        law_rubber_fender = 3
   !> Separated: the force has vanished at the permanent set delta_p but the point is still
   !> inside the undeformed plane; a new contact needs delta_dot > 0 again, and is measured
   !> from the permanent set (the dent), not from zero.
@@ -30,6 +38,8 @@ module davit_boat_contact
     integer :: law = law_hertz_elastoplastic
     !> Hertz stiffness K [N/m^1.5] and coefficient of restitution.
     real(wp) :: k = 0.0_wp, restitution = 0.8_wp
+    !> Rubber fender: diameter D [m] and rated reaction R_r at 60 % deflection [N].
+    real(wp) :: diameter = 0.0_wp, rated_reaction = 0.0_wp
   end type contact_law_type
 
   type :: fender_state_type
@@ -37,6 +47,8 @@ module davit_boat_contact
     !> Approach speed at first contact [m/s], recorded maximum indentation [m] and force [N],
     !> permanent set of the last contact at which a new compression starts [m].
     real(wp) :: v0 = 0.0_wp, delta_max = 0.0_wp, f_max = 0.0_wp, offset = 0.0_wp
+    !> Rubber fender: exponent p of the unloading path of this contact.
+    real(wp) :: exponent = 1.0_wp
   end type fender_state_type
 
 contains
@@ -56,6 +68,16 @@ contains
     c%restitution = restitution
   end function new_contact_law
 
+  !> Rubber fender law: diameter d [m], rated reaction r_rated [N] at 60 % deflection.
+  pure function new_rubber_fender_law(d, r_rated, restitution) result(c)
+    real(wp), intent(in) :: d, r_rated, restitution
+    type(contact_law_type) :: c
+    c%law = law_rubber_fender
+    c%diameter = d
+    c%rated_reaction = r_rated
+    c%restitution = restitution
+  end function new_rubber_fender_law
+
   !> Normal force [N] (>= 0) for indentation delta [m] and its rate (positive approaching).
   pure real(wp) function contact_force(c, s, delta, delta_dot) result(f)
     type(contact_law_type), intent(in) :: c
@@ -65,6 +87,12 @@ contains
     f = 0.0_wp
     if (delta <= 0.0_wp) return
     select case (c%law)
+    case (law_rubber_fender)
+      if (s%phase == phase_restitution) then
+        f = rubber_unloading(c%diameter, c%rated_reaction, s%f_max, s%exponent, delta)
+      else
+        f = rubber_loading(c%diameter, c%rated_reaction, delta)
+      end if
     case (law_lankarani_nikravesh)
       if (s%v0 > 0.0_wp) then
         f = max(0.0_wp, c%k*delta**1.5_wp*(1.0_wp + 0.75_wp*(1.0_wp - c%restitution**2)* &
@@ -93,6 +121,10 @@ contains
     type(contact_law_type), intent(in) :: c
     type(fender_state_type), intent(inout) :: s
     real(wp), intent(in) :: delta, delta_dot
+    if (c%law == law_rubber_fender) then
+      call rubber_update(c, s, delta, delta_dot)
+      return
+    end if
     select case (s%phase)
     case (phase_free)
       if (delta > 0.0_wp) call start_compression(c, s, 0.0_wp, delta, delta_dot)
@@ -119,6 +151,34 @@ contains
       end if
     end select
   end subroutine fender_update
+
+  !> The rubber fender's phases: compression on the loading curve until delta_dot <= 0, then
+  !> the unloading path of this turning point (its exponent solved once here) until the
+  !> fender is back at zero deflection; pushed in past the turning point, it loads again.
+  pure subroutine rubber_update(c, s, delta, delta_dot)
+    type(contact_law_type), intent(in) :: c
+    type(fender_state_type), intent(inout) :: s
+    real(wp), intent(in) :: delta, delta_dot
+    if (delta <= 0.0_wp) then
+      s = fender_state_type()
+      return
+    end if
+    select case (s%phase)
+    case (phase_free)
+      s%phase = phase_compression
+      s%v0 = max(delta_dot, tiny(1.0_wp))
+    case (phase_compression)
+      if (delta_dot <= 0.0_wp) then
+        s%phase = phase_restitution
+        s%delta_max = delta
+        s%f_max = rubber_loading(c%diameter, c%rated_reaction, delta)
+        s%exponent = rubber_unloading_exponent(c%diameter, c%rated_reaction, delta, &
+                                               c%restitution)
+      end if
+    case (phase_restitution)
+      if (delta > s%delta_max) s%phase = phase_compression
+    end select
+  end subroutine rubber_update
 
   !> A new compression from the indentation `offset` (0, or the dent of the last contact).
   pure subroutine start_compression(c, s, offset, delta, delta_dot)

@@ -68,6 +68,7 @@ module davit_io_config
     character(len=:), allocatable :: law
     real(wp) :: youngs_boat, poisson_boat, youngs_ship, poisson_ship
     real(wp) :: radius_boat, radius_ship, restitution
+    real(wp) :: fender_diameter, fender_reaction
     real(wp), allocatable :: fender_x(:)
     real(wp) :: fender_y, fender_z(2), side_y
     integer :: fender_points
@@ -191,12 +192,20 @@ contains
     character(len=*), parameter :: g = "contact"
     call r%logical(g, "enabled", s%enabled, .true., &
                    "Fender contact with the ship's side plane (eqs. 27-34).")
-    call r%choice(g, "law", s%law, "hertz_elastoplastic", [character(len=20) :: &
-                  "hertz_elastoplastic", "lankarani_nikravesh"], "Hertz compression with "// &
-                  "the corrected elastoplastic restitution (eqs. 27-28, review §1.7), or the "// &
-                  "smooth Lankarani-Nikravesh hysteresis law (accurate for e_r near 1).")
+    call r%choice(g, "law", s%law, "rubber_fender", [character(len=20) :: "rubber_fender", &
+                  "hertz_elastoplastic", "lankarani_nikravesh"], "A rubber fender's "// &
+                  "published reaction-deflection curve with hysteresis returning e_r^2 of the "// &
+                  "work (README Fenders); or the paper's Hertz compression with the corrected "// &
+                  "elastoplastic restitution (eqs. 27-28, review §1.7); or the smooth "// &
+                  "Lankarani-Nikravesh Hertz law (accurate for e_r near 1).")
+    call r%real(g, "fender_diameter", s%fender_diameter, 1.0_wp, 0.01_wp, 10.0_wp, "m", &
+                "rubber_fender: diameter D; the curve's deflections are fractions of it "// &
+                "(ISO 17357-1 1000 x 1500 pneumatic fender).")
+    call r%real(g, "fender_reaction", s%fender_reaction, 182.0e3_wp, 1.0e2_wp, 1.0e8_wp, "N", &
+                "rubber_fender: rated reaction R_r at the rated 60 % deflection (ISO "// &
+                "17357-1, 1000 x 1500 at 50 kPa: 182 kN, 32 kJ).")
     call r%real(g, "youngs_boat", s%youngs_boat, 55.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
-                "Young's modulus E_b of the fender (paper; see review §1.7 on 55 GPa).")
+                "Hertz laws: Young's modulus E_b of the fender (paper; review §1.7 on 55 GPa).")
     call r%real(g, "poisson_boat", s%poisson_boat, 0.45_wp, 0.0_wp, 0.5_wp, "-", &
                 "Poisson's ratio nu_b of the fender (paper).")
     call r%real(g, "youngs_ship", s%youngs_ship, 200.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &

@@ -5,14 +5,14 @@ module davit_system_build
   use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
-  use davit_io_config, only: config_type
+  use davit_io_config, only: config_type, contact_config
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
   use davit_boat_strip_loads, only: new_strip_model
   use davit_boat_wind_loads, only: boat_wind_type, lift_symmetric, lift_literal
-  use davit_boat_contact, only: new_contact_law, law_hertz_elastoplastic, &
-                                law_lankarani_nikravesh
+  use davit_boat_contact, only: contact_law_type, new_contact_law, new_rubber_fender_law, &
+                                law_hertz_elastoplastic, law_lankarani_nikravesh
   use davit_boat_fenders, only: new_fender_set
   use davit_boat_strip_waves, only: new_strip_wave_cache
   use davit_boat_surface_watch, only: new_surface_watch
@@ -192,7 +192,6 @@ contains
     type(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
     real(wp) :: cs(3, 3)
-    integer :: law
     self%par%contact = cfg%contact%enabled
     self%policy%dt_contact = cfg%simulation%dt_contact
     self%policy%graded = cfg%simulation%contact_approach == "graded"
@@ -201,16 +200,26 @@ contains
                                    matmul(cs, [cfg%ship%headway, 0.0_wp, 0.0_wp]), 0.0_wp)
     self%par%side_y = cfg%contact%side_y
     associate (k => cfg%contact)
-      law = merge(law_lankarani_nikravesh, law_hertz_elastoplastic, &
-                  k%law == "lankarani_nikravesh")
       self%par%fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, &
-                                        new_contact_law(law, k%youngs_boat, k%poisson_boat, &
-                                                        k%youngs_ship, k%poisson_ship, &
-                                                        k%radius_boat, k%radius_ship, &
-                                                        k%restitution))
+                                        contact_law(k))
       allocate (self%hist%fender_states(size(k%fender_x)))
     end associate
   end subroutine new_side_contact
+
+  !> The &contact law: the rubber fender's curve, or Hertz from the two materials.
+  pure function contact_law(k) result(c)
+    type(contact_config), intent(in) :: k
+    type(contact_law_type) :: c
+    integer :: law
+    if (k%law == "rubber_fender") then
+      c = new_rubber_fender_law(k%fender_diameter, k%fender_reaction, k%restitution)
+      return
+    end if
+    law = merge(law_lankarani_nikravesh, law_hertz_elastoplastic, &
+                k%law == "lankarani_nikravesh")
+    c = new_contact_law(law, k%youngs_boat, k%poisson_boat, k%youngs_ship, k%poisson_ship, &
+                        k%radius_boat, k%radius_ship, k%restitution)
+  end function contact_law
 
   !> Initial y from inertial position/velocity and Euler angles / body rates; on the davit,
   !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as
