@@ -10,6 +10,7 @@ program main
   use test_boat, only: collect_boat
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
+  use test_slack, only: collect_slack
   use test_integrators, only: collect_integrators
   use test_sweep, only: collect_sweep
   use test_strip_waves, only: collect_strip_waves
@@ -22,7 +23,7 @@ program main
   filter = ""
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
-            collect_ship(), collect_boat(), collect_boat_water(), collect_rigging(), &
+            collect_ship(), collect_boat(), collect_boat_water(), collect_rigging(), collect_slack(), &
             collect_integrators(), collect_sweep(), collect_strip_waves(), &
             collect_bem_ship()]
   call run_suites(suites, trim(filter), npass, nfail)

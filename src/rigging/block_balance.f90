@@ -456,6 +456,7 @@ contains
     integer :: a
     sling_el = falls%sling
     sling_el%c_seg = 0.0_wp
+    sling_el%c_top = 0.0_wp
     do a = 1, 2
       call top_segment_tangent(sling_el, inp%low_r(:, a), inp%low_v(:, a), br(:, a), &
                                bv(:, a), f_top, bal%f_sling(a), bal%f_real(a), k)

@@ -51,7 +51,7 @@ module davit_rigging_rigging
                                  build_reeving, cable_tensions, set_cable_lengths, &
                                  add_cable_energy, cable_unstretched_length, at_rest
   use davit_rigging_block_balance, only: balance_input_type, solve_blocks
-  use davit_rigging_wire_damping, only: sling_dashpot
+  use davit_rigging_wire_damping, only: sling_dashpot, sling_lump_dashpots
   use davit_rigging_block_stop, only: add_stop_forces, stop_energy
   implicit none
   private
@@ -135,6 +135,7 @@ contains
     self%nlump = cfg%lumps
     self%sling = new_sling_chain(cfg%lumps, cfg%sling_length, ea, sling_dashpot(cfg, ea), &
                                  cfg%sling_mass_per_length)
+    call sling_lump_dashpots(cfg, self%sling)
     self%block_mass = cfg%block_mass
     self%sheave_radius = cfg%sheave_radius
     self%sheave_inertia = cfg%sheave_inertia

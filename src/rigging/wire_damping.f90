@@ -13,9 +13,10 @@ module davit_rigging_wire_damping
   use davit_kinds, only: wp
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_cable, only: cable_type, node_block
+  use davit_rigging_sling_chain, only: sling_chain_type
   implicit none
   private
-  public :: wire_dashpot, sling_dashpot, cable_floor
+  public :: wire_dashpot, sling_dashpot, sling_lump_dashpots, cable_floor
 
 contains
 
@@ -37,6 +38,20 @@ contains
       c = wire_dashpot(cfg%wire_damping_ratio, ea/cfg%sling_length, cfg%block_mass)
     end if
   end function sling_dashpot
+
+  !> With lumps (n > 0) and the wire's damping (sling_damping not given): the series rule
+  !> of sling_dashpot would put (n+1) 2 zeta sqrt(EA m_b/l) on every segment, over-damping
+  !> the light lumps (zeta ~ 2 at n = 20: a real rate ~1e6 1/s, RK4 diverges at 1e-5 s).
+  !> So each segment is sized for the mass it moves: the top one (k_seg, the block) for
+  !> the block, the others for a lump, 2 zeta sqrt(k_seg m_p) (MoorDyn's per-segment
+  !> rule); the block mode then rings mostly in the top segment (zeta/sqrt(n+1) or more).
+  pure subroutine sling_lump_dashpots(cfg, ch)
+    type(rigging_config), intent(in) :: cfg
+    type(sling_chain_type), intent(inout) :: ch
+    if (cfg%sling_damping_given .or. ch%nlump == 0) return
+    ch%c_top = wire_dashpot(cfg%wire_damping_ratio, ch%k_seg, cfg%block_mass)
+    ch%c_seg = wire_dashpot(cfg%wire_damping_ratio, ch%k_seg, ch%m_lump)
+  end subroutine sling_lump_dashpots
 
   !> The wire's floor for one cable's per-segment dashpot [N s/m]: the block on its
   !> stiffest (shortest) part, 2 zeta sqrt(EA/L0_min m_b) over the segments that end at a
