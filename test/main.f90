@@ -11,6 +11,7 @@ program main
   use test_fenders, only: collect_fenders
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
+  use test_slack, only: collect_slack
   use test_integrators, only: collect_integrators
   use test_sweep, only: collect_sweep
   use test_strip_waves, only: collect_strip_waves
@@ -25,7 +26,7 @@ program main
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
             collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
-            collect_rigging(), collect_integrators(), collect_sweep(), &
+            collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_launch_log()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"

@@ -820,7 +820,7 @@ contains
     integer :: i, k
     do i = 1, size(decks)
       call setup(p, "blocks = 'quasi_static', drum_speed = 0.7, ramp_time = 0.1, "// &
-                 "cable_damping = 0"//nl//trim(decks(i)), y, state, res)
+                 "cable_damping = 0, sling_damping = 0"//nl//trim(decks(i)), y, state, res)
       call perturb(p, y)
       call new_rk4(size(y), rk)
       t = 0.0_wp

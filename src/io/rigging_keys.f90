@@ -24,6 +24,12 @@ module davit_io_rigging_keys
     integer :: lumps
     real(wp) :: sling_length, sling_mass_per_length, wire_diameter, youngs_modulus
     real(wp) :: sling_damping, cable_damping
+    !> Wire damping ratio of every axial spring's own block mode, and whether the absolute
+    !> dashpot keys were given (then they are used as given).
+    real(wp) :: wire_damping_ratio
+    logical :: sling_damping_given = .false., cable_damping_given = .false.
+    !> Height of a block's centre above its hook when it rests on it [m] (0: no stop).
+    real(wp) :: block_stop
     real(wp) :: head_fore(3), head_aft(3), head_spacing, lead_sheave(3), drum_position(3)
     real(wp) :: sheave_radius, sheave_inertia, block_mass, drum_radius
     real(wp) :: drum_speed, lowering_speed, winch_start, ramp_time, stop_time, brake_time
@@ -82,15 +88,26 @@ contains
                 lo_open=.true.)
     call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
                 "Pa", "Young's modulus of slings and cable (paper III.B).")
-    ! The bounce mode is damped in the cable, not the sling: the 1 m sling is ~8x stiffer
-    ! than the falls, so a sling dashpot sees little motion, and on light lumps it
-    ! collapses the RK4 step (review §4.1). 1e4 N s/m per cable segment gives zeta ~ 0.02.
+    ! Wire damping (review §1.6, G26): a stranded rope's inter-wire friction is a
+    ! hysteretic loss, about the same fraction of the strain energy per cycle at every
+    ! frequency, so it is stated as one damping ratio. G26 reads zeta ~ 0.02 off the
+    ! paper's Fig. 13 (the bounce settles in ~2.5 s); the same ratio then holds for the
+    ! block's own mode on each wire (~200 Hz), which is what rings after a snatch.
+    call r%real(g, "wire_damping_ratio", s%wire_damping_ratio, 0.02_wp, 0.0_wp, 1.0_wp, "-", &
+                "Damping ratio of the wire (loss factor / 2, G26): each sling and cable "// &
+                "segment gets at least c = 2 zeta sqrt(k m_b), k its EA/L0, m_b the block.")
+    s%sling_damping_given = r%has(g, "sling_damping")
+    s%cable_damping_given = r%has(g, "cable_damping")
     call r%real(g, "sling_damping", s%sling_damping, 0.0_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
-                "Absolute axial dashpot of a whole sling (corrected eq. 63); each of "// &
-                "the lumps+1 segments gets (lumps+1) times this.")
+                "Absolute axial dashpot of a whole sling (corrected eq. 63), used as given; "// &
+                "each of the lumps+1 segments gets (lumps+1) times this.", &
+                default_text="2 zeta sqrt(EA m_b/l)")
+    ! The bounce mode is damped in the cable, not the sling: the 1 m sling is ~8x stiffer
+    ! than the falls, so a sling dashpot sees little motion (review §4.1). 1e4 N s/m per
+    ! cable segment gives the bounce zeta ~ 0.02 (G26), above the wire's block-mode floor.
     call r%real(g, "cable_damping", s%cable_damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
                 "Absolute axial dashpot of each cable segment on its stretch rate (§1.10, "// &
-                "G26: bounce zeta ~ 0.02).")
+                "G26: bounce zeta ~ 0.02); if not given, at least the wire's floor.")
   end subroutine read_wire
 
   subroutine read_geometry(r, s)
@@ -122,6 +139,9 @@ contains
                 "kg m^2", "Polar inertia of every sheave (15 kg disc, G7).")
     call r%real(g, "block_mass", s%block_mass, 50.0_wp, 0.01_wp, 1.0e4_wp, "kg", &
                 "Translational mass of each movable block, sheave included (G7).")
+    call r%real(g, "block_stop", s%block_stop, 0.3_wp, 0.0_wp, 10.0_wp, "m", &
+                "Height of a block's centre above its hook when it rests on it (slack "// &
+                "fall): sheave radius + becket and hook eye; 0 = no stop.")
     call r%real(g, "drum_radius", s%drum_radius, 0.25_wp, 0.01_wp, 5.0_wp, "m", &
                 "Drum radius; only for the drum angle s/r_d (speed-controlled drum, G8).")
     call r%real(g, "bearing_friction", s%bearing_friction, 0.0_wp, 0.0_wp, 1.0e4_wp, "N m", &

@@ -18,6 +18,7 @@ module davit_rigging_block_balance
                                  cable_block_tangent_quasi_static
   use davit_rigging_falls, only: falls_type, drive_type, max_sheaves, &
                                  cable_tensions
+  use davit_rigging_block_stop, only: stop_tangent
   implicit none
   private
   public :: balance_input_type, solve_blocks
@@ -55,12 +56,14 @@ module davit_rigging_block_balance
   real(wp), parameter :: gross_stretch = 1.0e-4_wp
 
   !> What the balance takes from the rest of the system. The caller sets the lower ends of
-  !> the top sling segments (hook or top lump) and their velocities, and the drive;
+  !> the top sling segments (hook or top lump) and their velocities, the hooks (for the
+  !> blocks' stops, davit_rigging_block_stop) and theirs, and the drive;
   !> solve_blocks sets the cables' ship-fixed node positions pn and velocities vn (block
   !> nodes at rest in vn: rates are taken at fixed blocks) and, for its fallback, the
   !> anchor of the blocks and its stiffness k_anchor (0: none).
   type :: balance_input_type
     real(wp) :: low_r(3, 2) = 0.0_wp, low_v(3, 2) = 0.0_wp
+    real(wp) :: hook_r(3, 2) = 0.0_wp, hook_v(3, 2) = 0.0_wp
     type(drive_type) :: drive
     real(wp) :: pn(3, max_nodes, 2) = 0.0_wp, vn(3, max_nodes, 2) = 0.0_wp
     real(wp) :: anchor(6) = 0.0_wp, k_anchor = 0.0_wp
@@ -423,6 +426,7 @@ contains
     damp_f = 0.0_wp
     call sling_pulls(falls, inp, br, bv, taut, with_dashpots, block_f, damp_f, bal)
     call cable_pulls(falls, inp, br, bv, with_dashpots, block_f, damp_f, bal)
+    call stop_pushes(falls, inp, br, block_f, bal)
     bal%res(1:3) = block_f(:, 1)
     bal%res(4:6) = block_f(:, 2)
     if (inp%k_anchor > 0.0_wp) then
@@ -452,6 +456,7 @@ contains
     integer :: a
     sling_el = falls%sling
     sling_el%c_seg = 0.0_wp
+    sling_el%c_top = 0.0_wp
     do a = 1, 2
       call top_segment_tangent(sling_el, inp%low_r(:, a), inp%low_v(:, a), br(:, a), &
                                bv(:, a), f_top, bal%f_sling(a), bal%f_real(a), k)
@@ -466,6 +471,25 @@ contains
       bal%rate(3*a - 2:3*a) = -matmul(k, inp%low_v(:, a))
     end do
   end subroutine sling_pulls
+
+  !> block_balance's hook stops (davit_rigging_block_stop): a block resting on its hook
+  !> (slack falls) is held there under its weight, where without the stop it would have no
+  !> balance. Elastic only (a C1 law: the tangent stays continuous); vertical tangent.
+  pure subroutine stop_pushes(falls, inp, br, block_f, bal)
+    type(falls_type), intent(in) :: falls
+    type(balance_input_type), intent(in) :: inp
+    real(wp), intent(in) :: br(3, 2)
+    real(wp), intent(inout) :: block_f(3, 2)
+    type(balance_type), intent(inout) :: bal
+    real(wp) :: f(3), dfdz, rate
+    integer :: a
+    do a = 1, 2
+      call stop_tangent(falls%stop, inp%hook_r(:, a), inp%hook_v(:, a), br(:, a), f, dfdz, rate)
+      block_f(:, a) = block_f(:, a) + f
+      bal%jac(3*a, 3*a) = bal%jac(3*a, 3*a) + dfdz
+      bal%rate(3*a) = bal%rate(3*a) + rate
+    end do
+  end subroutine stop_pushes
 
   !> block_balance's cables (eqs. 69, 79): their elastic pull on the blocks at br, its
   !> tangent and rate at fixed blocks, and with_dashpots the dashpots' share (the same

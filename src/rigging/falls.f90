@@ -10,6 +10,8 @@ module davit_rigging_falls
   use davit_core_pose, only: pose_type
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_sling_chain, only: sling_chain_type
+  use davit_rigging_block_stop, only: block_stop_type, new_block_stop
+  use davit_rigging_wire_damping, only: cable_floor
   use davit_rigging_cable, only: cable_type, cable_eval_type, max_nodes, node_drum, &
                                  node_fixed, node_block, &
                                  node_dead, cable_node_kinematics, cable_passages, &
@@ -34,6 +36,11 @@ module davit_rigging_falls
     real(wp) :: block_mass = 50.0_wp, sheave_radius = 0.16_wp, friction_ratio = 1.0_wp
     !> Quasi-static sheaves: unstretched cable length at zero pay-out, per cable [m].
     real(wp) :: l0_total(2) = 0.0_wp
+    !> The blocks' hook stops (davit_rigging_block_stop), the wire's damping ratio and
+    !> whether the cables' dashpot is raised to its floor once their lengths are known.
+    type(block_stop_type) :: stop
+    real(wp) :: wire_zeta = 0.0_wp
+    logical :: cable_floor = .false.
   end type falls_type
 
   !> What moves the cable over its sheaves: drum passage s_drum [m] and pay-out speed
@@ -101,6 +108,9 @@ contains
     end do
     self%nsheave = ns
     self%nseg = sum(self%cables(1:self%ncable)%nnode) - self%ncable
+    self%stop = new_block_stop(cfg%block_stop, ea/cfg%sling_length, cfg%block_mass)
+    self%wire_zeta = cfg%wire_damping_ratio
+    self%cable_floor = .not. cfg%cable_damping_given
   end subroutine build_reeving
 
   !> Chords, passages and segment tensions of cable cab (falls' cable c, or a copy of it)
@@ -162,6 +172,9 @@ contains
         end do
         cab%l0_init(1:nseg) = l(1:nseg)/(1.0_wp + t/cab%ea)
         self%l0_total(c) = sum(l(1:nseg))/(1.0_wp + t/cab%ea)
+        ! the wire's floor (davit_rigging_wire_damping) unless the deck set the dashpot
+        if (self%cable_floor) cab%damping = &
+          max(cab%damping, cable_floor(cab, cab%l0_init(1:nseg), self%wire_zeta, self%block_mass))
       end associate
     end do
   end subroutine set_cable_lengths

@@ -51,6 +51,8 @@ module davit_rigging_rigging
                                  build_reeving, cable_tensions, set_cable_lengths, &
                                  add_cable_energy, cable_unstretched_length, at_rest
   use davit_rigging_block_balance, only: balance_input_type, solve_blocks
+  use davit_rigging_wire_damping, only: sling_dashpot, sling_lump_dashpots
+  use davit_rigging_block_stop, only: add_stop_forces, stop_energy
   implicit none
   private
   public :: rigging_type, new_rigging, max_segments, max_sheaves
@@ -121,8 +123,8 @@ contains
     type(rigging_config), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: ea, gear
-    if (cfg%lumps < 0 .or. cfg%lumps > max_lumps) then
-      call fatal_error(error, "rigging: lumps must be 0.."//"20")
+    if (cfg%lumps < 0 .or. cfg%lumps > max_lumps .or. cfg%block_stop >= cfg%sling_length) then
+      call fatal_error(error, "rigging: lumps must be 0..20 and block_stop < sling_length")
       return
     end if
     ea = cfg%youngs_modulus*pi*cfg%wire_diameter**2/4.0_wp
@@ -131,8 +133,9 @@ contains
     self%static_blocks = cfg%blocks == "quasi_static"
     self%reeving = cfg%reeving
     self%nlump = cfg%lumps
-    self%sling = new_sling_chain(cfg%lumps, cfg%sling_length, ea, cfg%sling_damping, &
+    self%sling = new_sling_chain(cfg%lumps, cfg%sling_length, ea, sling_dashpot(cfg, ea), &
                                  cfg%sling_mass_per_length)
+    call sling_lump_dashpots(cfg, self%sling)
     self%block_mass = cfg%block_mass
     self%sheave_radius = cfg%sheave_radius
     self%sheave_inertia = cfg%sheave_inertia
@@ -261,6 +264,8 @@ contains
     out%block_f = 0.0_wp
     out%block_f(3, :) = self%block_mass*gravity
     call lump_kane(self, y, hook_pos, hook_vel, br, bv, dydt, kane, out)
+    call add_stop_forces(self%stop, hook_pos, hook_vel, br, bv, .not. self%static_blocks, &
+                         out%block_f, out%hook_force)
     torque = 0.0_wp
     call cable_forces(self, drive, br, bv, ship, out%block_f, torque, out%seg)
     call block_kane(self, y, br, bv, solved, out%block_f, dydt, kane)
@@ -293,6 +298,8 @@ contains
     inp%drive = drive
     inp%low_r = hook_pos
     inp%low_v = hook_vel
+    inp%hook_r = hook_pos
+    inp%hook_v = hook_vel
     if (n == 0) return
     do a = 1, 2
       il = sling_range(self%lumps%q, n, a)
@@ -532,6 +539,7 @@ contains
                              br(:, a))
     end do
     call add_cable_energy(self%falls_type, rigging_drive(self, y, 0.0_wp), ship, br, en)
+    en = en + stop_energy(self%stop, hook_pos, br)
   end function rigging_energy
 
   !> Unstretched length of cable c [m]: sum L0_i = sum L0_i(0) + s_drum (the sheave

@@ -17,8 +17,10 @@ module davit_rigging_sling_chain
   type :: sling_chain_type
     integer :: nlump = 0
     !> Unstretched segment length l/(n+1) [m], its stiffness EA (n+1)/l [N/m] and its
-    !> absolute dashpot [N s/m]; lump mass mu l/(n+1) [kg].
-    real(wp) :: l0_seg = 1.0_wp, k_seg = 0.0_wp, c_seg = 0.0_wp, m_lump = 0.0_wp
+    !> absolute dashpot [N s/m], c_top that of the top segment (at the block); lump mass
+    !> mu l/(n+1) [kg].
+    real(wp) :: l0_seg = 1.0_wp, k_seg = 0.0_wp, c_seg = 0.0_wp, c_top = 0.0_wp
+    real(wp) :: m_lump = 0.0_wp
     !> Stretch over which the dashpot tension grows from 0 to full [m] (0: at once), as
     !> cable_type%ramp.
     real(wp) :: ramp = 0.0_wp
@@ -36,15 +38,16 @@ contains
     ch%l0_seg = length/real(nlump + 1, wp)
     ch%k_seg = ea/ch%l0_seg
     ch%c_seg = c*real(nlump + 1, wp)
+    ch%c_top = ch%c_seg
     ch%m_lump = mu*ch%l0_seg
   end function new_sling_chain
 
   !> Tension of one segment (lower node a, upper node b): spring k (D - l0) plus absolute
   !> dashpot c dD/dt (corrected eq. 63, never divided by the stretch), zero when slack and
   !> clipped at >= 0 (corrected eq. 58). e is the unit vector a -> b.
-  pure subroutine segment(ch, ra, va, rb, vb, f, e)
+  pure subroutine segment(ch, c, ra, va, rb, vb, f, e)
     type(sling_chain_type), intent(in) :: ch
-    real(wp), intent(in) :: ra(3), va(3), rb(3), vb(3)
+    real(wp), intent(in) :: c, ra(3), va(3), rb(3), vb(3)
     real(wp), intent(out) :: f, e(3)
     real(wp) :: d(3), dist
     d = rb - ra
@@ -53,7 +56,7 @@ contains
     e = 0.0_wp
     if (dist <= ch%l0_seg) return
     e = d/dist
-    f = max(0.0_wp, ch%k_seg*(dist - ch%l0_seg) + ch%c_seg*dot_product(vb - va, e)* &
+    f = max(0.0_wp, ch%k_seg*(dist - ch%l0_seg) + c*dot_product(vb - va, e)* &
                     ramp_factor(dist - ch%l0_seg, ch%ramp))
   end subroutine segment
 
@@ -81,7 +84,8 @@ contains
     v(:, n + 1) = v_top
     fn(:, 0:n + 1) = 0.0_wp
     do k = 1, n + 1
-      call segment(ch, r(:, k - 1), v(:, k - 1), r(:, k), v(:, k), tension(k), e)
+      call segment(ch, merge(ch%c_top, ch%c_seg, k == n + 1), r(:, k - 1), v(:, k - 1), &
+                   r(:, k), v(:, k), tension(k), e)
       fn(:, k - 1) = fn(:, k - 1) + tension(k)*e
       fn(:, k) = fn(:, k) - tension(k)*e
     end do
@@ -124,18 +128,18 @@ contains
     real(wp), intent(out) :: f_top(3), f, f_real, jac(3, 3)
     real(wp) :: e(3), k_geo, dist, g(3), dv(3), phi, dphi
     integer :: j
-    call segment(ch, r_low, v_low, r_top, v_top, f_real, e)
+    call segment(ch, ch%c_top, r_low, v_low, r_top, v_top, f_real, e)
     dist = norm2(r_top - r_low)
     e = (r_top - r_low)/dist
     dv = v_top - v_low
     ! the dashpot ramps in over ch%ramp of stretch (none in compression)
     phi = ramp_factor(dist - ch%l0_seg, ch%ramp)
     dphi = ramp_slope(dist - ch%l0_seg, ch%ramp)
-    f = ch%k_seg*(dist - ch%l0_seg) + ch%c_seg*dot_product(dv, e)*phi
+    f = ch%k_seg*(dist - ch%l0_seg) + ch%c_top*dot_product(dv, e)*phi
     f_top = -f*e
     k_geo = f/dist
-    g = (ch%k_seg + ch%c_seg*dot_product(dv, e)*dphi)*e + &
-        ch%c_seg*phi/dist*(dv - dot_product(e, dv)*e)
+    g = (ch%k_seg + ch%c_top*dot_product(dv, e)*dphi)*e + &
+        ch%c_top*phi/dist*(dv - dot_product(e, dv)*e)
     do j = 1, 3
       jac(:, j) = -e*g(j) + k_geo*e(j)*e
       jac(j, j) = jac(j, j) - k_geo
