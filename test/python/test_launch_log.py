@@ -86,3 +86,19 @@ def test_run_figures_mark_events_and_limits(davit, tmp_path):
     for name in ("acceleration", "contact", "tension"):
         path = figures.RUN_FIGURES[name](run, str(tmp_path / "fig"), "swing")
         assert path and (tmp_path / "fig" / f"swing_{'sling_tension' if name == 'tension' else name}.png").exists()
+
+
+def test_launch_table_row(davit, tmp_path):
+    """`python -m postproc.launch_table` reads the log's numbers back: 2 impacts at the
+    events' fastest speed, the resolved peaks, the first SWL exceedance (the slings snatch
+    above 46.5 kN as the boat rebounds and rolls after the impact)."""
+    from postproc import launch_table
+    run = _run(davit, tmp_path, SWING)
+    r = launch_table.row(run.path)
+    assert r["impacts"] == 2 and r["v_max"] == float(run.get(layout.IMPACT_SPEED).max())
+    assert r["a_cg"] == float(run.get(layout.PEAK_CG_ACCELERATION)[0])
+    assert r["swl"] == float(run.get(layout.LIMIT_SWL)[0]) > 0.2
+    assert r["sling"] == float(run.get(layout.PEAK_SLING_TENSION).max()) / 1e3 > 46.5
+    lines = launch_table.table([run.path]).splitlines()
+    assert len(lines) == 3 and "| swing | 2 |" in lines[2]
+    assert launch_table.main([str(tmp_path / "missing.h5")]) == 1
