@@ -4,7 +4,7 @@
 module test_boat_water
   use davit_kinds, only: wp, pi, gravity, rho_water, rho_air
   use davit_error, only: error_type
-  use davit_io_config, only: config_type, parse_config
+  use davit_io_config, only: config_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_body, only: body_qdot
   use davit_boat_strip_loads, only: strip_velocity, strip_partial_velocities, strip_loads
@@ -13,7 +13,7 @@ module test_boat_water
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, fender_probe
   use davit_core_rotation, only: cross
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system, nstate
+  use system_fixture, only: new_test_system, nstate, deck_config
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -40,13 +40,6 @@ contains
                    new_case("contact_approach_graded_vs_window", contact_approach)]
   end function collect_boat_water
 
-  function deck_config(text) result(cfg)
-    character(len=*), intent(in) :: text
-    type(config_type) :: cfg
-    type(error_type), allocatable :: error
-    call parse_config("test.nml", text, cfg, error)
-    if (allocated(error)) error stop "test deck rejected: "//error%message
-  end function deck_config
 
   !> Sum of the strip breadths B (1 - |2x/L|^4.3) at the strip centres times t_s: the
   !> waterplane area of the 20-strip hull [m^2] (review G25).

@@ -4,11 +4,11 @@
 module test_launch_log
   use davit_kinds, only: wp, pi, gravity
   use davit_error, only: error_type
-  use davit_io_config, only: config_type, parse_config
+  use davit_io_config, only: config_type
   use davit_io_limits_keys, only: minimum_breaking_load
   use davit_core_filters, only: phaseless_lowpass
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system
+  use system_fixture, only: new_test_system, deck_config
   use davit_run_recorders, only: boat_recorder
   use davit_run_run_summary, only: run_summary
   use davit_run_driver, only: integrate
@@ -31,13 +31,6 @@ contains
                    new_case("outcome_still_lowering", outcome_lowering)]
   end function collect_launch_log
 
-  function deck_config(text) result(cfg)
-    character(len=*), intent(in) :: text
-    type(config_type) :: cfg
-    type(error_type), allocatable :: error
-    call parse_config("test.nml", text, cfg, error)
-    if (allocated(error)) error stop "test deck rejected: "//error%message
-  end function deck_config
 
   !> Amplitude of a filtered sine in the middle of a long record: the 2-pole magnitude
   !> squared by the two passes, 1/(1 + (f/f0)^4) with f0 = 1.2465 fc: 1/sqrt(2) at the

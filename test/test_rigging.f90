@@ -27,7 +27,7 @@ module test_rigging
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
-  public :: collect_rigging
+  public :: collect_rigging, make_config
 
   character(len=*), parameter :: nl = new_line("a")
   real(wp), parameter :: boat_mass = 8500.0_wp, weight = boat_mass*gravity

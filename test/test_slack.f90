@@ -7,20 +7,18 @@ module test_slack
   use davit_kinds, only: wp, gravity, pi
   use davit_error, only: error_type
   use davit_core_pose, only: pose_type
-  use davit_io_namelist, only: nml_deck, parse_deck
-  use davit_io_deck_reader, only: deck_reader_type
-  use davit_io_rigging_keys, only: rigging_config, read_rigging
+  use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_rigging, only: rigging_type, new_rigging
   use davit_rigging_sling_chain, only: sling_chain_type, chain_forces
   use davit_rigging_block_stop, only: stop_force
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_factory, only: new_integrator
+  use test_rigging, only: make_config
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
   public :: collect_slack
 
-  character(len=*), parameter :: nl = new_line("a")
   !> The stated inputs: axial stiffness EA [N], sling length [m], block mass [kg], wire
   !> damping ratio, stop height [m], its damping ratio and onset [m].
   real(wp), parameter :: ea = 200.0e9_wp*pi*0.02_wp**2/4.0_wp, sling_l = 1.0_wp
@@ -60,16 +58,9 @@ contains
     type(rigging_type), intent(out) :: rig
     type(case_state), intent(inout) :: state
     type(rigging_config) :: cfg
-    type(nml_deck) :: deck
-    type(deck_reader_type) :: r
     type(error_type), allocatable :: error
-    call parse_deck("rigging.nml", "&rigging"//nl//text//nl//"/", deck, error)
-    if (.not. allocated(error)) then
-      call r%init(deck)
-      call read_rigging(r, cfg)
-      call r%finish(error)
-    end if
-    if (.not. allocated(error)) call new_rigging(rig, cfg, error)
+    call make_config(text, cfg, state)
+    call new_rigging(rig, cfg, error)
     call check_true(state, .not. allocated(error), "rigging built")
   end subroutine make_rigging
 

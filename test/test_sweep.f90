@@ -5,10 +5,10 @@
 module test_sweep
   use davit_kinds, only: wp, i8, pi, gravity
   use davit_error, only: error_type
-  use davit_io_config, only: config_type, parse_config
+  use davit_io_config, only: config_type
   use davit_boat_contact, only: hertz_peak
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system
+  use system_fixture, only: new_test_system, deck_config
   use davit_run_recorders, only: boat_recorder
   use davit_run_run_summary, only: run_summary
   use davit_run_driver, only: integrate
@@ -45,13 +45,6 @@ contains
     if (allocated(error)) error stop "test sweep deck rejected: "//error%message
   end function sweep_from_text
 
-  function deck_config(text) result(cfg)
-    character(len=*), intent(in) :: text
-    type(config_type) :: cfg
-    type(error_type), allocatable :: error
-    call parse_config("test.nml", text, cfg, error)
-    if (allocated(error)) error stop "test deck rejected: "//error%message
-  end function deck_config
 
   !> SplitMix64 started at 1234567: the first five outputs of Vigna's reference
   !> implementation (as signed 64-bit patterns); a case seed is the top 31 bits.

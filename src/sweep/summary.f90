@@ -80,20 +80,10 @@ contains
   subroutine write_results(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
-    character(len=:), allocatable :: messages(:)
-    integer :: i, width
     call w%group("results")
     call w%write_1d_int("results/status", int(r%status, i8), "-", &
                         "0 not run, 1 ok, 2 failed (see message)")
-    width = 1
-    do i = 1, size(r)
-      width = max(width, len(r(i)%message))
-    end do
-    allocate (character(len=width) :: messages(size(r)))
-    do i = 1, size(r)
-      messages(i) = r(i)%message
-    end do
-    call w%write_strings("results/message", messages, "-", &
+    call w%write_strings("results/message", text_column(r, "message"), "-", &
                          "'ok', the error of a failed case, or empty when not run")
     call w%write_1d("results/min_clearance", r%min_clearance, "m", "Smallest fender-to-"// &
                     "ship-side distance over the lowering; negative = indentation"//defined)
@@ -128,8 +118,6 @@ contains
   subroutine write_log_columns(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
-    character(len=:), allocatable :: outcomes(:)
-    integer :: i, width
     call w%write_1d("results/peak_sling_tension", r%peak_sling_tension, "N", "Largest "// &
                     "sling tension over every step until release"//defined)
     call w%write_1d("results/peak_fall_tension", r%peak_fall_tension, "N", "Largest "// &
@@ -144,18 +132,35 @@ contains
                     "a wire tension exceeded the minimum breaking load; -1 = never"//defined)
     call w%write_1d("results/impact_speed_exceeded_time", r%impact_speed_exceeded_time, &
                     "s", "First impact faster than &limits impact_speed; -1 = never"//defined)
+    call w%write_strings("results/outcome", text_column(r, "outcome"), "-", "How the "// &
+                         "launch ended: released, waterborne, or not waterborne and why; "// &
+                         "empty if not run")
+  end subroutine write_log_columns
+
+  !> A text field of every row ('message' or 'outcome'), padded to the longest (unset: empty).
+  pure function text_column(r, field) result(texts)
+    type(case_result), intent(in) :: r(:)
+    character(len=*), intent(in) :: field
+    character(len=:), allocatable :: texts(:)
+    integer :: i, width
     width = 1
     do i = 1, size(r)
-      if (allocated(r(i)%outcome)) width = max(width, len(r(i)%outcome))
+      width = max(width, len(row_text(r(i), field)))
     end do
-    allocate (character(len=width) :: outcomes(size(r)))
+    allocate (character(len=width) :: texts(size(r)))
     do i = 1, size(r)
-      outcomes(i) = ""
-      if (allocated(r(i)%outcome)) outcomes(i) = r(i)%outcome
+      texts(i) = row_text(r(i), field)
     end do
-    call w%write_strings("results/outcome", outcomes, "-", "How the launch ended: "// &
-                         "released, waterborne, or not waterborne and why; empty if not run")
-  end subroutine write_log_columns
+  end function text_column
+
+  pure function row_text(r, field) result(text)
+    type(case_result), intent(in) :: r
+    character(len=*), intent(in) :: field
+    character(len=:), allocatable :: text
+    text = ""
+    if (field == "message" .and. allocated(r%message)) text = r%message
+    if (field == "outcome" .and. allocated(r%outcome)) text = r%outcome
+  end function row_text
 
   !> The results of an earlier summary of the same sweep (resume). Fails with a clear
   !> message when the file is not a summary of this sweep deck and base deck.
