@@ -198,6 +198,17 @@ contains
     text = log%outcome(sys)
     call check_true(state, index(text, "not waterborne by t = 2") == 1 .and. &
                     index(text, "still lowering") > 0, "outcome: "//text)
+    ! the causes at the water, by their stated thresholds (shares of the last ~10 s)
+    log%lowest = 0.5_wp
+    log%contact_share = 0.31_wp
+    call check_true(state, index(log%outcome(sys), "pinned against the ship's side") > 0, &
+                    "contact 31 %: pinned")
+    log%contact_share = 0.29_wp
+    log%slack_share = 0.21_wp
+    call check_true(state, index(log%outcome(sys), "slack, snatching falls") > 0, &
+                    "slack 21 %: riding the waves")
+    log%slack_share = 0.19_wp
+    call check_true(state, index(log%outcome(sys), "taut falls") > 0, "otherwise: taut")
   end subroutine outcome_lowering
 
 end module test_launch_log

@@ -123,8 +123,9 @@ contains
       do k = self%impacts%n - started + 1, self%impacts%n
         call self%loads%impact_at(t, self%impacts%events(k)%speed)
       end do
-      call average(self%contact_share, merge(1.0_wp, 0.0_wp, any(force > 0.0_wp)), &
-                   t - self%t_prev)
+      if (self%t_prev >= 0.0_wp) call average(self%contact_share, &
+                                              merge(1.0_wp, 0.0_wp, any(force > 0.0_wp)), &
+                                              t - self%t_prev)
     end block
   end subroutine watch_motion
 
