@@ -339,8 +339,10 @@ def run_swing(run, level):
 
 def run_case(item):
     """A paper run as one case: collided if a fender touched the ship before the boat was
-    waterborne; minimum clearance and peak horizontal acceleration over that window (from
-    the samples: a contact shorter than output_interval may be missed)."""
+    waterborne; minimum clearance and peak horizontal acceleration over that window: the
+    largest of the samples' |(a_x, a_y)| and of the launch log's impact peaks |a| (resolved
+    at every step; files without a log: the samples, which can miss a contact shorter than
+    output_interval)."""
     run = layout.load(item.path)
     run.require(layout.BOAT + layout.CONTACT + (layout.FIRST_CONTACT_TIME,),
                 "paper-run record")
@@ -358,7 +360,17 @@ def run_case(item):
                  collided=[int(collided)],
                  min_clearance=[min(clearance[window].min(), 0.0) if collided
                                 else clearance[window].min()],
-                 peak_horizontal_acceleration=[np.hypot(a[:, 0], a[:, 1]).max()])
+                 peak_horizontal_acceleration=[max(np.hypot(a[:, 0], a[:, 1]).max(),
+                                                   _impact_peak(run, t_water))])
+
+
+def _impact_peak(run, t_water):
+    """Largest step-resolved CG acceleration of the impacts before t_water (0: none)."""
+    t_hit, a_hit = run.get(layout.IMPACT_TIME), run.get(layout.IMPACT_PEAK_ACCELERATION)
+    if t_hit is None or len(t_hit) == 0:
+        return 0.0
+    keep = t_hit <= (t_water if t_water is not None else np.inf)
+    return float(a_hit[keep].max()) if np.any(keep) else 0.0
 
 
 def gather_runs(folder):
