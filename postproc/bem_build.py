@@ -24,6 +24,8 @@ FIT_WINDOW = 30.0                # [s] of the K(t) error
 # the lifeboat's kernels (frequencies up to 8 rad/s, natural periods ~2-4.5 s) die out
 # within ~10 s: a finer, shorter grid (dt, end, K(t) error window) [s]
 LIFEBOAT_RETARDATION = (0.02, 20.0, 10.0)
+# and its fits see the data extended past 8 rad/s (postproc.bem_fit.fit_all, tail)
+LIFEBOAT_FIT_TAIL = (1.25, 1.5, 2.0, 3.0, 4.0, 6.0)
 
 
 def default_omegas():
@@ -132,7 +134,8 @@ def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
 
 
 def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12, tol=0.02,
-                    progress=True, retardation=(RETARDATION_DT, RETARDATION_END, FIT_WINDOW)):
+                    progress=True, retardation=(RETARDATION_DT, RETARDATION_END, FIT_WINDOW),
+                    tail=None):
     """The davit_ variables (name -> numpy array) from Capytaine's datasets."""
     dofs = list(body.dofs)
     cg = np.asarray(body.center_of_mass, float)
@@ -169,7 +172,7 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     time = np.arange(0.0, end + 0.5 * dt, dt)
     kernel = bem_fit.retardation(omega, damping, time)
     fits = bem_fit.fit_all(omega, added_mass, damping, a_inf, time, kernel, nmax=nmax,
-                           tol=tol, window=window)
+                           tol=tol, window=window, tail=tail)
     order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
     if progress:
         print_fit_report(fits)
@@ -199,7 +202,8 @@ def print_fit_report(fits, file=sys.stderr):
         print(f"bem:   {db.DOFS[i]:>5s}-{db.DOFS[j]:<5s} n={f.order:2d}  "
               f"A {f.error_added_mass:7.2%}  B {f.error_damping:7.2%}  "
               f"K(t) {f.error_retardation:7.2%}  max Re(pole) "
-              f"{max(p.real for p in f.poles):.3g}", file=file)
+              f"{max(p.real for p in f.poles):.3g}  min B_fit/max B {f.min_damping:.3f}"
+              f"{'  (tail)' if f.tail else ''}", file=file)
 
 
 def write(path, ds, variables, attrs):
@@ -248,7 +252,8 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
               f"{len(omegas)} frequencies x {len(headings_deg)} headings", file=sys.stderr)
     ds, ds_special, elapsed = solve(body, omegas, headings_deg, rho, g, progress)
     variables = davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g, nmax, tol,
-                                progress, retardation)
+                                progress, retardation,
+                                LIFEBOAT_FIT_TAIL if lifeboat else None)
     attrs = {
         "title": (f"davit {'lifeboat' if lifeboat else 'ship'} hydrodynamics "
                   "(Capytaine BEM database)"),
@@ -264,6 +269,8 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         "frame_of_capytaine_variables": "Capytaine's (x forward, y port, z up; e^{-i w t}; "
                                         "wave_direction from x towards y, port)",
     }
+    if lifeboat:
+        attrs["fit_tail"] = np.asarray(LIFEBOAT_FIT_TAIL, float)
     for key, value in hull.extra.items():
         attrs[key] = value
     write(out, ds, variables, attrs)

@@ -25,9 +25,11 @@ VOLUME_TOLERANCE = 0.003
 # Capytaine's waterplane second moment takes y^2 at the bottom panels' centroids: at 18
 # panels across the beam it misses ~1/18^2 of I_T, BM 0.4 % and GM_T 0.9 % low
 GM_TOLERANCE = 0.015
-# the fits are built to 2 % (bem --fit-tol); roll-roll reaches 2.1-2.2 % at the largest
-# order (its damping still rises at 8 rad/s); the check allows a margin
-FIT_TOLERANCE = 0.025
+# the fits are built to 2 % (bem --fit-tol) but kept passive: heave and pitch, fitted with
+# the tail beyond 8 rad/s, reach 2.6-3.6 % at best (input/boat_bem.md); a margin on that
+FIT_TOLERANCE = 0.04
+# a diagonal kernel's fitted damping may dip below zero by this fraction of max B
+PASSIVITY_FLOOR = bem_fit.PASSIVITY_FLOOR
 
 
 @pytest.fixture(scope="module")
@@ -168,8 +170,10 @@ def test_heave_froude_krylov_on_the_plan(base):
 def test_infinite_frequency_added_mass_is_the_limit(base):
     """A(w) - A(inf) = -(1/w) int_0^inf K(t) sin(w t) dt (Kramers-Kronig, Ogilvie 1964):
     the stored K(t) from B(w) and the separately solved A(inf) reproduce the added mass at
-    the upper end of the grid (3-8 rad/s) within 3 % of its range for heave and pitch (roll:
-    its damping still rises at 8 rad/s, so the tail is too uncertain for this check)."""
+    the upper end of the grid (3-7.5 rad/s) within 3 % of its range for heave and pitch
+    (roll: its damping still rises at 8 rad/s, so the tail is too uncertain for this check;
+    above 7.5 rad/s A55 turns down by 0.6 %, the lid's own irregular frequency drawing
+    near, see input/boat_bem.md)."""
     t = base[db.RETARDATION_TIME]
     k = base[db.RETARDATION]
     w = base.omega
@@ -179,7 +183,7 @@ def test_infinite_frequency_added_mass_is_the_limit(base):
     for dof in (2, 4):
         a = base.added_mass[:, dof, dof]
         a_inf = base.added_mass_inf[dof, dof]
-        high = w >= 3.0
+        high = (w >= 3.0) & (w <= 7.5)
         kk = a_inf - (np.sin(np.outer(w[high], t)) @ (weights * k[:, dof, dof])) / w[high]
         span = np.max(np.abs(a - a_inf))
         assert np.max(np.abs(kk - a[high])) < 0.03 * span, (db.DOFS[dof], kk, a[high])
@@ -204,6 +208,9 @@ def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
     assert a_err < FIT_TOLERANCE and b_err < FIT_TOLERANCE, (a_err, b_err)
     assert b_err == pytest.approx(base[db.SS_FIT_ERROR_DAMPING][dof, dof], rel=1e-6)
     assert np.all(np.linalg.eigvals(a).real < 0)
+    # passive: the fitted damping stays (nearly) positive far beyond the grid too
+    wide = np.linspace(0.01, 20 * w[-1], 4000)
+    assert np.min(bem_fit.transfer(a, b, c, 1j * wide).real) > -PASSIVITY_FLOOR * np.max(bd)
 
 
 def test_natural_periods_and_damping_ratios(base):
