@@ -1,6 +1,6 @@
 """Ship hydrodynamics from a BEM database (Capytaine).
 
-  python -m postproc.bem build [--hull box|ship | --mesh FILE] [--panels N]
+  python -m postproc.bem build [--hull box|ship|lifeboat | --mesh FILE] [--panels N]
                                [--omegas W ...] [--headings-deg B ...] [-o input/ship_bem.nc]
       mesh a hull, solve radiation (6 DOF) and diffraction with Capytaine, fit the radiation
       memory as state-space models, and write the database: Capytaine's dataset plus the
@@ -10,14 +10,19 @@
       mass, gyradii 0.38 B (roll) and 32.6375 m (pitch, yaw); 48 frequencies 0.1..2 rad/s
       (+ 0 and inf), headings 0..360 deg every 15 deg.
       --hull ship: L_pp 126 m, B 20.8 m, T 4.4 m, C_b 0.68 (postproc.bem_mesh.ship_hull).
+      --hull lifeboat: the paper's III.B boat with review G25's plan shape
+      b(x) = B (1 - |2x/L|^4.3), L 11.5 m, B 2.8 m, vertical sides, flat bottom, draught
+      0.3175 m, CG 1.1 m above the keel, mass 8,500 kg, inertia 25,020 / 51,745 /
+      51,745 kg m^2 (postproc.bem_mesh.lifeboat_hull); 87 frequencies 0.3..8 rad/s
+      (postproc.bem_build.lifeboat_omegas), headings every 15 deg; -o input/boat_bem.nc.
       --mesh FILE: any mesh Capytaine or meshio reads, in Capytaine's frame (x forward,
       y port, z up, waterline z = 0); give --cg (and --mesh-format nemoh for .dat).
 
-  python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--omegas W ...]
+  python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--gm GM] [--omegas W ...]
                              [--headings-deg B ...] [-o FILE.h5|FILE.csv]
       6-DOF frequency-domain RAOs from the database (postproc.bem_rao documents the
       conventions and the output layout); prints the undamped natural periods of heave,
-      roll and pitch.
+      roll and pitch and their radiation damping ratios there. --gm replaces C44 by m g GM.
 
   python -m postproc.bem compare FINE COARSE
       mesh convergence: max change of A, B, the excitation and the RAO peak of heave, roll
@@ -40,7 +45,7 @@ def _parser():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     b = sub.add_parser("build", help="mesh, solve and write a BEM database")
-    b.add_argument("--hull", choices=("box", "ship"), default="box")
+    b.add_argument("--hull", choices=("box", "ship", "lifeboat"), default="box")
     b.add_argument("--mesh", default=None, help="mesh file (overrides --hull)")
     b.add_argument("--mesh-format", default=None,
                    help="format of --mesh when its extension is ambiguous (e.g. nemoh for "
@@ -49,16 +54,26 @@ def _parser():
                    help="approximate number of hull panels (default 2000)")
     b.add_argument("--length", type=float, default=None,
                    help="waterline length [m] (box: 107.65, ship: L_pp 126)")
-    b.add_argument("--beam", type=float, default=bem_mesh.BEAM)
-    b.add_argument("--draught", type=float, default=bem_mesh.DRAUGHT)
+    b.add_argument("--beam", type=float, default=None, help="[m] (box, ship: 20.8; "
+                   "lifeboat: 2.8)")
+    b.add_argument("--draught", type=float, default=None, help="[m] (box, ship: 4.4; "
+                   "lifeboat: 0.3175)")
+    b.add_argument("--breadth-exponent", type=float, default=bem_mesh.BOAT_BREADTH_EXPONENT,
+                   help="lifeboat only: p of b(x) = B (1 - |2x/L|^p) (default 4.3)")
     b.add_argument("--block-coefficient", type=float, default=bem_mesh.BLOCK_COEFFICIENT,
                    help="ship hull only")
     b.add_argument("--no-lid", action="store_true", help="no irregular-frequency lid")
-    b.add_argument("--cg", type=float, nargs=3, default=(0.0, 0.0, 0.0),
+    b.add_argument("--cg", type=float, nargs=3, default=None,
                    metavar=("X", "Y", "Z"),
                    help="CG = rotation centre in the mesh frame (z up; default 0 0 0: "
-                        "midship, centreline, on the waterline)")
-    b.add_argument("--mass", type=float, default=None, help="[kg] (default: displaced mass)")
+                        "midship, centreline, on the waterline; lifeboat: 1.1 m above the "
+                        "keel, 0 0 0.7825)")
+    b.add_argument("--mass", type=float, default=None, help="[kg] (default: displaced mass; "
+                   "lifeboat: 8500)")
+    b.add_argument("--inertia", type=float, nargs=3, default=None,
+                   metavar=("IXX", "IYY", "IZZ"),
+                   help="[kg m^2] about the CG (overrides the gyradii; lifeboat default "
+                        "25020 51745 51745)")
     b.add_argument("--roll-gyradius", type=float, default=None, help="[m] (default 0.38 B)")
     b.add_argument("--pitch-gyradius", type=float, default=32.6375, help="[m]")
     b.add_argument("--yaw-gyradius", type=float, default=32.6375, help="[m]")
@@ -70,13 +85,17 @@ def _parser():
     b.add_argument("--nmax", type=int, default=12, help="largest state-space order")
     b.add_argument("--fit-tol", type=float, default=0.02,
                    help="target max relative error of the fitted A and B")
-    b.add_argument("-o", "--output", default="input/ship_bem.nc")
+    b.add_argument("-o", "--output", default=None,
+                   help="default input/ship_bem.nc (lifeboat: input/boat_bem.nc)")
     b.add_argument("-q", "--quiet", action="store_true")
 
     r = sub.add_parser("rao", help="frequency-domain RAOs from a database")
     r.add_argument("database")
     r.add_argument("--roll-damping", type=float, default=0.05,
                    help="linear roll damping ratio zeta (default 0.05)")
+    r.add_argument("--gm", type=float, default=None,
+                   help="[m] replace the database's roll stiffness C44 by m g GM (e.g. the "
+                        "paper's h_m = 2 m for the lifeboat)")
     r.add_argument("--omegas", type=float, nargs="+", default=None,
                    help="[rad/s] (default: the database's)")
     r.add_argument("--headings-deg", type=float, nargs="+", default=None,
@@ -98,27 +117,53 @@ def _build(args, argv):
     import logging
     logging.getLogger("capytaine").setLevel(logging.ERROR)
     from . import bem_build
-    omega_max = 2.0 if args.omegas is None else max(args.omegas)
+    lifeboat = args.hull == "lifeboat" and not args.mesh
+    if args.omegas is not None:
+        omega_max = max(args.omegas)
+    else:
+        omega_max = float(bem_build.lifeboat_omegas()[-1]) if lifeboat else 2.0
+    beam = args.beam or (bem_mesh.BOAT_BEAM if lifeboat else bem_mesh.BEAM)
+    draught = args.draught or (bem_mesh.BOAT_DRAUGHT if lifeboat else bem_mesh.DRAUGHT)
+    cg, mass = args.cg, args.mass
     if args.mesh:
         try:
             hull = bem_mesh.file_hull(args.mesh, omega_max=omega_max, lid=not args.no_lid,
                                       file_format=args.mesh_format)
         except (OSError, ValueError) as exc:
             return _error(f"{args.mesh}: {exc}")
+    elif lifeboat:
+        hull = bem_mesh.lifeboat_hull(length=args.length or bem_mesh.BOAT_LENGTH, beam=beam,
+                                      draught=draught, exponent=args.breadth_exponent,
+                                      panels=args.panels, omega_max=omega_max,
+                                      lid=not args.no_lid)
+        if cg is None:
+            cg = (0.0, 0.0, bem_mesh.BOAT_KEEL_TO_CG - draught)
+        if mass is None:
+            mass = bem_mesh.BOAT_MASS
+        if args.inertia is None:
+            args.inertia = bem_mesh.BOAT_INERTIA
     elif args.hull == "ship":
-        hull = bem_mesh.ship_hull(length=args.length or bem_mesh.L_PP, beam=args.beam,
-                                  draught=args.draught,
+        hull = bem_mesh.ship_hull(length=args.length or bem_mesh.L_PP, beam=beam,
+                                  draught=draught,
                                   block_coefficient=args.block_coefficient,
                                   panels=args.panels, omega_max=omega_max,
                                   lid=not args.no_lid)
     else:
-        hull = bem_mesh.box_hull(length=args.length or bem_mesh.BOX_LENGTH, beam=args.beam,
-                                 draught=args.draught, panels=args.panels,
+        hull = bem_mesh.box_hull(length=args.length or bem_mesh.BOX_LENGTH, beam=beam,
+                                 draught=draught, panels=args.panels,
                                  omega_max=omega_max, lid=not args.no_lid)
-    gyradii = (args.roll_gyradius or bem_build.ROLL_GYRADIUS_FACTOR * hull.beam,
-               args.pitch_gyradius, args.yaw_gyradius)
+    if cg is None:
+        cg = (0.0, 0.0, 0.0)
+    if args.inertia is not None:
+        if mass is None:
+            return _error("--inertia needs --mass")
+        gyradii = tuple(float(np.sqrt(i / mass)) for i in args.inertia)
+    else:
+        gyradii = (args.roll_gyradius or bem_build.ROLL_GYRADIUS_FACTOR * hull.beam,
+                   args.pitch_gyradius, args.yaw_gyradius)
+    output = args.output or ("input/boat_bem.nc" if lifeboat else "input/ship_bem.nc")
     command = "python -m postproc.bem " + " ".join(shlex.quote(a) for a in argv)
-    bem_build.build(hull, args.output, cg=args.cg, mass=args.mass, gyradii=gyradii,
+    bem_build.build(hull, output, cg=cg, mass=mass, gyradii=gyradii,
                     omegas=args.omegas, headings_deg=args.headings_deg, rho=args.rho,
                     nmax=args.nmax, tol=args.fit_tol, command=command,
                     progress=not args.quiet)
@@ -130,6 +175,8 @@ def _rao(args):
         base = bem_db.Database(args.database)
     except (OSError, ValueError) as exc:
         return _error(exc)
+    if args.gm is not None:
+        base = bem_rao.with_roll_gm(base, args.gm)
     headings = np.radians(args.headings_deg if args.headings_deg is not None
                           else [0.0, 45.0, 90.0, 135.0, 180.0])
     omegas = base.omega if args.omegas is None else np.asarray(args.omegas)
@@ -138,13 +185,18 @@ def _rao(args):
     except ValueError as exc:
         return _error(exc)
     periods = bem_rao.natural_periods(base)
+    ratios = bem_rao.damping_ratios(base)
+    c44, gm = float(base.stiffness[3, 3]), bem_rao.roll_gm(base)
     for dof in bem_rao.RESTORED:
         print(f"bem: undamped natural period {bem_db.DOFS[dof]:>5s}: {periods[dof]:.3f} s "
-              f"(omega {2 * np.pi / periods[dof]:.4f} rad/s)")
+              f"(omega {2 * np.pi / periods[dof]:.4f} rad/s), radiation damping ratio there "
+              f"{ratios[dof]:.4f}")
+    print(f"bem: C44 = {c44:.6g} N m (GM_T {gm:.4f} m"
+          f"{', set by --gm' if args.gm is not None else ''})")
     print(f"bem: roll damping zeta {args.roll_damping:g}: B44_visc = {b44:.4g} N m s")
     if args.output:
         bem_rao.write(args.output, omegas, headings, xi, periods, args.database,
-                      args.roll_damping, b44)
+                      args.roll_damping, b44, ratios, c44, gm)
         print(f"bem: wrote {args.output}")
     else:
         print("omega  heading  |heave| |roll|/k |pitch|/k  (amplitude per unit wave amplitude)")

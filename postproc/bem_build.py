@@ -21,6 +21,11 @@ PITCH_GYRADIUS = 32.6375         # k_yy = k_zz = 0.25 L_wl [m]
 RETARDATION_DT = 0.1             # [s]
 RETARDATION_END = 60.0           # [s]
 FIT_WINDOW = 30.0                # [s] of the K(t) error
+# the lifeboat's kernels (frequencies up to 8 rad/s, natural periods ~2-4.5 s) die out
+# within ~10 s: a finer, shorter grid (dt, end, K(t) error window) [s]
+LIFEBOAT_RETARDATION = (0.02, 20.0, 10.0)
+# and its fits see the data extended past 8 rad/s (postproc.bem_fit.fit_all, tail)
+LIFEBOAT_FIT_TAIL = (1.25, 1.5, 2.0, 3.0, 4.0, 6.0)
 
 
 def default_omegas():
@@ -29,6 +34,18 @@ def default_omegas():
     rad/s), heave and pitch (0.92 rad/s) respond; every 0.1 above 1.2."""
     w = np.concatenate([np.arange(0.1, 0.5, 0.05), np.arange(0.5, 1.2, 0.025),
                         np.arange(0.7, 0.95, 0.0125), np.arange(1.2, 2.0001, 0.1)])
+    return np.unique(np.round(w, 6))
+
+
+def lifeboat_omegas():
+    """87 frequencies in 0.3..8 rad/s for the lifeboat (postproc.bem_mesh.lifeboat_hull):
+    every 0.1 below 1.2, 0.025 over 1.2..1.7 around its roll (undamped natural frequency
+    ~1.4 rad/s with the hull's GM_T, ~1.6 rad/s with the paper's h_m = 2 m), 0.1 up to
+    2.4, 0.05 over 2.4..3.6 around heave and pitch (~2.9, ~3.2 rad/s), 0.1 up to 5 and
+    0.25 up to 8 rad/s (a 0.96 m wave: the panels, ~0.15 m, still resolve it)."""
+    w = np.concatenate([np.arange(0.3, 1.2, 0.1), np.arange(1.2, 1.7, 0.025),
+                        np.arange(1.7, 2.4, 0.1), np.arange(2.4, 3.6, 0.05),
+                        np.arange(3.6, 5.0, 0.1), np.arange(5.0, 8.0001, 0.25)])
     return np.unique(np.round(w, 6))
 
 
@@ -117,7 +134,8 @@ def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
 
 
 def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12, tol=0.02,
-                    progress=True):
+                    progress=True, retardation=(RETARDATION_DT, RETARDATION_END, FIT_WINDOW),
+                    tail=None):
     """The davit_ variables (name -> numpy array) from Capytaine's datasets."""
     dofs = list(body.dofs)
     cg = np.asarray(body.center_of_mass, float)
@@ -150,10 +168,11 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     stiffness = _sign_matrix(_ordered(ds.hydrostatic_stiffness.squeeze(drop=True),
                                       dofs).values)
 
-    time = np.arange(0.0, RETARDATION_END + 0.5 * RETARDATION_DT, RETARDATION_DT)
+    dt, end, window = retardation
+    time = np.arange(0.0, end + 0.5 * dt, dt)
     kernel = bem_fit.retardation(omega, damping, time)
     fits = bem_fit.fit_all(omega, added_mass, damping, a_inf, time, kernel, nmax=nmax,
-                           tol=tol, window=FIT_WINDOW)
+                           tol=tol, window=window, tail=tail)
     order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
     if progress:
         print_fit_report(fits)
@@ -177,13 +196,14 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
 
 
 def print_fit_report(fits, file=sys.stderr):
-    print("bem: state-space fits (pair i,j: order, max err A, max err B, L2 err K(t) 0-30 s)",
-          file=file)
+    print("bem: state-space fits (pair i,j: order, max err A, max err B, L2 err K(t) over "
+          "the window)", file=file)
     for (i, j), f in sorted(fits.items()):
         print(f"bem:   {db.DOFS[i]:>5s}-{db.DOFS[j]:<5s} n={f.order:2d}  "
               f"A {f.error_added_mass:7.2%}  B {f.error_damping:7.2%}  "
               f"K(t) {f.error_retardation:7.2%}  max Re(pole) "
-              f"{max(p.real for p in f.poles):.3g}", file=file)
+              f"{max(p.real for p in f.poles):.3g}  min B_fit/max B {f.min_damping:.3f}"
+              f"{'  (tail)' if f.tail else ''}", file=file)
 
 
 def write(path, ds, variables, attrs):
@@ -211,10 +231,18 @@ def write(path, ds, variables, attrs):
 
 
 def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
-          headings_deg=None, rho=RHO, g=G, nmax=12, tol=0.02, command="", progress=True):
-    """Mesh -> BEM solve -> davit variables -> database file. Returns (variables, attrs)."""
+          headings_deg=None, rho=RHO, g=G, nmax=12, tol=0.02, command="", progress=True,
+          retardation=None):
+    """Mesh -> BEM solve -> davit variables -> database file. Returns (variables, attrs).
+    The lifeboat hull gets its own frequency grid and retardation grid by default."""
     import capytaine as cpt
-    omegas = default_omegas() if omegas is None else np.sort(np.asarray(omegas, float))
+    lifeboat = hull.kind == "lifeboat"
+    if omegas is None:
+        omegas = lifeboat_omegas() if lifeboat else default_omegas()
+    omegas = np.sort(np.asarray(omegas, float))
+    if retardation is None:
+        retardation = (LIFEBOAT_RETARDATION if lifeboat
+                       else (RETARDATION_DT, RETARDATION_END, FIT_WINDOW))
     headings_deg = (default_headings_deg() if headings_deg is None
                     else np.asarray(headings_deg, float))
     body, m6, hydro = make_body(hull, cg, mass, gyradii, rho, g)
@@ -224,20 +252,25 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
               f"{len(omegas)} frequencies x {len(headings_deg)} headings", file=sys.stderr)
     ds, ds_special, elapsed = solve(body, omegas, headings_deg, rho, g, progress)
     variables = davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g, nmax, tol,
-                                progress)
+                                progress, retardation,
+                                LIFEBOAT_FIT_TAIL if lifeboat else None)
     attrs = {
-        "title": "davit ship hydrodynamics (Capytaine BEM database)",
+        "title": (f"davit {'lifeboat' if lifeboat else 'ship'} hydrodynamics "
+                  "(Capytaine BEM database)"),
         db.ATTR_HULL_KIND: hull.kind, db.ATTR_LENGTH: hull.length, db.ATTR_BEAM: hull.beam,
         db.ATTR_DRAUGHT: hull.draught, db.ATTR_PANELS: np.int32(hull.panels),
         db.ATTR_LID_PANELS: np.int32(hull.lid_panels), "lid": np.int32(hull.lid is not None),
         "lid_z": hull.lid_z, "rho": rho, "g": g, "mass": hydro["mass"],
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
+        "retardation_dt_end_window": np.asarray(retardation, float),
         db.ATTR_COMMAND_LINE: command, db.ATTR_SOLVE_TIME: elapsed,
         "davit_conventions": db.__doc__.strip(),
         "frame_of_capytaine_variables": "Capytaine's (x forward, y port, z up; e^{-i w t}; "
                                         "wave_direction from x towards y, port)",
     }
+    if lifeboat:
+        attrs["fit_tail"] = np.asarray(LIFEBOAT_FIT_TAIL, float)
     for key, value in hull.extra.items():
         attrs[key] = value
     write(out, ds, variables, attrs)

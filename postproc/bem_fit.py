@@ -175,6 +175,8 @@ class PairFit:
     error_added_mass: float     # max |A_fit - A| / max |A - A_inf| over the grid
     error_damping: float        # max |B_fit - B| / max |B| over the grid
     error_retardation: float    # ||K_ss - K|| / ||K|| (L2 over 0..30 s), nan if not computed
+    min_damping: float = float("nan")   # min over 0..20 w_N of B_fit / max |B| (diagonal)
+    tail: bool = False          # fitted with the tail beyond the grid (fit_all)
 
     @property
     def error(self):
@@ -223,10 +225,42 @@ def significant_pairs(kernel, relative=1e-3):
     return peak > relative * diag
 
 
+# passivity: a diagonal kernel's fitted damping may dip below zero by this fraction of its
+# largest value, anywhere over 0..20 w_N
+PASSIVITY_FLOOR = 0.05
+
+
+def min_damping(fit, omega_max, damping):
+    """min over 0..20 omega_max of B_fit(w) / max |B| (negative: the fit makes energy)."""
+    w = np.linspace(1e-3, 20.0 * omega_max, 20000)
+    return float(np.min(evaluate(fit.poles, fit.coef, 1j * w).real)
+                 / max(np.max(np.abs(damping)), 1e-300))
+
+
+def _with_tail(omega, added_mass, damping, added_mass_inf, tail):
+    """The data extended beyond the last frequency w_N to w_N * tail with B_N (w_N/w)^2
+    and A_inf + (A_N - A_inf) (w_N/w)^2, the decay of a strictly proper kernel (and the
+    tail of the cosine transform in retardation)."""
+    wt = omega[-1] * np.asarray(tail, float)
+    r2 = (omega[-1] / wt)**2
+    return (np.concatenate([omega, wt]),
+            np.concatenate([added_mass, added_mass_inf + (added_mass[-1] - added_mass_inf) * r2]),
+            np.concatenate([damping, damping[-1] * r2]))
+
+
 def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, tol=0.02,
-            relative=1e-3, window=30.0):
+            relative=1e-3, window=30.0, tail=None):
     """Fits of every significant pair: dict (i, j) -> PairFit, with the retardation error
-    over 0..window s filled in."""
+    over 0..window s filled in.
+
+    With tail (multiples of the last frequency, e.g. (1.25, 1.5, 2, 3, 4, 6)) each pair is
+    first fitted to the data extended by _with_tail: without it a fit that must still
+    bring A(w) to A_inf past the grid can put a nearly undamped pole just beyond it, whose
+    damping there is large and negative (the lifeboat's heave: -7 x max B at 8.4 rad/s).
+    Where that fit misses tol on the grid, the plain fit replaces it if it is better and,
+    for a diagonal pair, passive (min B_fit >= -PASSIVITY_FLOOR max B): e.g. a damping
+    still rising at the grid's end (the lifeboat's roll) does not follow the assumed tail.
+    The errors are always those on the grid."""
     sig = significant_pairs(kernel, relative)
     mask = time <= window
     fits = {}
@@ -234,8 +268,21 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
         for j in range(6):
             if not sig[i, j]:
                 continue
-            fit = fit_pair(omega, added_mass[:, i, j], damping[:, i, j], added_mass_inf[i, j],
-                           nmax=nmax, tol=tol)
+            data = (omega, added_mass[:, i, j], damping[:, i, j])
+            fit = None
+            if tail is not None:
+                fit = fit_pair(*_with_tail(*data, added_mass_inf[i, j], tail),
+                               added_mass_inf[i, j], nmax=nmax, tol=tol)
+                fit.error_added_mass, fit.error_damping = fit_errors(
+                    fit.poles, fit.coef, *data, added_mass_inf[i, j])
+                fit.tail = True
+            if fit is None or fit.error > tol:
+                plain = fit_pair(*data, added_mass_inf[i, j], nmax=nmax, tol=tol)
+                passive = (i != j or min_damping(plain, omega[-1], data[2])
+                           >= -PASSIVITY_FLOOR)
+                if fit is None or (passive and plain.error < fit.error):
+                    fit = plain
+            fit.min_damping = min_damping(fit, omega[-1], data[2])
             kss = impulse_response(fit.poles, fit.coef, time[mask])
             kref = kernel[mask, i, j]
             fit.error_retardation = float(np.linalg.norm(kss - kref) /

@@ -270,3 +270,144 @@ def file_hull(path, omega_max=2.0, lid=True, file_format=None):
         if lid_mesh.nb_faces == 0:
             lid_mesh, zl = None, float("nan")
     return Hull("file", mesh, lid_mesh, length, beam, draught, zl, extra={"mesh_file": str(path)})
+
+
+# The lifeboat of the paper's section III.B with the plan shape of review G25: the &boat
+# keys length, beam, breadth_exponent (src/boat/hull.f90); floating draught and CG height
+# above the keel (&boat keel = 1.1: the keel 1.1 m below the CG) as issue 18 states them.
+BOAT_LENGTH = 11.5               # [m] paper III.B
+BOAT_BEAM = 2.8                  # [m] paper III.B
+BOAT_BREADTH_EXPONENT = 4.3      # review G25: b(x) = B (1 - |2x/L|^4.3)
+BOAT_DRAUGHT = 0.3175            # [m] rho V = 8,500 kg at rho = 1025 (lifeboat_draught)
+BOAT_KEEL_TO_CG = 1.1            # [m] KG, review G25 (&boat keel)
+BOAT_MASS = 8500.0               # [kg] paper III.B
+BOAT_INERTIA = (25020.0, 51745.0, 51745.0)   # [kg m^2] paper III.B
+
+
+def lifeboat_plan_coefficient(exponent=BOAT_BREADTH_EXPONENT):
+    """Waterplane (= plan-area) coefficient of b(x) = B (1 - |2x/L|^p): int_0^1 (1 - s^p) ds
+    = p/(p + 1) (0.811 for p = 4.3; review G25's A3 = 26.2 m^2)."""
+    return exponent / (exponent + 1.0)
+
+
+def lifeboat_draught(mass=BOAT_MASS, length=BOAT_LENGTH, beam=BOAT_BEAM,
+                     exponent=BOAT_BREADTH_EXPONENT, rho=1025.0):
+    """Floating draught of the wall-sided, flat-bottomed boat: m / (rho A_wp)."""
+    return mass / (rho * length * beam * lifeboat_plan_coefficient(exponent))
+
+
+def lifeboat_transverse_inertia(length=BOAT_LENGTH, beam=BOAT_BEAM,
+                                exponent=BOAT_BREADTH_EXPONENT):
+    """I_T = int b^3/12 dx = L B^3/12 int_0^1 (1 - s^p)^3 ds, the binomial sum
+    1 - 3/(p+1) + 3/(2p+1) - 1/(3p+1) (the waterplane's second moment about the centreline)."""
+    p = exponent
+    shape = 1.0 - 3.0 / (p + 1) + 3.0 / (2 * p + 1) - 1.0 / (3 * p + 1)
+    return length * beam**3 / 12.0 * shape
+
+
+def lifeboat_longitudinal_inertia(length=BOAT_LENGTH, beam=BOAT_BEAM,
+                                  exponent=BOAT_BREADTH_EXPONENT):
+    """I_L = int x^2 b dx = L^3 B/4 int_0^1 s^2 (1 - s^p) ds = L^3 B/4 (1/3 - 1/(p + 3))."""
+    return length**3 * beam / 4.0 * (1.0 / 3.0 - 1.0 / (exponent + 3.0))
+
+
+def lifeboat_halfbreadth(x, length=BOAT_LENGTH, beam=BOAT_BEAM, exponent=BOAT_BREADTH_EXPONENT):
+    return 0.5 * beam * np.clip(1.0 - np.abs(2.0 * np.asarray(x) / length)**exponent, 0.0, 1.0)
+
+
+def lifeboat_resolution(length, beam, draught, panels):
+    """(nx, ny, nz) of the lifeboat mesh (whole hull: nx along, ny across the bottom, nz
+    over the draught; ~ nx (ny + 2 nz) panels), square-ish panels of side h on the bottom
+    (ny across the midship beam), at least 4 over the draught, nx and ny even."""
+    best = None
+    for h in np.geomspace(0.02, 2.0, 400)[::-1]:
+        nx, ny = _even(length / h), _even(beam / h)
+        nz = max(4, int(round(draught / (0.8 * h))))
+        count = nx * ny + 2 * nz * nx
+        if best is None or abs(count - panels) < abs(best[3] - panels):
+            best = (nx, ny, nz, count)
+    return best[:3]
+
+
+def _lifeboat_levels(draught, nz, z_split):
+    """nz + 1 side levels from 0 down to -draught with z_split one of them (the lid's
+    level), each of the two intervals clustered towards its ends (waterline, lid, bilge)."""
+    if not -draught < z_split < 0.0:
+        return -draught * _grid(nz, 2)
+    n_up = int(np.clip(round(nz * -z_split / draught), 1, nz - 1))
+    upper = z_split * _grid(n_up, 2)
+    lower = z_split + (-draught - z_split) * _grid(nz - n_up, 2)
+    return np.concatenate([upper, lower[1:]])
+
+
+def _lifeboat_quarter(cpt, length, beam, exponent, x, y_frac, z, z_bottom, sides=True):
+    """Quarter x <= 0, y <= 0 of the plan b(x) at depth z_bottom (bottom or lid) and, with
+    sides, the vertical side at the levels z. x runs from midship (x[0] = 0) to the stem
+    (x[-1] = -L/2, zero breadth): the last column of the plan is triangles meeting there."""
+    yb = -lifeboat_halfbreadth(x, length, beam, exponent)
+    nxq, nyq = len(x) - 1, len(y_frac) - 1
+    vertices, faces = [], []
+    index = {}
+
+    def vid(key, point):
+        if key not in index:
+            index[key] = len(vertices)
+            vertices.append(point)
+        return index[key]
+
+    def plan(i, j):
+        if i == nxq:                                 # the stem: one vertex
+            return vid(("p", i, 0), (x[i], 0.0, z_bottom))
+        return vid(("p", i, j), (x[i], yb[i] * y_frac[j], z_bottom))
+
+    for i in range(nxq):
+        for j in range(nyq):
+            if i + 1 == nxq:
+                faces.append([plan(i, j), plan(i + 1, j), plan(i, j + 1)])
+            else:
+                faces.append([plan(i, j), plan(i + 1, j), plan(i + 1, j + 1), plan(i, j + 1)])
+    patches = [((np.array(vertices), faces), (0.0, 0.0, -1.0))]
+    if sides:
+        vertices, faces, index = [], [], {}
+
+        def side(i, k):
+            yy = 0.0 if i == nxq else yb[i]
+            return vid(("s", i, k), (x[i], yy, z[k]))
+
+        for i in range(nxq):
+            for k in range(len(z) - 1):
+                faces.append([side(i, k), side(i, k + 1), side(i + 1, k + 1), side(i + 1, k)])
+        patches.append(((np.array(vertices), faces), (0.0, -1.0, 0.0)))
+    return _join_patches(cpt, patches, "quarter_of_lifeboat")
+
+
+def lifeboat_hull(length=BOAT_LENGTH, beam=BOAT_BEAM, draught=BOAT_DRAUGHT,
+                  exponent=BOAT_BREADTH_EXPONENT, panels=2000, omega_max=8.0, lid=True):
+    """The G25 lifeboat: plan b(x) = B (1 - |2x/L|^p), vertical sides, flat bottom, open at
+    the waterline, sharp stems at x = +-L/2 (wedges of half-angle atan(p B/L) = 46 deg).
+    Panels refined towards the stems (cosine spacing along x), the bilge (across the
+    bottom) and the waterline, bilge and lid (over the draught). The lid is the bottom's
+    plan grid at the deepest level lid_position allows for omega_max (for 8 rad/s on this
+    waterplane, -0.139 m; the boat's first irregular frequency without it is ~5.7 rad/s),
+    or mid-draught if that is shallower, and the side grid has a node level there, so lid
+    and hull conform as for the box."""
+    import capytaine as cpt
+    nx, ny, nz = lifeboat_resolution(length, beam, draught, panels)
+    nxq, nyq = nx // 2, ny // 2
+    x = -0.5 * length * _grid(nxq, 1)
+    y_frac = _grid(nyq, 1)
+    zl = float("nan")
+    if lid:
+        zl = max(lid_position(length * lifeboat_plan_coefficient(exponent), beam, omega_max),
+                 -0.5 * draught)
+    z = _lifeboat_levels(draught, nz, zl if lid else 0.0)
+    mesh = _both_symmetries(_lifeboat_quarter(cpt, length, beam, exponent, x, y_frac, z,
+                                              -draught), "lifeboat")
+    lid_mesh = None
+    if lid:
+        lid_mesh = _both_symmetries(_lifeboat_quarter(cpt, length, beam, exponent, x, y_frac,
+                                                      z, zl, sides=False), "lid")
+    return Hull("lifeboat", mesh, lid_mesh, length, beam, draught, zl,
+                extra={"breadth_exponent": exponent,
+                       "plan_coefficient": lifeboat_plan_coefficient(exponent),
+                       "resolution_x_y_z": np.array([nx, ny, nz], dtype=np.int32)})

@@ -7,6 +7,8 @@ is solved with all couplings, in davit's body frame (x forward, y starboard, z d
 positive starboard down, pitch positive bow up). A, B and X are interpolated linearly in w
 (and X in beta) from the database. B_visc is zero but for a linear roll damping
 B44_visc = zeta 2 sqrt(C44 (I44 + A44(w_roll))) at the undamped roll frequency.
+C44 may be replaced by m g GM (with_roll_gm: e.g. the lifeboat with the paper's h_m = 2 m
+instead of the GM_T its hull and CG give).
 
 The response to eta = a cos(w t + eps - k (x_G cos g + y_G sin g)) is
 x_i(t) = Re[xi_i a exp(i (w t + eps - k (...)))], so |xi_i| is the amplitude per unit wave
@@ -16,10 +18,14 @@ waves heave -> -1 (z down: the ship rises with the crest), pitch -> -i k cos(bet
 
 Output (.h5, root datasets, names in postproc.layout BEM_RAO_*; numpy shapes): omega (nw)
 [rad/s], heading (nb) [rad], rao_re, rao_im, amplitude, phase (nw, nb, 6) [m/m or rad/m;
-phase rad], natural_period (6) [s] (nan for surge, sway, yaw), and root attributes
-database, roll_damping_ratio, roll_damping_visc [N m s]. (.csv: one row per omega,
+phase rad], natural_period (6) [s] (nan for surge, sway, yaw), radiation_damping_ratio (6)
+[-] (B_ii / (2 sqrt(C_ii (M_ii + A_ii)))) at the undamped natural frequency; nan for surge,
+sway, yaw), and root attributes database, roll_damping_ratio, roll_damping_visc [N m s],
+roll_stiffness (C44 [N m]) and roll_gm (C44 / (m g) [m]). (.csv: one row per omega,
 heading, DOF: omega_rad_s, heading_deg, dof, amplitude, phase_rad, re, im.)
 """
+import copy
+
 import numpy as np
 
 from . import bem_db as db
@@ -32,6 +38,7 @@ RAO_IM = layout.BEM_RAO_IM
 AMPLITUDE = layout.BEM_RAO_AMPLITUDE
 PHASE = layout.BEM_RAO_PHASE
 NATURAL_PERIOD = layout.BEM_RAO_NATURAL_PERIOD
+DAMPING_RATIO = layout.BEM_RAO_DAMPING_RATIO
 RESTORED = (2, 3, 4)   # heave, roll, pitch
 
 
@@ -112,6 +119,34 @@ def raos(base, omegas=None, headings=None, zeta=0.05):
     return xi, b44
 
 
+def with_roll_gm(base, gm, g=9.81):
+    """A copy of the database with C44 = m g GM (the other stiffnesses unchanged)."""
+    other = copy.copy(base)
+    other.values = dict(base.values)
+    c = np.array(base.stiffness, float)
+    c[3, 3] = base.mass[0, 0] * g * gm
+    other.values[db.STIFFNESS] = c
+    return other
+
+
+def roll_gm(base, g=9.81):
+    """GM_T = C44 / (m g) of the database [m]."""
+    return float(base.stiffness[3, 3] / (base.mass[0, 0] * g))
+
+
+def damping_ratios(base):
+    """Radiation damping ratio B_ii / (2 sqrt(C_ii (M_ii + A_ii))) at the undamped natural
+    frequency of heave, roll and pitch (nan for the others): the waves a DOF makes as the
+    only damping, evaluated where it resonates."""
+    zeta = np.full(6, np.nan)
+    for dof in RESTORED:
+        w = natural_frequency(base, dof)
+        b = float(np.interp(w, base.omega, base.damping[:, dof, dof]))
+        zeta[dof] = b / (2.0 * np.sqrt(base.stiffness[dof, dof]
+                                       * (base.mass[dof, dof] + added_mass_at(base, dof, w))))
+    return zeta
+
+
 def natural_periods(base):
     t = np.full(6, np.nan)
     for dof in RESTORED:
@@ -119,7 +154,8 @@ def natural_periods(base):
     return t
 
 
-def write(path, omegas, headings, xi, periods, database, zeta, b44):
+def write(path, omegas, headings, xi, periods, database, zeta, b44, ratios=None,
+          c44=float("nan"), gm=float("nan")):
     if str(path).endswith(".csv"):
         with open(path, "w") as f:
             f.write("omega_rad_s,heading_deg,dof,amplitude,phase_rad,re,im\n")
@@ -141,10 +177,15 @@ def write(path, omegas, headings, xi, periods, database, zeta, b44):
                 (RAO_IM, xi.imag, "as rao_re", "Im xi"),
                 (AMPLITUDE, np.abs(xi), "as rao_re", "|xi| per unit wave amplitude"),
                 (PHASE, np.angle(xi), "rad", "phase lead over the wave elevation at the CG"),
-                (NATURAL_PERIOD, periods, "s", "undamped natural periods (nan: no restoring)")):
+                (NATURAL_PERIOD, periods, "s", "undamped natural periods (nan: no restoring)"),
+                (DAMPING_RATIO, np.full(6, np.nan) if ratios is None else ratios, "-",
+                 "radiation damping ratio at the undamped natural frequency (nan: no "
+                 "restoring)")):
             ds = f.create_dataset(name, data=np.asarray(value, float))
             ds.attrs[layout.UNITS] = units
             ds.attrs[layout.DESCRIPTION] = desc
         f.attrs[layout.BEM_RAO_DATABASE] = str(database)
         f.attrs[layout.BEM_RAO_ROLL_DAMPING_RATIO] = zeta
         f.attrs[layout.BEM_RAO_ROLL_DAMPING_VISC] = b44
+        f.attrs[layout.BEM_RAO_ROLL_STIFFNESS] = c44
+        f.attrs[layout.BEM_RAO_ROLL_GM] = gm

@@ -75,8 +75,8 @@ RAO_DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 # `python -m postproc.bem rao` (postproc.bem_rao): frequency-domain RAOs from the BEM
 # database, davit's body frame (z down); root datasets, numpy shapes: omega (nw) [rad/s],
 # heading (nb) [rad], rao_re, rao_im, amplitude (nw, nb, 6), phase (nw, nb, 6) [rad],
-# natural_period (6) [s]; root attributes: the database's path, the roll damping ratio and
-# B44_visc [N m s]. (The BEM database itself is Capytaine's format: postproc.bem_db.)
+# natural_period (6) [s], radiation_damping_ratio (6); root attributes: the database's
+# path, the roll damping ratio, B44_visc [N m s], C44 [N m] and its GM [m]. (The BEM database itself is Capytaine's format: postproc.bem_db.)
 BEM_RAO_OMEGA = "omega"
 BEM_RAO_HEADING = "heading"
 BEM_RAO_RE = "rao_re"
@@ -87,6 +87,11 @@ BEM_RAO_NATURAL_PERIOD = "natural_period"
 BEM_RAO_DATABASE = "database"
 BEM_RAO_ROLL_DAMPING_RATIO = "roll_damping_ratio"
 BEM_RAO_ROLL_DAMPING_VISC = "roll_damping_visc"
+# radiation damping ratio at each undamped natural frequency (6) [-], and the roll
+# stiffness C44 [N m] and the GM_T [m] it implies (root attributes)
+BEM_RAO_DAMPING_RATIO = "radiation_damping_ratio"
+BEM_RAO_ROLL_STIFFNESS = "roll_stiffness"
+BEM_RAO_ROLL_GM = "roll_gm"
 # the attributes of every dataset
 UNITS = "units"
 DESCRIPTION = "description"
