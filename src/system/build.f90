@@ -271,7 +271,10 @@ contains
       c = rotation_matrix(cfg%boat%euler)
       y(b%q(1):b%q(2)) = [cfg%boat%euler, matmul(transpose(c), cfg%boat%position)]
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
-      if (par%bem_water) y(par%radiation_part%q(1)) = initial_immersion(self, y)
+      if (par%bem_water) then
+        y(par%radiation_part%q(1):par%radiation_part%q(2)) = 0.0_wp
+        y(par%radiation_part%q(1)) = initial_immersion(self, y)
+      end if
       if (.not. par%on_davit) return
       call hook_kinematics(par, y, hook_pos, hook_vel)
       pose = ship_pose(par, y)
