@@ -17,17 +17,30 @@ program main
   use test_strip_waves, only: collect_strip_waves
   use test_bem_ship, only: collect_bem_ship
   use test_launch_log, only: collect_launch_log
+  use test_boat_bem, only: collect_boat_bem
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   implicit none
+  interface
+    integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: name(*), value(*)
+      integer(c_int), value :: overwrite
+    end function setenv
+  end interface
   type(suite_type), allocatable :: suites(:)
   character(len=256) :: filter
   integer :: npass, nfail
 
+  ! decks given as text ("test.nml") find their data files (the boat's BEM database) in
+  ! the project's input/, as test/python/conftest.py does for the Python tests
+  if (setenv("DAVIT_PATH"//c_null_char, "input"//c_null_char, 0_c_int) /= 0) error stop 1
   filter = ""
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
             collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
             collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
-            collect_strip_waves(), collect_bem_ship(), collect_launch_log()]
+            collect_strip_waves(), collect_bem_ship(), collect_launch_log(), &
+            collect_boat_bem()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

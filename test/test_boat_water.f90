@@ -26,6 +26,15 @@ module test_boat_water
 
 contains
 
+  !> A deck's configuration with the paper's strips alone (&boat water_model = 'strips'):
+  !> these tests check the strip physics (eqs. 18-25) and the 12-state free boat.
+  function strip_config(text) result(cfg)
+    character(len=*), intent(in) :: text
+    type(config_type) :: cfg
+    cfg = deck_config(text)
+    cfg%boat%water_model = "strips"
+  end function strip_config
+
   function collect_boat_water() result(suite)
     type(suite_type) :: suite
     suite%name = "boat_water"
@@ -149,7 +158,7 @@ contains
     type(system_type) :: sys
     real(wp) :: y(nstate), dydt(nstate), c(3, 3), fb(3), v
     real(wp), parameter :: euler(3) = [0.1_wp, 0.04_wp, 0.3_wp], cg(3) = [2.0_wp, -1.0_wp, -0.5_wp]
-    cfg = deck_config(free_deck)
+    cfg = strip_config(free_deck)
     cfg%boat%position = cg
     cfg%boat%euler = euler
     y = new_test_system(sys, cfg)
@@ -171,7 +180,7 @@ contains
     type(config_type) :: cfg
     type(system_type) :: sys
     real(wp) :: y(nstate), y0(nstate), dydt(nstate), draught
-    cfg = deck_config(free_deck)
+    cfg = strip_config(free_deck)
     draught = cfg%boat%mass/(rho_water*waterplane_area())
     cfg%boat%position = [0.0_wp, 0.0_wp, draught - 1.1_wp]
     y = new_test_system(sys, cfg)
@@ -194,7 +203,7 @@ contains
     type(rk4_type) :: rk
     real(wp) :: y(nstate), t, dt, prev, first, last, expected
     integer :: i, ncross
-    cfg = deck_config(free_deck)
+    cfg = strip_config(free_deck)
     cfg%boat%position = [0.0_wp, 0.0_wp, cfg%boat%mass/(rho_water*waterplane_area()) - 1.1_wp]
     cfg%boat%euler = [0.03_wp, 0.0_wp, 0.0_wp]
     y = new_test_system(sys, cfg)
@@ -227,7 +236,7 @@ contains
     type(config_type) :: cfg
     type(system_type) :: sys
     real(wp) :: y(nstate), vt, t
-    cfg = deck_config(free_deck//" &boat position = 0.0, 0.0, -5000.0 /")
+    cfg = strip_config(free_deck//" &boat position = 0.0, 0.0, -5000.0 /")
     cfg%boat%wind_drag_coefficient = 0.0_wp
     y = new_test_system(sys, cfg)
     call run(sys, y, 0.01_wp, 500)
@@ -258,7 +267,7 @@ contains
     type(rk4_type) :: rk
     real(wp) :: y(nstate), t, dt, clearance, force(2), fpeak, dm, fm
     integer :: i
-    cfg = deck_config("&slings attached = .false. / &wind speed = 0.0 / "// &
+    cfg = strip_config("&slings attached = .false. / &wind speed = 0.0 / "// &
                       "&contact law = 'hertz_elastoplastic', fender_z = 0.0, 0.0 / "// &
                       "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                       "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
@@ -298,7 +307,7 @@ contains
     integer :: i, j, before
     character(len=6), parameter :: rule(2) = ["window", "graded"]
     do j = 1, 2
-      cfg = deck_config("&slings attached = .false. / &wind speed = 0.0 / "// &
+      cfg = strip_config("&slings attached = .false. / &wind speed = 0.0 / "// &
                         "&contact law = 'hertz_elastoplastic', fender_z = 0.0, 0.0 / "// &
                         "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                         "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 / "// &
@@ -403,7 +412,7 @@ contains
     real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), u(6), f(6), volume, t, z, x(9)
     real(wp), allocatable :: y0(:)
     integer :: i, dry, missed
-    cfg = deck_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
+    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
                       "&slings attached = .false. / &contact enabled = .false. /")
     y0 = new_test_system(sys, cfg)
     dry = 0

@@ -7,7 +7,9 @@
 !> stored as kane(kane_v, i), kane(kane_w_phi, i) and kane(kane_f, i) at state index i.
 !> kane_rates then forms u_dot for every speed at once: eq. 89, the one place it is coded.
 !> Where a body's mass block is full (the layout's coupled blocks: a BEM ship with A(inf)),
-!> it fills V = 1 there, and the block's inverse turns F - W phi into u_dot.
+!> it fills V = 1 there, and the block's inverse turns F - W phi into u_dot; where it varies
+!> in time (a lifeboat's M + s A(inf)), the body fills its modal masses as V and the
+!> layout's modal matrix P gives u_dot = P ((P^T (F - W phi)) / V).
 module davit_core_kane
   use davit_kinds, only: wp
   use davit_core_layout, only: state_layout_type
@@ -37,7 +39,11 @@ contains
     if (.not. allocated(layout%coupled)) return
     do k = 1, size(layout%coupled)
       associate (b => layout%coupled(k))
-        call apply_inverse(b%v_inv, dydt(b%u(1):b%u(2)))
+        if (b%modal) then
+          call apply_modal(b%v_inv, kane(:, b%u(1):b%u(2)), dydt(b%u(1):b%u(2)))
+        else
+          call apply_inverse(b%v_inv, dydt(b%u(1):b%u(2)))
+        end if
       end associate
     end do
   end subroutine kane_rates
@@ -50,6 +56,15 @@ contains
     b = x
     x = matmul(v_inv, b)
   end subroutine apply_inverse
+
+  !> u_dot = P diag(1/V) P^T (F - W phi) of a modal block (V: the modal masses).
+  pure subroutine apply_modal(p, kane, u_dot)
+    real(wp), intent(in) :: p(:, :), kane(:, :)
+    real(wp), intent(out) :: u_dot(:)
+    real(wp) :: b(size(u_dot))
+    b = matmul(kane(kane_f, :) - kane(kane_w_phi, :), p)/kane(kane_v, :)
+    u_dot = matmul(p, b)
+  end subroutine apply_modal
 
   !> A part that does not move (a frozen ship, the falls after hook release): q_dot = 0 and
   !> blocks V = 1, W phi = F = 0, so eq. 89 gives u_dot = 0 too.

@@ -10,7 +10,11 @@
 !> The mass matrix V of eq. 89 is diagonal (eq. 12) except where a body registers a coupled
 !> block of its speeds (a ship with its infinite-frequency added mass A(inf), whose
 !> surge-pitch and sway-roll-yaw terms are not zero): the layout keeps that block's
-!> inverse, and eq. 89 there reads u_dot = V^-1 (F - W phi).
+!> inverse, and eq. 89 there reads u_dot = V^-1 (F - W phi). A block whose mass varies in
+!> time (a lifeboat's M + s A(inf), s its immersion) is registered in modal form instead:
+!> V = M^(1/2) Q (I + s Lambda) Q^T M^(1/2) from the generalized eigenproblem A x = lambda M x,
+!> so V^-1 = P diag(1/d) P^T with the constant P = M^(-1/2) Q and the body filling the modal
+!> masses d = 1 + s lambda as its V (no factorisation in the right-hand side).
 module davit_core_layout
   use davit_kinds, only: wp
   implicit none
@@ -26,10 +30,13 @@ module davit_core_layout
     integer :: q(2) = [1, 0], u(2) = [1, 0]
   end type state_part_type
 
-  !> Speeds y(u(1):u(2)) whose mass block is full, and its inverse.
+  !> Speeds y(u(1):u(2)) whose mass block is full, and its inverse; or (modal) the
+  !> constant modal matrix P of a time-varying block, V^-1 = P diag(1/V_k) P^T with the
+  !> body's V_k.
   type :: coupled_block_type
     integer :: u(2) = [1, 0]
     real(wp), allocatable :: v_inv(:, :)
+    logical :: modal = .false.
   end type coupled_block_type
 
   type :: state_layout_type
@@ -40,6 +47,7 @@ module davit_core_layout
   contains
     procedure :: add => layout_add
     procedure :: couple => layout_couple
+    procedure :: couple_modal => layout_couple_modal
     procedure :: append => layout_append
     procedure :: part => layout_part
   end type state_layout_type
@@ -78,7 +86,11 @@ contains
     end do
     if (.not. allocated(sub%coupled)) return
     do i = 1, size(sub%coupled)
-      call self%couple(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv)
+      if (sub%coupled(i)%modal) then
+        call self%couple_modal(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv)
+      else
+        call self%couple(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv)
+      end if
     end do
   end subroutine layout_append
 
@@ -88,8 +100,18 @@ contains
     integer, intent(in) :: u(2)
     real(wp), intent(in) :: v_inv(:, :)
     if (.not. allocated(self%coupled)) allocate (self%coupled(0))
-    self%coupled = [self%coupled, coupled_block_type(u, v_inv)]
+    self%coupled = [self%coupled, coupled_block_type(u, v_inv, .false.)]
   end subroutine layout_couple
+
+  !> The speeds y(u(1):u(2)) have a time-varying full mass block of constant modal matrix
+  !> `modes` (P): V^-1 = P diag(1/V_k) P^T with the V_k the body fills.
+  subroutine layout_couple_modal(self, u, modes)
+    class(state_layout_type), intent(inout) :: self
+    integer, intent(in) :: u(2)
+    real(wp), intent(in) :: modes(:, :)
+    if (.not. allocated(self%coupled)) allocate (self%coupled(0))
+    self%coupled = [self%coupled, coupled_block_type(u, modes, .true.)]
+  end subroutine layout_couple_modal
 
   !> The part registered as name (an empty part if there is none).
   pure function layout_part(self, name) result(p)

@@ -60,6 +60,10 @@ module davit_io_config
     !> Wind on the boat (eqs. 15-16, review §1.4, G27).
     real(wp) :: wind_areas(3), wind_drag_coefficient, lift_coefficient, lift_diameter
     character(len=:), allocatable :: lift_form
+    !> Water-load model (issue 18): 'bem' (strips plus added mass, radiation memory,
+    !> diffraction and viscous roll damping from the hull's BEM database) or 'strips'.
+    character(len=:), allocatable :: water_model, database
+    real(wp) :: roll_damping, full_immersion
   end type boat_config
 
   !> Fender contact with the ship's side (eqs. 27-34, review §1.7, G16, G17).
@@ -358,7 +362,31 @@ contains
     call r%choice(g, "lift_form", b%lift_form, "symmetric", &
                   [character(len=9) :: "symmetric", "literal"], "Wind lift: 'symmetric' "// &
                   "(upward, from the lateral cross-flow) or eq. 16 'literal' (review §1.4).")
+    call read_boat_water(r, b)
   end subroutine read_boat
+
+  !> The boat's water-load model (issue 18, README "Boat on the water").
+  subroutine read_boat_water(r, b)
+    type(deck_reader_type), intent(inout) :: r
+    type(boat_config), intent(inout) :: b
+    character(len=*), parameter :: g = "boat"
+    call r%choice(g, "water_model", b%water_model, "bem", &
+                  [character(len=6) :: "bem", "strips"], "Water loads: the strips "// &
+                  "(buoyancy, Froude-Krylov, drag) plus A(inf), radiation memory, "// &
+                  "diffraction and viscous roll damping from the hull's BEM database, "// &
+                  "scaled with immersion ('bem'), or the paper's strips alone ('strips').")
+    call r%string(g, "database", b%database, "boat_bem.nc", &
+                  "BEM database of the boat's hull (water_model = 'bem'), looked up in "// &
+                  "the deck's folder, then DAVIT_PATH, unless absolute.")
+    call r%real(g, "roll_damping", b%roll_damping, 0.1_wp, 0.0_wp, 2.0_wp, "-", &
+                "Viscous roll damping (water_model = 'bem'), fraction of critical at the "// &
+                "roll resonance with A44(w): eddy making at the sharp bilges, which "// &
+                "potential flow lacks (Ikeda; ~0.05-0.15 for small craft at zero speed).")
+    call r%real(g, "full_immersion", b%full_immersion, 0.5_wp, 0.0_wp, 1.0_wp, "-", &
+                "Immersion s = min(1, V_wet/(f V_0)) scales the BEM terms; f is this key: "// &
+                "they reach full strength once f of the displacement V_0 = m/rho is wet.", &
+                lo_open=.true.)
+  end subroutine read_boat_water
 
   subroutine read_slings(r, s)
     type(deck_reader_type), intent(inout) :: r

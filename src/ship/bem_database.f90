@@ -9,14 +9,17 @@
 !> mu_i = sum_j int K_ij(t - tau) u_j(tau) dtau as fitted state-space models
 !> x' = A_s x + B_s u_j, mu_ij = C_s x per DOF pair (Perez & Fossen 2008: a few states per
 !> pair instead of a convolution over the whole history in every right-hand side). A(omega)
-!> and B(omega) are kept for checks and for the viscous roll damping's reference.
+!> and B(omega) are kept for checks and for the viscous roll damping's reference. The
+!> Froude-Krylov part of X is kept apart too: a body whose Froude-Krylov load comes from
+!> elsewhere (the lifeboat's strips, on the instantaneous wetted hull) takes the
+!> diffraction part X - X_FK alone (bem_excitation with diffraction_only).
 module davit_ship_bem_database
   use davit_kinds, only: wp, pi
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_reader, only: h5_reader_type
   implicit none
   private
-  public :: bem_database_type, radiation_pair_type, read_bem_database, bem_excitation
+  public :: bem_database_type, radiation_pair_type, read_bem_database, bem_excitation, bracket
 
   !> One fitted memory kernel: force DOF i, motion DOF j, order n, its first state in the
   !> ship's radiation states, and its matrices (n x n, n, n).
@@ -33,6 +36,8 @@ module davit_ship_bem_database
     real(wp), allocatable :: added_mass(:, :, :), damping(:, :, :)
     !> Re and Im of X_i(omega, beta) as (i, beta, omega) [N/m, N m/m].
     real(wp), allocatable :: exc_re(:, :, :), exc_im(:, :, :)
+    !> Its Froude-Krylov part, as (i, beta, omega).
+    real(wp), allocatable :: fk_re(:, :, :), fk_im(:, :, :)
     real(wp) :: added_mass_inf(6, 6) = 0.0_wp, stiffness(6, 6) = 0.0_wp
     real(wp) :: mass(6, 6) = 0.0_wp, volume = 0.0_wp
     !> Radiation states in all (sum of the orders).
@@ -92,6 +97,12 @@ contains
     call read_shaped(h5, "davit_excitation_im", [6, nb, nw], x, dims, error)
     if (allocated(error)) return
     db%exc_im = reshape(x, [6, nb, nw])
+    call read_shaped(h5, "davit_froude_krylov_re", [6, nb, nw], x, dims, error)
+    if (allocated(error)) return
+    db%fk_re = reshape(x, [6, nb, nw])
+    call read_shaped(h5, "davit_froude_krylov_im", [6, nb, nw], x, dims, error)
+    if (allocated(error)) return
+    db%fk_im = reshape(x, [6, nb, nw])
   end subroutine read_grid
 
   !> A(inf), hydrostatic stiffness, rigid-body mass matrix and displaced volume.
@@ -201,15 +212,20 @@ contains
   !> The wave load per unit amplitude X(omega, beta) [complex, N/m, N m/m], linear in
   !> omega and in beta (headings wrap at 2 pi). Below the lowest frequency the lowest
   !> one's (the long-wave limit is reached there); above the highest, none: waves that
-  !> short do not move a ship this size, and the database says nothing about them.
-  pure function bem_excitation(db, omega, beta) result(x)
+  !> short do not move a ship this size, and the database says nothing about them. With
+  !> diffraction_only, X minus its Froude-Krylov part.
+  pure function bem_excitation(db, omega, beta, diffraction_only) result(x)
     type(bem_database_type), intent(in) :: db
     real(wp), intent(in) :: omega, beta
+    logical, intent(in), optional :: diffraction_only
     complex(wp) :: x(6)
+    logical :: diffraction
     real(wp) :: b, sw, sb
     integer :: iw, ib
     x = (0.0_wp, 0.0_wp)
     if (omega > db%omega(size(db%omega))) return
+    diffraction = .false.
+    if (present(diffraction_only)) diffraction = diffraction_only
     b = modulo(beta - db%heading(1), 2.0_wp*pi) + db%heading(1)
     call bracket(db%omega, omega, iw, sw)
     call bracket(db%heading, b, ib, sb)
@@ -220,6 +236,7 @@ contains
       integer, intent(in) :: kw, kb
       complex(wp) :: z(6)
       z = cmplx(db%exc_re(:, kb, kw), db%exc_im(:, kb, kw), wp)
+      if (diffraction) z = z - cmplx(db%fk_re(:, kb, kw), db%fk_im(:, kb, kw), wp)
     end function load
   end function bem_excitation
 

@@ -18,7 +18,7 @@ module davit_ship_bem_loads
   implicit none
   private
   public :: bem_ship_type, new_bem_ship, bem_wave_coefficients, bem_restoring, &
-            bem_memory, to_kane_order, bem_roll_damping
+            bem_memory, to_kane_order, bem_roll_damping, invert
 
   type :: bem_ship_type
     type(bem_database_type) :: db
@@ -66,20 +66,28 @@ contains
     ship%b44 = bem_roll_damping(db, zeta_roll)
   end subroutine new_bem_ship
 
-  !> Viscous roll damping zeta of critical at the undamped roll resonance of the database.
-  pure real(wp) function bem_roll_damping(db, zeta) result(b44)
+  !> Viscous roll damping zeta of critical at the undamped roll resonance of the database,
+  !> with its roll stiffness and inertia or the given ones (c44 [N m], i44 [kg m^2]: a body
+  !> whose restoring comes from elsewhere, the lifeboat's strips):
+  !> B44 = zeta 2 sqrt(C44 (I44 + A44(w))), w = sqrt(C44/(I44 + A44(w))) iterated.
+  pure real(wp) function bem_roll_damping(db, zeta, c44, i44) result(b44)
     type(bem_database_type), intent(in) :: db
     real(wp), intent(in) :: zeta
-    real(wp) :: w, a44
+    real(wp), intent(in), optional :: c44, i44
+    real(wp) :: w, a44, c, m
     integer :: k
     b44 = 0.0_wp
-    if (db%stiffness(4, 4) <= 0.0_wp) return
-    w = sqrt(db%stiffness(4, 4)/(db%mass(4, 4) + db%added_mass_inf(4, 4)))
+    c = db%stiffness(4, 4)
+    m = db%mass(4, 4)
+    if (present(c44)) c = c44
+    if (present(i44)) m = i44
+    if (c <= 0.0_wp) return
+    w = sqrt(c/(m + db%added_mass_inf(4, 4)))
     do k = 1, 50
       a44 = interpolate(db%omega, db%added_mass(4, 4, :), w)
-      w = sqrt(db%stiffness(4, 4)/(db%mass(4, 4) + a44))
+      w = sqrt(c/(m + a44))
     end do
-    b44 = zeta*2.0_wp*sqrt(db%stiffness(4, 4)*(db%mass(4, 4) + a44))
+    b44 = zeta*2.0_wp*sqrt(c*(m + a44))
   end function bem_roll_damping
 
   !> A 6 x 6 DOF-order matrix in Kane order (omega, v).
@@ -119,16 +127,16 @@ contains
     load(4:6) = f(4:6)
   end function bem_restoring
 
-  !> The radiation memory: rates of the states x and the memory load mu (DOF order) for
-  !> the speeds u_dof (DOF order).
-  pure subroutine bem_memory(ship, x, u_dof, xdot, mu)
-    type(bem_ship_type), intent(in) :: ship
+  !> The radiation memory of database db: rates of the states x and the memory load mu
+  !> (DOF order) for the speeds u_dof (DOF order).
+  pure subroutine bem_memory(db, x, u_dof, xdot, mu)
+    type(bem_database_type), intent(in) :: db
     real(wp), intent(in) :: x(:), u_dof(6)
     real(wp), intent(out) :: xdot(:), mu(6)
     integer :: k
     mu = 0.0_wp
-    do k = 1, size(ship%db%pairs)
-      associate (p => ship%db%pairs(k), i0 => ship%db%pairs(k)%first)
+    do k = 1, size(db%pairs)
+      associate (p => db%pairs(k), i0 => db%pairs(k)%first)
         associate (xs => x(i0:i0 + p%n - 1))
           xdot(i0:i0 + p%n - 1) = matmul(p%a, xs) + p%b*u_dof(p%j)
           mu(p%i) = mu(p%i) + dot_product(p%c, xs)

@@ -299,7 +299,7 @@ contains
           call integral_control(self, q, c, y(self%control%q(1):self%control%q(2)), load, &
                                 dydt(self%control%q(1):self%control%q(2)))
         if (self%bem) then
-          call bem_memory(self%hydro, y(r%q(1):r%q(2)), [u(4:6), u(1:3)], &
+          call bem_memory(self%hydro%db, y(r%q(1):r%q(2)), [u(4:6), u(1:3)], &
                           dydt(r%q(1):r%q(2)), mu)
           call bem_blocks(self, u, load - mu, kane(:, b%u(1):b%u(2)))
         else

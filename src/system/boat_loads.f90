@@ -1,7 +1,9 @@
 !> The lifeboat's Kane blocks (eq. 12) and its generalized active forces: gravity (eq. 13),
 !> the foundation slings (eq. 26), water by strip theory (eqs. 18-25), wind (eqs. 14-17, at
 !> the CG) and fender contact with the ship's side (eq. 34). The davit rigging's hook
-!> forces (eq. 26) are added by the assembler, which evaluates the rigging.
+!> forces (eq. 26) are added by the assembler, which evaluates the rigging. With the BEM
+!> water model (davit_boat_bem_water) the boat's mass block is M + s A(inf), filled as its
+!> modal masses (the layout's modal coupled block), and it advances its water states.
 module davit_system_boat_loads
   use davit_kinds, only: wp
   use davit_core_rotation, only: rotation_matrix
@@ -14,6 +16,7 @@ module davit_system_boat_loads
   use davit_boat_wind_loads, only: boat_wind_force
   use davit_boat_fenders, only: side_plane_type, fender_loads
   use davit_boat_surface_watch, only: surely_dry
+  use davit_boat_bem_water, only: boat_bem_loads, boat_bem_immersion
   use davit_system_parameters, only: system_params_type, nslings
   use davit_system_history, only: system_history_type
   implicit none
@@ -23,26 +26,30 @@ module davit_system_boat_loads
 contains
 
   !> q_dot (eqs. 5-6) and the Kane blocks V, W phi, F of the boat at (q, u), with the ship's
-  !> side at `side`.
-  pure subroutine boat_kane_blocks(par, hist, t, q, u, side, qdot, kane)
+  !> side at `side`; with the BEM water model, the rates xdot of its water states x (part
+  !> "boat_radiation"; empty otherwise).
+  pure subroutine boat_kane_blocks(par, hist, t, q, u, x, side, qdot, xdot, kane)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(in) :: hist
-    real(wp), intent(in) :: t, q(6), u(6)
+    real(wp), intent(in) :: t, q(6), u(6), x(:)
     type(side_plane_type), intent(in) :: side
-    real(wp), intent(out) :: qdot(6), kane(3, 6)
+    real(wp), intent(out) :: qdot(6), xdot(:), kane(3, 6)
     qdot = body_qdot(q, u)
     kane(kane_v, :) = body_mass_diagonal(par%boat)
     kane(kane_w_phi, :) = body_w_phi(par%boat, u)
-    kane(kane_f, :) = boat_forces(par, hist, t, q, u, side)
+    call boat_forces(par, hist, t, q, u, x, side, kane(kane_f, :), xdot, kane(kane_v, :))
   end subroutine boat_kane_blocks
 
-  !> Generalized active forces on the boat but the davit's hook forces.
-  pure function boat_forces(par, hist, t, q, u, side) result(f)
+  !> Generalized active forces f on the boat but the davit's hook forces; with the BEM
+  !> water model, its states' rates and the modal masses v of M + s A(inf).
+  pure subroutine boat_forces(par, hist, t, q, u, x, side, f, xdot, v)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(in) :: hist
-    real(wp), intent(in) :: t, q(6), u(6)
+    real(wp), intent(in) :: t, q(6), u(6), x(:)
     type(side_plane_type), intent(in) :: side
-    real(wp) :: f(6), c(3, 3), r(3), fh(3), tension, fw(6), volume, force(par%fenders%nf)
+    real(wp), intent(out) :: f(6), xdot(:)
+    real(wp), intent(inout) :: v(6)
+    real(wp) :: c(3, 3), r(3), fh(3), tension, fw(6), volume, force(par%fenders%nf)
     integer :: i
     c = rotation_matrix(q(1:3))
     r = matmul(c, q(4:6))
@@ -56,13 +63,18 @@ contains
     end if
     call water_loads(par, hist, t, c, r, u, fw, volume)
     f = f + fw
+    if (par%bem_water) then
+      call boat_bem_loads(par%bem, par%sea, t, c, r, q(3), u, &
+                          boat_bem_immersion(par%bem, volume), x, xdot, fw, v)
+      f = f + fw
+    end if
     f(4:6) = f(4:6) + boat_wind_force(par%air, u(4:6) - matmul(wind_velocity(par%wind), c), &
                                       max(0.0_wp, 1.0_wp - volume/par%hull_volume))
     if (par%contact) then
       call fender_loads(par%fenders, hist%fender_states, side, c, r, u, fw, force)
       f = f + fw
     end if
-  end function boat_forces
+  end subroutine boat_forces
 
   !> Strip water loads (eqs. 18-25) and wet volume, exactly zero without forming them
   !> while the surface watch proves the hull dry; from the strips' slow clock where it

@@ -1,7 +1,7 @@
 !> Build a launch system from a validated configuration: parameters and layout, history,
 !> contact step policy and (in the 'launch' scene) the 6-DOF ship; and its initial state.
 module davit_system_build
-  use davit_kinds, only: wp, gravity
+  use davit_kinds, only: wp, gravity, rho_water
   use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
@@ -10,6 +10,9 @@ module davit_system_build
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
   use davit_boat_strip_loads, only: new_strip_model
+  use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
+  use davit_system_boat_loads, only: water_loads
+  use davit_core_body, only: body_mass_diagonal
   use davit_boat_wind_loads, only: boat_wind_type, lift_symmetric, lift_literal
   use davit_boat_contact, only: contact_law_type, new_contact_law, new_rubber_fender_law, &
                                 law_hertz_elastoplastic, law_lankarani_nikravesh
@@ -55,6 +58,10 @@ contains
       par%slings_attached = s%attached .and. .not. par%on_davit
     end associate
     call new_boat_environment(self, cfg)
+    if (cfg%boat%water_model == "bem") then
+      call new_boat_water(self%par, cfg, error)
+      if (allocated(error)) return
+    end if
     call new_side_contact(self, cfg)
     if (self%par%on_davit) then
       call new_davit(self%par, cfg, error)
@@ -62,6 +69,32 @@ contains
     end if
     if (cfg%simulation%scene == "launch") call new_moving_ship(self, cfg, error)
   end subroutine new_system
+
+  !> The boat's BEM water model (&boat water_model = 'bem'): its database, its states
+  !> (immersion, radiation memory) as part "boat_radiation" after the boat's, and the
+  !> boat's speeds registered as a modal coupled block (M + s A(inf)). The roll damping's
+  !> stiffness is the strips' metacentric one, m g h_m.
+  subroutine new_boat_water(par, cfg, error)
+    type(system_params_type), intent(inout) :: par
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    type(bem_database_type) :: db
+    associate (b => cfg%boat)
+      call read_bem_database(beside(cfg%filename, b%database), db, error)
+      if (.not. allocated(error)) &
+        call new_boat_bem(db, par%sea, body_mass_diagonal(par%boat), b%roll_damping, &
+                          b%mass*gravity*par%water%metacentric_height, b%full_immersion, &
+                          b%mass/rho_water, par%bem, error)
+      if (allocated(error)) then
+        error%message = cfg%filename//": &boat: database = '"//b%database//"': "// &
+                        error%message
+        return
+      end if
+    end associate
+    par%bem_water = .true.
+    call par%layout%add("boat_radiation", par%bem%db%nrad + 1, 0, par%radiation_part)
+    call par%layout%couple_modal(par%boat_part%u, par%bem%modes)
+  end subroutine new_boat_water
 
   !> The davit rigging in place of the foundation slings, its parts after the boat's.
   subroutine new_davit(par, cfg, error)
@@ -238,6 +271,10 @@ contains
       c = rotation_matrix(cfg%boat%euler)
       y(b%q(1):b%q(2)) = [cfg%boat%euler, matmul(transpose(c), cfg%boat%position)]
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
+      if (par%bem_water) then
+        y(par%radiation_part%q(1):par%radiation_part%q(2)) = 0.0_wp
+        y(par%radiation_part%q(1)) = initial_immersion(self, y)
+      end if
       if (.not. par%on_davit) return
       call hook_kinematics(par, y, hook_pos, hook_vel)
       pose = ship_pose(par, y)
@@ -247,6 +284,20 @@ contains
                                  residual, error)
     end associate
   end subroutine initial_state
+
+  !> The boat's immersion state at the start: the geometric immersion of its initial pose
+  !> (a boat released afloat starts with its added mass; no radiation memory yet).
+  pure real(wp) function initial_immersion(self, y) result(s)
+    type(system_type), intent(in) :: self
+    real(wp), intent(in) :: y(:)
+    real(wp) :: c(3, 3), f(6), volume
+    associate (q => y(self%par%boat_part%q(1):self%par%boat_part%q(2)), &
+               u => y(self%par%boat_part%u(1):self%par%boat_part%u(2)))
+      c = rotation_matrix(q(1:3))
+      call water_loads(self%par, self%hist, 0.0_wp, c, matmul(c, q(4:6)), u, f, volume)
+    end associate
+    s = boat_bem_immersion(self%par%bem, volume)
+  end function initial_immersion
 
   !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's
   !> position; making its headway; no radiation memory yet.

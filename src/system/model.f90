@@ -64,12 +64,14 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     type(pose_type) :: pose
-    associate (par => self%par, b => self%par%boat_part, s => self%par%ship_slice)
+    associate (par => self%par, b => self%par%boat_part, s => self%par%ship_slice, &
+               x => self%par%radiation_part%q)
       pose = ship_pose(par, y)
       if (par%with_ship) call self%ship%kane_blocks(t, y(s(1):s(2)), dydt(s(1):s(2)), &
                                                     kane(:, s(1):s(2)))
       call boat_kane_blocks(par, self%hist, t, y(b%q(1):b%q(2)), y(b%u(1):b%u(2)), &
-                            side_plane(par, pose), dydt(b%q(1):b%q(2)), kane(:, b%u(1):b%u(2)))
+                            y(x(1):x(2)), side_plane(par, pose), dydt(b%q(1):b%q(2)), &
+                            dydt(x(1):x(2)), kane(:, b%u(1):b%u(2)))
       if (par%on_davit) call rigging_blocks(self, t, y, pose, dydt, kane)
     end associate
   end subroutine kane_blocks

@@ -12,6 +12,7 @@ module davit_system_observables
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      hook_kinematics
   use davit_system_history, only: system_history_type
+  use davit_boat_bem_water, only: boat_bem_kinetic_energy
   implicit none
   private
   public :: boat_kinematics, rigging_state, sling_tensions, contact_state, energy
@@ -107,8 +108,8 @@ contains
     end associate
   end subroutine contact_state
 
-  !> Mechanical energy of the conservative part in air: kinetic + gravity (N3 down, so
-  !> -m g z) + elastic slings [J]. Once the hooks are released the falls' energy is that of
+  !> Mechanical energy of the conservative part in air: kinetic (with the BEM water model,
+  !> of M + s A(inf)) + gravity (N3 down, so -m g z) + elastic slings [J]. Once the hooks are released the falls' energy is that of
   !> their frozen states at the released hooks (the boat has left them), not the stretch
   !> to wherever the boat drifts.
   pure function energy(par, hist, y) result(e)
@@ -123,6 +124,8 @@ contains
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
       e = body_kinetic_energy(par%boat, u) - par%boat%mass*gravity*r(3)
+      if (par%bem_water) e = e + boat_bem_kinetic_energy(par%bem, &
+                                                         y(par%radiation_part%q(1)), u)
     end associate
     if (par%on_davit) then
       pose = ship_pose(par, y)

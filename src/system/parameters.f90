@@ -14,6 +14,7 @@ module davit_system_parameters
   use davit_sea_wave_field, only: wave_field_type
   use davit_sea_wind, only: wind_type
   use davit_boat_strip_loads, only: strip_model_type
+  use davit_boat_bem_water, only: boat_bem_type
   use davit_boat_wind_loads, only: boat_wind_type
   use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_probe
   use davit_rigging_rigging, only: rigging_type
@@ -30,6 +31,9 @@ module davit_system_parameters
     !> y(ship_slice(1) : ship_slice(2)).
     type(state_layout_type) :: layout
     type(state_part_type) :: boat_part, ship_part
+    !> The boat's BEM water states (&boat water_model = 'bem'): immersion and radiation
+    !> memory, part "boat_radiation" (q only); empty with the strips alone.
+    type(state_part_type) :: radiation_part
     integer :: rig_slice(2) = [1, 0], ship_slice(2) = [1, 0]
     type(rigid_body_type) :: boat
     !> Hook points in the boat frame, one column per sling.
@@ -38,6 +42,10 @@ module davit_system_parameters
     type(elastic_sling_type) :: slings(nslings)
     logical :: slings_attached = .true.
     type(strip_model_type) :: water
+    !> Added mass, radiation, diffraction and roll damping from the hull's BEM database on
+    !> top of the strips (&boat water_model = 'bem').
+    logical :: bem_water = .false.
+    type(boat_bem_type) :: bem
     type(boat_wind_type) :: air
     type(wave_field_type) :: sea
     type(wind_type) :: wind

@@ -1,0 +1,180 @@
+!> The lifeboat's radiation and diffraction from a BEM database of its hull (issue 18),
+!> added to the strips (davit_boat_strip_loads: nonlinear buoyancy and Froude-Krylov on
+!> the instantaneous wetted hull, drag), Cummins' equation scaled with immersion s:
+!>   (M + s A(inf)) u' = F_strips - s mu + s F_D - s B44 p - (1/2) s' A(inf) u + F_other,
+!>   mu_i = sum_j C_ij x_ij,  x_ij' = A_ij x_ij + B_ij s u_j   (Perez & Fossen 2008),
+!> mu the radiation memory of the database's state-space fits (driven by the wet hull's
+!> motion s u), F_D the linear diffraction load X - X_FK of each wave component (the
+!> strips carry the Froude-Krylov part), B44 a viscous roll damping (potential flow has
+!> almost none in roll).
+!>
+!> Immersion: s = min(1, V_wet/(f V_0)), V_0 = m/rho, f = `&boat full_immersion`, so the
+!> boat in the air feels none of it. s is a state, a first-order lag of that geometric
+!> value with time constant immersion_lag, so that the mass matrix M + s A(inf) varies
+!> continuously and its rate s' is known exactly. Then the force -(1/2) s' A(inf) u keeps
+!> the kinetic energy T = 1/2 u^T (M + s A(inf)) u balanced: dT/dt = u^T F_other, the
+!> changing added mass neither injects nor removes energy on entry or emergence (the
+!> momentum form -s' A(inf) u of von Karman's slamming theory would remove
+!> 1/2 s' u^T A u on entry and inject it on emergence).
+!>
+!> Frames (checked against the ship's database and its loads): the database is in davit's
+!> body frame (x forward, y starboard, z down) about the CG, the boat's body frame; DOF order
+!> (surge, sway, heave, roll, pitch, yaw), Kane order (omega, v) (eq. 4) by to_kane_order.
+!> Wave loads: F = Re[X a exp(i (w t + eps - k (x_G cos g + y_G sin g)))] at the CG's
+!> current horizontal position, relative heading beta = g - yaw, in the level heading
+!> frame, turned into body axes (F_b = C^T Rz(yaw) F_h) as the ship's.
+module davit_boat_bem_water
+  use davit_kinds, only: wp, pi
+  use davit_error, only: error_type, fatal_error
+  use davit_core_rotation, only: rotation_matrix
+  use davit_core_fastmath, only: fast_sincos
+  use davit_ship_bem_database, only: bem_database_type, bem_excitation, bracket
+  use davit_ship_bem_loads, only: bem_memory, to_kane_order, bem_roll_damping
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp
+  implicit none
+  private
+  public :: boat_bem_type, new_boat_bem, boat_bem_loads, boat_bem_immersion, &
+            boat_bem_kinetic_energy, immersion_lag
+
+  !> Time constant of the immersion state [s]: short against the boat's periods (~2 s)
+  !> and its entry (V_wet reaches f V_0 in ~0.15 s at 1 m/s).
+  real(wp), parameter :: immersion_lag = 0.02_wp
+
+  type :: boat_bem_type
+    type(bem_database_type) :: db
+    !> A(inf) in Kane order (symmetrised) [kg, kg m, kg m^2].
+    real(wp) :: a_inf(6, 6) = 0.0_wp
+    !> Modal form of M + s A(inf): P = M^(-1/2) Q and the eigenvalues lambda of
+    !> M^(-1/2) A(inf) M^(-1/2) = Q Lambda Q^T, so (M + s A)^-1 = P diag(1/(1 + s lambda)) P^T.
+    real(wp) :: modes(6, 6) = 0.0_wp, lambda(6) = 0.0_wp
+    !> Viscous roll damping at full immersion [N m s].
+    real(wp) :: b44 = 0.0_wp
+    !> V_0 = m/rho [m^3] and the fraction f of it at full immersion.
+    real(wp) :: volume0 = 0.0_wp, full = 0.5_wp
+    !> Diffraction load a (X - X_FK) of each sea component at each database heading,
+    !> (6, heading, component), DOF order.
+    complex(wp), allocatable :: diffraction(:, :, :)
+  end type boat_bem_type
+
+  interface
+    subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+      import :: wp
+      character, intent(in) :: jobz, uplo
+      integer, intent(in) :: n, lda, lwork
+      real(wp), intent(inout) :: a(lda, *)
+      real(wp), intent(out) :: w(*), work(*)
+      integer, intent(out) :: info
+    end subroutine dsyev
+  end interface
+
+contains
+
+  !> The boat's BEM water model from database db for rigid-body mass diagonal m_kane
+  !> (I1, I2, I3, m, m, m), in sea `sea`, with roll damping zeta_roll of critical at the
+  !> roll stiffness c44 [N m/rad] of the strips, full immersion at f V_0.
+  subroutine new_boat_bem(db, sea, m_kane, zeta_roll, c44, full, volume0, self, error)
+    type(bem_database_type), intent(in) :: db
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: m_kane(6), zeta_roll, c44, full, volume0
+    type(boat_bem_type), intent(out) :: self
+    type(error_type), allocatable, intent(out) :: error
+    real(wp) :: s(6, 6), work(64)
+    integer :: i, j, info
+    self%db = db
+    self%full = full
+    self%volume0 = volume0
+    self%a_inf = to_kane_order(0.5_wp*(db%added_mass_inf + transpose(db%added_mass_inf)))
+    do j = 1, 6
+      do i = 1, 6
+        s(i, j) = self%a_inf(i, j)/sqrt(m_kane(i)*m_kane(j))
+      end do
+    end do
+    call dsyev("V", "U", 6, s, 6, self%lambda, work, size(work), info)
+    ! M + s A(inf) must stay positive definite for every s in [0, 1]
+    if (info /= 0 .or. any(self%lambda <= -1.0_wp)) then
+      call fatal_error(error, "BEM database '"//db%path//"': M + A(inf) of the boat is "// &
+                       "not positive definite")
+      return
+    end if
+    do j = 1, 6
+      self%modes(:, j) = s(:, j)/sqrt(m_kane)
+    end do
+    self%b44 = bem_roll_damping(db, zeta_roll, c44, m_kane(1))
+    call diffraction_table(self, sea)
+  end subroutine new_boat_bem
+
+  !> a (X - X_FK) of every component at every database heading.
+  pure subroutine diffraction_table(self, sea)
+    type(boat_bem_type), intent(inout) :: self
+    type(wave_field_type), intent(in) :: sea
+    integer :: i, k
+    associate (h => self%db%heading)
+      allocate (self%diffraction(6, size(h), sea%n))
+      do i = 1, sea%n
+        do k = 1, size(h)
+          self%diffraction(:, k, i) = sea%amplitude(i)* &
+                                      bem_excitation(self%db, sea%omega(i), h(k), .true.)
+        end do
+      end do
+    end associate
+  end subroutine diffraction_table
+
+  !> The geometric immersion min(1, V_wet/(f V_0)) of wet volume `volume` [m^3].
+  pure real(wp) function boat_bem_immersion(self, volume) result(s)
+    type(boat_bem_type), intent(in) :: self
+    real(wp), intent(in) :: volume
+    s = min(1.0_wp, max(0.0_wp, volume/(self%full*self%volume0)))
+  end function boat_bem_immersion
+
+  !> Added kinetic energy 1/2 s u^T A(inf) u [J] at immersion s and speeds u (Kane order).
+  pure real(wp) function boat_bem_kinetic_energy(self, s, u) result(e)
+    type(boat_bem_type), intent(in) :: self
+    real(wp), intent(in) :: s, u(6)
+    e = 0.5_wp*s*dot_product(u, matmul(self%a_inf, u))
+  end function boat_bem_kinetic_energy
+
+  !> Generalized forces f (Kane order) of the BEM terms on the boat at time t, rotation c,
+  !> CG r (inertial), yaw psi, speeds u, geometric immersion s_geom, and its states x =
+  !> (s, memory states) with their rates xdot; the modal masses v = 1 + s lambda of the
+  !> boat's coupled mass block (davit_core_layout).
+  pure subroutine boat_bem_loads(self, sea, t, c, r, psi, u, s_geom, x, xdot, f, v)
+    type(boat_bem_type), intent(in) :: self
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: t, c(3, 3), r(3), psi, u(6), s_geom, x(:)
+    real(wp), intent(out) :: xdot(:), f(6), v(6)
+    real(wp) :: mu(6), s, load(6), m(3, 3)
+    s = x(1)
+    xdot(1) = (s_geom - s)/immersion_lag
+    call bem_memory(self%db, x(2:), s*[u(4:6), u(1:3)], xdot(2:), mu)
+    f = -s*[mu(4:6), mu(1:3)] - 0.5_wp*xdot(1)*matmul(self%a_inf, u)
+    f(1) = f(1) - s*self%b44*u(1)
+    v = 1.0_wp + s*self%lambda
+    if (s <= 0.0_wp .or. sea%kind == wave_none) return
+    load = wave_ramp(sea, t)*diffraction_load(self, sea, t, r, psi)
+    m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, psi]))
+    f(1:3) = f(1:3) + s*matmul(m, load(4:6))
+    f(4:6) = f(4:6) + s*matmul(m, load(1:3))
+  end subroutine boat_bem_loads
+
+  !> Sum over the components of Re[a (X - X_FK) e^(i Phi)] (DOF order, heading frame),
+  !> Phi = w t + eps - k . r_G, X at beta = g - psi, linear in beta.
+  pure function diffraction_load(self, sea, t, r, psi) result(load)
+    type(boat_bem_type), intent(in) :: self
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: t, r(3), psi
+    real(wp) :: load(6), sn(sea%n), cs(sea%n), beta, w
+    complex(wp) :: d(6)
+    integer :: i, k
+    call fast_sincos(sea%omega*t + sea%phase - sea%kx*r(1) - sea%ky*r(2), sn, cs)
+    load = 0.0_wp
+    associate (h => self%db%heading)
+      do i = 1, sea%n
+        beta = modulo(sea%direction(i) - psi - h(1), 2.0_wp*pi) + h(1)
+        call bracket(h, beta, k, w)
+        d = (1.0_wp - w)*self%diffraction(:, k, i) + w*self%diffraction(:, k + 1, i)
+        load = load + real(d, wp)*cs(i) - aimag(d)*sn(i)
+      end do
+    end associate
+  end function diffraction_load
+
+end module davit_boat_bem_water
