@@ -17,6 +17,7 @@ program main
   use test_strip_waves, only: collect_strip_waves
   use test_bem_ship, only: collect_bem_ship
   use test_launch_log, only: collect_launch_log
+  use test_strip_pressure, only: collect_strip_pressure
   implicit none
   type(suite_type), allocatable :: suites(:)
   character(len=256) :: filter
@@ -27,7 +28,8 @@ program main
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
             collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
             collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
-            collect_strip_waves(), collect_bem_ship(), collect_launch_log()]
+            collect_strip_waves(), collect_bem_ship(), collect_launch_log(), &
+            collect_strip_pressure()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

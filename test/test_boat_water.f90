@@ -185,6 +185,7 @@ contains
     call check(state, maxval(abs(y - y0)), 0.0_wp, "no drift over 60 s", abs_tol=1e-9_wp)
   end subroutine floating_equilibrium
 
+  !> The paper's strips (water_model, roll_restoring = 'paper', set here explicitly).
   !> Small roll on calm water: T = 2 pi sqrt(I1/(m g h_m)) = 2.433 s (eq. 24, no added
   !> inertia in the paper's boat), measured from 10 upward zero crossings.
   subroutine roll_period(state)
@@ -194,7 +195,7 @@ contains
     type(rk4_type) :: rk
     real(wp) :: y(nstate), t, dt, prev, first, last, expected
     integer :: i, ncross
-    cfg = deck_config(free_deck)
+    cfg = deck_config(free_deck//" &boat water_model = 'paper' roll_restoring = 'paper' /")
     cfg%boat%position = [0.0_wp, 0.0_wp, cfg%boat%mass/(rho_water*waterplane_area()) - 1.1_wp]
     cfg%boat%euler = [0.03_wp, 0.0_wp, 0.0_wp]
     y = new_test_system(sys, cfg)

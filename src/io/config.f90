@@ -57,6 +57,8 @@ module davit_io_config
     real(wp) :: length, beam, height, keel, breadth_exponent, drag_coefficients(3)
     real(wp) :: metacentric_height, zeta(3)
     integer :: strips
+    !> Strip level of detail ('pressure' | 'paper') and roll stiffness ('hull' | 'paper').
+    character(len=:), allocatable :: water_model, roll_restoring
     !> Wind on the boat (eqs. 15-16, review §1.4, G27).
     real(wp) :: wind_areas(3), wind_drag_coefficient, lift_coefficient, lift_diameter
     character(len=:), allocatable :: lift_form
@@ -342,8 +344,18 @@ contains
     call r%int(g, "strips", b%strips, 20, 1, 400, "-", "Number of strips n (eq. 18, G25).")
     call r%real_vec(g, "drag_coefficients", b%drag_coefficients, [1.2_wp, 1.2_wp, 1.2_wp], &
                     0.0_wp, 10.0_wp, "-", "Water drag coefficients c_D1..3 (paper C_fluid).")
+    call r%choice(g, "water_model", b%water_model, "pressure", &
+                  [character(len=8) :: "pressure", "paper"], "Strip water loads: 'pressure' "// &
+                  "(sections clipped by the local surface's tangent plane, wave pressure "// &
+                  "integrated over the wet bottom and sides; issue 18) or the paper's "// &
+                  "centre-line strips with the metacentric roll moment (eqs. 23-24).")
+    call r%choice(g, "roll_restoring", b%roll_restoring, "hull", &
+                  [character(len=5) :: "hull", "paper"], "Roll stiffness: 'hull' (GM_T = "// &
+                  "KB + BM - KG of the plan shape with KG = keel, 0.766 m) or 'paper' "// &
+                  "(metacentric_height, eq. 24).")
     call r%real(g, "metacentric_height", b%metacentric_height, 2.0_wp, 0.0_wp, 20.0_wp, "m", &
-                "h_m of the roll restoring moment (eq. 24, paper III.B).")
+                "h_m of the roll restoring moment with roll_restoring = 'paper' "// &
+                "(eq. 24, paper III.B).")
     call r%real_vec(g, "zeta", b%zeta, [0.0_wp, 0.0_wp, 0.0_wp], 0.0_wp, 2.0_wp, "-", &
                     "Linear heave, roll, pitch damping on the water, fraction of critical "// &
                     "(G25 suggests 0.1; the paper has none).")
