@@ -284,7 +284,7 @@ contains
                                             "angular_velocity = 0.1, -0.2, 0.05"
     yb = new_test_system(bem, deck_config(base//" &boat "//water//", "//moving//" /"))
     ys = new_test_system(strips, deck_config(base//" &boat "//water//", "//moving// &
-                                             ", water_model = 'strips' /"))
+                                             ", water_model = 'paper' /"))
     call check_true(state, size(yb) > size(ys), "the BEM boat has its water states")
     associate (x => bem%par%radiation_part%q)
       call check(state, yb(x(1)), 0.0_wp, "immersion in the air")

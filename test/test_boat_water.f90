@@ -26,13 +26,13 @@ module test_boat_water
 
 contains
 
-  !> A deck's configuration with the paper's strips alone (&boat water_model = 'strips'):
+  !> A deck's configuration with the paper's strips alone (&boat water_model = 'paper'):
   !> these tests check the strip physics (eqs. 18-25) and the 12-state free boat.
   function strip_config(text) result(cfg)
     character(len=*), intent(in) :: text
     type(config_type) :: cfg
     cfg = deck_config(text)
-    cfg%boat%water_model = "strips"
+    cfg%boat%water_model = "paper"
   end function strip_config
 
   function collect_boat_water() result(suite)
@@ -194,6 +194,7 @@ contains
     call check(state, maxval(abs(y - y0)), 0.0_wp, "no drift over 60 s", abs_tol=1e-9_wp)
   end subroutine floating_equilibrium
 
+  !> The paper's strips (water_model, roll_restoring = 'paper', set here explicitly).
   !> Small roll on calm water: T = 2 pi sqrt(I1/(m g h_m)) = 2.433 s (eq. 24, no added
   !> inertia in the paper's boat), measured from 10 upward zero crossings.
   subroutine roll_period(state)
@@ -203,7 +204,7 @@ contains
     type(rk4_type) :: rk
     real(wp) :: y(nstate), t, dt, prev, first, last, expected
     integer :: i, ncross
-    cfg = strip_config(free_deck)
+    cfg = deck_config(free_deck//" &boat water_model = 'paper' roll_restoring = 'paper' /")
     cfg%boat%position = [0.0_wp, 0.0_wp, cfg%boat%mass/(rho_water*waterplane_area()) - 1.1_wp]
     cfg%boat%euler = [0.03_wp, 0.0_wp, 0.0_wp]
     y = new_test_system(sys, cfg)

@@ -47,7 +47,7 @@ contains
     cfg%boat%lift_coefficient = 0.0_wp
     cfg%contact%enabled = .false.
     ! the 12-state boat of the paper's strips (in the air the BEM terms are nil anyway)
-    cfg%boat%water_model = "strips"
+    cfg%boat%water_model = "paper"
     ea = cfg%slings%youngs_modulus*pi*cfg%slings%diameter**2/4.0_wp
     cfg%slings%damping = damping
     cfg%slings%anchor_fore = cfg%boat%position + cfg%slings%hook_fore - [0.0_wp, 0.0_wp, fall]

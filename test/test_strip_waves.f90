@@ -142,10 +142,12 @@ contains
                abs_tol=0.3_wp)
   end subroutine space_order
 
+  !> The paper's strips (water_model = 'paper': the clock's elevation and velocity; the
+  !> pressure level's sampled section loads freeze the wet geometry over a window, README).
   !> The free boat afloat in the Level 5 irregular sea for 3 s (RK4, dt = 5e-3 s), with
   !> the slow clock at 0.05 s and exact: by the bounds above the forcing differs by
   !> ~1e-5 relative, so the CG paths agree to well below a millimetre. The strips alone
-  !> (water_model = 'strips'): the clock serves them; the BEM terms take exact phases.
+  !> (water_model = 'paper'): the clock serves them; the BEM terms take exact phases.
   subroutine coupled_boat(state)
     type(case_state), intent(inout) :: state
     type(system_type) :: sys
@@ -159,8 +161,8 @@ contains
     character(len=*), parameter :: deck = "&sea level = 5 wave_type = 'irregular' "// &
                                           "ramp_periods = 0.0 / &slings attached = .false. / "// &
                                           "&contact enabled = .false. / &wind speed = 0.0 / "// &
-                                          "&boat position = 0.0, 0.0, -0.5, "// &
-                                          "water_model = 'strips' / "// &
+                                          "&boat position = 0.0, 0.0, -0.5 "// &
+                                          "water_model = 'paper' / "// &
                                           "&simulation wave_update = "
     allocate (cg(3, 2))
     used = .false.

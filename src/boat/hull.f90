@@ -15,6 +15,7 @@ module davit_boat_hull
   implicit none
   private
   public :: boat_hull_type, new_boat_hull, section_immersion, section_wet_type
+  public :: hull_metacentric_height, hull_waterplane_area
 
   type :: boat_hull_type
     integer :: n = 0
@@ -26,11 +27,16 @@ module davit_boat_hull
   end type boat_hull_type
 
   !> The wet part of one section: area [m^2], centroid (y, z) in the boat frame [m],
-  !> its extent along b2 (wet width) and b3 (wet height) [m].
+  !> its extent along b2 (wet width) and b3 (wet height) [m], and the wet polygon itself
+  !> (m corners (y, z), in the rectangle's order; cut(i): corner i lies on the surface
+  !> line, so the edge i -> i+1 is the waterline where both its ends are cut).
   type :: section_wet_type
     real(wp) :: area = 0.0_wp
     real(wp) :: centroid(2) = 0.0_wp
     real(wp) :: width = 0.0_wp, height = 0.0_wp
+    integer :: m = 0
+    real(wp) :: poly(2, 5) = 0.0_wp
+    logical :: cut(5) = .false.
   end type section_wet_type
 
 contains
@@ -61,6 +67,7 @@ contains
     real(wp), intent(in) :: d0, gy, gz
     type(section_wet_type) :: s
     real(wp) :: corner(2, 4), poly(2, 5), depth(4), a, cross_term, half
+    logical :: cut(5)
     integer :: i, j, m
     half = 0.5_wp*h%breadth(k)
     corner(:, 1) = [-half, h%keel]
@@ -76,10 +83,12 @@ contains
       if (depth(i) > 0.0_wp) then
         m = m + 1
         poly(:, m) = corner(:, i)
+        cut(m) = .false.
       end if
       if ((depth(i) > 0.0_wp) .neqv. (depth(j) > 0.0_wp)) then
         m = m + 1
         poly(:, m) = corner(:, i) + depth(i)/(depth(i) - depth(j))*(corner(:, j) - corner(:, i))
+        cut(m) = .true.
       end if
     end do
     ! Shoelace area and centroid.
@@ -99,6 +108,25 @@ contains
     s%centroid = s%centroid/(3.0_wp*a)
     s%width = maxval(poly(1, 1:m)) - minval(poly(1, 1:m))
     s%height = maxval(poly(2, 1:m)) - minval(poly(2, 1:m))
+    s%m = m
+    s%poly(:, 1:m) = poly(:, 1:m)
+    s%cut(1:m) = cut(1:m)
   end function section_immersion
+
+  !> Waterplane area of the upright strip hull, sum b_k t_s [m^2].
+  pure real(wp) function hull_waterplane_area(h) result(a)
+    type(boat_hull_type), intent(in) :: h
+    a = sum(h%breadth)*h%thickness
+  end function hull_waterplane_area
+
+  !> Transverse metacentric height of the upright strip hull floating with volume v [m^3]
+  !> and the CG h%keel above the keel: GM_T = KB + BM - KG with the draught T = v/A_wp,
+  !> KB = T/2 (wall-sided sections, flat bottom), BM = I_T/v, I_T = sum b_k^3 t_s/12 (the
+  !> strips' waterplane), KG = h%keel (review G25). 0.766 m for the III.B boat.
+  pure real(wp) function hull_metacentric_height(h, v) result(gm)
+    type(boat_hull_type), intent(in) :: h
+    real(wp), intent(in) :: v
+    gm = 0.5_wp*v/hull_waterplane_area(h) + sum(h%breadth**3)*h%thickness/(12.0_wp*v) - h%keel
+  end function hull_metacentric_height
 
 end module davit_boat_hull

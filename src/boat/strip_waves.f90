@@ -15,16 +15,22 @@
 !> shortest components when the strip moves 5 cm. The start-up ramp multiplies the result
 !> exactly. Stages outside the window fall back to the exact sum (wave_field).
 !> Regular and Stokes-2 seas (one component) are always evaluated exactly.
+!> The pressure level's dynamic section load (davit_boat_strip_pressure: the pressure's
+!> decay with depth and phase across the breadth) is sampled in the window as well, with its
+!> time derivative, for the wet polygon of t1 held fixed (the section's wet geometry moves by
+!> centimetres in a window; the load is a correction to the tangent-plane buoyancy), and
+!> Hermite-interpolated; a strip dry at t1 that wets within the window takes the exact sum.
 module davit_boat_strip_waves
   use davit_kinds, only: wp
   use davit_core_fastmath, only: fast_sincos
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
+  use davit_boat_strip_pressure, only: section_wave_load
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
   public :: strip_waves_due, strip_waves_cover, cached_elevation
-  public :: cached_kinematics
+  public :: cached_kinematics, cached_slope, cached_wave_load
   public :: elevation_sums, kinematic_sums
 
   !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
@@ -46,6 +52,10 @@ module davit_boat_strip_waves
     !> Unramped elevation terms at p and at q, (ne, end, strip); velocity terms at q,
     !> (component, nv, end, strip).
     real(wp), allocatable :: ep(:, :, :), eq(:, :, :), vq(:, :, :, :)
+    !> Unramped dynamic section loads (F2, F3, M1) and their rates, (3, 2, end, strip), for
+    !> the strips wet at t1 (`loaded`).
+    real(wp), allocatable :: fk(:, :, :, :)
+    logical, allocatable :: loaded(:)
   end type strip_wave_cache_type
 
 contains
@@ -60,8 +70,9 @@ contains
     cache%enabled = h > 0.0_wp .and. field%kind == wave_irregular
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
-              cache%vq(3, nv, 2, n), cache%sampled(n))
+              cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n))
     cache%sampled = .false.
+    cache%loaded = .false.
   end function new_strip_wave_cache
 
   !> After a step ending at t: true when the window should be renewed (the next step may
@@ -101,6 +112,7 @@ contains
     cache%t = [t, t + cache%window]
     ramp = wave_ramp(field, t)
     cache%sampled = maybe_wet
+    cache%loaded = .false.
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
       cache%p(:, k) = p(1:2)
@@ -109,6 +121,7 @@ contains
       end do
       if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
+      call sample_section_load(cache, hull, field, k, c, p, ramp)
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
       if (wet%area > 0.0_wp) then
         q = r + matmul(c, [hull%x(k), wet%centroid])
@@ -124,6 +137,28 @@ contains
     end do
     cache%valid = .true.
   end subroutine strip_waves_refresh
+
+  !> Dynamic section load of strip k (centre p) at both ends of the window, for its wet
+  !> polygon under the tangent plane at t1.
+  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp)
+    type(strip_wave_cache_type), intent(inout) :: cache
+    type(boat_hull_type), intent(in) :: hull
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: k
+    real(wp), intent(in) :: c(3, 3), p(3), ramp
+    type(section_wet_type) :: wet
+    real(wp) :: grad(3), d0
+    integer :: j
+    grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
+    d0 = p(3) + ramp*cache%ep(1, 1, k)
+    wet = section_immersion(hull, k, d0, grad(2), grad(3))
+    if (wet%area <= 0.0_wp) return
+    do j = 1, 2
+      call section_wave_load(field, cache%t(j), hull, wet, c, p, d0, grad(2), grad(3), &
+                             cache%fk(:, 1, j, k), cache%fk(:, 2, j, k))
+    end do
+    cache%loaded(k) = .true.
+  end subroutine sample_section_load
 
   !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
   !> One pass with independent accumulators: the sums are latency-bound one at a time.
@@ -245,5 +280,37 @@ contains
       end do
     end associate
   end subroutine cached_kinematics
+
+  !> Surface slope (d eta/dx, d eta/dy) near strip k's centre at time t (the gradient terms
+  !> of the elevation, linear in time over the window).
+  pure function cached_slope(cache, field, k, t) result(slope)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t
+    real(wp) :: slope(2), lam
+    lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
+    slope = wave_ramp(field, t)*((1.0_wp - lam)*cache%ep(3:4, 1, k) + lam*cache%ep(3:4, 2, k))
+  end function cached_slope
+
+  !> Dynamic section load (F2, F3, M1) of strip k at time t from the window (found), or
+  !> found = .false. where the strip was dry at t1.
+  pure subroutine cached_wave_load(cache, field, k, t, load, found)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t
+    real(wp), intent(out) :: load(3)
+    logical, intent(out) :: found
+    real(wp) :: hw(4)
+    load = 0.0_wp
+    found = cache%loaded(k)
+    if (.not. found) return
+    hw = hermite_weights(cache, t)
+    associate (g => cache%fk(:, :, :, k))
+      load = wave_ramp(field, t)*(hw(1)*g(:, 1, 1) + hw(2)*g(:, 2, 1) + hw(3)*g(:, 1, 2) + &
+                                  hw(4)*g(:, 2, 2))
+    end associate
+  end subroutine cached_wave_load
 
 end module davit_boat_strip_waves

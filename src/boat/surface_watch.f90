@@ -7,12 +7,17 @@
 !>   |eta(p, t) - eta(p_c, t_c)| <= B_t |t - t_c| + B_x |p - p_c|,
 !>   B_t = sum a (omega + r'_max) (+ Stokes term),  B_x = sum a k (+ Stokes term),
 !> so a strip whose section stays dry under the raised surface eta_c + bound is surely dry.
+!> The pressure level clips each section by the surface's tangent plane at its centre, which
+!> rises across the section (corners within R of the centre) by at most |grad eta| R; the
+!> slope is sampled too and bounded the same way, |grad eta| <= |grad eta_c| + S_t |dt| +
+!> S_x |dp|, S_t = sum a k (omega + r'_max), S_x = sum a k^2 (+ Stokes terms).
 !> When every strip is surely dry the strip loads are exactly zero and need not be formed.
 !> An irregular sea of 1300 components costs 1300 sines per strip and stage: this keeps
 !> that cost out of the hanging phase.
 module davit_boat_surface_watch
   use davit_kinds, only: wp, pi
-  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_stokes2, wave_elevation
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_stokes2
+  use davit_boat_strip_pressure, only: surface_plane
   use davit_boat_hull, only: section_immersion, section_wet_type
   use davit_boat_strip_loads, only: strip_model_type
   implicit none
@@ -25,8 +30,12 @@ module davit_boat_surface_watch
     real(wp) :: t = 0.0_wp, interval = 0.05_wp
     !> Elevation [m] (up positive) at each strip's reference point, and that point (x, y).
     real(wp), allocatable :: eta(:), xy(:, :)
-    !> Lipschitz constants of eta in time [m/s] and in horizontal space [-].
+    !> Slope |grad eta| at each strip's reference point [-].
+    real(wp), allocatable :: slope(:)
+    !> Lipschitz constants of eta in time [m/s] and in horizontal space [-], and of its
+    !> slope in time [1/s] and space [1/m].
     real(wp) :: rate_bound = 0.0_wp, slope_bound = 0.0_wp
+    real(wp) :: slope_rate_bound = 0.0_wp, curvature_bound = 0.0_wp
   end type surface_watch_type
 
 contains
@@ -38,7 +47,7 @@ contains
     real(wp), intent(in) :: interval
     type(surface_watch_type) :: w
     real(wp) :: amp, ramp_rate, stokes
-    allocate (w%eta(nstrips), w%xy(2, nstrips))
+    allocate (w%eta(nstrips), w%xy(2, nstrips), w%slope(nstrips))
     w%interval = interval
     if (field%kind == wave_none) return
     amp = sum(abs(field%amplitude))
@@ -51,6 +60,10 @@ contains
     w%rate_bound = sum(abs(field%amplitude)*field%omega) + amp*ramp_rate + &
                    stokes*(2.0_wp*ramp_rate + 2.0_wp*maxval(field%omega))
     w%slope_bound = sum(abs(field%amplitude)*field%k) + 2.0_wp*stokes*maxval(field%k)
+    w%slope_rate_bound = sum(abs(field%amplitude)*field%k*field%omega) + &
+                         w%slope_bound*ramp_rate + &
+                         2.0_wp*stokes*maxval(field%k)*(2.0_wp*ramp_rate + 2.0_wp*maxval(field%omega))
+    w%curvature_bound = sum(abs(field%amplitude)*field%k**2) + 4.0_wp*stokes*maxval(field%k)**2
   end function new_surface_watch
 
   !> Sample the elevation at the strips' reference points of the boat at (c, r).
@@ -59,12 +72,13 @@ contains
     type(strip_model_type), intent(in) :: s
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3)
+    real(wp) :: p(3), grad(2)
     integer :: k
     do k = 1, s%hull%n
       p = r + c(:, 1)*s%hull%x(k)
       w%xy(:, k) = p(1:2)
-      w%eta(k) = wave_elevation(field, t, p(1), p(2))
+      call surface_plane(field, t, p(1), p(2), w%eta(k), grad)
+      w%slope(k) = norm2(grad)
     end do
     w%t = t
     w%valid = .true.
@@ -90,12 +104,18 @@ contains
     type(strip_model_type), intent(in) :: s
     integer, intent(in) :: k
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3), eta_up
+    real(wp) :: p(3), eta_up, dist, radius
     type(section_wet_type) :: wet
     strip_surely_dry = .false.
     if (.not. w%valid) return
     p = r + c(:, 1)*s%hull%x(k)
-    eta_up = w%eta(k) + w%rate_bound*abs(t - w%t) + w%slope_bound*norm2(p(1:2) - w%xy(:, k))
+    ! the tangent plane across the section: corners within R of the centre
+    dist = norm2(p(1:2) - w%xy(:, k))
+    radius = hypot(0.5_wp*s%hull%breadth(k), max(abs(s%hull%keel), &
+                                                 abs(s%hull%keel - s%hull%height)))
+    eta_up = w%eta(k) + w%rate_bound*abs(t - w%t) + w%slope_bound*dist + radius* &
+             min(w%slope_bound, w%slope(k) + w%slope_rate_bound*abs(t - w%t) + &
+                 w%curvature_bound*dist)
     wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
     strip_surely_dry = wet%area <= 0.0_wp
   end function strip_surely_dry

@@ -57,11 +57,14 @@ module davit_io_config
     real(wp) :: length, beam, height, keel, breadth_exponent, drag_coefficients(3)
     real(wp) :: metacentric_height, zeta(3)
     integer :: strips
+    !> Roll stiffness ('hull' | 'paper').
+    character(len=:), allocatable :: roll_restoring
     !> Wind on the boat (eqs. 15-16, review §1.4, G27).
     real(wp) :: wind_areas(3), wind_drag_coefficient, lift_coefficient, lift_diameter
     character(len=:), allocatable :: lift_form
-    !> Water-load model (issue 18): 'bem' (strips plus added mass, radiation memory,
-    !> diffraction and viscous roll damping from the hull's BEM database) or 'strips'.
+    !> Water-load model (issue 18): 'bem' (pressure-integrated strips plus added mass,
+    !> radiation memory, diffraction and viscous roll damping from the hull's BEM database),
+    !> 'pressure' (the pressure-integrated strips alone) or 'paper' (the paper's strips).
     character(len=:), allocatable :: water_model, database
     real(wp) :: roll_damping, full_immersion
   end type boat_config
@@ -346,8 +349,13 @@ contains
     call r%int(g, "strips", b%strips, 20, 1, 400, "-", "Number of strips n (eq. 18, G25).")
     call r%real_vec(g, "drag_coefficients", b%drag_coefficients, [1.2_wp, 1.2_wp, 1.2_wp], &
                     0.0_wp, 10.0_wp, "-", "Water drag coefficients c_D1..3 (paper C_fluid).")
+    call r%choice(g, "roll_restoring", b%roll_restoring, "hull", &
+                  [character(len=5) :: "hull", "paper"], "Roll stiffness: 'hull' (GM_T = "// &
+                  "KB + BM - KG of the plan shape with KG = keel, 0.766 m) or 'paper' "// &
+                  "(metacentric_height, eq. 24).")
     call r%real(g, "metacentric_height", b%metacentric_height, 2.0_wp, 0.0_wp, 20.0_wp, "m", &
-                "h_m of the roll restoring moment (eq. 24, paper III.B).")
+                "h_m of the roll restoring moment with roll_restoring = 'paper' "// &
+                "(eq. 24, paper III.B).")
     call r%real_vec(g, "zeta", b%zeta, [0.0_wp, 0.0_wp, 0.0_wp], 0.0_wp, 2.0_wp, "-", &
                     "Linear heave, roll, pitch damping on the water, fraction of critical "// &
                     "(G25 suggests 0.1; the paper has none).")
@@ -371,10 +379,12 @@ contains
     type(boat_config), intent(inout) :: b
     character(len=*), parameter :: g = "boat"
     call r%choice(g, "water_model", b%water_model, "bem", &
-                  [character(len=6) :: "bem", "strips"], "Water loads: the strips "// &
-                  "(buoyancy, Froude-Krylov, drag) plus A(inf), radiation memory, "// &
-                  "diffraction and viscous roll damping from the hull's BEM database, "// &
-                  "scaled with immersion ('bem'), or the paper's strips alone ('strips').")
+                  [character(len=8) :: "bem", "pressure", "paper"], "Water loads: 'bem' "// &
+                  "(the pressure strips plus A(inf), radiation memory, diffraction and "// &
+                  "viscous roll damping from the hull's BEM database, scaled with "// &
+                  "immersion), 'pressure' (sections clipped by the local surface's tangent "// &
+                  "plane, wave pressure integrated over the wet bottom and sides, alone) or "// &
+                  "'paper' (centre-line strips with the metacentric roll moment, eqs. 18-25).")
     call r%string(g, "database", b%database, "boat_bem.nc", &
                   "BEM database of the boat's hull (water_model = 'bem'), looked up in "// &
                   "the deck's folder, then DAVIT_PATH, unless absolute.")

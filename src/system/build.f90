@@ -9,7 +9,7 @@ module davit_system_build
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
-  use davit_boat_strip_loads, only: new_strip_model
+  use davit_boat_strip_loads, only: new_strip_model, strip_level_paper, strip_level_pressure
   use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
@@ -205,7 +205,9 @@ contains
       par%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
                                                 b%breadth_exponent, b%strips), &
                                   b%drag_coefficients, b%metacentric_height, b%zeta, &
-                                  b%mass, b%inertia)
+                                  b%mass, b%inertia, &
+                                  merge(strip_level_paper, strip_level_pressure, &
+                                        b%water_model == "paper"), b%roll_restoring == "paper")
       par%hull_volume = sum(par%water%hull%breadth)*par%water%hull%thickness*b%height
       par%air = boat_wind_type(b%wind_areas, b%wind_drag_coefficient, b%lift_coefficient, &
                                b%lift_diameter, b%length, &
