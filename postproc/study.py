@@ -44,8 +44,8 @@ KEY_GROUPS = {"dt": "simulation", "dt_contact": "simulation", "rtol": "simulatio
               "fixed_step": "simulation",
               "lumps": "rigging", "sheaves": "rigging", "strips": "boat",
               "frozen": "ship", "n_frequencies": "sea", "n_directions": "sea",
-              "wave_type": "sea", "seed": "simulation"}
-STRING_KEYS = {"sheaves", "integrator", "wave_type"}
+              "wave_type": "sea", "seed": "simulation", "water_model": "boat"}
+STRING_KEYS = {"sheaves", "integrator", "wave_type", "water_model"}
 
 
 def parse_study(path):
