@@ -379,6 +379,11 @@ def main(argv=None):
         print(f"postproc.study: error: {exc}", file=sys.stderr)
         return 1
     os.makedirs(args.outdir, exist_ok=True)
+    # the variants run from a temporary folder: their data files (BEM databases) are found
+    # beside the base deck, through davit's DAVIT_PATH
+    base_dir = os.path.dirname(os.path.abspath(study.get("base", args.deck)))
+    os.environ["DAVIT_PATH"] = os.pathsep.join(
+        p for p in (base_dir, os.environ.get("DAVIT_PATH", "")) if p)
     stem = os.path.splitext(os.path.basename(args.deck))[0]
     out = os.path.join(args.outdir, stem + ".h5")
     with tempfile.TemporaryDirectory() as workdir:
