@@ -145,6 +145,14 @@ contains
     real(wp) :: mu(6), s, load(6), m(3, 3)
     s = x(1)
     xdot(1) = (s_geom - s)/immersion_lag
+    if (s <= 0.0_wp .and. s_geom <= 0.0_wp .and. all(x(2:) == 0.0_wp)) then
+      ! in the air before the first water contact the memory is at rest with no input
+      ! and stays so: skip its state-space products (exact, and most of a launch)
+      xdot(2:) = 0.0_wp
+      f = 0.0_wp
+      v = 1.0_wp
+      return
+    end if
     call bem_memory(self%db, x(2:), s*[u(4:6), u(1:3)], xdot(2:), mu)
     f = -s*[mu(4:6), mu(1:3)] - 0.5_wp*xdot(1)*matmul(self%a_inf, u)
     f(1) = f(1) - s*self%b44*u(1)
