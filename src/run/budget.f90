@@ -39,29 +39,31 @@ module davit_run_budget
 contains
 
   !> An error naming the first key whose value the run cannot finish or fit with.
-  subroutine check_run_budget(cfg, error)
+  !> in_sweep: the values may come from the sweep's keys, not from the base deck's lines.
+  subroutine check_run_budget(cfg, error, in_sweep)
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
+    logical, intent(in), optional :: in_sweep
     real(wp) :: ratio, bytes, limit, parts(3)
     character(len=:), allocatable :: problem, allowed
     associate (s => cfg%simulation)
       ratio = s%t_end/s%dt
       if (.not. (ratio <= max_steps)) then
-        call refuse(cfg, "simulation", "dt", s%dt, "t_end/dt = "//fmt_real(ratio)// &
-                    " steps (t_end = "//fmt_real(s%t_end)//" s) exceed the bound of "// &
-                    fmt_real(max_steps)//" steps, a run that cannot finish", &
-                    "dt >= t_end/"//fmt_real(max_steps)//" = "// &
-                    fmt_real(s%t_end/max_steps)//" s", error)
+        call refuse(cfg, "simulation", "dt", s%dt, "t_end/dt = "//num(ratio)// &
+                    " steps (t_end = "//num(s%t_end)//" s) exceed the bound of "// &
+                    num(max_steps)//" steps, a run that cannot finish", &
+                    "dt >= t_end/"//num(max_steps)//" = "// &
+                    num(s%t_end/max_steps)//" s", error, in_sweep)
         return
       end if
       if (s%dt_contact > 0.0_wp) then
         ratio = s%t_end/s%dt_contact
         if (.not. (ratio <= max_contact_ratio)) then
           call refuse(cfg, "simulation", "dt_contact", s%dt_contact, "t_end/dt_contact = "// &
-                      fmt_real(ratio)//" (t_end = "//fmt_real(s%t_end)//" s): a step this "// &
+                      num(ratio)//" (t_end = "//num(s%t_end)//" s): a step this "// &
                       "small is not resolved in the time t", "0 or dt_contact >= t_end/"// &
-                      fmt_real(max_contact_ratio)//" = "// &
-                      fmt_real(s%t_end/max_contact_ratio)//" s", error)
+                      num(max_contact_ratio)//" = "// &
+                      num(s%t_end/max_contact_ratio)//" s", error, in_sweep)
           return
         end if
       end if
@@ -69,20 +71,20 @@ contains
         ratio = s%t_end/s%wave_update
         if (.not. (ratio <= max_wave_ratio)) then
           call refuse(cfg, "simulation", "wave_update", s%wave_update, "t_end/wave_update = "// &
-                      fmt_real(ratio)//" intervals of the slow wave clock (t_end = "// &
-                      fmt_real(s%t_end)//" s) exceed "//fmt_real(max_wave_ratio), &
-                      "0 or wave_update >= t_end/"//fmt_real(max_wave_ratio)//" = "// &
-                      fmt_real(s%t_end/max_wave_ratio)//" s", error)
+                      num(ratio)//" intervals of the slow wave clock (t_end = "// &
+                      num(s%t_end)//" s) exceed "//num(max_wave_ratio), &
+                      "0 or wave_update >= t_end/"//num(max_wave_ratio)//" = "// &
+                      num(s%t_end/max_wave_ratio)//" s", error, in_sweep)
           return
         end if
       end if
       ratio = s%t_end/s%output_interval
       if (.not. (ratio <= max_samples)) then
         call refuse(cfg, "simulation", "output_interval", s%output_interval, &
-                    "t_end/output_interval = "//fmt_real(ratio)//" samples (t_end = "// &
-                    fmt_real(s%t_end)//" s) exceed "//fmt_real(max_samples), &
-                    "output_interval >= t_end/"//fmt_real(max_samples)//" = "// &
-                    fmt_real(s%t_end/max_samples)//" s", error)
+                    "t_end/output_interval = "//num(ratio)//" samples (t_end = "// &
+                    num(s%t_end)//" s) exceed "//num(max_samples), &
+                    "output_interval >= t_end/"//num(max_samples)//" = "// &
+                    num(s%t_end/max_samples)//" s", error, in_sweep)
         return
       end if
       bytes = run_memory_estimate(cfg)
@@ -99,12 +101,12 @@ contains
         if (parts(3) >= max(parts(1), parts(2))) then
           call refuse(cfg, "sea", "n_frequencies", real(cfg%sea%n_frequencies, wp), &
                       problem//" with n_directions = "// &
-                      fmt_real(real(cfg%sea%n_directions, wp)), allowed, error)
+                      num(real(cfg%sea%n_directions, wp)), allowed, error, in_sweep)
         else if (parts(2) > parts(1)) then
-          call refuse(cfg, "simulation", "t_end", s%t_end, problem, allowed, error)
+          call refuse(cfg, "simulation", "t_end", s%t_end, problem, allowed, error, in_sweep)
         else
           call refuse(cfg, "simulation", "output_interval", s%output_interval, &
-                      problem//" with t_end = "//fmt_real(s%t_end)//" s", allowed, error)
+                      problem//" with t_end = "//num(s%t_end)//" s", allowed, error, in_sweep)
         end if
         return
       end if
@@ -157,7 +159,7 @@ contains
     real(wp) :: parts(3)
     parts = memory_parts(cfg)
     s = "recorded samples "//gib_text(parts(1))//": t_end/output_interval = "// &
-        fmt_real(cfg%simulation%t_end/cfg%simulation%output_interval)//" samples"
+        num(cfg%simulation%t_end/cfg%simulation%output_interval)//" samples"
     if (parts(2) > 0.0_wp) s = s//", seat trace at 1 kHz "//gib_text(parts(2))//""
     s = s//", wave components "//gib_text(parts(3))//""
   end function memory_terms
@@ -194,21 +196,29 @@ contains
   end function physical_memory
 
   !> The error "file:line: &group: key = value: problem; allowed: allowed".
-  subroutine refuse(cfg, group, key, value, problem, allowed, error)
+  subroutine refuse(cfg, group, key, value, problem, allowed, error, in_sweep)
     type(config_type), intent(in) :: cfg
     character(len=*), intent(in) :: group, key, problem, allowed
     real(wp), intent(in) :: value
     type(error_type), allocatable, intent(out) :: error
+    logical, intent(in), optional :: in_sweep
     integer :: line
     character(len=32) :: buf
     line = 0
+    if (present(in_sweep)) then
+      if (in_sweep) then
+        call fatal_error(error, cfg%filename//" (this sweep case): &"//group//": "//key// &
+                         " = "//num(value)//": "//problem//"; allowed: "//allowed)
+        return
+      end if
+    end if
     if (allocated(cfg%deck_text)) line = key_line(cfg%deck_text, group, key)
     if (line > 0) then
       write (buf, "(i0)") line
       call fatal_error(error, cfg%filename//":"//trim(buf)//": &"//group//": "//key//" = "// &
-                       fmt_real(value)//": "//problem//"; allowed: "//allowed)
+                       num(value)//": "//problem//"; allowed: "//allowed)
     else
-      call fatal_error(error, cfg%filename//": &"//group//": "//key//" = "//fmt_real(value)// &
+      call fatal_error(error, cfg%filename//": &"//group//": "//key//" = "//num(value)// &
                        " (default): "//problem//"; allowed: "//allowed)
     end if
   end subroutine refuse
@@ -273,6 +283,19 @@ contains
       next_is_equals = rest(1:1) == "="
     end function next_is_equals
   end function key_line
+
+  !> fmt_real, or an exponent of three digits where fmt_real has no room for it.
+  function num(x) result(s)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if (x == 0.0_wp .or. (abs(x) >= 1.0e-99_wp .and. abs(x) < 1.0e99_wp)) then
+      s = fmt_real(x)
+    else
+      write (buf, "(es12.4e3)") x
+      s = trim(adjustl(buf))
+    end if
+  end function num
 
   !> bytes as "12.3 GiB" (three significant digits).
   pure function gib_text(bytes) result(s)

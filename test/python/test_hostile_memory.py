@@ -180,3 +180,46 @@ def test_bad_thread_count_is_refused(davit_bin, tmp_path, threads):
     errors = error_lines(result.stderr)
     assert len(errors) == 1 and "--threads" in errors[0], result.stderr
     assert listing(tmp_path) == ["base.nml", "sweep.nml"]
+
+
+def test_omp_num_threads_absurd_is_clamped(davit_bin, tmp_path, monkeypatch):
+    (tmp_path / "base.nml").write_text(BASE)
+    (tmp_path / "sweep.nml").write_text(SWEEP)
+    monkeypatch.setenv("OMP_NUM_THREADS", "100000")
+    result = run_davit(davit_bin, "sweep", "sweep.nml", "-o", "s.h5", cwd=tmp_path,
+                       timeout=120)
+    assert result.returncode == 0, f"{result.returncode}\n{result.stderr}"
+    assert "davit sweep: note: OMP_NUM_THREADS=100000" in result.stderr
+    assert listing(tmp_path) == ["base.nml", "s.h5", "sweep.nml"]
+
+
+def test_threads_limited_by_memory(davit_bin, tmp_path):
+    """Three threads of ~0.2 GiB cases within max_memory = 0.45 GiB: two threads."""
+    (tmp_path / "base.nml").write_text(BASE.replace("  output_interval = 0.01\n",
+                                                    "  output_interval = 0.01\n"
+                                                    "  max_memory = 0.45\n"))
+    (tmp_path / "sweep.nml").write_text(SWEEP.replace("0.0, 90.0", "0.0, 90.0, 45.0"))
+    result = run_davit(davit_bin, "sweep", "sweep.nml", "-o", "s.h5", "--threads", "3",
+                       cwd=tmp_path, timeout=120)
+    assert result.returncode == 0, f"{result.returncode}\n{result.stderr}"
+    assert "would hold more than &simulation max_memory" in result.stderr
+    assert "on 2 thread(s)" in result.stderr
+    assert error_lines(result.stderr) == []
+
+
+def test_sweep_case_that_cannot_finish_fails_alone(davit_bin, tmp_path):
+    """A sweep's dts = 1e-300 (in the key's range) makes one case that cannot finish: that
+    case fails with the time-grid message (naming the sweep case, not a base-deck line),
+    the other runs, and the summary is written."""
+    (tmp_path / "base.nml").write_text(BASE)
+    (tmp_path / "sweep.nml").write_text("&sweep\n  base_deck = 'base.nml'\n"
+                                        "  dts = 1.0e-3, 1.0e-300\n/\n")
+    result = run_davit(davit_bin, "sweep", "sweep.nml", "-o", "s.h5", cwd=tmp_path,
+                       timeout=60)
+    assert result.returncode == 0, f"{result.returncode}\n{result.stderr}"
+    assert "1 ok, 1 failed" in result.stdout
+    failed = [line for line in result.stderr.splitlines() if "case 2 failed" in line]
+    assert len(failed) == 1, result.stderr
+    assert "(this sweep case): &simulation: dt = 1.0000E-300" in failed[0]
+    assert "allowed: dt >=" in failed[0]
+    assert listing(tmp_path) == ["base.nml", "s.h5", "sweep.nml"]
