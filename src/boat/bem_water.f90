@@ -27,10 +27,10 @@ module davit_boat_bem_water
   use davit_kinds, only: wp, pi
   use davit_error, only: error_type, fatal_error
   use davit_core_rotation, only: rotation_matrix
-  use davit_core_fastmath, only: fast_sincos
   use davit_ship_bem_database, only: bem_database_type, bem_excitation, bracket
   use davit_ship_bem_loads, only: bem_memory, to_kane_order, bem_roll_damping
-  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp, wave_chunk, &
+                                  component_phases
   implicit none
   private
   public :: boat_bem_type, new_boat_bem, boat_bem_loads, boat_bem_immersion, &
@@ -170,17 +170,20 @@ contains
     type(boat_bem_type), intent(in) :: self
     type(wave_field_type), intent(in) :: sea
     real(wp), intent(in) :: t, r(3), psi
-    real(wp) :: load(6), sn(sea%n), cs(sea%n), beta, w
+    real(wp) :: load(6), sn(wave_chunk), cs(wave_chunk), beta, w
     complex(wp) :: d(6)
-    integer :: i, k
-    call fast_sincos(sea%omega*t + sea%phase - sea%kx*r(1) - sea%ky*r(2), sn, cs)
+    integer :: i, k, i0, m
     load = 0.0_wp
     associate (h => self%db%heading)
-      do i = 1, sea%n
-        beta = modulo(sea%direction(i) - psi - h(1), 2.0_wp*pi) + h(1)
-        call bracket(h, beta, k, w)
-        d = (1.0_wp - w)*self%diffraction(:, k, i) + w*self%diffraction(:, k + 1, i)
-        load = load + real(d, wp)*cs(i) - aimag(d)*sn(i)
+      do i0 = 1, sea%n, wave_chunk
+        m = min(wave_chunk, sea%n - i0 + 1)
+        call component_phases(sea, i0, m, t, r(1), r(2), sn, cs)
+        do i = i0, i0 + m - 1
+          beta = modulo(sea%direction(i) - psi - h(1), 2.0_wp*pi) + h(1)
+          call bracket(h, beta, k, w)
+          d = (1.0_wp - w)*self%diffraction(:, k, i) + w*self%diffraction(:, k + 1, i)
+          load = load + real(d, wp)*cs(i - i0 + 1) - aimag(d)*sn(i - i0 + 1)
+        end do
       end do
     end associate
   end function diffraction_load

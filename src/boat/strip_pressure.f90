@@ -21,7 +21,8 @@
 !> ramp, with its time derivative at fixed geometry (for the slow clock's Hermite cubic).
 module davit_boat_strip_pressure
   use davit_kinds, only: wp, gravity, rho_water
-  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_stokes2, wave_ramp
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_stokes2, wave_ramp, &
+                                  wave_chunk
   use davit_boat_hull, only: boat_hull_type, section_wet_type
   implicit none
   private
@@ -40,19 +41,28 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, x, y
     real(wp), intent(out) :: eta, grad(2)
-    real(wp) :: th(field%n), r, s2
+    real(wp) :: th(wave_chunk), r, s2, th1
+    integer :: i0, i1
     eta = 0.0_wp
     grad = 0.0_wp
     if (field%kind == wave_none) return
     r = wave_ramp(field, t)
-    th = field%omega*t + field%phase - field%kx*x - field%ky*y
-    eta = r*sum(field%amplitude*cos(th))
-    grad(1) = r*sum(field%amplitude*sin(th)*field%kx)
-    grad(2) = r*sum(field%amplitude*sin(th)*field%ky)
+    do i0 = 1, field%n, wave_chunk
+      i1 = min(field%n, i0 + wave_chunk - 1)
+      associate (a => field%amplitude(i0:i1), th => th(1:i1 - i0 + 1))
+        th = field%omega(i0:i1)*t + field%phase(i0:i1) - field%kx(i0:i1)*x - field%ky(i0:i1)*y
+        eta = eta + sum(a*cos(th))
+        grad(1) = grad(1) + sum(a*sin(th)*field%kx(i0:i1))
+        grad(2) = grad(2) + sum(a*sin(th)*field%ky(i0:i1))
+      end associate
+    end do
+    eta = r*eta
+    grad = r*grad
     if (field%kind == wave_stokes2) then
+      th1 = field%omega(1)*t + field%phase(1) - field%kx(1)*x - field%ky(1)*y
       s2 = field%k(1)*(r*field%amplitude(1))**2
-      eta = eta + 0.5_wp*s2*cos(2.0_wp*th(1))
-      grad = grad + s2*sin(2.0_wp*th(1))*[field%kx(1), field%ky(1)]
+      eta = eta + 0.5_wp*s2*cos(2.0_wp*th1)
+      grad = grad + s2*sin(2.0_wp*th1)*[field%kx(1), field%ky(1)]
     end if
   end subroutine surface_plane
 

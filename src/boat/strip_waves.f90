@@ -22,8 +22,8 @@
 !> Hermite-interpolated; a strip dry at t1 that wets within the window takes the exact sum.
 module davit_boat_strip_waves
   use davit_kinds, only: wp
-  use davit_core_fastmath, only: fast_sincos
-  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp
+  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, wave_chunk, &
+                                  component_phases
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_load
   implicit none
@@ -166,16 +166,19 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, x, y
     real(wp), intent(out) :: e(ne)
-    real(wp) :: s(field%n), cs(field%n), as
-    integer :: i
-    call fast_sincos(field%omega*t + field%phase - field%kx*x - field%ky*y, s, cs)
+    real(wp) :: s(wave_chunk), cs(wave_chunk), as
+    integer :: i, i0, m
     e = 0.0_wp
-    do i = 1, field%n
-      as = field%amplitude(i)*s(i)
-      e(1) = e(1) + field%amplitude(i)*cs(i)
+    do i0 = 1, field%n, wave_chunk
+    m = min(wave_chunk, field%n - i0 + 1)
+    call component_phases(field, i0, m, t, x, y, s, cs)
+    do i = i0, i0 + m - 1
+      as = field%amplitude(i)*s(i - i0 + 1)
+      e(1) = e(1) + field%amplitude(i)*cs(i - i0 + 1)
       e(2) = e(2) - as*field%omega(i)
       e(3) = e(3) + as*field%kx(i)
       e(4) = e(4) + as*field%ky(i)
+    end do
     end do
   end subroutine elevation_sums
 
@@ -188,20 +191,24 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, x, y, d
     real(wp), intent(out) :: e(ne), v(3, nv)
-    real(wp) :: s(field%n), cs(field%n), w(field%n), as, wc, ws, wcg, wsg, wsc, wss
-    integer :: i
-    call fast_sincos(field%omega*t + field%phase - field%kx*x - field%ky*y, s, cs)
-    w = field%amplitude*field%omega*exp(-field%k*d)
+    real(wp) :: s(wave_chunk), cs(wave_chunk), w(wave_chunk), as, wc, ws, wcg, wsg, wsc, wss
+    integer :: i, i0, m, l
     e = 0.0_wp
     v = 0.0_wp
-    do i = 1, field%n
-      as = field%amplitude(i)*s(i)
-      e(1) = e(1) + field%amplitude(i)*cs(i)
+    do i0 = 1, field%n, wave_chunk
+    m = min(wave_chunk, field%n - i0 + 1)
+    call component_phases(field, i0, m, t, x, y, s, cs)
+    w(1:m) = field%amplitude(i0:i0 + m - 1)*field%omega(i0:i0 + m - 1)* &
+             exp(-field%k(i0:i0 + m - 1)*d)
+    do i = i0, i0 + m - 1
+      l = i - i0 + 1
+      as = field%amplitude(i)*s(l)
+      e(1) = e(1) + field%amplitude(i)*cs(l)
       e(2) = e(2) - as*field%omega(i)
       e(3) = e(3) + as*field%kx(i)
       e(4) = e(4) + as*field%ky(i)
-      wc = w(i)*cs(i)
-      ws = w(i)*s(i)
+      wc = w(l)*cs(l)
+      ws = w(l)*s(l)
       wcg = wc*field%cos_dir(i)
       wsg = wc*field%sin_dir(i)
       wsc = ws*field%cos_dir(i)
@@ -221,6 +228,7 @@ contains
       v(1, 5) = v(1, 5) - wcg*field%k(i)
       v(2, 5) = v(2, 5) - wsg*field%k(i)
       v(3, 5) = v(3, 5) - ws*field%k(i)
+    end do
     end do
   end subroutine kinematic_sums
 

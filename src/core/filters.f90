@@ -15,12 +15,13 @@ contains
   !> first and last value so a signal at rest starts and ends without a transient.
   pure function phaseless_lowpass(x, dt, fc) result(y)
     real(wp), intent(in) :: x(:), dt, fc
-    real(wp) :: y(size(x))
+    ! on the heap: the signal is as long as the run (a 1 kHz seat trace of t_end)
+    real(wp), allocatable :: y(:)
     real(wp) :: a(3), b(2)
     call butterworth2(dt, fc/(sqrt(2.0_wp) - 1.0_wp)**0.25_wp, a, b)
-    y = one_pass(x, a, b)
-    y = one_pass(y(size(y):1:-1), a, b)
-    y = y(size(y):1:-1)
+    y = x
+    call one_pass(y, a, b, .true.)
+    call one_pass(y, a, b, .false.)
   end function phaseless_lowpass
 
   !> Coefficients of the 2-pole Butterworth low-pass with corner f0 (prewarped bilinear
@@ -35,23 +36,36 @@ contains
     b = [-2.0_wp*(wa**2 - 1.0_wp), -1.0_wp + sqrt(2.0_wp)*wa - wa**2]/den
   end subroutine butterworth2
 
-  !> One causal pass, started at rest at the first value.
-  pure function one_pass(x, a, b) result(y)
-    real(wp), intent(in) :: x(:), a(3), b(2)
-    real(wp) :: y(size(x)), x1, x2, y1, y2
-    integer :: n
-    if (size(x) == 0) return
-    x1 = x(1)
-    x2 = x(1)
-    y1 = x(1)
-    y2 = x(1)
-    do n = 1, size(x)
-      y(n) = a(1)*x(n) + a(2)*x1 + a(3)*x2 + b(1)*y1 + b(2)*y2
+  !> One causal pass in place, forward (or backward in time: from the last value to the
+  !> first), started at rest at the first value it meets.
+  pure subroutine one_pass(y, a, b, forward)
+    real(wp), intent(inout) :: y(:)
+    real(wp), intent(in) :: a(3), b(2)
+    logical, intent(in) :: forward
+    real(wp) :: x0, x1, x2, y1, y2
+    integer :: n, first, last, stride
+    if (size(y) == 0) return
+    if (forward) then
+      first = 1
+      last = size(y)
+      stride = 1
+    else
+      first = size(y)
+      last = 1
+      stride = -1
+    end if
+    x1 = y(first)
+    x2 = y(first)
+    y1 = y(first)
+    y2 = y(first)
+    do n = first, last, stride
+      x0 = y(n)
+      y(n) = a(1)*x0 + a(2)*x1 + a(3)*x2 + b(1)*y1 + b(2)*y2
       x2 = x1
-      x1 = x(n)
+      x1 = x0
       y2 = y1
       y1 = y(n)
     end do
-  end function one_pass
+  end subroutine one_pass
 
 end module davit_core_filters

@@ -25,6 +25,8 @@ module davit_io_config
     real(wp) :: rtol, atol
     !> Adaptive integrators without error control: one step of dt per macro step.
     logical :: fixed_step
+    !> Memory the run may hold [GiB]; 0 = 80 % of physical memory (davit_run_budget).
+    real(wp) :: max_memory = 0.0_wp
   end type simulation_config
 
   !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
@@ -309,6 +311,10 @@ contains
                 lo_open=.true.)
     call r%int(g, "seed", s%seed, 12345, 0, huge(1), "-", &
                "Random seed, recorded in the output (used by random seas).")
+    call r%real(g, "max_memory", s%max_memory, 0.0_wp, 0.0_wp, 1.0e6_wp, "GiB", &
+                "Memory the run may hold (recorded samples, the seat's 1 kHz trace, the "// &
+                "wave components; estimated before the run, which is refused beyond it); "// &
+                "0 = 80 % of the machine's physical memory.", default_text="0 (80 % of RAM)")
     call r%choice(g, "contact_approach", s%contact_approach, "window", &
                   [character(len=8) :: "window", "graded"], &
                   "Steps before a fender reaches the ship's side: 'window' takes dt_contact "// &

@@ -22,6 +22,7 @@ module davit_run_driver
   use davit_run_step_monitor, only: step_monitor
   use davit_run_launch_log, only: launch_log, new_launch_log
   use davit_ship_ship_model, only: ship_system_type
+  use davit_run_budget, only: check_run_budget
   implicit none
   private
   public :: run_simulation, integrate
@@ -43,6 +44,9 @@ contains
     type(ship_recorder) :: srec
     type(launch_log) :: log
     real(wp), allocatable :: y(:)
+    ! a run that cannot finish or cannot fit is refused before anything is built or written
+    call check_run_budget(cfg, error)
+    if (allocated(error)) return
     select case (cfg%simulation%scene)
     case ("sea")
       call run_sea(cfg, out_path, summary, error)

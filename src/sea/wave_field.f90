@@ -29,11 +29,15 @@ module davit_sea_wave_field
   public :: new_calm_sea, new_regular_wave, new_irregular_sea, wave_ramp
   public :: wave_elevation, wave_kinematics
   public :: point_phasors, time_phasors, rotation_phasors, advance_phasors
-  public :: elevation_from_phasors
+  public :: elevation_from_phasors, wave_chunk, component_phases
 
   integer, parameter :: wave_none = 0, wave_airy = 1, wave_stokes2 = 2, wave_irregular = 3
-  !> Components processed per block (fits the stack and L1 cache).
+  !> Components processed per block (fits the stack and L1 cache). Every loop over the
+  !> components works in blocks of this size: scratch arrays sized by the number of
+  !> components would live on the stack (-fstack-arrays) and overflow it for large seas
+  !> (5000 x 361 components are 14 MB per array, issue 19 class 1).
   integer, parameter :: chunk = 128
+  integer, parameter :: wave_chunk = chunk
 
   type :: wave_field_type
     integer :: kind = wave_none
@@ -191,15 +195,19 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, p(3)
     real(wp), intent(out) :: eta, velocity(3), acceleration(3), pressure
-    real(wp) :: s(field%n), c(field%n), e(field%n), r, d
+    real(wp) :: s(chunk), c(chunk), e(chunk), r, d
+    integer :: i0, m
     velocity = 0.0_wp
     acceleration = 0.0_wp
     pressure = 0.0_wp
     eta = 0.0_wp
     if (field%kind == wave_none) return
     r = wave_ramp(field, t)
-    call fast_sincos(field%omega*t + field%phase - field%kx*p(1) - field%ky*p(2), s, c)
-    eta = sum(field%amplitude*c)
+    do i0 = 1, field%n, chunk
+      m = min(chunk, field%n - i0 + 1)
+      call component_phases(field, i0, m, t, p(1), p(2), s, c)
+      eta = eta + sum(field%amplitude(i0:i0 + m - 1)*c(1:m))
+    end do
     if (field%kind == wave_stokes2) then
       eta = r*eta + stokes_correction(field, eta, r)
     else
@@ -207,27 +215,59 @@ contains
     end if
     d = p(3) + eta
     if (d < 0.0_wp) return
-    ! a exp(-k d) w: the orbital speed of each component at the stretched depth
-    e = field%amplitude*exp(-field%k*d)
-    pressure = r*rho_water*gravity*sum(e*c)
-    e = e*field%omega
-    velocity(1) = r*sum(e*c*field%cos_dir)
-    velocity(2) = r*sum(e*c*field%sin_dir)
-    velocity(3) = r*sum(e*s)
-    e = e*field%omega
-    acceleration(1) = -r*sum(e*s*field%cos_dir)
-    acceleration(2) = -r*sum(e*s*field%sin_dir)
-    acceleration(3) = r*sum(e*c)
+    ! a exp(-k d) w: the orbital speed of each component at the stretched depth (one block:
+    ! the phases of the elevation pass are still in s, c)
+    do i0 = 1, field%n, chunk
+      m = min(chunk, field%n - i0 + 1)
+      if (field%n > chunk) call component_phases(field, i0, m, t, p(1), p(2), s, c)
+      associate (a => field%amplitude(i0:i0 + m - 1), k => field%k(i0:i0 + m - 1), &
+                 w => field%omega(i0:i0 + m - 1), cg => field%cos_dir(i0:i0 + m - 1), &
+                 sg => field%sin_dir(i0:i0 + m - 1))
+        e(1:m) = a*exp(-k*d)
+        pressure = pressure + sum(e(1:m)*c(1:m))
+        e(1:m) = e(1:m)*w
+        velocity(1) = velocity(1) + sum(e(1:m)*c(1:m)*cg)
+        velocity(2) = velocity(2) + sum(e(1:m)*c(1:m)*sg)
+        velocity(3) = velocity(3) + sum(e(1:m)*s(1:m))
+        e(1:m) = e(1:m)*w
+        acceleration(1) = acceleration(1) - sum(e(1:m)*s(1:m)*cg)
+        acceleration(2) = acceleration(2) - sum(e(1:m)*s(1:m)*sg)
+        acceleration(3) = acceleration(3) + sum(e(1:m)*c(1:m))
+      end associate
+    end do
+    pressure = r*rho_water*gravity*pressure
+    velocity = r*velocity
+    acceleration = r*acceleration
   end subroutine wave_kinematics
+
+  !> sin and cos of the phases theta_i = w_i t + eps_i - kx_i x - ky_i y of the m components
+  !> from i0 on, into s(1:m), c(1:m) (m <= wave_chunk: no scratch sized by the sea).
+  pure subroutine component_phases(field, i0, m, t, x, y, s, c)
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: i0, m
+    real(wp), intent(in) :: t, x, y
+    real(wp), intent(out) :: s(:), c(:)
+    real(wp) :: th(chunk)
+    integer :: i1
+    i1 = i0 + m - 1
+    th(1:m) = field%omega(i0:i1)*t + field%phase(i0:i1) - field%kx(i0:i1)*x - &
+              field%ky(i0:i1)*y
+    call fast_sincos(th(1:m), s(1:m), c(1:m))
+  end subroutine component_phases
 
   !> Spatial phasors of fixed points: cb = cos(k . x), sb = sin(k . x), shape (n, np).
   pure subroutine point_phasors(field, x, y, cb, sb)
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: x(:), y(:)
     real(wp), intent(out) :: cb(:, :), sb(:, :)
-    integer :: j
+    real(wp) :: th(chunk)
+    integer :: j, i0, i1
     do j = 1, size(x)
-      call fast_sincos(field%kx*x(j) + field%ky*y(j), sb(:, j), cb(:, j))
+      do i0 = 1, field%n, chunk
+        i1 = min(field%n, i0 + chunk - 1)
+        th(1:i1 - i0 + 1) = field%kx(i0:i1)*x(j) + field%ky(i0:i1)*y(j)
+        call fast_sincos(th(1:i1 - i0 + 1), sb(i0:i1, j), cb(i0:i1, j))
+      end do
     end do
   end subroutine point_phasors
 
@@ -236,7 +276,13 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t
     real(wp), intent(out) :: ca(:), sa(:)
-    call fast_sincos(field%omega*t + field%phase, sa, ca)
+    real(wp) :: th(chunk)
+    integer :: i0, i1
+    do i0 = 1, field%n, chunk
+      i1 = min(field%n, i0 + chunk - 1)
+      th(1:i1 - i0 + 1) = field%omega(i0:i1)*t + field%phase(i0:i1)
+      call fast_sincos(th(1:i1 - i0 + 1), sa(i0:i1), ca(i0:i1))
+    end do
     ca = field%amplitude*ca
     sa = field%amplitude*sa
   end subroutine time_phasors
@@ -246,7 +292,13 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: dt
     real(wp), intent(out) :: cr(:), sr(:)
-    call fast_sincos(field%omega*dt, sr, cr)
+    real(wp) :: th(chunk)
+    integer :: i0, i1
+    do i0 = 1, field%n, chunk
+      i1 = min(field%n, i0 + chunk - 1)
+      th(1:i1 - i0 + 1) = field%omega(i0:i1)*dt
+      call fast_sincos(th(1:i1 - i0 + 1), sr(i0:i1), cr(i0:i1))
+    end do
   end subroutine rotation_phasors
 
   !> Advance time phasors by the rotation (cr, sr): angle addition, no trigonometry.

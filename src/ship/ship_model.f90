@@ -18,13 +18,13 @@ module davit_ship_ship_model
   use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix, euler_rates, cross
-  use davit_core_fastmath, only: fast_sincos
   use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
   use davit_core_layout, only: state_layout_type, state_part_type
   use davit_ship_bem_loads, only: bem_ship_type, bem_wave_coefficients, bem_restoring, &
                                   bem_memory
   use davit_solve_integrator, only: ode_problem
-  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp
+  use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp, wave_chunk, &
+                                  component_phases
   use davit_sea_wind, only: wind_type, wind_velocity
   use davit_ship_hull, only: hull_type
   use davit_ship_froude_krylov, only: fk_box_load, fk_transfer
@@ -236,14 +236,21 @@ contains
     type(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t
     real(wp), intent(out) :: load(6), rate(6)
-    real(wp) :: s(self%sea%n), cs(self%sea%n)
-    integer :: j
+    real(wp) :: s(wave_chunk), cs(wave_chunk)
+    integer :: j, i0, i1, m
+    load = 0.0_wp
+    rate = 0.0_wp
     associate (sea => self%sea)
-      call fast_sincos(sea%omega*t + sea%phase - sea%kx*self%origin(1) - &
-                       sea%ky*self%origin(2), s, cs)
-      do j = 1, 6
-        load(j) = sum(self%fk_sin(j, :)*s) + sum(self%fk_cos(j, :)*cs)
-        rate(j) = sum(sea%omega*(self%fk_sin(j, :)*cs - self%fk_cos(j, :)*s))
+      do i0 = 1, sea%n, wave_chunk
+        m = min(wave_chunk, sea%n - i0 + 1)
+        i1 = i0 + m - 1
+        call component_phases(sea, i0, m, t, self%origin(1), self%origin(2), s, cs)
+        do j = 1, 6
+          load(j) = load(j) + sum(self%fk_sin(j, i0:i1)*s(1:m)) + &
+                    sum(self%fk_cos(j, i0:i1)*cs(1:m))
+          rate(j) = rate(j) + sum(sea%omega(i0:i1)*(self%fk_sin(j, i0:i1)*cs(1:m) - &
+                                                    self%fk_cos(j, i0:i1)*s(1:m)))
+        end do
       end do
     end associate
   end subroutine fk_unramped
@@ -451,8 +458,8 @@ contains
   function wave_loads(self, t, q, c) result(load)
     class(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t, q(6), c(3, 3)
-    real(wp) :: load(6), o(3), s(self%sea%n), cs(self%sea%n)
-    integer :: j
+    real(wp) :: load(6), o(3), s(wave_chunk), cs(wave_chunk)
+    integer :: j, i0, i1, m
     associate (sea => self%sea)
       if (self%wave_cached .and. t >= self%wave_t(1) .and. t <= self%wave_t(2)) then
         load = wave_ramp(sea, t)*fk_interpolated(self, t)
@@ -463,9 +470,15 @@ contains
       else
         o = q(4:6) - matmul(c, [self%hull%cg_x, 0.0_wp, self%hull%cg_z])
       end if
-      call fast_sincos(sea%omega*t + sea%phase - sea%kx*o(1) - sea%ky*o(2), s, cs)
-      do j = 1, 6
-        load(j) = sum(self%fk_sin(j, :)*s) + sum(self%fk_cos(j, :)*cs)
+      load = 0.0_wp
+      do i0 = 1, sea%n, wave_chunk
+        m = min(wave_chunk, sea%n - i0 + 1)
+        i1 = i0 + m - 1
+        call component_phases(sea, i0, m, t, o(1), o(2), s, cs)
+        do j = 1, 6
+          load(j) = load(j) + sum(self%fk_sin(j, i0:i1)*s(1:m)) + &
+                    sum(self%fk_cos(j, i0:i1)*cs(1:m))
+        end do
       end do
       load = wave_ramp(sea, t)*load
     end associate

@@ -7,7 +7,7 @@
 !> whole at the start, at checkpoints and at the end, so an interrupted sweep leaves a
 !> valid summary that --resume completes without recomputing finished cases.
 module davit_sweep_driver
-  !$ use omp_lib, only: omp_get_max_threads
+  !$ use omp_lib, only: omp_get_max_threads, omp_get_num_procs
   use, intrinsic :: iso_fortran_env, only: error_unit
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use davit_kinds, only: wp, i8
@@ -22,6 +22,7 @@ module davit_sweep_driver
   use davit_run_run_summary, only: run_summary, write_root_attributes
   use davit_run_driver, only: integrate
   use davit_run_launch_log, only: new_launch_log
+  use davit_run_budget, only: check_run_budget, memory_limit, run_memory_estimate
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
@@ -97,7 +98,7 @@ contains
       if (allocated(error)) return
     end if
     pending = pack([(k, k = 1, size(cases))], state%results%status == status_not_run)
-    nthreads = thread_count(opts%threads)
+    nthreads = thread_count(opts%threads, s%base)
     state%threads = nthreads
     state%todo = size(pending)
     if (opts%max_cases > 0) state%todo = min(state%todo, opts%max_cases)
@@ -188,7 +189,8 @@ contains
     real(wp), allocatable :: y(:)
     integer(i8) :: clock0, clock1, rate
     call system_clock(clock0, rate)
-    call new_system(sys, cfg, error)
+    call check_run_budget(cfg, error, in_sweep=.true.)
+    if (.not. allocated(error)) call new_system(sys, cfg, error)
     if (.not. allocated(error)) call initial_state(sys, cfg, y, error)
     if (.not. allocated(error)) then
       metrics%stop_at_release = stop_at_release
@@ -321,11 +323,38 @@ contains
     close (unit, status="delete")
   end subroutine make_folder
 
-  integer function thread_count(requested) result(n)
+  !> Threads of the sweep: the request (or the runtime's default), at most
+  !> max(64, 4 x the processors): each thread holds a system and a stack, and an absurd
+  !> request (--threads 100000) would fail to start them; and no more than hold their cases
+  !> (the base deck's memory estimate) within the memory limit together. The results do not
+  !> depend on the thread count.
+  integer function thread_count(requested, base) result(n)
     integer, intent(in) :: requested
+    type(config_type), intent(in) :: base
+    integer :: cap, fit
+    character(len=:), allocatable :: source
     n = 1
+    cap = 64
+    source = "OMP_NUM_THREADS="
     !$ n = omp_get_max_threads()
-    if (requested > 0) n = requested
+    !$ cap = max(64, 4*omp_get_num_procs())
+    if (requested > 0) then
+      n = requested
+      source = "--threads "
+    end if
+    if (n > cap) then
+      write (error_unit, "(a)") "davit sweep: note: "//source//int_to_str(n)// &
+        " is more than "//int_to_str(cap)//" (4 x the processors, at least 64); using "// &
+        int_to_str(cap)
+      n = cap
+    end if
+    fit = int(max(1.0_wp, min(real(n, wp), memory_limit(base)/run_memory_estimate(base))))
+    if (fit < n) then
+      write (error_unit, "(a)") "davit sweep: note: "//int_to_str(n)//" thread(s) would "// &
+        "hold more than &simulation max_memory (or 80 % of physical memory) with one case "// &
+        "each; using "//int_to_str(fit)
+      n = fit
+    end if
   end function thread_count
 
   real(wp) function seconds_since(state, clock) result(dt)
