@@ -317,7 +317,9 @@ contains
 
   subroutine fail(error)
     type(error_type), intent(in) :: error
+    flush (output_unit)
     write (error_unit, "(a)") "davit: error: "//error%message
+    flush (error_unit)
     stop 1, quiet=.true.
   end subroutine fail
 
