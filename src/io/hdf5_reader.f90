@@ -151,10 +151,20 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: n, hdferr, status
+    integer(hid_t) :: ftype
+    integer :: n, hdferr, status, tclass
     status = 0
     call open_1d(self, name, dset, n, error)
     if (allocated(error)) return
+    ! integers only: a real column would be silently truncated to integer codes
+    call h5dget_type_f(dset, ftype, hdferr)
+    call h5tget_class_f(ftype, tclass, hdferr)
+    call h5tclose_f(ftype, hdferr)
+    if (tclass /= H5T_INTEGER_F) then
+      call h5dclose_f(dset, hdferr)
+      call fatal_error(error, "'"//self%path//"': dataset /"//name//" is not of integers")
+      return
+    end if
     allocate (x(n))
     buf = c_loc(x)
     if (n > 0) call h5dread_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), buf, status)

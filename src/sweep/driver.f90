@@ -93,6 +93,13 @@ contains
     if (allocated(error)) return
     call check_output_path(out_path, error)
     if (allocated(error)) return
+    if (len(series(opts)) > 0) then
+      if (series(opts) == out_path) then
+        call fatal_error(error, "the series folder and the summary are both '"//out_path// &
+                         "'; name two different paths")
+        return
+      end if
+    end if
     call acquire_lock(out_path, own_lock, error)
     if (allocated(error)) return
     call sweep_body()

@@ -192,10 +192,12 @@ def test_kill_leaves_no_file_that_looks_whole_and_the_next_run_goes_on(davit, da
                                                                        tmp_path):
     out, before = _good_output(davit, tmp_path)
     deck = tmp_path / "long.nml"
-    deck.write_text("&simulation t_end = 60.0, dt = 1.0e-4, output_interval = 0.01 /\n")
+    deck.write_text("&simulation t_end = 600.0, dt = 1.0e-4, output_interval = 0.1 /\n")
     proc = subprocess.Popen([davit_bin, "run", str(deck), "-o", str(out)],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(1.0)
+    assert proc.poll() is None, "the long run ended before it could be killed"
+    assert (tmp_path / "good.h5.lock").exists()
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     assert out.read_bytes() == before
@@ -239,6 +241,15 @@ def test_disk_full_fails_cleanly_and_keeps_the_earlier_file(davit_bin, tmp_path,
     assert _stray(full_disk) == []
 
 
+def test_sweep_summary_on_a_full_disk_fails_cleanly(davit, tmp_path, full_disk):
+    deck = _setup(tmp_path, SMALL_SWEEP.replace("realisations = 2", "realisations = 400"))
+    out = full_disk / "summary.h5"
+    _expect_error(davit("sweep", deck, "-o", out, "--quiet", "--max-cases", "1"),
+                  "disk full")
+    assert not out.exists()
+    assert _stray(full_disk) == [] and _stray(tmp_path) == []
+
+
 def test_sweep_series_on_a_full_disk_fails_cleanly(davit, tmp_path, full_disk):
     deck = _setup(tmp_path, SMALL_SWEEP)
     out = tmp_path / "summary.h5"
@@ -251,6 +262,25 @@ def test_sweep_series_on_a_full_disk_fails_cleanly(davit, tmp_path, full_disk):
 
 
 # --- sweeps: the summary untouched until the set-up is valid (class 6) ------------------
+
+def test_a_locked_summary_refuses_a_second_sweep(davit, sweep_summary, tmp_path):
+    _, _, done = sweep_summary
+    out = tmp_path / "busy.h5"
+    shutil.copy(done, out)
+    before = out.read_bytes()
+    (tmp_path / "busy.h5.lock").write_text(f"{os.getpid()}\n")
+    deck = _setup(tmp_path, SMALL_SWEEP)
+    _expect_error(davit("sweep", deck, "-o", out, "--resume"), "another davit run")
+    assert out.read_bytes() == before
+    (tmp_path / "busy.h5.lock").unlink()
+
+
+def test_series_folder_equal_to_the_summary_is_refused(davit, tmp_path):
+    deck = _setup(tmp_path, SMALL_SWEEP)
+    out = tmp_path / "s.h5"
+    _expect_error(davit("sweep", deck, "-o", out, "--series", out), "two different paths")
+    assert not out.exists() and _stray(tmp_path) == []
+
 
 def test_bad_series_folder_leaves_a_finished_summary_alone(davit, sweep_summary, tmp_path):
     folder, deck, done = sweep_summary
@@ -288,6 +318,14 @@ def _delete(name):
     return edit
 
 
+def _retype(name, dtype):
+    def edit(f):
+        data = f[name][()]
+        del f[name]
+        f[name] = data.astype(dtype) if dtype != "numbers" else np.arange(len(data))
+    return edit
+
+
 def _to_2d(name):
     def edit(f):
         data = f[name][()]
@@ -312,6 +350,10 @@ CRAFTED = [
     ("wall_time_nan_ok", _set("results/wall_time", 0, np.nan), "wall_time"),
     ("index_long", _resize("cases/index", 3), "rows"),
     ("tension_long", _resize("results/peak_fall_tension", 9), "rows"),
+    ("status_as_reals", _retype("results/status", np.float64), "not of integers"),
+    ("message_as_numbers", _retype("results/message", "numbers"), "cannot read"),
+    ("ncase_attr_3", lambda f: f.attrs.__setitem__("ncase", 3), "different number of cases"),
+    ("no_version", lambda f: f.attrs.__delitem__("davit_version"), "not a davit output"),
 ]
 
 
@@ -324,7 +366,6 @@ def test_resume_refuses_crafted_summaries(davit, sweep_summary, tmp_path, name, 
     with h5py.File(out, "r+") as f:
         edit(f)
     before = out.read_bytes()
-    _expect_error(davit("sweep", deck, "-o", out, "--resume", "--quiet"), "cannot resume",
-                  words)
+    _expect_error(davit("sweep", deck, "-o", out, "--resume", "--quiet"), words)
     assert out.read_bytes() == before
     assert _stray(tmp_path) == []
