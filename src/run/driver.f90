@@ -10,7 +10,7 @@ module davit_run_driver
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type, simulation_config
   use davit_io_deck_reader, only: fmt_real
-  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_hdf5_writer, only: h5_writer_type, check_output_path
   use davit_solve_integrator, only: integrator_type, ode_problem
   use davit_solve_factory, only: new_integrator
   use davit_solve_step_control, only: stretch_to
@@ -90,7 +90,18 @@ contains
     kept = out_path
     if (allocated(run_error)) then
       inquire (file=out_path, exist=exists)
-      if (exists) kept = partial_path(out_path)
+      if (exists) then
+        kept = partial_path(out_path)
+        call check_output_path(kept, io_error)
+        if (allocated(io_error)) then  ! OUT.partial.h5 is someone else's file: keep it
+          call writer%discard()
+          call move_alloc(run_error, error)
+          error%message = error%message//"; partial record not kept: "// &
+                          io_error%message//"; the earlier '"//out_path// &
+                          "' is left as it was"
+          return
+        end if
+      end if
       call writer%retarget(kept)
     end if
     call writer%close(io_error)

@@ -136,6 +136,18 @@ def test_diverging_run_keeps_the_good_file_and_puts_the_partial_record_beside(da
     assert _stray(tmp_path) == []
 
 
+def test_diverging_run_never_replaces_a_foreign_partial_name(davit, tmp_path):
+    out, before = _good_output(davit, tmp_path, "run.h5")
+    foreign = tmp_path / "run.partial.h5"
+    foreign.write_text("someone's notes\n")
+    deck = tmp_path / "diverge.nml"
+    deck.write_text(DIVERGE)
+    _expect_error(davit("run", deck, "-o", out), "run diverged", "partial record not kept")
+    assert out.read_bytes() == before
+    assert foreign.read_text() == "someone's notes\n"
+    assert _stray(tmp_path) == []
+
+
 # --- concurrent runs and locks (class 6) ----------------------------------------------
 
 def test_a_live_lock_refuses_a_second_run(davit, tmp_path):
