@@ -113,8 +113,7 @@ contains
     end if
     inquire (file=path//"/.", exist=is_dir)
     if (is_dir .or. path(len(path):) == "/") then
-      call fatal_error(error, "the output '"//path//"' is a folder; name a file, e.g. '"// &
-                       path//"/out.h5'")
+      call fatal_error(error, "the output '"//path//"' is a folder; name a file in it")
       return
     end if
     inquire (file=path, exist=exists)

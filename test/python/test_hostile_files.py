@@ -121,6 +121,15 @@ def test_output_that_is_a_folder_is_refused(davit, tmp_path, command):
     assert _stray(tmp_path) == []
 
 
+@pytest.mark.parametrize("args", [["run", "d.nml", "-o", ""], ["sweep", "s.nml", "-o", ""],
+                                  ["sweep", "s.nml", "--series", " "]])
+def test_empty_output_names_are_usage_errors(davit, tmp_path, args):
+    (tmp_path / "d.nml").write_text(SHORT)
+    _setup(tmp_path, SMALL_SWEEP, name="s.nml")
+    _expect_error(davit(*args, cwd=tmp_path), "needs a name", code=2)
+    assert not (tmp_path / "out").exists()
+
+
 # --- a diverging run over a good output (class 6) -------------------------------------
 
 def test_diverging_run_keeps_the_good_file_and_puts_the_partial_record_beside(davit, tmp_path):
