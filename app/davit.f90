@@ -84,6 +84,7 @@ contains
     end do
     if (len(deck) == 0) call usage_error("'"//argument(1)//"' needs a deck file: davit "// &
                                          argument(1)//" DECK.nml")
+    call refuse_empty_names()
     call read_config(deck, cfg, error)
     if (allocated(error)) call fail(error)
     if (len(out) == 0) out = default_output(deck)
@@ -139,6 +140,7 @@ contains
       end select
     end do
     if (len(deck) == 0) call usage_error("'sweep' needs a sweep deck: davit sweep SWEEP.nml")
+    call refuse_empty_names()
     call read_sweep(deck, sweep, error)
     if (allocated(error)) call fail(error)
     if (dry_run) then
@@ -176,6 +178,20 @@ contains
     if (n < lowest) call usage_error("option "//name//" needs an integer >= "// &
                                      trim(int_text(lowest))//", got '"//v//"'")
   end subroutine take_int
+
+  !> An empty file or folder name after -o, --output or --series is a usage error (it would
+  !> otherwise silently mean the default output or no series).
+  subroutine refuse_empty_names()
+    integer :: k
+    character(len=:), allocatable :: a
+    do k = 2, nargs - 1
+      a = argument(k)
+      if (a == "-o" .or. a == "--output" .or. a == "--series") then
+        if (len_trim(argument(k + 1)) == 0) call usage_error("option "//a// &
+                                                              " needs a name, got ''")
+      end if
+    end do
+  end subroutine refuse_empty_names
 
   !> Check the decks and print the number of cases, without running any.
   subroutine sweep_dry_run(sweep)
@@ -317,7 +333,9 @@ contains
 
   subroutine fail(error)
     type(error_type), intent(in) :: error
+    flush (output_unit)
     write (error_unit, "(a)") "davit: error: "//error%message
+    flush (error_unit)
     stop 1, quiet=.true.
   end subroutine fail
 

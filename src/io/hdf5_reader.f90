@@ -4,13 +4,23 @@
 !> Every failure names the file and the dataset or attribute. Not thread-safe (Debian's
 !> HDF5 is built without locking): call it from one thread at a time.
 module davit_io_hdf5_reader
-  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
+  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr, c_int
   use hdf5
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   implicit none
   private
-  public :: h5_reader_type
+  public :: h5_reader_type, h5_start
+
+  interface
+    !> Keeps HDF5 from registering its atexit cleanup: after a failed close (a full disk)
+    !> that cleanup would flush a broken file and crash at exit. Every file davit opens is
+    !> closed explicitly, so there is nothing left for it to do.
+    function c_h5dont_atexit() bind(C, name="H5dont_atexit") result(status)
+      import :: c_int
+      integer(c_int) :: status
+    end function c_h5dont_atexit
+  end interface
 
   type :: h5_reader_type
     integer(hid_t) :: file = -1
@@ -29,14 +39,27 @@ module davit_io_hdf5_reader
 
 contains
 
+  !> Start HDF5 (once per process is enough; later calls are harmless) without its atexit
+  !> cleanup and without its automatic error printing.
+  subroutine h5_start()
+    integer :: hdferr
+    integer(c_int) :: status
+    logical, save :: started = .false.
+    if (.not. started) then
+      status = c_h5dont_atexit()
+      started = .true.
+    end if
+    call h5open_f(hdferr)
+    call h5eset_auto_f(0, hdferr)
+  end subroutine h5_start
+
   subroutine reader_open(self, path, error)
     class(h5_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: path
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr
     self%path = path
-    call h5open_f(hdferr)
-    call h5eset_auto_f(0, hdferr)
+    call h5_start()
     call h5fopen_f(path, H5F_ACC_RDONLY_F, self%file, hdferr)
     if (hdferr /= 0) then
       call fatal_error(error, "cannot open '"//path//"' as an HDF5 file")
@@ -110,14 +133,15 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: n, hdferr
+    integer :: n, hdferr, status
+    status = 0
     call open_1d(self, name, dset, n, error)
     if (allocated(error)) return
     allocate (x(n))
     buf = c_loc(x)
-    if (n > 0) call h5dread_f(dset, H5T_NATIVE_DOUBLE, buf, hdferr)
+    if (n > 0) call h5dread_f(dset, H5T_NATIVE_DOUBLE, buf, status)
     call h5dclose_f(dset, hdferr)
-    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
   end subroutine reader_read_1d
 
   subroutine reader_read_1d_int(self, name, x, error)
@@ -127,14 +151,25 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: n, hdferr
+    integer(hid_t) :: ftype
+    integer :: n, hdferr, status, tclass
+    status = 0
     call open_1d(self, name, dset, n, error)
     if (allocated(error)) return
+    ! integers only: a real column would be silently truncated to integer codes
+    call h5dget_type_f(dset, ftype, hdferr)
+    call h5tget_class_f(ftype, tclass, hdferr)
+    call h5tclose_f(ftype, hdferr)
+    if (tclass /= H5T_INTEGER_F) then
+      call h5dclose_f(dset, hdferr)
+      call fatal_error(error, "'"//self%path//"': dataset /"//name//" is not of integers")
+      return
+    end if
     allocate (x(n))
     buf = c_loc(x)
-    if (n > 0) call h5dread_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), buf, hdferr)
+    if (n > 0) call h5dread_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), buf, status)
     call h5dclose_f(dset, hdferr)
-    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
   end subroutine reader_read_1d_int
 
   !> Numeric dataset `name` of any rank (0-7) as reals (HDF5 converts integers), flattened
@@ -167,7 +202,8 @@ contains
     integer(hid_t) :: dset, ftype, mtype
     integer(size_t) :: width
     type(c_ptr) :: buf
-    integer :: n, hdferr
+    integer :: n, hdferr, status
+    status = 0
     call open_1d(self, name, dset, n, error)
     if (allocated(error)) return
     call h5dget_type_f(dset, ftype, hdferr)
@@ -177,10 +213,10 @@ contains
     call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
     call h5tset_size_f(mtype, width, hdferr)
     buf = c_loc(x)
-    if (n > 0) call h5dread_f(dset, mtype, buf, hdferr)
+    if (n > 0) call h5dread_f(dset, mtype, buf, status)
     call h5tclose_f(mtype, hdferr)
     call h5dclose_f(dset, hdferr)
-    if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
   end subroutine reader_read_strings
 
   !> Scalar string attribute `name` of the root group.

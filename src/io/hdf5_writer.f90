@@ -1,5 +1,11 @@
-!> HDF5 output, one file per run. The file is written under `path.tmp` and renamed to
-!> `path` only when closed, so an interrupted run never leaves a file that looks whole.
+!> HDF5 output, one file per run. The file is written under a name of its own,
+!> `path.tmp.<pid>.<n>`, and renamed to `path` only when closed, so an interrupted run never
+!> leaves a file that looks whole. While it is written, davit holds the advisory lock
+!> `path.lock` (created exclusively, holding the writer's process id): a second davit on the
+!> same output stops with a message instead of both claiming success. A lock left by a
+!> killed process (its id no longer runs) is taken over. An existing `path` is replaced only
+!> if it is a davit output (an HDF5 file with the root attribute davit_version): an input
+!> deck, a database or a folder given as the output is refused before any work.
 !> Every dataset carries `units` and `description` attributes. Time series are (components,
 !> time) in Fortran order, which h5py shows as (time, components).
 module davit_io_hdf5_writer
@@ -7,14 +13,19 @@ module davit_io_hdf5_writer
   use hdf5
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
+  use davit_io_hdf5_reader, only: h5_start
   implicit none
   private
-  public :: h5_writer_type
+  public :: h5_writer_type, check_output_path, acquire_lock, release_lock
 
   type :: h5_writer_type
     integer(hid_t) :: file = -1
     character(len=:), allocatable :: path, tmp_path
+    !> Where close() puts the file (path, unless retarget() names another).
+    character(len=:), allocatable :: final_path
     logical :: is_open = .false.
+    !> This writer took path.lock (and releases it); false when the caller holds it.
+    logical :: owns_lock = .false.
     !> First HDF5 failure while writing; reported by close().
     logical :: failed = .false.
     character(len=:), allocatable :: failed_what
@@ -31,6 +42,7 @@ module davit_io_hdf5_writer
     procedure :: attr_real => writer_attr_real
     procedure :: close => writer_close
     procedure :: discard => writer_discard
+    procedure :: retarget => writer_retarget
   end type h5_writer_type
 
   interface
@@ -39,28 +51,197 @@ module davit_io_hdf5_writer
       character(kind=c_char), intent(in) :: old(*), new(*)
       integer(c_int) :: status
     end function c_rename
+    function c_getpid() bind(C, name="getpid") result(pid)
+      import :: c_int
+      integer(c_int) :: pid
+    end function c_getpid
+    function c_kill(pid, sig) bind(C, name="kill") result(status)
+      import :: c_int
+      integer(c_int), value :: pid, sig
+      integer(c_int) :: status
+    end function c_kill
   end interface
 
 contains
 
-  !> Create `path.tmp`; fails early (before any simulation) if the path is unwritable.
+  !> Check `path`, take its lock and create the temporary file; fails early (before any
+  !> simulation) if the path is unwritable, not a davit output, or being written by
+  !> another davit.
   subroutine writer_create(self, path, error)
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: path
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr
+    integer(i8) :: count
+    character(len=40) :: suffix
     self%path = path
-    self%tmp_path = path//".tmp"
-    call h5open_f(hdferr)
-    call h5eset_auto_f(0, hdferr)
-    call h5fcreate_f(self%tmp_path, H5F_ACC_TRUNC_F, self%file, hdferr)
+    self%final_path = path
+    self%failed = .false.
+    call check_output_path(path, error)
+    if (allocated(error)) return
+    call acquire_lock(path, self%owns_lock, error)
+    if (allocated(error)) return
+    call system_clock(count)
+    write (suffix, "(a,i0,a,i0)") ".tmp.", c_getpid(), ".", modulo(count, 1000000_i8)
+    self%tmp_path = path//trim(suffix)
+    call note_tmp(path, self%tmp_path)
+    call h5_start()
+    call h5fcreate_f(self%tmp_path, H5F_ACC_EXCL_F, self%file, hdferr)
     if (hdferr /= 0) then
+      call delete_file(self%tmp_path)
+      if (self%owns_lock) call release_lock(path)
+      self%owns_lock = .false.
       call fatal_error(error, "cannot create output file '"//path// &
                        "': directory missing or not writable")
       return
     end if
     self%is_open = .true.
   end subroutine writer_create
+
+  !> Refuse an output that is a folder or an existing file that is not a davit output
+  !> (an input deck, a database, anything else): davit never replaces those.
+  subroutine check_output_path(path, error)
+    character(len=*), intent(in) :: path
+    type(error_type), allocatable, intent(out) :: error
+    logical :: exists, is_dir
+    integer(hid_t) :: file
+    integer :: hdferr
+    logical :: has_version
+    if (len(path) == 0) then
+      call fatal_error(error, "the output file name is empty")
+      return
+    end if
+    inquire (file=path//"/.", exist=is_dir)
+    if (is_dir .or. path(len(path):) == "/") then
+      call fatal_error(error, "the output '"//path//"' is a folder; name a file in it")
+      return
+    end if
+    inquire (file=path, exist=exists)
+    if (.not. exists) return
+    call h5_start()
+    has_version = .false.
+    call h5fopen_f(path, H5F_ACC_RDONLY_F, file, hdferr)
+    if (hdferr == 0) then
+      call h5aexists_by_name_f(file, "/", "davit_version", has_version, hdferr)
+      if (hdferr /= 0) has_version = .false.
+      call h5fclose_f(file, hdferr)
+    end if
+    if (.not. has_version) call fatal_error(error, "refusing to overwrite '"//path// &
+      "': it exists and is not a davit output (an input deck or a database?); "// &
+      "choose another output name")
+  end subroutine check_output_path
+
+  !> Take the advisory lock `path.lock` (created exclusively, holding this process id).
+  !> `owned` is false when this process already holds it (the caller then keeps it).
+  !> A lock whose process no longer runs is stale and taken over.
+  subroutine acquire_lock(path, owned, error)
+    character(len=*), intent(in) :: path
+    logical, intent(out) :: owned
+    type(error_type), allocatable, intent(out) :: error
+    integer :: unit, ios, attempt, pid
+    character(len=:), allocatable :: lock
+    lock = path//".lock"
+    owned = .false.
+    do attempt = 1, 3
+      open (newunit=unit, file=lock, status="new", action="write", iostat=ios)
+      if (ios == 0) then
+        write (unit, "(i0)", iostat=ios) c_getpid()
+        close (unit, iostat=ios)
+        owned = .true.
+        return
+      end if
+      pid = lock_owner(lock)
+      if (pid == c_getpid()) return
+      if (pid > 0) then
+        if (process_runs(pid)) exit
+      else
+        inquire (file=lock, exist=owned)
+        if (.not. owned) then
+          call fatal_error(error, "cannot create output file '"//path// &
+                           "' (nor its lock '"//lock//"'): directory missing or not writable")
+          return
+        end if
+        owned = .false.
+        exit  ! a lock being written by another davit this instant
+      end if
+      ! stale: its process is gone (killed); remove it and the temporary file it noted
+      if (lock_owner(lock) /= pid) cycle  ! another process took it over meanwhile
+      call delete_file(lock_tmp(lock))
+      call delete_file(lock)
+    end do
+    call fatal_error(error, "another davit run (process "//trim(int_str(pid))// &
+                     ") is writing '"//path//"' (lock '"//lock//"'); wait for it, "// &
+                     "choose another output name, or remove the lock if no davit runs")
+  end subroutine acquire_lock
+
+  !> Whether process `pid` runs (kill 0 succeeds, or it runs under another user: /proc).
+  logical function process_runs(pid)
+    integer, intent(in) :: pid
+    process_runs = c_kill(int(pid, c_int), 0_c_int) == 0
+    if (.not. process_runs) inquire (file="/proc/"//trim(int_str(pid))//"/.", &
+                                     exist=process_runs)
+  end function process_runs
+
+  !> Remove the lock `path.lock` if this process holds it.
+  subroutine release_lock(path)
+    character(len=*), intent(in) :: path
+    if (lock_owner(path//".lock") == c_getpid()) call delete_file(path//".lock")
+  end subroutine release_lock
+
+  !> Note the temporary file in the lock (line 2) so that whoever takes over a stale
+  !> lock can remove what a killed run left.
+  subroutine note_tmp(path, tmp)
+    character(len=*), intent(in) :: path, tmp
+    integer :: unit, ios
+    if (lock_owner(path//".lock") /= c_getpid()) return
+    open (newunit=unit, file=path//".lock", status="replace", action="write", iostat=ios)
+    if (ios /= 0) return
+    write (unit, "(i0)", iostat=ios) c_getpid()
+    write (unit, "(a)", iostat=ios) tmp
+    close (unit, iostat=ios)
+  end subroutine note_tmp
+
+  !> The temporary file noted in lock file `lock` (empty if none).
+  function lock_tmp(lock) result(tmp)
+    character(len=*), intent(in) :: lock
+    character(len=:), allocatable :: tmp
+    character(len=4096) :: line
+    integer :: unit, ios
+    tmp = ""
+    open (newunit=unit, file=lock, status="old", action="read", iostat=ios)
+    if (ios /= 0) return
+    read (unit, "(a)", iostat=ios) line
+    if (ios == 0) read (unit, "(a)", iostat=ios) line
+    if (ios == 0) tmp = trim(line)
+    close (unit)
+    ! only a temporary file of this lock's output, never anything else
+    if (index(tmp, lock(1:len(lock) - 5)//".tmp.") /= 1) tmp = ""
+  end function lock_tmp
+
+  !> Process id written in lock file `lock`; 0 if none can be read.
+  integer function lock_owner(lock) result(pid)
+    character(len=*), intent(in) :: lock
+    integer :: unit, ios
+    pid = 0
+    open (newunit=unit, file=lock, status="old", action="read", iostat=ios)
+    if (ios /= 0) return
+    read (unit, *, iostat=ios) pid
+    if (ios /= 0) pid = 0
+    close (unit)
+  end function lock_owner
+
+  pure function int_str(n) result(s)
+    integer, intent(in) :: n
+    character(len=12) :: s
+    write (s, "(i0)") n
+  end function int_str
+
+  !> Put the file under `path` when closed instead of the name given to create().
+  subroutine writer_retarget(self, path)
+    class(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: path
+    self%final_path = path
+  end subroutine writer_retarget
 
   subroutine writer_group(self, name)
     class(h5_writer_type), intent(inout) :: self
@@ -224,7 +405,8 @@ contains
     call h5oclose_f(oid, hdferr)
   end subroutine writer_attr_real
 
-  !> Close the file and rename it into place; reports any write failure.
+  !> Close the file and rename it into place; reports any write failure, after which the
+  !> temporary file is removed and any earlier file under the name is left as it was.
   subroutine writer_close(self, error)
     class(h5_writer_type), intent(inout) :: self
     type(error_type), allocatable, intent(out) :: error
@@ -235,15 +417,21 @@ contains
     if (self%failed .or. hdferr /= 0) then
       call delete_file(self%tmp_path)
       if (self%failed) then
-        call fatal_error(error, "writing '"//self%path//"' failed at "//self%failed_what)
+        call fatal_error(error, "writing '"//self%final_path//"' failed at "// &
+                         self%failed_what//" (disk full or not writable?); any earlier '"// &
+                         self%final_path//"' is left as it was")
       else
-        call fatal_error(error, "closing '"//self%path//"' failed")
+        call fatal_error(error, "closing '"//self%final_path//"' failed (disk full or "// &
+                         "not writable?); any earlier '"//self%final_path// &
+                         "' is left as it was")
       end if
-      return
+    else if (c_rename(self%tmp_path//c_null_char, self%final_path//c_null_char) /= 0) then
+      call delete_file(self%tmp_path)
+      call fatal_error(error, "cannot rename '"//self%tmp_path//"' to '"// &
+                       self%final_path//"'")
     end if
-    if (c_rename(self%tmp_path//c_null_char, self%path//c_null_char) /= 0) then
-      call fatal_error(error, "cannot rename '"//self%tmp_path//"' to '"//self%path//"'")
-    end if
+    if (self%owns_lock) call release_lock(self%path)
+    self%owns_lock = .false.
   end subroutine writer_close
 
   !> Close and delete the temporary file (nothing is left behind).
@@ -254,6 +442,8 @@ contains
     call h5fclose_f(self%file, hdferr)
     self%is_open = .false.
     call delete_file(self%tmp_path)
+    if (self%owns_lock) call release_lock(self%path)
+    self%owns_lock = .false.
   end subroutine writer_discard
 
   subroutine describe(self, dset, units, description)
@@ -302,6 +492,7 @@ contains
   subroutine delete_file(path)
     character(len=*), intent(in) :: path
     integer :: unit, ios
+    if (len(path) == 0) return
     open (newunit=unit, file=path, status="old", iostat=ios)
     if (ios == 0) close (unit, status="delete")
   end subroutine delete_file

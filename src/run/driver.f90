@@ -2,14 +2,15 @@
 !> record at exact multiples of the output interval
 !> and write the HDF5 file. One time loop serves every scene; each scene brings its recorder.
 !> A non-finite state (or an unphysical speed) stops the run with a diagnostic naming the
-!> time and the offending quantity; the partial record is still written, marked incomplete.
+!> time and the offending quantity; the partial record is still written, marked incomplete,
+!> under the output name, or beside an existing output (OUT.partial.h5), which stays as it was.
 module davit_run_driver
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type, simulation_config
   use davit_io_deck_reader, only: fmt_real
-  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_hdf5_writer, only: h5_writer_type, check_output_path
   use davit_solve_integrator, only: integrator_type, ode_problem
   use davit_solve_factory, only: new_integrator
   use davit_solve_step_control, only: stretch_to
@@ -76,6 +77,8 @@ contains
     class(step_monitor), intent(inout), optional :: monitor
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: run_error, io_error
+    character(len=:), allocatable :: kept
+    logical :: exists
 
     call writer%create(out_path, error)
     if (allocated(error)) return
@@ -87,15 +90,56 @@ contains
     call rec%write(problem, writer)
     if (present(monitor)) call monitor%write(problem, writer)
     call write_root_attributes(writer, cfg, summary, cfg%simulation%integrator, run_error)
+    ! A failed run never replaces an existing output: its partial record goes beside it.
+    kept = out_path
+    if (allocated(run_error)) then
+      inquire (file=out_path, exist=exists)
+      if (exists) then
+        kept = partial_path(out_path)
+        call check_output_path(kept, io_error)
+        if (allocated(io_error)) then  ! OUT.partial.h5 is someone else's file: keep it
+          call writer%discard()
+          call move_alloc(run_error, error)
+          error%message = error%message//"; partial record not kept: "// &
+                          io_error%message//"; the earlier '"//out_path// &
+                          "' is left as it was"
+          return
+        end if
+      end if
+      call writer%retarget(kept)
+    end if
     call writer%close(io_error)
     if (allocated(run_error)) then
       call move_alloc(run_error, error)
-      error%message = error%message//"; partial output kept in '"//out_path// &
-                      "' (attribute complete = 0)"
+      if (allocated(io_error)) then
+        error%message = error%message//"; "//io_error%message
+      else if (kept /= out_path) then
+        error%message = error%message//"; partial output kept in '"//kept// &
+                        "' (attribute complete = 0); the earlier '"//out_path// &
+                        "' is left as it was"
+      else
+        error%message = error%message//"; partial output kept in '"//out_path// &
+                        "' (attribute complete = 0)"
+      end if
     else if (allocated(io_error)) then
       call move_alloc(io_error, error)
     end if
   end subroutine integrate_scene
+
+  !> OUT.partial.h5 for OUT.h5 (OUT.partial.h5 for a name without .h5 too).
+  pure function partial_path(path) result(partial)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: partial
+    integer :: n
+    n = len(path)
+    if (n > 3) then
+      if (path(n - 2:) == ".h5") then
+        partial = path(1:n - 3)//".partial.h5"
+        return
+      end if
+    end if
+    partial = path//".partial.h5"
+  end function partial_path
 
   !> The time loop shared by all integrated scenes: from t = 0 to t_end, or until the
   !> monitor ends the run, sampling `rec` (in memory) at exact multiples of the output

@@ -13,7 +13,7 @@ module davit_sweep_driver
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
-  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_hdf5_writer, only: h5_writer_type, check_output_path, acquire_lock, release_lock
   use davit_io_namelist, only: int_to_str
   use davit_io_deck_reader, only: fmt_real
   use davit_system_model, only: system_type
@@ -86,9 +86,30 @@ contains
     integer, allocatable :: pending(:)
     real(wp) :: clearance0
     integer :: k, claimed, slot, nthreads
-    logical :: exists
+    logical :: exists, own_lock
 
+    ! The whole set-up is checked before the summary is touched: decks, output name and
+    ! lock, series folder, and the earlier summary when resuming.
     call prepare_cases(s, cases, clearance0, error)
+    if (allocated(error)) return
+    call check_output_path(out_path, error)
+    if (allocated(error)) return
+    if (len(series(opts)) > 0) then
+      if (series(opts) == out_path) then
+        call fatal_error(error, "the series folder and the summary are both '"//out_path// &
+                         "'; name two different paths")
+        return
+      end if
+    end if
+    call acquire_lock(out_path, own_lock, error)
+    if (allocated(error)) return
+    call sweep_body()
+    if (own_lock) call release_lock(out_path)
+
+  contains
+
+  subroutine sweep_body()
+    if (len(series(opts)) > 0) call make_folder(series(opts), error)
     if (allocated(error)) return
     allocate (state%results(size(cases)))
     state%results = not_run_result()
@@ -104,8 +125,6 @@ contains
     if (opts%max_cases > 0) state%todo = min(state%todo, opts%max_cases)
     ! a valid summary from the start (also checks that the path is writable)
     call write_summary(out_path, s, cases, state%results, nthreads, series(opts), error)
-    if (allocated(error)) return
-    if (len(series(opts)) > 0) call make_folder(series(opts), error)
     if (allocated(error)) return
     call system_clock(state%clock0, state%rate)
     state%last_progress = state%clock0
@@ -138,6 +157,8 @@ contains
     outcome%ran = state%done
     outcome%threads = nthreads
     outcome%wall_time = seconds_since(state, state%clock0)
+  end subroutine sweep_body
+
   end subroutine run_sweep
 
   !> The cases of the sweep and the base deck's initial clearance [m].

@@ -5,6 +5,7 @@
 !> which the unfinished cases have status 0. postproc/layout.py holds the same names.
 !> HDF5 is not thread-safe here: call these from one thread at a time.
 module davit_sweep_summary
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use davit_kinds, only: wp, i8, davit_version
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_writer, only: h5_writer_type
@@ -186,6 +187,7 @@ contains
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: text
     integer(i8) :: n
+    integer(i8), allocatable :: index(:)
     call f%attr_str("sweep_namelist", text, error)
     if (allocated(error)) return
     if (text /= s%deck_text) then
@@ -205,76 +207,146 @@ contains
     call f%attr_int("ncase", n, error)
     if (allocated(error)) return
     if (n /= ncase) call fatal_error(error, "'"//f%path//"' holds a different number of cases")
+    if (allocated(error)) return
+    call int_column(f, "cases/index", ncase, 1_i8, int(ncase, i8), index, error)
   end subroutine check_same_sweep
 
+  !> Every results column, each checked for presence, length (ncase) and range, so that a
+  !> damaged or crafted summary is refused instead of misread.
   subroutine read_rows(f, r, error)
     type(h5_reader_type), intent(inout) :: f
     type(case_result), intent(inout) :: r(:)
     type(error_type), allocatable, intent(out) :: error
     integer(i8), allocatable :: iv(:)
-    real(wp), allocatable :: rv(:)
     character(len=:), allocatable :: sv(:)
     integer :: i
-    call f%read_1d_int("results/status", iv, error)
-    if (.not. allocated(error)) r%status = int(iv)
-    if (.not. allocated(error)) call f%read_strings("results/message", sv, error)
+    call int_column(f, "results/status", size(r), 0_i8, 2_i8, iv, error)
+    if (allocated(error)) return
+    r%status = int(iv)
+    call int_column(f, "results/collided", size(r), -1_i8, 1_i8, iv, error)
+    if (allocated(error)) return
+    r%collided = int(iv)
+    call int_column(f, "results/impacts", size(r), -1_i8, huge(1_i8), iv, error)
+    if (allocated(error)) return
+    r%impacts = int(min(iv, int(huge(1), i8)))
+    call int_column(f, "results/steps", size(r), 0_i8, huge(1_i8), iv, error)
+    if (allocated(error)) return
+    r%steps = iv
+    call int_column(f, "results/rhs_evaluations", size(r), 0_i8, huge(1_i8), iv, error)
+    if (allocated(error)) return
+    r%rhs_evaluations = iv
+    call string_column(f, "results/message", size(r), sv, error)
     if (allocated(error)) return
     do i = 1, size(r)
       r(i)%message = trim(sv(i))
     end do
-    call f%read_1d_int("results/collided", iv, error)
-    if (.not. allocated(error)) r%collided = int(iv)
-    if (.not. allocated(error)) call f%read_1d_int("results/impacts", iv, error)
-    if (.not. allocated(error)) r%impacts = int(iv)
-    if (.not. allocated(error)) call f%read_1d_int("results/steps", iv, error)
-    if (.not. allocated(error)) r%steps = iv
-    if (.not. allocated(error)) call f%read_1d_int("results/rhs_evaluations", iv, error)
-    if (.not. allocated(error)) r%rhs_evaluations = iv
-    if (.not. allocated(error)) call f%read_1d("results/min_clearance", rv, error)
-    if (.not. allocated(error)) r%min_clearance = rv
-    if (.not. allocated(error)) call f%read_1d("results/peak_horizontal_acceleration", rv, error)
-    if (.not. allocated(error)) r%peak_horizontal_acceleration = rv
-    if (.not. allocated(error)) call f%read_1d("results/peak_vertical_acceleration", rv, error)
-    if (.not. allocated(error)) r%peak_vertical_acceleration = rv
-    if (.not. allocated(error)) call f%read_1d("results/peak_segment_tension", rv, error)
-    if (.not. allocated(error)) r%peak_segment_tension = rv
-    if (.not. allocated(error)) call f%read_1d("results/first_contact_time", rv, error)
-    if (.not. allocated(error)) r%first_contact_time = rv
-    if (.not. allocated(error)) call f%read_1d("results/waterborne_time", rv, error)
-    if (.not. allocated(error)) r%waterborne_time = rv
-    if (.not. allocated(error)) call f%read_1d("results/end_time", rv, error)
-    if (.not. allocated(error)) r%end_time = rv
-    if (.not. allocated(error)) call f%read_1d("results/wall_time", rv, error)
-    if (.not. allocated(error)) r%wall_time = rv
-    if (.not. allocated(error)) call read_log_columns(f, r, error)
-  end subroutine read_rows
-
-  subroutine read_log_columns(f, r, error)
-    type(h5_reader_type), intent(inout) :: f
-    type(case_result), intent(inout) :: r(:)
-    type(error_type), allocatable, intent(out) :: error
-    real(wp), allocatable :: rv(:)
-    character(len=:), allocatable :: sv(:)
-    integer :: i
-    call f%read_1d("results/peak_sling_tension", rv, error)
-    if (.not. allocated(error)) r%peak_sling_tension = rv
-    if (.not. allocated(error)) call f%read_1d("results/peak_fall_tension", rv, error)
-    if (.not. allocated(error)) r%peak_fall_tension = rv
-    if (.not. allocated(error)) call f%read_1d("results/max_impact_speed", rv, error)
-    if (.not. allocated(error)) r%max_impact_speed = rv
-    if (.not. allocated(error)) call f%read_1d("results/peak_seat_acceleration", rv, error)
-    if (.not. allocated(error)) r%peak_seat_acceleration = rv
-    if (.not. allocated(error)) call f%read_1d("results/swl_exceeded_time", rv, error)
-    if (.not. allocated(error)) r%swl_exceeded_time = rv
-    if (.not. allocated(error)) call f%read_1d("results/mbl_exceeded_time", rv, error)
-    if (.not. allocated(error)) r%mbl_exceeded_time = rv
-    if (.not. allocated(error)) call f%read_1d("results/impact_speed_exceeded_time", rv, error)
-    if (.not. allocated(error)) r%impact_speed_exceeded_time = rv
-    if (.not. allocated(error)) call f%read_strings("results/outcome", sv, error)
+    call string_column(f, "results/outcome", size(r), sv, error)
     if (allocated(error)) return
     do i = 1, size(r)
       r(i)%outcome = trim(sv(i))
     end do
-  end subroutine read_log_columns
+    call real_column(f, "results/min_clearance", r%min_clearance, error)
+    if (.not. allocated(error)) call real_column(f, "results/peak_horizontal_acceleration", &
+                                                 r%peak_horizontal_acceleration, error)
+    if (.not. allocated(error)) call real_column(f, "results/peak_vertical_acceleration", &
+                                                 r%peak_vertical_acceleration, error)
+    if (.not. allocated(error)) call real_column(f, "results/peak_segment_tension", &
+                                                 r%peak_segment_tension, error)
+    if (.not. allocated(error)) call real_column(f, "results/first_contact_time", &
+                                                 r%first_contact_time, error)
+    if (.not. allocated(error)) call real_column(f, "results/waterborne_time", &
+                                                 r%waterborne_time, error)
+    if (.not. allocated(error)) call real_column(f, "results/end_time", r%end_time, error)
+    if (.not. allocated(error)) call real_column(f, "results/wall_time", r%wall_time, error)
+    if (.not. allocated(error)) call real_column(f, "results/peak_sling_tension", &
+                                                 r%peak_sling_tension, error)
+    if (.not. allocated(error)) call real_column(f, "results/peak_fall_tension", &
+                                                 r%peak_fall_tension, error)
+    if (.not. allocated(error)) call real_column(f, "results/max_impact_speed", &
+                                                 r%max_impact_speed, error)
+    if (.not. allocated(error)) call real_column(f, "results/peak_seat_acceleration", &
+                                                 r%peak_seat_acceleration, error)
+    if (.not. allocated(error)) call real_column(f, "results/swl_exceeded_time", &
+                                                 r%swl_exceeded_time, error)
+    if (.not. allocated(error)) call real_column(f, "results/mbl_exceeded_time", &
+                                                 r%mbl_exceeded_time, error)
+    if (.not. allocated(error)) call real_column(f, "results/impact_speed_exceeded_time", &
+                                                 r%impact_speed_exceeded_time, error)
+    if (allocated(error)) return
+    do i = 1, size(r)
+      if (r(i)%status == 1 .and. (.not. ieee_is_finite(r(i)%wall_time) .or. &
+                                  r(i)%wall_time < 0.0_wp)) then
+        call fatal_error(error, "'"//f%path//"': /results/wall_time of case "// &
+                         int_text(int(i, i8))//" (status 1) is not a finite time >= 0")
+        return
+      end if
+    end do
+  end subroutine read_rows
+
+  !> Integer column `name` of length n with every value in lo..hi.
+  subroutine int_column(f, name, n, lo, hi, iv, error)
+    type(h5_reader_type), intent(inout) :: f
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: n
+    integer(i8), intent(in) :: lo, hi
+    integer(i8), allocatable, intent(out) :: iv(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer :: k
+    call f%read_1d_int(name, iv, error)
+    if (allocated(error)) return
+    call check_length(f, name, size(iv), n, error)
+    if (allocated(error)) return
+    do k = 1, n
+      if (iv(k) < lo .or. iv(k) > hi) then
+        call fatal_error(error, "'"//f%path//"': /"//name//"("//int_text(int(k, i8))// &
+                         ") = "//int_text(iv(k))//" is out of range "//int_text(lo)// &
+                         " .. "//int_text(hi))
+        return
+      end if
+    end do
+  end subroutine int_column
+
+  !> Real column `name` of length size(v), read into v.
+  subroutine real_column(f, name, v, error)
+    type(h5_reader_type), intent(inout) :: f
+    character(len=*), intent(in) :: name
+    real(wp), intent(inout) :: v(:)
+    type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: rv(:)
+    call f%read_1d(name, rv, error)
+    if (allocated(error)) return
+    call check_length(f, name, size(rv), size(v), error)
+    if (allocated(error)) return
+    v = rv
+  end subroutine real_column
+
+  subroutine string_column(f, name, n, sv, error)
+    type(h5_reader_type), intent(inout) :: f
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: n
+    character(len=:), allocatable, intent(out) :: sv(:)
+    type(error_type), allocatable, intent(out) :: error
+    call f%read_strings(name, sv, error)
+    if (allocated(error)) return
+    call check_length(f, name, size(sv), n, error)
+  end subroutine string_column
+
+  subroutine check_length(f, name, got, n, error)
+    type(h5_reader_type), intent(in) :: f
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: got, n
+    type(error_type), allocatable, intent(out) :: error
+    if (got /= n) call fatal_error(error, "'"//f%path//"': /"//name//" has "// &
+                                   int_text(int(got, i8))//" rows, the sweep has "// &
+                                   int_text(int(n, i8))//" cases")
+  end subroutine check_length
+
+  pure function int_text(n) result(s)
+    integer(i8), intent(in) :: n
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, "(i0)") n
+    s = trim(buf)
+  end function int_text
 
 end module davit_sweep_summary
