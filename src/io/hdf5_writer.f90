@@ -48,12 +48,17 @@ contains
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: path
     type(error_type), allocatable, intent(out) :: error
-    integer :: hdferr
+    integer :: hdferr, perr
+    integer(hid_t) :: fapl
     self%path = path
     self%tmp_path = path//".tmp"
     call h5open_f(hdferr)
     call h5eset_auto_f(0, hdferr)
-    call h5fcreate_f(self%tmp_path, H5F_ACC_TRUNC_F, self%file, hdferr)
+    ! The 1.8 file format stores attributes over 64 KiB (a long deck's text) densely.
+    call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, perr)
+    call h5pset_libver_bounds_f(fapl, H5F_LIBVER_V18_F, H5F_LIBVER_LATEST_F, perr)
+    call h5fcreate_f(self%tmp_path, H5F_ACC_TRUNC_F, self%file, hdferr, access_prp=fapl)
+    call h5pclose_f(fapl, perr)
     if (hdferr /= 0) then
       call fatal_error(error, "cannot create output file '"//path// &
                        "': directory missing or not writable")
