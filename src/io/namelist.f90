@@ -89,6 +89,10 @@ contains
     allocate (character(len=len(text)) :: body)
     allocate (body_line(len(text) + 1))
     pos = 1
+    ! a UTF-8 byte-order mark, as some editors write, is not deck text
+    if (len(text) >= 3) then
+      if (text(1:3) == achar(239)//achar(187)//achar(191)) pos = 4
+    end if
     line = 0
     nb = 0
     group = ""

@@ -173,6 +173,18 @@ def test_deck_that_is_a_directory(davit, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["dir.nml"]
 
 
+def test_crlf_tabs_and_byte_order_mark_are_accepted(davit, tmp_path):
+    deck = tmp_path / "win.nml"
+    deck.write_bytes(b"\xef\xbb\xbf! saved by a Windows editor\r\n&simulation\tt_end = 0.01,\r\n"
+                     b"\tdt = 1.0d-3, output_interval = 0.01 /\r\n")
+    out = tmp_path / "win.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(out) as f:
+        assert f.attrs["dt"] == 1e-3
+        assert f.attrs["input_namelist"] == deck.read_bytes()
+
+
 # Long but valid decks (class 7): the text over HDF5's 64 KiB compact attribute limit.
 def _padding(kb):
     line = "! a long comment, as a study's provenance notes might be ...................\n"
