@@ -22,6 +22,7 @@ contains
     type(suite_type) :: suite
     suite%name = "deck"
     suite%cases = [new_case("malformed_decks_table", malformed_decks), &
+                   new_case("number_forms", number_forms), &
                    new_case("missing_file", missing_file), &
                    new_case("full_syntax", full_syntax), &
                    new_case("defaults_documented_and_valid", defaults_documented)]
@@ -65,7 +66,33 @@ contains
       bad("&boat mass = 0 /", "mass = 0: out of range; allowed: 0 < mass <= 1e6 [kg]"), &
       bad("&slings damping = NaN /", "&slings: damping = NaN: not a real number"), &
       bad("&simulation fixed_step = 1 /", &
-          "&simulation: fixed_step = 1: not a logical; allowed: .true. or .false.") ]
+          "&simulation: fixed_step = 1: not a logical; allowed: .true. or .false."), &
+      ! expressions and malformed numbers that list-directed READ would misread
+      bad("&simulation dt = 1-3 /", &
+          "t.nml:1: &simulation: dt = 1-3: not a real number; allowed: 0 < dt <= 1 [s]"), &
+      bad("&boat"//nl//" position = 0.0, 13.3, -15-1 /", &
+          "t.nml:2: &boat: position = 0.0, 13.3, -15-1: item 3 ('-15-1') is not a real number"), &
+      bad("&simulation dt = 1e /", "t.nml:1: &simulation: dt = 1e: not a real number"), &
+      bad("&simulation dt = 1..2 /", "t.nml:1: &simulation: dt = 1..2: not a real number"), &
+      bad("&simulation dt = 0x10 /", "t.nml:1: &simulation: dt = 0x10: not a real number"), &
+      bad("&simulation dt = 1e-3e1 /", "&simulation: dt = 1e-3e1: not a real number"), &
+      bad("&simulation dt = +-1e-3 /", "&simulation: dt = +-1e-3: not a real number"), &
+      bad("&simulation dt = . /", "&simulation: dt = .: not a real number"), &
+      bad("&simulation dt = 2*1e-3 /", "&simulation: dt = 2*1e-3: not a real number"), &
+      bad("&simulation dt = Inf /", "&simulation: dt = Inf: not a real number"), &
+      bad("&simulation seed = 1-3 /", "&simulation: seed = 1-3: not an integer"), &
+      bad("&simulation seed = +-3 /", "&simulation: seed = +-3: not an integer"), &
+      bad("&simulation seed = 1e3 /", "&simulation: seed = 1e3: not an integer"), &
+      bad("&simulation fixed_step = .true.x /", "fixed_step = .true.x: not a logical"), &
+      ! cross-key checks name the line of a key involved
+      bad("&simulation"//nl//" dt = 0.5"//nl//"/", &
+          "t.nml:2: &simulation: output_interval = 0.01 must be >= dt = 0.5"), &
+      bad("&simulation"//nl//" dt = 0.01,"//nl//" output_interval = 0.001 /", &
+          "t.nml:3: &simulation: output_interval = 0.001 must be >= dt = 0.01"), &
+      bad("&sea"//nl//nl//" probes_x = 1.0, 2.0, probes_y = 3.0 /", &
+          "t.nml:3: &sea: probes_x and probes_y must have the same number of values"), &
+      bad("&slings"//nl//" hook_aft = 4.6, 0.0, -1.55 /", &
+          "t.nml:2: &slings: hook_fore and hook_aft must differ") ]
     do i = 1, size(table)
       call parse_config("t.nml", table(i)%text, cfg, error)
       call check_true(state, allocated(error), "deck "//table(i)%text//" must be rejected")
@@ -74,6 +101,24 @@ contains
                       "message '"//error%message//"' must contain '"//table(i)%expected//"'")
     end do
   end subroutine malformed_decks
+
+  !> The real forms Fortran and namelists write are all read exactly.
+  subroutine number_forms(state)
+    type(case_state), intent(inout) :: state
+    character(len=12), parameter :: forms(9) = [character(len=12) :: "1e-3", "1.0e-3", &
+      "1.0d-3", "1.0D-3", ".1e-2", "1.e-3", "+1E-3", "0.001", "1e-03"]
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    integer :: i
+    do i = 1, size(forms)
+      call parse_config("t.nml", "&simulation dt = "//trim(forms(i))//", seed = +7, "// &
+                        "fixed_step = T, t_end = 5. /", cfg, error)
+      call check_true(state, .not. allocated(error), "dt = "//trim(forms(i))//" accepted")
+      if (allocated(error)) cycle
+      call check(state, cfg%simulation%dt, 1.0e-3_wp, "dt = "//trim(forms(i)), abs_tol=0.0_wp)
+      call check_true(state, cfg%simulation%seed == 7, "seed = +7")
+    end do
+  end subroutine number_forms
 
   subroutine missing_file(state)
     type(case_state), intent(inout) :: state

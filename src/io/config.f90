@@ -4,7 +4,7 @@ module davit_io_config
   use davit_kinds, only: wp, pi
   use davit_sea_spectrum, only: spectrum_peak_omega
   use davit_error, only: error_type, fatal_error
-  use davit_io_namelist, only: nml_deck, read_deck, parse_deck
+  use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_rigging_keys, only: rigging_config, read_rigging
   use davit_io_ship_keys, only: ship_config, read_ship
@@ -154,7 +154,7 @@ contains
     if (allocated(error)) return
     cfg%filename = deck%filename
     cfg%deck_text = deck%text
-    call check_consistency(cfg, error)
+    call check_consistency(cfg, deck, error)
   end subroutine config_from_deck
 
   subroutine read_all(r, cfg)
@@ -513,42 +513,55 @@ contains
   end function level_wind_speed
 
   !> Checks that involve more than one key.
-  subroutine check_consistency(cfg, error)
+  !> Each message names the line of one of the keys involved (the first the deck sets).
+  subroutine check_consistency(cfg, deck, error)
     type(config_type), intent(in) :: cfg
+    type(nml_deck), intent(in) :: deck
     type(error_type), allocatable, intent(out) :: error
     associate (s => cfg%simulation)
       if (s%output_interval < s%dt) then
-        call fatal_error(error, cfg%filename//": &simulation: output_interval = "// &
-                         fmt_real(s%output_interval)//" must be >= dt = "//fmt_real(s%dt))
+        call fatal_error(error, at("simulation", "output_interval", "dt")// &
+                         "&simulation: output_interval = "//fmt_real(s%output_interval)// &
+                         " must be >= dt = "//fmt_real(s%dt))
         return
       end if
       if (s%t_end < s%dt) then
-        call fatal_error(error, cfg%filename//": &simulation: t_end = "//fmt_real(s%t_end)// &
-                         " must be >= dt = "//fmt_real(s%dt))
+        call fatal_error(error, at("simulation", "t_end", "dt")//"&simulation: t_end = "// &
+                         fmt_real(s%t_end)//" must be >= dt = "//fmt_real(s%dt))
         return
       end if
     end associate
     if (cfg%sea%omega_min >= cfg%sea%omega_max) then
-      call fatal_error(error, cfg%filename//": &sea: omega_min = "// &
+      call fatal_error(error, at("sea", "omega_min", "omega_max")//"&sea: omega_min = "// &
                        fmt_real(cfg%sea%omega_min)//" must be < omega_max = "// &
                        fmt_real(cfg%sea%omega_max))
       return
     end if
     if (size(cfg%sea%probes_x) /= size(cfg%sea%probes_y)) then
-      call fatal_error(error, cfg%filename//": &sea: probes_x and probes_y must have the "// &
-                       "same number of values")
+      call fatal_error(error, at("sea", "probes_x", "probes_y")// &
+                       "&sea: probes_x and probes_y must have the same number of values")
       return
     end if
     if (cfg%contact%fender_z(1) > cfg%contact%fender_z(2)) then
-      call fatal_error(error, cfg%filename//": &contact: fender_z = "// &
+      call fatal_error(error, at("contact", "fender_z", "fender_z")//"&contact: fender_z = "// &
                        fmt_real(cfg%contact%fender_z(1))//", "// &
                        fmt_real(cfg%contact%fender_z(2))//" must be (lower, upper) with "// &
                        "lower <= upper")
       return
     end if
     if (norm2(cfg%slings%hook_fore - cfg%slings%hook_aft) < 1.0e-6_wp) then
-      call fatal_error(error, cfg%filename//": &slings: hook_fore and hook_aft must differ")
+      call fatal_error(error, at("slings", "hook_fore", "hook_aft")// &
+                       "&slings: hook_fore and hook_aft must differ")
     end if
+
+  contains
+
+    function at(group, key1, key2) result(where)
+      character(len=*), intent(in) :: group, key1, key2
+      character(len=:), allocatable :: where
+      where = key_at(deck, group, [character(len=max(len(key1), len(key2))) :: key1, key2])
+    end function at
+
   end subroutine check_consistency
 
 end module davit_io_config

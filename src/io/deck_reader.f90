@@ -5,8 +5,9 @@ module davit_io_deck_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
-  use davit_io_namelist, only: nml_deck, to_lower, int_to_str
+  use davit_io_namelist, only: nml_deck, to_lower, int_to_str, find_entry, shown
   use davit_io_text, only: count_range, optional_text, join_ints, join_logicals, is_number, &
+                           is_integer, &
                            unquote, join_reals, fmt_real
   implicit none
   private
@@ -137,18 +138,20 @@ contains
       return
     end if
     do i = 1, size(x)
-      read (items(i), *, iostat=ios) x(i)
-      if (ios /= 0 .or. .not. is_number(items(i))) then
+      ios = 1
+      if (is_number(items(i))) read (items(i), *, iostat=ios) x(i)
+      if (ios /= 0) then
         if (size(x) == 1) then
           call self%fail(line, group, key, value, "not a real number", allowed, units)
         else
           call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
-                         trim(items(i))//"') is not a real number", allowed, units)
+                         shown(trim(items(i)))//"') is not a real number", allowed, units)
         end if
         return
       end if
       if (.not. ieee_is_finite(x(i))) then
-        call self%fail(line, group, key, value, "must be finite", allowed, units)
+        ! a well-formed number beyond the largest real
+        call self%fail(line, group, key, value, "out of range", allowed, units)
         return
       end if
       if (x(i) < lo .or. x(i) > hi .or. (lop .and. x(i) == lo) .or. (hop .and. x(i) == hi)) then
@@ -174,9 +177,14 @@ contains
     end if
     n = default
     if (.not. lookup(self, group, key, value, line)) return
-    read (value, *, iostat=ios) n
-    if (ios /= 0 .or. verify(trim(value), "+-0123456789") /= 0) then
+    if (.not. is_integer(value)) then
       call self%fail(line, group, key, value, "not an integer", allowed, units)
+      return
+    end if
+    read (value, *, iostat=ios) n
+    if (ios /= 0) then
+      ! well-formed but beyond the default integer
+      call self%fail(line, group, key, value, "out of range", allowed, units)
       return
     end if
     if (n < lo .or. n > hi) call self%fail(line, group, key, value, "out of range", allowed, units)
@@ -266,10 +274,14 @@ contains
     deallocate (x)
     allocate (x(size(items)))
     do i = 1, size(items)
-      read (items(i), *, iostat=ios) x(i)
-      if (ios /= 0 .or. verify(trim(items(i)), "+-0123456789") /= 0) then
+      if (.not. is_integer(items(i))) then
         call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
-                       trim(items(i))//"') is not an integer", allowed, units)
+                       shown(trim(items(i)))//"') is not an integer", allowed, units)
+        return
+      end if
+      read (items(i), *, iostat=ios) x(i)
+      if (ios /= 0) then
+        call self%fail(line, group, key, value, "out of range", allowed, units)
         return
       end if
       if (x(i) < lo .or. x(i) > hi) then
@@ -306,7 +318,7 @@ contains
         x(i) = .false.
       case default
         call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
-                       trim(items(i))//"') is not a logical", allowed, "-")
+                       shown(trim(items(i)))//"') is not a logical", allowed, "-")
         return
       end select
     end do
@@ -356,14 +368,7 @@ contains
   logical function reader_has(self, group, key) result(found)
     class(deck_reader_type), intent(in) :: self
     character(len=*), intent(in) :: group, key
-    integer :: i
-    found = .false.
-    do i = 1, size(self%deck%entries)
-      if (self%deck%entries(i)%group == group .and. self%deck%entries(i)%key == key) then
-        found = .true.
-        return
-      end if
-    end do
+    found = find_entry(self%deck, group, key) > 0
   end function reader_has
 
   !> The items of a list key if the deck sets it with an allowed count; false if it is
@@ -398,7 +403,7 @@ contains
     character(len=:), allocatable :: msg
     if (allocated(self%error)) return
     msg = self%deck%filename//":"//int_to_str(line)//": &"//group//": "//key//" = "// &
-          value//": "//problem//"; allowed: "//allowed
+          shown(value)//": "//problem//"; allowed: "//allowed
     if (units /= "-" .and. len(units) > 0) msg = msg//" ["//units//"]"
     call fatal_error(self%error, msg)
   end subroutine reader_fail
@@ -471,42 +476,43 @@ contains
     line = 0
     value = ""
     if (allocated(self%error)) return
-    do i = 1, size(self%deck%entries)
-      if (self%deck%entries(i)%group == group .and. self%deck%entries(i)%key == key) then
-        self%deck%entries(i)%used = .true.
-        value = self%deck%entries(i)%value
-        line = self%deck%entries(i)%line
-        found = .true.
-        return
-      end if
-    end do
+    i = find_entry(self%deck, group, key)
+    if (i == 0) return
+    self%deck%entries(i)%used = .true.
+    value = self%deck%entries(i)%value
+    line = self%deck%entries(i)%line
+    found = .true.
   end function lookup
 
-  !> Split a value list on commas and blanks.
+  !> Split a value list on commas and blanks (two passes: count and widest item, then fill).
   subroutine split_items(value, items)
     character(len=*), intent(in) :: value
     character(len=:), allocatable, intent(out) :: items(:)
-    integer :: i, n, start
+    integer :: i, n, start, width, pass
     character(len=len(value) + 1) :: v
     v = value
     do i = 1, len(v)
       if (v(i:i) == ",") v(i:i) = " "
     end do
-    allocate (character(len=max(1, len(value))) :: items(0))
-    n = 0
-    i = 1
-    do while (i <= len_trim(v))
-      if (v(i:i) == " ") then
-        i = i + 1
-        cycle
-      end if
-      start = i
+    width = 1
+    do pass = 1, 2
+      if (pass == 2) allocate (character(len=width) :: items(n))
+      n = 0
+      i = 1
       do while (i <= len(v))
-        if (v(i:i) == " ") exit
-        i = i + 1
+        if (v(i:i) == " ") then
+          i = i + 1
+          cycle
+        end if
+        start = i
+        do while (i <= len(v))
+          if (v(i:i) == " ") exit
+          i = i + 1
+        end do
+        n = n + 1
+        if (pass == 1) width = max(width, i - start)
+        if (pass == 2) items(n) = v(start:i - 1)
       end do
-      n = n + 1
-      items = [character(len=max(1, len(value))) :: items, v(start:i - 1)]
     end do
   end subroutine split_items
 

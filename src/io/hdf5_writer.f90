@@ -71,7 +71,8 @@ contains
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: path
     type(error_type), allocatable, intent(out) :: error
-    integer :: hdferr
+    integer :: hdferr, perr
+    integer(hid_t) :: fapl
     integer(i8) :: count
     character(len=40) :: suffix
     self%path = path
@@ -86,7 +87,11 @@ contains
     self%tmp_path = path//trim(suffix)
     call note_tmp(path, self%tmp_path)
     call h5_start()
-    call h5fcreate_f(self%tmp_path, H5F_ACC_EXCL_F, self%file, hdferr)
+    ! The 1.8 file format stores attributes over 64 KiB (a long deck's text) densely.
+    call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, perr)
+    call h5pset_libver_bounds_f(fapl, H5F_LIBVER_V18_F, H5F_LIBVER_LATEST_F, perr)
+    call h5fcreate_f(self%tmp_path, H5F_ACC_EXCL_F, self%file, hdferr, access_prp=fapl)
+    call h5pclose_f(fapl, perr)
     if (hdferr /= 0) then
       call delete_file(self%tmp_path)
       if (self%owns_lock) call release_lock(path)

@@ -8,7 +8,8 @@ module davit_io_namelist
   use davit_error, only: error_type, fatal_error
   implicit none
   private
-  public :: nml_entry, nml_deck, read_deck, parse_deck, to_lower, int_to_str
+  public :: nml_entry, nml_deck, read_deck, parse_deck, to_lower, int_to_str, find_entry, key_at, &
+            shown
 
   type :: nml_entry
     character(len=:), allocatable :: group, key, value
@@ -23,6 +24,9 @@ module davit_io_namelist
     type(nml_entry), allocatable :: entries(:)
     character(len=64), allocatable :: groups(:)
     integer, allocatable :: group_lines(:)
+    !> Open-addressing hash of (group, key) -> index in entries (0 = empty slot), so that
+    !> parsing and every lookup stay linear in the deck size.
+    integer, allocatable :: slot(:)
   end type nml_deck
 
   character(len=*), parameter :: ident_chars = "abcdefghijklmnopqrstuvwxyz0123456789_"
@@ -70,13 +74,25 @@ contains
     integer, allocatable :: body_line(:)
     integer :: pos, line, eol, open_line, nb
     character(len=:), allocatable :: raw
+    type(nml_entry), allocatable :: entries(:)
+    character(len=64), allocatable :: groups(:)
+    integer, allocatable :: group_lines(:), group_slot(:)
+    integer :: nentry, ngroup, k
 
     deck%filename = filename
     deck%text = text
-    allocate (deck%entries(0), deck%groups(0), deck%group_lines(0))
+    nentry = 0
+    ngroup = 0
+    allocate (entries(64), groups(16), group_lines(16), group_slot(64), deck%slot(128))
+    group_slot = 0
+    deck%slot = 0
     allocate (character(len=len(text)) :: body)
     allocate (body_line(len(text) + 1))
     pos = 1
+    ! a UTF-8 byte-order mark, as some editors write, is not deck text
+    if (len(text) >= 3) then
+      if (text(1:3) == achar(239)//achar(187)//achar(191)) pos = 4
+    end if
     line = 0
     nb = 0
     group = ""
@@ -92,20 +108,70 @@ contains
       raw = strip_comment(text(pos:eol - 1))
       pos = eol + 1
       call scan_line(raw, line)
-      if (allocated(error)) return
+      if (allocated(error)) exit
     end do
-    if (len(group) > 0) then
+    if (len(group) > 0 .and. .not. allocated(error)) then
       call fatal_error(error, at_line(open_line)//"group &"//group// &
                        " is not closed: end it with '/'")
     end if
+    allocate (deck%entries(nentry))
+    do k = 1, nentry
+      call move_entry(entries(k), deck%entries(k))
+    end do
+    deallocate (entries)
+    deck%groups = groups(1:ngroup)
+    deck%group_lines = group_lines(1:ngroup)
 
   contains
+
+    !> Index of group g among the groups seen so far, or 0; `h` returns its hash slot.
+    integer function find_group(g, h) result(k)
+      character(len=*), intent(in) :: g
+      integer, intent(out) :: h
+      k = 0
+      h = iand(str_hash(g, ""), size(group_slot) - 1) + 1
+      do while (group_slot(h) /= 0)
+        if (groups(group_slot(h)) == g) then
+          k = group_slot(h)
+          return
+        end if
+        h = merge(1, h + 1, h == size(group_slot))
+      end do
+    end function find_group
+
+    subroutine add_group(g, lineno)
+      character(len=*), intent(in) :: g
+      integer, intent(in) :: lineno
+      character(len=64), allocatable :: gtmp(:)
+      integer, allocatable :: ltmp(:)
+      integer :: h, k
+      if (ngroup == size(groups)) then
+        allocate (gtmp(2*ngroup), ltmp(2*ngroup))
+        gtmp(1:ngroup) = groups
+        ltmp(1:ngroup) = group_lines
+        call move_alloc(gtmp, groups)
+        call move_alloc(ltmp, group_lines)
+      end if
+      ngroup = ngroup + 1
+      groups(ngroup) = g
+      group_lines(ngroup) = lineno
+      if (2*ngroup > size(group_slot)) then
+        deallocate (group_slot)
+        allocate (group_slot(4*size(groups)))
+        group_slot = 0
+        do k = 1, ngroup
+          if (find_group(groups(k), h) == 0) group_slot(h) = k
+        end do
+      else
+        if (find_group(g, h) == 0) group_slot(h) = ngroup
+      end if
+    end subroutine add_group
 
     !> Feed one comment-free line to the group state machine.
     subroutine scan_line(str, lineno)
       character(len=*), intent(in) :: str
       integer, intent(in) :: lineno
-      integer :: i, j, k
+      integer :: i, j, k, h
       logical :: in_quote
       character :: quote
       i = 1
@@ -120,7 +186,7 @@ contains
           end if
           if (str(i:i) /= "&") then
             call fatal_error(error, at_line(lineno)//"text outside a namelist group: '"// &
-                             trim(adjustl(str))//"' (groups start with &name)")
+                             shown(trim(adjustl(str(i:))))//"' (groups start with &name)")
             return
           end if
           j = i + 1
@@ -133,16 +199,19 @@ contains
             return
           end if
           group = to_lower(str(i + 1:j - 1))
-          do k = 1, size(deck%groups)
-            if (deck%groups(k) == group) then
-              call fatal_error(error, at_line(lineno)//"group &"//group// &
-                               " appears twice (first at line "// &
-                               int_to_str(deck%group_lines(k))//")")
-              return
-            end if
-          end do
-          deck%groups = [character(len=64) :: deck%groups, group]
-          deck%group_lines = [deck%group_lines, lineno]
+          if (len(group) > len(groups)) then
+            call fatal_error(error, at_line(lineno)//"group name '&"//group// &
+                             "' is longer than "//int_to_str(len(groups))//" characters")
+            return
+          end if
+          k = find_group(group, h)
+          if (k > 0) then
+            call fatal_error(error, at_line(lineno)//"group &"//group// &
+                             " appears twice (first at line "// &
+                             int_to_str(group_lines(k))//")")
+            return
+          end if
+          call add_group(group, lineno)
           open_line = lineno
           nb = 0
           i = j
@@ -198,24 +267,29 @@ contains
       character(len=*), intent(in) :: b
       integer, intent(in) :: bline(:)
       integer, allocatable :: eq(:), kstart(:)
-      integer :: i, n, ks, ke, vs, ve
+      integer :: i, n, ks, ke, vs, ve, pass
       logical :: in_quote
       character :: quote
       character(len=:), allocatable :: key, value
-      allocate (eq(0))
-      in_quote = .false.
-      quote = " "
-      do i = 1, len(b)
-        if (in_quote) then
-          if (b(i:i) == quote) in_quote = .false.
-        else if (b(i:i) == "'" .or. b(i:i) == '"') then
-          in_quote = .true.
-          quote = b(i:i)
-        else if (b(i:i) == "=") then
-          eq = [eq, i]
-        end if
+      ! two passes: count the '=' outside quotes, then record them
+      n = 0
+      do pass = 1, 2
+        if (pass == 2) allocate (eq(n))
+        n = 0
+        in_quote = .false.
+        quote = " "
+        do i = 1, len(b)
+          if (in_quote) then
+            if (b(i:i) == quote) in_quote = .false.
+          else if (b(i:i) == "'" .or. b(i:i) == '"') then
+            in_quote = .true.
+            quote = b(i:i)
+          else if (b(i:i) == "=") then
+            n = n + 1
+            if (pass == 2) eq(n) = i
+          end if
+        end do
       end do
-      n = size(eq)
       allocate (kstart(n))
       do i = 1, n
         ke = eq(i) - 1
@@ -239,14 +313,14 @@ contains
       if (n == 0) then
         if (len_trim(b) > 0) then
           call fatal_error(error, at_line(first_line(b, bline))//"&"//group// &
-                           ": expected 'key = value', found '"//trim(adjustl(b))//"'")
+                           ": expected 'key = value', found '"//shown(trim(adjustl(b)))//"'")
         end if
         return
       end if
       if (len_trim(b(1:kstart(1) - 1)) > 0) then
         call fatal_error(error, at_line(first_line(b, bline))//"&"//group// &
                          ": expected 'key = value', found '"// &
-                         trim(adjustl(b(1:kstart(1) - 1)))//"'")
+                         shown(trim(adjustl(b(1:kstart(1) - 1))))//"'")
         return
       end if
       do i = 1, n
@@ -275,21 +349,31 @@ contains
     subroutine add_entry(key, value, lineno)
       character(len=*), intent(in) :: key, value
       integer, intent(in) :: lineno
-      type(nml_entry) :: e
-      integer :: k
-      do k = 1, size(deck%entries)
-        if (deck%entries(k)%group == group .and. deck%entries(k)%key == key) then
-          call fatal_error(error, at_line(lineno)//"&"//group//": "//key// &
-                           " is given twice (first at line "// &
-                           int_to_str(deck%entries(k)%line)//")")
-          return
-        end if
-      end do
-      e%group = group
-      e%key = key
-      e%value = value
-      e%line = lineno
-      deck%entries = [deck%entries, e]
+      type(nml_entry), allocatable :: etmp(:)
+      integer :: k, h
+      k = probe(deck%slot, entries, group, key, h)
+      if (k > 0) then
+        call fatal_error(error, at_line(lineno)//"&"//group//": "//key// &
+                         " is given twice (first at line "//int_to_str(entries(k)%line)//")")
+        return
+      end if
+      if (nentry == size(entries)) then
+        allocate (etmp(2*nentry))
+        do k = 1, nentry
+          call move_entry(entries(k), etmp(k))
+        end do
+        call move_alloc(etmp, entries)
+      end if
+      nentry = nentry + 1
+      entries(nentry)%group = group
+      entries(nentry)%key = key
+      entries(nentry)%value = value
+      entries(nentry)%line = lineno
+      if (2*nentry > size(deck%slot)) then
+        call rehash(deck%slot, entries(1:nentry), 4*size(entries))
+      else
+        deck%slot(h) = nentry
+      end if
     end subroutine add_entry
 
     pure function at_line(lineno) result(s)
@@ -299,6 +383,119 @@ contains
     end function at_line
 
   end subroutine parse_deck
+
+  !> Index of (group, key) in the deck's entries, or 0 if the deck does not set it.
+  integer function find_entry(deck, group, key) result(k)
+    type(nml_deck), intent(in) :: deck
+    character(len=*), intent(in) :: group, key
+    integer :: h
+    k = 0
+    if (.not. allocated(deck%slot) .or. .not. allocated(deck%entries)) return
+    k = probe(deck%slot, deck%entries, group, key, h)
+  end function find_entry
+
+  !> "file:LINE: " for a message about several keys of `group`: the line of the first of
+  !> `keys` the deck sets, else the line that opens the group, else "file: " (all defaults).
+  function key_at(deck, group, keys) result(s)
+    type(nml_deck), intent(in) :: deck
+    character(len=*), intent(in) :: group, keys(:)
+    character(len=:), allocatable :: s
+    integer :: i, k
+    do i = 1, size(keys)
+      k = find_entry(deck, group, trim(keys(i)))
+      if (k > 0) then
+        s = deck%filename//":"//int_to_str(deck%entries(k)%line)//": "
+        return
+      end if
+    end do
+    if (allocated(deck%groups)) then
+      do i = 1, size(deck%groups)
+        if (deck%groups(i) == group) then
+          s = deck%filename//":"//int_to_str(deck%group_lines(i))//": "
+          return
+        end if
+      end do
+    end if
+    s = deck%filename//": "
+  end function key_at
+
+  !> Linear probing: the entry index of (group, key), or 0 with `h` the free slot.
+  integer function probe(slot, entries, group, key, h) result(k)
+    integer, intent(in) :: slot(:)
+    type(nml_entry), intent(in) :: entries(:)
+    character(len=*), intent(in) :: group, key
+    integer, intent(out) :: h
+    k = 0
+    h = iand(str_hash(group, key), size(slot) - 1) + 1
+    do while (slot(h) /= 0)
+      if (entries(slot(h))%key == key) then
+        if (entries(slot(h))%group == group) then
+          k = slot(h)
+          return
+        end if
+      end if
+      h = merge(1, h + 1, h == size(slot))
+    end do
+  end function probe
+
+  !> Rebuild the hash of `entries` with `n` slots (a power of two).
+  subroutine rehash(slot, entries, n)
+    integer, allocatable, intent(inout) :: slot(:)
+    type(nml_entry), intent(in) :: entries(:)
+    integer, intent(in) :: n
+    integer :: k, h, m
+    m = 1
+    do while (m < n)
+      m = 2*m
+    end do
+    deallocate (slot)
+    allocate (slot(m))
+    slot = 0
+    do k = 1, size(entries)
+      if (probe(slot, entries(1:k - 1), entries(k)%group, entries(k)%key, h) == 0) slot(h) = k
+    end do
+  end subroutine rehash
+
+  subroutine move_entry(from, to)
+    type(nml_entry), intent(inout) :: from, to
+    call move_alloc(from%group, to%group)
+    call move_alloc(from%key, to%key)
+    call move_alloc(from%value, to%value)
+    to%line = from%line
+    to%used = from%used
+  end subroutine move_entry
+
+  !> FNV-1a hash of group, a separator and key, as a non-negative integer.
+  pure integer function str_hash(group, key) result(h)
+    character(len=*), intent(in) :: group, key
+    integer(kind=8) :: x
+    integer :: i
+    x = 2166136261_8
+    do i = 1, len_trim(group)
+      x = iand(ieor(x, int(iachar(group(i:i)), 8))*16777619_8, 4294967295_8)
+    end do
+    x = iand(ieor(x, 0_8)*16777619_8, 4294967295_8)
+    do i = 1, len(key)
+      x = iand(ieor(x, int(iachar(key(i:i)), 8))*16777619_8, 4294967295_8)
+    end do
+    h = int(iand(x, 2147483647_8))
+  end function str_hash
+
+  !> Text quoted in a message: control and non-ASCII bytes as '?', cut to 80 characters.
+  pure function shown(str) result(s)
+    character(len=*), intent(in) :: str
+    character(len=:), allocatable :: s
+    integer :: i, c
+    if (len(str) > 80) then
+      s = str(1:72)//" ... "
+    else
+      s = str
+    end if
+    do i = 1, len(s)
+      c = iachar(s(i:i))
+      if (c < 32 .or. c > 126) s(i:i) = "?"
+    end do
+  end function shown
 
   !> Line of the first non-blank character of b.
   pure integer function first_line(b, bline) result(l)

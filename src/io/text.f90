@@ -5,7 +5,7 @@ module davit_io_text
   use davit_io_namelist, only: int_to_str
   implicit none
   private
-  public :: count_range, optional_text, join_ints, join_logicals, is_number, unquote, &
+  public :: count_range, optional_text, join_ints, join_logicals, is_number, is_integer, unquote, &
             join_reals, fmt_real
 
 contains
@@ -49,11 +49,64 @@ contains
     end do
   end function join_logicals
 
-  !> A plain decimal or exponent number (list-directed READ alone would accept 'T' etc.).
+  !> A real number in one of the forms a person writes: [sign] digits [. [digits]] or
+  !> [sign] . digits, then optionally e|E|d|D [sign] digits. List-directed READ alone would
+  !> accept more ('T', '1-3' read as 1e-3, '-15-1' as -1.5), so anything else is refused.
   pure logical function is_number(s)
     character(len=*), intent(in) :: s
-    is_number = verify(trim(s), "+-.0123456789eEdD") == 0 .and. scan(s, "0123456789") > 0
+    integer :: i, n, mant, frac, k
+    is_number = .false.
+    n = len_trim(s)
+    i = 1
+    if (n == 0) return
+    if (s(i:i) == "+" .or. s(i:i) == "-") i = i + 1
+    call skip_digits(s(1:n), i, mant)
+    frac = 0
+    if (i <= n) then
+      if (s(i:i) == ".") then
+        i = i + 1
+        call skip_digits(s(1:n), i, frac)
+      end if
+    end if
+    if (mant + frac == 0) return
+    if (i <= n) then
+      if (index("eEdD", s(i:i)) == 0) return
+      i = i + 1
+      if (i <= n) then
+        if (s(i:i) == "+" .or. s(i:i) == "-") i = i + 1
+      end if
+      call skip_digits(s(1:n), i, k)
+      if (k == 0) return
+    end if
+    is_number = i > n
   end function is_number
+
+  !> An integer: [sign] digits.
+  pure logical function is_integer(s)
+    character(len=*), intent(in) :: s
+    integer :: i, n, k
+    n = len_trim(s)
+    i = 1
+    is_integer = .false.
+    if (n == 0) return
+    if (s(i:i) == "+" .or. s(i:i) == "-") i = i + 1
+    call skip_digits(s(1:n), i, k)
+    is_integer = k > 0 .and. i > n
+  end function is_integer
+
+  !> k = number of decimal digits from s(i:) on; advances i past them.
+  pure subroutine skip_digits(s, i, k)
+    character(len=*), intent(in) :: s
+    integer, intent(inout) :: i
+    integer, intent(out) :: k
+    k = 0
+    do while (i <= len(s))
+      if (s(i:i) < "0" .or. s(i:i) > "9") exit
+      i = i + 1
+      k = k + 1
+    end do
+  end subroutine skip_digits
+
 
   pure function unquote(s) result(r)
     character(len=*), intent(in) :: s

@@ -10,7 +10,7 @@
 module davit_sweep_keys
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
-  use davit_io_namelist, only: nml_deck, read_deck, parse_deck
+  use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_config, only: config_type, read_config
   implicit none
@@ -90,7 +90,8 @@ contains
     sweep%filename = deck%filename
     sweep%deck_text = deck%text
     if (len(sweep%base_deck) == 0) then
-      call fatal_error(error, deck%filename//": &sweep: base_deck is required (the run "// &
+      call fatal_error(error, key_at(deck, "sweep", ["base_deck"])// &
+                       "&sweep: base_deck is required (the run "// &
                        "deck every case starts from)")
       return
     end if
@@ -98,7 +99,7 @@ contains
     call read_config(sweep%base_path, sweep%base, error)
     if (allocated(error)) return
     call complete_defaults(reader, sweep)
-    call check_sweep(sweep, error)
+    call check_sweep(sweep, deck, error)
   end subroutine sweep_from_deck
 
   subroutine read_keys(r, s)
@@ -171,14 +172,17 @@ contains
   end subroutine complete_defaults
 
   !> Checks across the sweep and its base deck.
-  subroutine check_sweep(s, error)
+  !> Each message names the line of the &sweep key involved.
+  subroutine check_sweep(s, deck, error)
     type(sweep_config), intent(in) :: s
+    type(nml_deck), intent(in) :: deck
     type(error_type), allocatable, intent(out) :: error
     integer :: i
     select case (s%base%simulation%scene)
     case ("hanging_boat", "lowering", "launch")
     case default
-      call fatal_error(error, s%filename//": &sweep: base deck '"//s%base_deck// &
+      call fatal_error(error, key_at(deck, "sweep", ["base_deck"])//"&sweep: base deck '"// &
+                       s%base_deck// &
                        "' has scene '"//s%base%simulation%scene//"'; sweeps run the boat "// &
                        "scenes 'hanging_boat', 'lowering' and 'launch'")
       return
@@ -186,7 +190,8 @@ contains
     do i = 1, size(s%dts)
       if (s%dts(i) > s%base%simulation%output_interval .or. &
           s%dts(i) > s%base%simulation%t_end) then
-        call fatal_error(error, s%filename//": &sweep: dts = "//fmt_real(s%dts(i))// &
+        call fatal_error(error, key_at(deck, "sweep", ["dts"])//"&sweep: dts = "// &
+                         fmt_real(s%dts(i))// &
                          " s must be <= the base deck's output_interval ("// &
                          fmt_real(s%base%simulation%output_interval)//" s) and t_end")
         return
@@ -194,7 +199,8 @@ contains
     end do
     if (s%has_clearances .and. s%base%simulation%scene == "hanging_boat" .and. &
         .not. s%base%slings%attached) then
-      call fatal_error(error, s%filename//": &sweep: clearances_b needs a hanging boat "// &
+      call fatal_error(error, key_at(deck, "sweep", ["clearances_b"])// &
+                       "&sweep: clearances_b needs a hanging boat "// &
                        "(the base deck's slings are detached)")
     end if
   end subroutine check_sweep
