@@ -5,6 +5,7 @@ module davit_bench_report
   use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options
   use davit_kinds, only: wp, i8, davit_version
   use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_io_text, only: int_text
   use davit_bench_timing, only: timed_run, rhs_rate, step_rate, real_time_factor
   use davit_bench_sea, only: bench_result
   implicit none
@@ -226,13 +227,5 @@ contains
     if (s(1:1) == ".") s = "0"//s
     if (s(len(s):len(s)) == ".") s = s(1:len(s) - 1)
   end function sig
-
-  pure function int_text(n) result(s)
-    integer(i8), intent(in) :: n
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, "(i0)") n
-    s = trim(buf)
-  end function int_text
 
 end module davit_bench_report

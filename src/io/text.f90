@@ -1,10 +1,11 @@
 !> Text of the deck reader's messages and documentation: numbers as a person writes them,
 !> lists joined, quotes stripped.
 module davit_io_text
-  use davit_kinds, only: wp
+  use davit_kinds, only: wp, i8
   use davit_io_namelist, only: int_to_str
   implicit none
   private
+  public :: int_text
   public :: count_range, optional_text, join_ints, join_logicals, is_number, is_integer, unquote, &
             join_reals, fmt_real
 
@@ -171,5 +172,14 @@ contains
     if (ios /= 0) n = 0
     s = int_to_str(n)
   end function int_str_exp
+
+  !> An 8-byte integer as text (counts of steps, rows, RHS evaluations).
+  pure function int_text(n) result(s)
+    integer(i8), intent(in) :: n
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, "(i0)") n
+    s = trim(buf)
+  end function int_text
 
 end module davit_io_text

@@ -10,6 +10,7 @@ module davit_run_budget
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
   use davit_io_deck_reader, only: fmt_real
+  use davit_io_namelist, only: to_lower
   implicit none
   private
   public :: check_run_budget, run_memory_estimate, memory_limit
@@ -241,7 +242,7 @@ contains
         i1 = i0 + i1 - 1
       end if
       lineno = lineno + 1
-      s = lower(text(i0:i1 - 1))
+      s = to_lower(text(i0:i1 - 1))
       k = index(s, "!")
       if (k > 0) s = s(:k - 1)
       s = adjustl(s)
@@ -316,16 +317,5 @@ contains
     if (s(len(s):len(s)) == ".") s = s(:len(s) - 1)
     s = s//" GiB"
   end function gib_text
-
-  pure function lower(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i, c
-    t = s
-    do i = 1, len(s)
-      c = iachar(s(i:i))
-      if (c >= iachar("A") .and. c <= iachar("Z")) t(i:i) = achar(c + 32)
-    end do
-  end function lower
 
 end module davit_run_budget

@@ -10,6 +10,7 @@ module davit_sweep_summary
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_io_hdf5_reader, only: h5_reader_type
+  use davit_io_text, only: int_text
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case
   use davit_sweep_metrics, only: case_result, status_not_run
@@ -340,13 +341,5 @@ contains
                                    int_text(int(got, i8))//" rows, the sweep has "// &
                                    int_text(int(n, i8))//" cases")
   end subroutine check_length
-
-  pure function int_text(n) result(s)
-    integer(i8), intent(in) :: n
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, "(i0)") n
-    s = trim(buf)
-  end function int_text
 
 end module davit_sweep_summary
