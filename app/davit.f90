@@ -7,6 +7,7 @@ program davit
   use davit_error, only: error_type
   use davit_io_config, only: config_type, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
+  use davit_io_namelist, only: int_to_str
   use davit_run_driver, only: run_simulation
   use davit_run_run_summary, only: run_summary
   use davit_bench_suite, only: bench_options, run_bench
@@ -176,7 +177,7 @@ contains
     read (v, *, iostat=ios) n
     if (ios /= 0 .or. verify(v, "0123456789") /= 0) n = lowest - 1
     if (n < lowest) call usage_error("option "//name//" needs an integer >= "// &
-                                     trim(int_text(lowest))//", got '"//v//"'")
+                                     int_to_str(lowest)//", got '"//v//"'")
   end subroutine take_int
 
   !> An empty file or folder name after -o, --output or --series is a usage error (it would
@@ -204,12 +205,6 @@ contains
     write (output_unit, "(a,i0,a,f0.4,a)") "davit: '"//sweep%filename//"': ", size(cases), &
       " cases on base deck '"//sweep%base_deck//"' (its initial clearance ", clearance0, " m)"
   end subroutine sweep_dry_run
-
-  pure function int_text(n) result(s)
-    integer, intent(in) :: n
-    character(len=12) :: s
-    write (s, "(i0)") n
-  end function int_text
 
   !> Fastest rates of the deck's system at t = 0 and the RK4 step limit they imply.
   subroutine cmd_modes()

@@ -14,6 +14,7 @@ module davit_io_hdf5_writer
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_reader, only: h5_start
+  use davit_io_namelist, only: int_to_str
   implicit none
   private
   public :: h5_writer_type, check_output_path, acquire_lock, release_lock
@@ -174,7 +175,7 @@ contains
       call delete_file(lock_tmp(lock))
       call delete_file(lock)
     end do
-    call fatal_error(error, "another davit run (process "//trim(int_str(pid))// &
+    call fatal_error(error, "another davit run (process "//int_to_str(pid)// &
                      ") is writing '"//path//"' (lock '"//lock//"'); wait for it, "// &
                      "choose another output name, or remove the lock if no davit runs")
   end subroutine acquire_lock
@@ -183,7 +184,7 @@ contains
   logical function process_runs(pid)
     integer, intent(in) :: pid
     process_runs = c_kill(int(pid, c_int), 0_c_int) == 0
-    if (.not. process_runs) inquire (file="/proc/"//trim(int_str(pid))//"/.", &
+    if (.not. process_runs) inquire (file="/proc/"//int_to_str(pid)//"/.", &
                                      exist=process_runs)
   end function process_runs
 
@@ -234,12 +235,6 @@ contains
     if (ios /= 0) pid = 0
     close (unit)
   end function lock_owner
-
-  pure function int_str(n) result(s)
-    integer, intent(in) :: n
-    character(len=12) :: s
-    write (s, "(i0)") n
-  end function int_str
 
   !> Put the file under `path` when closed instead of the name given to create().
   subroutine writer_retarget(self, path)
