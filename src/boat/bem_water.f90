@@ -34,7 +34,7 @@ module davit_boat_bem_water
   implicit none
   private
   public :: boat_bem_type, new_boat_bem, boat_bem_loads, boat_bem_immersion, &
-            boat_bem_kinetic_energy, immersion_lag
+            boat_bem_kinetic_energy
 
   !> Time constant of the immersion state [s]: short against the boat's periods (~2 s)
   !> and its entry (V_wet reaches f V_0 in ~0.15 s at 1 m/s).
