@@ -316,11 +316,13 @@ contains
                 "wave components; estimated before the run, which is refused beyond it); "// &
                 "0 = 80 % of the machine's physical memory.", default_text="0 (80 % of RAM)")
     call r%choice(g, "contact_approach", s%contact_approach, "window", &
-                  [character(len=8) :: "window", "graded"], &
+                  [character(len=8) :: "window", "graded", "event"], &
                   "Steps before a fender reaches the ship's side: 'window' takes dt_contact "// &
                   "once contact is predicted within two steps of dt; 'graded' takes half "// &
                   "the predicted time to contact (at least dt_contact), so the approach costs "// &
-                  "~log2(dt/dt_contact) steps instead of 2 dt/dt_contact.")
+                  "~log2(dt/dt_contact) steps instead of 2 dt/dt_contact; 'event' takes dt and "// &
+                  "locates each fender phase switch and each sling or cable segment going "// &
+                  "slack or taut on the integrator's dense output, cutting the step there.")
   end subroutine read_simulation
 
   subroutine read_boat(r, b)

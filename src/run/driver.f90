@@ -14,6 +14,7 @@ module davit_run_driver
   use davit_solve_integrator, only: integrator_type, ode_problem
   use davit_solve_factory, only: new_integrator
   use davit_solve_step_control, only: stretch_to
+  use davit_solve_event_location, only: event_stepper_type
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
   use davit_run_run_summary, only: run_summary, write_root_attributes
@@ -154,14 +155,16 @@ contains
     type(error_type), allocatable, intent(out) :: run_error, error
     class(step_monitor), intent(inout), optional :: monitor
     class(integrator_type), allocatable :: integ
+    type(event_stepper_type) :: stepper
     real(wp) :: t, t_next, t_new, h
     integer(i8) :: k, nsamples, clock0, clock1, rate
     integer :: bad
-    logical :: done
+    logical :: done, event
 
     call new_integrator(sim%integrator, size(y), integ, error, sim%rtol, sim%atol, &
                         fixed_step=sim%fixed_step)
     if (allocated(error)) return
+    call stepper%init(size(y), problem%n_modes())
     ! Samples at exact multiples of the output interval; each step is the deck's dt or what
     ! the problem allows (problem%max_step, e.g. near a contact), shortened to land on the
     ! next sample (stretched by up to 1 % rather than leave a sliver step).
@@ -177,12 +180,13 @@ contains
       t_next = min(real(k, wp)*sim%output_interval, sim%t_end)
       h = problem%max_step(t, y, sim%dt)
       t_new = merge(t_next, t + h, stretch_to(h, t_next - t))
-      call integ%step(problem, t, y, t_new - t)
+      ! a step cut at an event (a contact phase switch, a link going slack or taut) ends
+      ! just past it, for after_step to switch there
+      call stepper%step(integ, problem, t, y, t_new, event)
       if (integ%failed) then
         call fatal_error(run_error, "run stopped: "//integ%failure)
         exit
       end if
-      t = t_new
       bad = first_bad(y, rec%speed_range(problem))
       if (bad > 0) then
         call fatal_error(run_error, "run diverged at t = "//fmt_real(t)//" s: "// &

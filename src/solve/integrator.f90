@@ -17,6 +17,11 @@ module davit_solve_integrator
     !> Largest step the problem allows from state (t, y) when the deck's step is dt (e.g.
     !> a smaller one near a contact switch); dt by default.
     procedure :: max_step => no_max_step
+    !> Discrete modes of the state (contact phases, slack or taut links): a change between
+    !> the ends of a step is an event the time loop locates (davit_solve_event_location)
+    !> and steps onto, so after_step switches there; none by default.
+    procedure :: n_modes => no_n_modes
+    procedure :: modes => no_modes
   end type ode_problem
 
   abstract interface
@@ -74,6 +79,20 @@ contains
     class(ode_problem), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
   end subroutine no_after_step
+
+  pure integer function no_n_modes(self)
+    class(ode_problem), intent(in) :: self
+    no_n_modes = 0
+  end function no_n_modes
+
+  !> The mode of each of the n_modes discrete switches at (t, y), as the after-step hook
+  !> would set them from the current history.
+  subroutine no_modes(self, t, y, m)
+    class(ode_problem), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(out) :: m(:)
+    m = 0
+  end subroutine no_modes
 
   pure real(wp) function no_max_step(self, t, y, dt) result(h)
     class(ode_problem), intent(in) :: self

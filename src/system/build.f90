@@ -230,6 +230,7 @@ contains
     self%par%contact = cfg%contact%enabled
     self%policy%dt_contact = cfg%simulation%dt_contact
     self%policy%graded = cfg%simulation%contact_approach == "graded"
+    self%policy%located = cfg%simulation%contact_approach == "event"
     cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
     self%par%ship_rest = pose_type(cfg%ship%position, cs, &
                                    matmul(cs, [cfg%ship%headway, 0.0_wp, 0.0_wp]), 0.0_wp)

@@ -8,6 +8,8 @@
 !> `contact_approach = 'graded'` the approach steps are instead half the predicted time
 !> to contact (at least dt_contact): the same onset resolution in ~log2(dt/dt_contact)
 !> steps rather than 2 dt/dt_contact, which matters at large dt (quasi-static blocks).
+!> With `contact_approach = 'event'` the approach takes dt and the onset is located as an
+!> event (davit_solve_event_location): the step is cut exactly at it.
 module davit_system_contact_policy
   use davit_kinds, only: wp
   use davit_boat_contact, only: phase_free
@@ -22,6 +24,9 @@ module davit_system_contact_policy
     real(wp) :: dt_contact = 0.0_wp
     !> Approach steps graded by the predicted time to contact (else the two-step window).
     logical :: graded = .false.
+    !> Approach at dt: the onset (and every phase switch) is located as an event on the
+    !> integrator's dense output (davit_solve_event_location) instead.
+    logical :: located = .false.
   end type contact_policy_type
 
 contains
@@ -40,6 +45,7 @@ contains
       h = policy%dt_contact
       return
     end if
+    if (policy%located) return
     call fender_gaps(par, y, delta, delta_dot)
     if (policy%graded) then
       ! half the predicted time to contact -delta/delta_dot of each approaching fender:

@@ -16,11 +16,12 @@ module davit_system_model
   use davit_solve_integrator, only: ode_problem
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics
+                                     hook_kinematics, fender_gaps
   use davit_system_history, only: system_history_type
   use davit_system_contact_policy, only: contact_policy_type, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks
   use davit_system_events, only: advance_history
+  use davit_boat_contact, only: fender_state_type, fender_update
   use davit_system_observables, only: boat_kinematics, rigging_state, sling_tensions, &
                                       contact_state, energy
   implicit none
@@ -36,6 +37,8 @@ module davit_system_model
     procedure :: rhs => system_rhs
     procedure :: after_step => system_after_step
     procedure :: max_step => system_max_step
+    procedure :: n_modes => system_n_modes
+    procedure :: modes => system_modes
     procedure :: observe
     procedure :: energy => system_energy
     procedure :: sling_tensions => system_sling_tensions
@@ -119,6 +122,56 @@ contains
     real(wp), intent(in) :: t, y(:), dt
     h = contact_max_step(self%policy, self%par, self%hist, y, dt)
   end function system_max_step
+
+  !> Modes located as events ('event' contact approach): each fender's contact phase as
+  !> the after-step hook would set it, then, on the davit before release, whether each
+  !> sling and cable segment is taut (the kinks of their tension-only laws), or whether
+  !> each foundation sling is.
+  pure integer function system_n_modes(self) result(n)
+    class(system_type), intent(in) :: self
+    n = 0
+    if (.not. self%policy%located) return
+    if (self%par%contact) n = self%par%fenders%nf
+    if (self%par%on_davit) n = n + self%par%rig%nseg + nslings*(self%par%rig%nlump + 1)
+    if (self%par%slings_attached) n = n + nslings
+  end function system_n_modes
+
+  subroutine system_modes(self, t, y, m)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(out) :: m(:)
+    real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
+    type(fender_state_type) :: s
+    integer :: j, n
+    n = 0
+    if (self%par%contact) then
+      call fender_gaps(self%par, y, delta, delta_dot)
+      do j = 1, self%par%fenders%nf
+        s = self%hist%fender_states(j)
+        call fender_update(self%par%fenders%law, s, delta(j), delta_dot(j))
+        m(j) = s%phase
+      end do
+      n = self%par%fenders%nf
+    end if
+    if (self%par%on_davit) call link_modes(self, t, y, m(n + 1:))
+    if (self%par%slings_attached) m(n + 1:n + nslings) = merge(1, 0, &
+                                                               sling_tensions(self%par, y) > 0.0_wp)
+  end subroutine system_modes
+
+  !> 1 for each taut sling segment and cable segment, 0 for a slack one; all 0 after
+  !> release (the falls are frozen).
+  subroutine link_modes(self, t, y, m)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(out) :: m(:)
+    real(wp) :: seg(self%par%rig%nseg), sling(self%par%rig%nlump + 1, nslings), paid
+    real(wp) :: lumps(3, self%par%rig%nlump, nslings)
+    m = 0
+    if (self%hist%release_time >= 0.0_wp) return
+    call rigging_state(self%par, self%hist, t, y, seg, sling, paid, lumps)
+    m(1:size(seg)) = merge(1, 0, seg > 0.0_wp)
+    m(size(seg) + 1:) = merge(1, 0, reshape(sling, [size(sling)]) > 0.0_wp)
+  end subroutine link_modes
 
   !> Inertial-frame observables of the boat (davit_system_observables), with its
   !> acceleration from the right-hand side.

@@ -1,0 +1,153 @@
+!> Event location on the integrator's dense output (issue 14): instead of limiting the
+!> step near a switch (a fender touching, its compression turning, a link going slack),
+!> take the step, and if the problem's discrete modes differ at its two ends, find the
+!> first time they change on the cubic Hermite interpolant through (t0, y0, f0) and
+!> (t1, y1, f1) (Hairer, Norsett & Wanner I, sec. II.6: fourth-order accurate, two extra
+!> RHS evaluations, paid only at events), by bisection on the modes themselves (they are
+!> what the after-step hook switches on, so the located time is that of the switch, not
+!> of a proxy), then redo the step from t0 to the end of the final bracket. The after-step
+!> hook then switches on a state that is exactly at the event, to within `time_tol`.
+module davit_solve_event_location
+  use davit_kinds, only: wp
+  use davit_solve_integrator, only: ode_problem, integrator_type
+  implicit none
+  private
+  public :: event_stepper_type
+
+  !> Events are located to within time_tol max(1, |t|) [s] (bisection halvings: ~30 from
+  !> a 1e-2 s step, each an evaluation of the modes only).
+  real(wp), parameter :: time_tol = 1.0e-10_wp
+  integer, parameter :: max_bisections = 80
+  !> Brackets tried on ever shorter steps before the switch is crossed where it is.
+  integer, parameter :: max_passes = 6
+
+  !> Work arrays of the located step and what it found.
+  type :: event_stepper_type
+    real(wp), allocatable :: y0(:), f0(:), f1(:), ym(:)
+    integer, allocatable :: m0(:), m1(:), mm(:)
+    !> Events located so far (steps cut at an event).
+    integer :: located = 0
+  contains
+    procedure :: init => stepper_init
+    procedure :: step => located_step
+  end type event_stepper_type
+
+contains
+
+  subroutine stepper_init(self, n, n_modes)
+    class(event_stepper_type), intent(inout) :: self
+    integer, intent(in) :: n, n_modes
+    allocate (self%y0(n), self%f0(n), self%f1(n), self%ym(n))
+    allocate (self%m0(n_modes), self%m1(n_modes), self%mm(n_modes))
+    self%located = 0
+  end subroutine stepper_init
+
+  !> Advance (t, y) to t_new with `integ` (t = t_new exactly on return); where the modes
+  !> change inside the step, stop just past their first change instead (t < t_new on
+  !> return, event = .true.). A failed integrator step returns at once (integ%failed).
+  subroutine located_step(self, integ, problem, t, y, t_new, event)
+    class(event_stepper_type), intent(inout) :: self
+    class(integrator_type), intent(inout) :: integ
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(inout) :: t, y(:)
+    real(wp), intent(in) :: t_new
+    logical, intent(out) :: event
+    real(wp) :: t0
+    event = .false.
+    if (size(self%m0) == 0) then
+      call integ%step(problem, t, y, t_new - t)
+      t = t_new
+      return
+    end if
+    t0 = t
+    self%y0 = y
+    call problem%modes(t0, y, self%m0)
+    call integ%step(problem, t, y, t_new - t0)
+    if (integ%failed) return
+    t = t_new
+    call problem%modes(t, y, self%m1)
+    if (all(self%m1 == self%m0)) return
+    integ%rhs_evaluations = integ%rhs_evaluations + 1
+    call problem%rhs(t0, self%y0, self%f0)
+    call refine(self, integ, problem, t0, t, y, t_new)
+    event = t < t_new
+    if (event) self%located = self%located + 1
+  end subroutine located_step
+
+  !> The step [t0, t1] (y = y(t1)) crossed a mode change. Bracket it on the interpolant,
+  !> redo the step to the bracket's near end ta (still the old modes: the right-hand side
+  !> was smooth over it, so the step keeps its order even where the switch makes the
+  !> right-hand side jump) and cross with one step of at most time_tol to tb. Where the
+  !> redone step finds the modes already changed at ta (the interpolant, built over a
+  !> step that crossed a kink, put the switch late), bracket again over [t0, ta], now on
+  !> the redone end: each pass shrinks the step that crosses the switch. On return
+  !> (t, y) is just past the switch (t < t_new), or at t_new if the switch was not found
+  !> again inside the step.
+  subroutine refine(self, integ, problem, t0, t, y, t_new)
+    class(event_stepper_type), intent(inout) :: self
+    class(integrator_type), intent(inout) :: integ
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t0, t_new
+    real(wp), intent(inout) :: t, y(:)
+    real(wp) :: ta, tb, t1
+    integer :: pass
+    t1 = t
+    do pass = 1, max_passes
+      call problem%rhs(t1, y, self%f1)
+      integ%rhs_evaluations = integ%rhs_evaluations + 1
+      call bisect(self, problem, t0, t1, y, ta, tb)
+      t = t0
+      y = self%y0
+      if (ta > t0) call integ%step(problem, t, y, ta - t0)
+      t = ta
+      call problem%modes(t, y, self%mm)
+      if (any(self%mm /= self%m0) .and. pass < max_passes .and. ta > t0) then
+        t1 = ta
+        cycle
+      end if
+      if (all(self%mm == self%m0)) then
+        call integ%step(problem, t, y, tb - ta)
+        t = tb
+      end if
+      return
+    end do
+  end subroutine refine
+
+  !> The bracket [ta, tb] of the first mode change on the interpolant over [t0, t1].
+  subroutine bisect(self, problem, t0, t1, y1, ta, tb)
+    class(event_stepper_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t0, t1, y1(:)
+    real(wp), intent(out) :: ta, tb
+    real(wp) :: tm
+    integer :: it
+    ta = t0
+    tb = t1
+    do it = 1, max_bisections
+      if (tb - ta <= time_tol*max(1.0_wp, abs(tb))) exit
+      tm = 0.5_wp*(ta + tb)
+      call hermite(t0, t1, self%y0, self%f0, y1, self%f1, tm, self%ym)
+      call problem%modes(tm, self%ym, self%mm)
+      if (all(self%mm == self%m0)) then
+        ta = tm
+      else
+        tb = tm
+      end if
+    end do
+  end subroutine bisect
+
+  !> Cubic Hermite interpolant at t in [t0, t1] (values and slopes at both ends).
+  pure subroutine hermite(t0, t1, y0, f0, y1, f1, t, y)
+    real(wp), intent(in) :: t0, t1, y0(:), f0(:), y1(:), f1(:), t
+    real(wp), intent(out) :: y(:)
+    real(wp) :: h, s, h00, h10, h01, h11
+    h = t1 - t0
+    s = (t - t0)/h
+    h00 = (1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2
+    h10 = s*(1.0_wp - s)**2
+    h01 = s*s*(3.0_wp - 2.0_wp*s)
+    h11 = s*s*(s - 1.0_wp)
+    y = h00*y0 + h*h10*f0 + h01*y1 + h*h11*f1
+  end subroutine hermite
+
+end module davit_solve_event_location

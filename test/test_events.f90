@@ -1,0 +1,327 @@
+!> Event location (issue 14): event times against analytic ones, and the order of accuracy
+!> that locating a switch restores to a fixed-step method.
+!>
+!> The toy problem is a mass on a one-sided Kelvin-Voigt spring (a floor that pushes while
+!> compressed, or, mirrored, a sling that pulls while stretched): x'' = -g in flight and
+!> x'' = -g - w^2 x - 2 zeta w x' in contact (x < 0). Contact and flight are both solved in
+!> closed form here, so every switch time is known to round-off.
+module test_events
+  use davit_kinds, only: wp, gravity
+  use davit_solve_integrator, only: ode_problem, integrator_type
+  use davit_solve_factory, only: new_integrator
+  use davit_solve_event_location, only: event_stepper_type
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type
+  use davit_boat_contact, only: hertz_peak
+  use davit_system_model, only: system_type
+  use system_fixture, only: new_test_system, deck_config
+  use harness, only: suite_type, case_state, new_case, check, check_true, note
+  implicit none
+  private
+  public :: collect_events
+
+  real(wp), parameter :: omega = 50.0_wp, zeta = 0.1_wp, drop = 1.0_wp
+
+  !> y = (x, v), x up from the floor's (or sling's) unloaded position; mode 1 in contact.
+  type, extends(ode_problem) :: bouncer
+  contains
+    procedure :: rhs => bouncer_rhs
+    procedure :: n_modes => bouncer_n_modes
+    procedure :: modes => bouncer_modes
+  end type bouncer
+
+contains
+
+  function collect_events() result(suite)
+    type(suite_type) :: suite
+    suite%name = "events"
+    suite%cases = [new_case("bouncing_mass_event_times_vs_analytic", bounce_times), &
+                   new_case("located_events_restore_rk4_order", restored_order), &
+                   new_case("hanging_boat_sling_slack_and_taut_times", sling_slack), &
+                   new_case("hertz_impact_onset_and_peak_located", hertz_located)]
+  end function collect_events
+
+  subroutine bouncer_rhs(self, t, y, dydt)
+    class(bouncer), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: dydt(:)
+    dydt(1) = y(2)
+    dydt(2) = -gravity
+    if (y(1) < 0.0_wp) dydt(2) = dydt(2) - omega**2*y(1) - 2.0_wp*zeta*omega*y(2)
+  end subroutine bouncer_rhs
+
+  pure integer function bouncer_n_modes(self)
+    class(bouncer), intent(in) :: self
+    bouncer_n_modes = 1
+  end function bouncer_n_modes
+
+  subroutine bouncer_modes(self, t, y, m)
+    class(bouncer), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(out) :: m(:)
+    m(1) = merge(1, 0, y(1) < 0.0_wp)
+  end subroutine bouncer_modes
+
+  !> Contact from x = 0 at speed -v_in: x(tau) = -g/w^2 + e^(-s tau)(A cos wd tau +
+  !> B sin wd tau), A = g/w^2, B = (s A - v_in)/wd; x and x' at tau.
+  pure subroutine contact_solution(v_in, tau, x, v)
+    real(wp), intent(in) :: v_in, tau
+    real(wp), intent(out) :: x, v
+    real(wp) :: s, wd, a, b, e
+    s = zeta*omega
+    wd = omega*sqrt(1.0_wp - zeta**2)
+    a = gravity/omega**2
+    b = (s*a - v_in)/wd
+    e = exp(-s*tau)
+    x = -a + e*(a*cos(wd*tau) + b*sin(wd*tau))
+    v = e*((wd*b - s*a)*cos(wd*tau) - (wd*a + s*b)*sin(wd*tau))
+  end subroutine contact_solution
+
+  !> Duration of the contact (x back to 0, bisection on the closed form between a quarter
+  !> and three quarters of the damped period) and the speed it leaves with.
+  pure subroutine contact_end(v_in, tau, v_out)
+    real(wp), intent(in) :: v_in
+    real(wp), intent(out) :: tau, v_out
+    real(wp) :: lo, hi, x, wd
+    integer :: i
+    wd = omega*sqrt(1.0_wp - zeta**2)
+    lo = 0.5_wp*acos(-1.0_wp)/wd
+    hi = 3.0_wp*lo
+    do i = 1, 200
+      tau = 0.5_wp*(lo + hi)
+      call contact_solution(v_in, tau, x, v_out)
+      if (x < 0.0_wp) then
+        lo = tau
+      else
+        hi = tau
+      end if
+    end do
+    call contact_solution(v_in, tau, x, v_out)
+  end subroutine contact_end
+
+  !> The analytic switch times of the drop from `drop`: touch, leave, touch again.
+  pure function analytic_switches() result(ts)
+    real(wp) :: ts(3), v_in, tau, v_out
+    ts(1) = sqrt(2.0_wp*drop/gravity)
+    v_in = gravity*ts(1)
+    call contact_end(v_in, tau, v_out)
+    ts(2) = ts(1) + tau
+    ts(3) = ts(2) + 2.0_wp*v_out/gravity
+  end function analytic_switches
+
+  !> Integrate the drop to t_end with RK4 at dt, with or without event location; the
+  !> switch times found (the step ends where the mode changed) and the final state.
+  subroutine drop_run(dt, t_end, located, times, nfound, y)
+    real(wp), intent(in) :: dt, t_end
+    logical, intent(in) :: located
+    real(wp), intent(out) :: times(:), y(2)
+    integer, intent(out) :: nfound
+    type(bouncer) :: p
+    class(integrator_type), allocatable :: integ
+    type(event_stepper_type) :: stepper
+    type(error_type), allocatable :: error
+    real(wp) :: t, t_new
+    integer :: m0(1), m1(1)
+    logical :: event
+    call new_integrator("rk4", 2, integ, error)
+    call stepper%init(2, merge(1, 0, located))
+    y = [drop, 0.0_wp]
+    t = 0.0_wp
+    nfound = 0
+    do while (t < t_end - 1.0e-12_wp)
+      t_new = min(t + dt, t_end)
+      call p%modes(t, y, m0)
+      call stepper%step(integ, p, t, y, t_new, event)
+      call p%modes(t, y, m1)
+      if (m1(1) /= m0(1) .and. nfound < size(times)) then
+        nfound = nfound + 1
+        times(nfound) = t
+      end if
+    end do
+  end subroutine drop_run
+
+  !> RK4 at 1e-3 s (w dt = 0.05) with event location finds touch-down to round-off,
+  !> lift-off and the second touch-down within 1e-7 s of the closed form (what is left is
+  !> RK4's own error in the contact, 3e-8 s); without it, only within a step (and the
+  !> contact's error then moves the later switches by up to 2 steps).
+  subroutine bounce_times(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: ts(3), found(3), plain(3), y(2)
+    integer :: n, np, i
+    ts = analytic_switches()
+    call drop_run(1.0e-3_wp, 1.2_wp, .true., found, n, y)
+    call drop_run(1.0e-3_wp, 1.2_wp, .false., plain, np, y)
+    call check_true(state, n == 3 .and. np == 3, "three switches found")
+    do i = 1, min(n, np, 3)
+      call note(state, "switch time error, located (s)", found(i) - ts(i))
+      call note(state, "switch time error, step-limited (s)", plain(i) - ts(i))
+      call check(state, found(i), ts(i), "located switch time", abs_tol=1.0e-7_wp)
+    end do
+    call check_true(state, plain(1) >= ts(1) .and. plain(1) <= ts(1) + 1.0e-3_wp, &
+                    "unlocated touch-down: the end of the step it happened in")
+  end subroutine bounce_times
+
+  !> The bounce's position at 1.1 s (in flight after one contact) against the closed form:
+  !> with located switches RK4's error falls as dt^4 (observed order > 3.7 from 2e-3 to
+  !> 5e-4 s); stepping over the jump of the floor's dashpot force it is first order only.
+  subroutine restored_order(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: ts(3), times(3), y(2), x_exact, err(3), errp(3), dt, tau, v_out, v_in
+    integer :: n, i
+    ts = analytic_switches()
+    v_in = gravity*ts(1)
+    call contact_end(v_in, tau, v_out)
+    x_exact = v_out*(1.1_wp - ts(2)) - 0.5_wp*gravity*(1.1_wp - ts(2))**2
+    do i = 1, 3
+      dt = 2.0e-3_wp/2.0_wp**(i - 1)
+      call drop_run(dt, 1.1_wp, .true., times, n, y)
+      err(i) = abs(y(1) - x_exact)
+      call drop_run(dt, 1.1_wp, .false., times, n, y)
+      errp(i) = abs(y(1) - x_exact)
+    end do
+    call note(state, "observed order, located", log(err(2)/err(3))/log(2.0_wp))
+    call note(state, "observed order, step-limited", log(errp(2)/errp(3))/log(2.0_wp))
+    call note(state, "error at 5e-4 s, located (m)", err(3))
+    call note(state, "error at 5e-4 s, step-limited (m)", errp(3))
+    call check_true(state, log(err(1)/err(2))/log(2.0_wp) > 3.7_wp .and. &
+                    log(err(2)/err(3))/log(2.0_wp) > 3.7_wp, "fourth order with events")
+    call check_true(state, err(3) < 1.0e-3_wp*errp(3), "located >= 1000x more accurate")
+  end subroutine restored_order
+
+  !> The III.B boat on two 3 m foundation slings (20 mm wire, 1e4 N s/m each), thrown
+  !> up at 1 m/s from their unstretched length: slack until it falls back (2 v/g), then
+  !> taut (heave k = 2 EA/L, c = 2 c_s, m); slack again where k s + c s' reaches 0 (the
+  !> tension-only law with its dashpot clipped at 0), found here by bisection on the
+  !> closed form; then taut again where the ballistic stretch (a quadratic) is back at 0.
+  !> Located with RK4 at 1e-3 s (omega dt = 0.07): within 1e-7 s.
+  subroutine sling_slack(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type) :: sys
+    class(integrator_type), allocatable :: integ
+    type(event_stepper_type) :: stepper
+    type(error_type), allocatable :: error
+    real(wp), allocatable :: y(:)
+    real(wp) :: t, found(3), ts(3), k, c, m, ea
+    integer, allocatable :: m0(:), m1(:)
+    integer :: n
+    logical :: event
+    cfg = deck_config("&simulation dt = 1.0e-3, contact_approach = 'event' / "// &
+                      "&boat velocity = 0.0, 0.0, -1.0, wind_drag_coefficient = 0.0, "// &
+                      "lift_coefficient = 0.0 / &wind speed = 0.0 / "// &
+                      "&contact enabled = .false. / &slings length = 3.0, "// &
+                      "anchor_fore = 4.6, 13.3, -19.55, anchor_aft = -4.6, 13.3, -19.55, "// &
+                      "damping = 1.0e4 /")
+    y = new_test_system(sys, cfg)
+    m = cfg%boat%mass
+    ea = 200.0e9_wp*acos(-1.0_wp)*0.01_wp**2
+    k = 2.0_wp*ea/3.0_wp
+    c = 2.0e4_wp
+    ts = sling_switches(k, c, m, 1.0_wp)
+    call new_integrator("rk4", size(y), integ, error)
+    call stepper%init(size(y), sys%n_modes())
+    allocate (m0(sys%n_modes()), m1(sys%n_modes()))
+    t = 0.0_wp
+    n = 0
+    do while (t < 0.5_wp .and. n < 3)
+      call sys%modes(t, y, m0)
+      call stepper%step(integ, sys, t, y, min(t + 1.0e-3_wp, 0.5_wp), event)
+      call sys%after_step(t, y)
+      call sys%modes(t, y, m1)
+      if (any(m1 /= m0)) then
+        n = n + 1
+        found(n) = t
+      end if
+    end do
+    call check_true(state, n == 3, "slack -> taut -> slack -> taut")
+    do n = 1, min(n, 3)
+      call note(state, "sling switch time error (s)", found(n) - ts(n))
+      call check(state, found(n), ts(n), "located sling switch", abs_tol=1.0e-7_wp)
+    end do
+  end subroutine sling_slack
+
+  !> Switch times of the heave on the slings, s the stretch (down), from s = 0, s' = -v0:
+  !> taut at 2 v0/g; slack where k s + c s' = 0; taut where the ballistic k s + c s' = 0.
+  pure function sling_switches(k, c, m, v0) result(ts)
+    real(wp), intent(in) :: k, c, m, v0
+    real(wp) :: ts(3), s, wd, a, b, lo, hi, tau, x, v, x1, v1, qa, qb, qc
+    integer :: i
+    ts(1) = 2.0_wp*v0/gravity
+    s = 0.5_wp*c/m
+    wd = sqrt(k/m - s**2)
+    a = -m*gravity/k
+    b = (v0 + s*a)/wd
+    ! tension k x + c x' (x = s - s_eq + s_eq ...): bisection between a quarter and three
+    ! quarters of the damped period
+    lo = 0.5_wp*acos(-1.0_wp)/wd
+    hi = 3.0_wp*lo
+    do i = 1, 200
+      tau = 0.5_wp*(lo + hi)
+      call heave(tau, x, v)
+      if (k*x + c*v > 0.0_wp) then
+        lo = tau
+      else
+        hi = tau
+      end if
+    end do
+    ts(2) = ts(1) + tau
+    call heave(tau, x1, v1)
+    ! ballistic from the small stretch x1 > 0 left at slack: taut again when the stretch
+    ! x1 + v1 u + g u^2/2 is back at 0 from below (the later root)
+    qa = 0.5_wp*gravity
+    qb = v1
+    qc = x1
+    ts(3) = ts(2) + (-qb + sqrt(qb**2 - 4.0_wp*qa*qc))/(2.0_wp*qa)
+  contains
+    pure subroutine heave(tau, x, v)
+      real(wp), intent(in) :: tau
+      real(wp), intent(out) :: x, v
+      real(wp) :: e
+      e = exp(-s*tau)
+      x = -a + e*(a*cos(wd*tau) + b*sin(wd*tau))
+      v = e*((wd*b - s*a)*cos(wd*tau) - (wd*a + s*b)*sin(wd*tau))
+    end subroutine heave
+  end function sling_switches
+
+  !> The free boat at 1 m/s onto the side with the paper's Hertz law (as the sweep's
+  !> impact test), now at dt = 1e-3 s and 2e-5 s in contact with the 'event' approach: the
+  !> onset is located at 0.01 s to 1e-9 s (the window approach finds it only to within a
+  !> contact step), and the peak force is Hertz f_m.
+  subroutine hertz_located(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type) :: sys
+    class(integrator_type), allocatable :: integ
+    type(event_stepper_type) :: stepper
+    type(error_type), allocatable :: error
+    real(wp), allocatable :: y(:)
+    real(wp) :: t, onset, dm, fm, fmax, clearance, force(2), h
+    logical :: event
+    cfg = deck_config("&simulation dt = 1.0e-3, dt_contact = 2.0e-5, "// &
+                      "contact_approach = 'event' / "// &
+                      "&slings attached = .false. / &wind speed = 0.0 / "// &
+                      "&contact law = 'hertz_elastoplastic', fender_z = 0.0, 0.0 / "// &
+                      "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
+                      "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
+    y = new_test_system(sys, cfg)
+    call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call new_integrator("rk4", size(y), integ, error)
+    call stepper%init(size(y), sys%n_modes())
+    t = 0.0_wp
+    onset = -1.0_wp
+    fmax = 0.0_wp
+    do while (t < 0.03_wp)
+      h = sys%max_step(t, y, 1.0e-3_wp)
+      call stepper%step(integ, sys, t, y, t + h, event)
+      call sys%after_step(t, y)
+      if (onset < 0.0_wp .and. sys%hist%first_contact_time >= 0.0_wp) onset = t
+      call sys%contact_state(y, clearance, force)
+      fmax = max(fmax, maxval(force))
+    end do
+    call note(state, "onset error (s)", onset - 0.01_wp)
+    call note(state, "steps", real(integ%steps, wp))
+    call check(state, onset, 0.01_wp, "onset after 0.01 m at 1 m/s", abs_tol=1.0e-9_wp)
+    call check(state, fmax, fm, "peak force = Hertz f_m", rel_tol=2.0e-3_wp)
+  end subroutine hertz_located
+
+end module test_events
