@@ -293,11 +293,12 @@ contains
                   "in the &sea and &wind), 'sea' (the wave field alone, recorded at &sea "// &
                   "probes) or 'ship' (the ship alone in the sea and wind).")
     call r%choice(g, "integrator", s%integrator, "rk4", &
-                  [character(len=10) :: "rk4", "dopri5", "rosenbrock"], &
+                  [character(len=10) :: "rk4", "dopri5", "rosenbrock", "rosw"], &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's), "// &
-                  "adaptive Dormand-Prince 5(4) or the linearly implicit, L-stable "// &
-                  "Rosenbrock RODAS3 (step set by accuracy, not by the stiff springs); the "// &
-                  "adaptive ones take substeps inside each dt.")
+                  "adaptive Dormand-Prince 5(4), the linearly implicit, L-stable "// &
+                  "Rosenbrock RODAS3 (full finite-difference Jacobian every step) or the "// &
+                  "Rosenbrock-W ROS34PW2 implicit in the rigging only (its Jacobian block "// &
+                  "kept for many steps); the adaptive ones take substeps inside each dt.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &

@@ -6,13 +6,14 @@ module davit_solve_factory
   use davit_solve_rk4, only: rk4_type
   use davit_solve_dopri5, only: dopri5_type
   use davit_solve_rosenbrock, only: rosenbrock_type
+  use davit_solve_rosenbrock_w, only: rosenbrock_w_type
   implicit none
   private
   public :: new_integrator
 
 contains
 
-  !> Allocate and initialise the integrator `name` ("rk4", "dopri5", "rosenbrock") for a
+  !> Allocate and initialise the integrator `name` ("rk4", "dopri5", "rosenbrock", "rosw") for a
   !> state of size n. rtol/atol set the adaptive methods' tolerances (defaults 1e-6, 1e-9);
   !> rk4 has no error control and ignores them. fixed_step (default .false.) makes the
   !> adaptive methods take exactly one step of the macro step dt, without error control
@@ -43,13 +44,20 @@ contains
       allocate (dopri5_type :: integrator)
     case ("rosenbrock")
       allocate (rosenbrock_type :: integrator)
+    case ("rosw")
+      allocate (rosenbrock_w_type :: integrator)
     case default
-      call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock)")
+      call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock, "// &
+                       "rosw)")
       return
     end select
     call integrator%init(n)
     select type (integrator)
     type is (dopri5_type)
+      if (present(rtol)) integrator%rtol = rtol
+      if (present(atol)) integrator%atol = atol
+      if (present(fixed_step)) integrator%fixed_step = fixed_step
+    type is (rosenbrock_w_type)
       if (present(rtol)) integrator%rtol = rtol
       if (present(atol)) integrator%atol = atol
       if (present(fixed_step)) integrator%fixed_step = fixed_step

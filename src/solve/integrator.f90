@@ -20,6 +20,9 @@ module davit_solve_integrator
     !> Discrete modes of the state (contact phases, slack or taut links): a change between
     !> the ends of a step is an event the time loop locates (davit_solve_event_location)
     !> and steps onto, so after_step switches there; none by default.
+    !> The states whose own Jacobian block holds the stiff modes (the Rosenbrock-W
+    !> method's W, davit_solve_rosenbrock_w); none by default.
+    procedure :: stiff_states => no_stiff_states
     procedure :: n_modes => no_n_modes
     procedure :: modes => no_modes
   end type ode_problem
@@ -79,6 +82,12 @@ contains
     class(ode_problem), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
   end subroutine no_after_step
+
+  pure function no_stiff_states(self) result(idx)
+    class(ode_problem), intent(in) :: self
+    integer, allocatable :: idx(:)
+    allocate (idx(0))
+  end function no_stiff_states
 
   pure integer function no_n_modes(self)
     class(ode_problem), intent(in) :: self

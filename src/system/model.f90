@@ -37,6 +37,7 @@ module davit_system_model
     procedure :: rhs => system_rhs
     procedure :: after_step => system_after_step
     procedure :: max_step => system_max_step
+    procedure :: stiff_states => system_stiff_states
     procedure :: n_modes => system_n_modes
     procedure :: modes => system_modes
     procedure :: observe
@@ -122,6 +123,19 @@ contains
     real(wp), intent(in) :: t, y(:), dt
     h = contact_max_step(self%policy, self%par, self%hist, y, dt)
   end function system_max_step
+
+  !> The rigging's states (blocks, lumps, sheaves, drum): their axial springs are the
+  !> system's stiff modes (the block on its sling ~1260 1/s, lumps ~3e4 1/s).
+  pure function system_stiff_states(self) result(idx)
+    class(system_type), intent(in) :: self
+    integer, allocatable :: idx(:)
+    integer :: i
+    if (self%par%on_davit) then
+      idx = [(i, i=self%par%rig_slice(1), self%par%rig_slice(2))]
+    else
+      allocate (idx(0))
+    end if
+  end function system_stiff_states
 
   !> Modes located as events ('event' contact approach): each fender's contact phase as
   !> the after-step hook would set it, then, on the davit before release, whether each

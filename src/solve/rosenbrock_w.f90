@@ -1,0 +1,318 @@
+!> Rosenbrock-W method ROS34PW2 (Rang & Angermann, BIT 45 (2005) 761-787): 4 stages, order
+!> 3 with an embedded order-2 solution, L-stable and stiffly accurate, and of order 3 for
+!> ANY matrix W in place of the Jacobian (a W-method). That is what lets davit treat only
+!> the stiff part implicitly (issue 14): W is the Jacobian block of the problem's stiff
+!> states (the rigging: blocks, lumps, sheaves; `ode_problem%stiff_states`) on
+!> themselves, formed by forward differences (one RHS per stiff state) and kept for many
+!> steps; every other row is explicit. The stiff springs (the 50 kg block on its 1 m sling,
+!> |lambda| ~ 1260 1/s) are then damped where they are not excited instead of capping the
+!> step, while the error control still resolves them where they are (a snatch).
+!>
+!> In the transformed form (Hairer & Wanner II, sec. IV.7) with u_i = sum_j gamma_ij k_j:
+!>   (I/(h gamma) - W) u_i = f(t + alpha_i h, y + sum_j a_ij u_j) + sum_j (c_ij/h) u_j,
+!>   y_new = y + sum_i m_i u_i,   error = sum_i (m_i - mhat_i) u_i,
+!> a = alpha Gamma^-1, c = diag(1/gamma) - Gamma^-1, m = b Gamma^-1 (computed once here
+!> from the published alpha, Gamma, b, bhat). W is zero outside the stiff block, so the
+!> other rows are u_i = h gamma (...) and only the stiff block is factored. The explicit
+!> time dependence (df/dt) is left out of W as W-methods allow (t is a state whose column
+!> of W is zero).
+!>
+!> Contract as for dopri5: step(problem, t, y, dt) advances exactly from t to t + dt with
+!> adaptive internal steps; the proposed step and W persist between calls. W is formed
+!> afresh after a rejection (unless already fresh) and after `max_age` accepted steps.
+module davit_solve_rosenbrock_w
+  use davit_kinds, only: wp
+  use davit_solve_integrator, only: ode_problem, integrator_type
+  use davit_solve_step_control, only: error_norm, initial_step, record_failure, stretch_to, &
+                                      is_finite_real, substep_allowed
+  implicit none
+  private
+  public :: rosenbrock_w_type
+
+  integer, parameter :: ns = 4
+  real(wp), parameter :: gam = 4.3586652150845900e-1_wp
+  !> alpha_ij and gamma_ij (i > j) of ROS34PW2, Rang & Angermann (2005), Table 3.
+  real(wp), parameter :: alpha_rw(ns, ns) = reshape([ &
+    0.0_wp, 8.7173304301691801e-1_wp, 8.4457060015369423e-1_wp, 0.0_wp, &
+    0.0_wp, 0.0_wp, -1.1299064236484185e-1_wp, 0.0_wp, &
+    0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
+    0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp], [ns, ns])
+  real(wp), parameter :: gamma_rw(ns, ns) = reshape([ &
+    gam, -8.7173304301691801e-1_wp, -9.0338057013044082e-1_wp, 2.4212380706095346e-1_wp, &
+    0.0_wp, gam, 5.4180672388095326e-2_wp, -1.2232505839045147_wp, &
+    0.0_wp, 0.0_wp, gam, 5.4526025533510214e-1_wp, &
+    0.0_wp, 0.0_wp, 0.0_wp, gam], [ns, ns])
+  real(wp), parameter :: b_rw(ns) = [2.4212380706095346e-1_wp, -1.2232505839045147_wp, &
+                                     1.5452602553351020_wp, gam]
+  real(wp), parameter :: bhat_rw(ns) = [3.7810903145819369e-1_wp, &
+                                        -9.6042292212423178e-2_wp, 0.5_wp, &
+                                        2.1793326075422950e-1_wp]
+
+  type, extends(integrator_type) :: rosenbrock_w_type
+    real(wp) :: rtol = 1.0e-6_wp
+    real(wp) :: atol = 1.0e-9_wp
+    real(wp) :: h_min = 1.0e-12_wp
+    integer :: max_substeps = 100000
+    logical :: fixed_step = .false.
+    real(wp) :: safety = 0.9_wp
+    real(wp) :: fac_min = 0.2_wp
+    real(wp) :: fac_max = 6.0_wp
+    !> Accepted steps a W is kept for.
+    integer :: max_age = 50
+    real(wp) :: h = 0.0_wp
+    !> Ws formed and factorisations (statistics).
+    integer :: jacobians = 0, decompositions = 0
+    real(wp) :: a(ns, ns) = 0.0_wp, c(ns, ns) = 0.0_wp, m(ns) = 0.0_wp, e(ns) = 0.0_wp
+    real(wp) :: alpha(ns) = 0.0_wp
+    integer, allocatable :: stiff(:), piv(:)
+    real(wp), allocatable :: w(:, :), lu(:, :), u(:, :), f0(:), fcn(:), ytmp(:), ynew(:)
+    real(wp), allocatable :: yerr(:)
+    integer :: age = -1
+    real(wp) :: h_lu = -1.0_wp
+  contains
+    procedure :: init => rosw_init
+    procedure :: step => rosw_step
+    procedure :: name => rosw_name
+    procedure, private :: form_w, factor, stages
+  end type rosenbrock_w_type
+
+contains
+
+  subroutine rosw_init(self, n)
+    class(rosenbrock_w_type), intent(inout) :: self
+    integer, intent(in) :: n
+    real(wp) :: ginv(ns, ns)
+    integer :: i
+    if (allocated(self%u)) deallocate (self%u, self%f0, self%fcn, self%ytmp, self%ynew, &
+                                       self%yerr)
+    if (allocated(self%stiff)) deallocate (self%stiff)
+    allocate (self%u(n, ns), self%f0(n), self%fcn(n), self%ytmp(n), self%ynew(n), &
+              self%yerr(n))
+    ginv = lower_inverse(gamma_rw)
+    self%a = matmul(alpha_rw, ginv)
+    self%c = -ginv
+    do i = 1, ns
+      self%c(i, i) = 0.0_wp
+    end do
+    self%m = matmul(b_rw, ginv)
+    self%e = self%m - matmul(bhat_rw, ginv)
+    self%alpha = sum(alpha_rw, dim=2)
+    self%steps = 0
+    self%rhs_evaluations = 0
+    self%jacobians = 0
+    self%decompositions = 0
+    self%failed = .false.
+    if (allocated(self%failure)) deallocate (self%failure)
+    self%h = 0.0_wp
+    self%age = -1
+    self%h_lu = -1.0_wp
+  end subroutine rosw_init
+
+  !> Inverse of a lower-triangular matrix with nonzero diagonal (forward substitution).
+  pure function lower_inverse(l) result(x)
+    real(wp), intent(in) :: l(:, :)
+    real(wp) :: x(size(l, 1), size(l, 1))
+    integer :: i, j, n
+    n = size(l, 1)
+    x = 0.0_wp
+    do j = 1, n
+      x(j, j) = 1.0_wp/l(j, j)
+      do i = j + 1, n
+        x(i, j) = -dot_product(l(i, j:i - 1), x(j:i - 1, j))/l(i, i)
+      end do
+    end do
+  end function lower_inverse
+
+  !> W = df_S/dy_S by one forward difference per stiff state, at (t, y) with f0 = f(t, y).
+  subroutine form_w(self, problem, t, y)
+    class(rosenbrock_w_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:)
+    real(wp), parameter :: sqrt_eps = sqrt(epsilon(1.0_wp))
+    real(wp) :: del
+    integer :: j, js
+    self%ytmp = y
+    do j = 1, size(self%stiff)
+      js = self%stiff(j)
+      del = sqrt_eps*max(abs(y(js)), 1.0e-5_wp)
+      self%ytmp(js) = y(js) + del
+      del = self%ytmp(js) - y(js)
+      call problem%rhs(t, self%ytmp, self%fcn)
+      self%w(:, j) = (self%fcn(self%stiff) - self%f0(self%stiff))/del
+      self%ytmp(js) = y(js)
+    end do
+    self%rhs_evaluations = self%rhs_evaluations + size(self%stiff)
+    self%jacobians = self%jacobians + 1
+    self%age = 0
+    self%h_lu = -1.0_wp
+  end subroutine form_w
+
+  !> LU (partial pivoting) of I/(h gamma) - W on the stiff block; ok = .false. if singular.
+  subroutine factor(self, h, ok)
+    class(rosenbrock_w_type), intent(inout) :: self
+    real(wp), intent(in) :: h
+    logical, intent(out) :: ok
+    integer :: i, k, p, n
+    real(wp) :: row(size(self%stiff))
+    n = size(self%stiff)
+    ok = .true.
+    self%decompositions = self%decompositions + 1
+    self%h_lu = h
+    self%lu = -self%w
+    do i = 1, n
+      self%lu(i, i) = self%lu(i, i) + 1.0_wp/(h*gam)
+      self%piv(i) = i
+    end do
+    do k = 1, n
+      p = k - 1 + maxloc(abs(self%lu(k:n, k)), dim=1)
+      if (self%lu(p, k) == 0.0_wp) then
+        ok = .false.
+        return
+      end if
+      if (p /= k) then
+        row = self%lu(k, :)
+        self%lu(k, :) = self%lu(p, :)
+        self%lu(p, :) = row
+        i = self%piv(k)
+        self%piv(k) = self%piv(p)
+        self%piv(p) = i
+      end if
+      self%lu(k + 1:n, k) = self%lu(k + 1:n, k)/self%lu(k, k)
+      do i = k + 1, n
+        self%lu(i, k + 1:n) = self%lu(i, k + 1:n) - self%lu(i, k)*self%lu(k, k + 1:n)
+      end do
+    end do
+  end subroutine factor
+
+  !> Solve (I/(h gamma) - W) x = r in place: the stiff rows by the LU, the others by the
+  !> diagonal h gamma.
+  pure subroutine solve_stage(stiff, lu, piv, h, r)
+    integer, intent(in) :: stiff(:), piv(:)
+    real(wp), intent(in) :: lu(:, :), h
+    real(wp), intent(inout) :: r(:)
+    real(wp) :: x(size(stiff))
+    integer :: i, n
+    n = size(stiff)
+    x = r(stiff(piv))
+    r = (h*gam)*r
+    do i = 2, n
+      x(i) = x(i) - dot_product(lu(i, 1:i - 1), x(1:i - 1))
+    end do
+    do i = n, 1, -1
+      x(i) = (x(i) - dot_product(lu(i, i + 1:n), x(i + 1:n)))/lu(i, i)
+    end do
+    r(stiff) = x
+  end subroutine solve_stage
+
+  !> The four stages from (t, y) with step h (f0 = f(t, y), LU ready): ynew and yerr.
+  subroutine stages(self, problem, t, y, h)
+    class(rosenbrock_w_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:), h
+    integer :: i, j
+    do i = 1, ns
+      if (i == 1) then
+        self%fcn = self%f0
+      else
+        self%ytmp = y
+        do j = 1, i - 1
+          if (self%a(i, j) /= 0.0_wp) self%ytmp = self%ytmp + self%a(i, j)*self%u(:, j)
+        end do
+        call problem%rhs(t + self%alpha(i)*h, self%ytmp, self%fcn)
+        self%rhs_evaluations = self%rhs_evaluations + 1
+      end if
+      self%u(:, i) = self%fcn
+      do j = 1, i - 1
+        self%u(:, i) = self%u(:, i) + (self%c(i, j)/h)*self%u(:, j)
+      end do
+      call solve_stage(self%stiff, self%lu, self%piv, h, self%u(:, i))
+    end do
+    self%ynew = y
+    self%yerr = 0.0_wp
+    do i = 1, ns
+      self%ynew = self%ynew + self%m(i)*self%u(:, i)
+      self%yerr = self%yerr + self%e(i)*self%u(:, i)
+    end do
+  end subroutine stages
+
+  subroutine rosw_step(self, problem, t, y, dt)
+    class(rosenbrock_w_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(inout) :: t
+    real(wp), intent(inout) :: y(:)
+    real(wp), intent(in) :: dt
+    real(wp) :: t_end, tc, h, err, h_new
+    integer :: tries
+    logical :: last, rejected, ok
+    if (self%failed) return
+    if (.not. allocated(self%stiff)) then
+      self%stiff = problem%stiff_states()
+      allocate (self%w(size(self%stiff), size(self%stiff)), &
+                self%lu(size(self%stiff), size(self%stiff)), self%piv(size(self%stiff)))
+    end if
+    t_end = t + dt
+    tc = t
+    call problem%rhs(tc, y, self%f0)
+    self%rhs_evaluations = self%rhs_evaluations + 1
+    if (self%fixed_step) then
+      call self%form_w(problem, tc, y)
+      call self%factor(dt, ok)
+      call self%stages(problem, tc, y, dt)
+      y = self%ynew
+      t = t_end
+      self%steps = self%steps + 1
+      return
+    end if
+    if (self%h <= 0.0_wp) then
+      self%h = initial_step(problem, tc, y, self%f0, 3, self%atol, self%rtol, abs(dt), &
+                            self%ytmp, self%fcn)
+      self%rhs_evaluations = self%rhs_evaluations + 1
+    end if
+    rejected = .false.
+    tries = 0
+    do
+      last = stretch_to(self%h, t_end - tc)
+      h = merge(t_end - tc, self%h, last)
+      tries = tries + 1
+      if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
+      if (self%age < 0 .or. self%age >= self%max_age) call self%form_w(problem, tc, y)
+      if (h /= self%h_lu) call self%factor(h, ok)
+      call self%stages(problem, tc, y, h)
+      err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
+      if (.not. is_finite_real(err) .or. err > 1.0_wp) then
+        ! a rejection: shrink, and take a fresh W unless this one already is
+        if (is_finite_real(err)) then
+          self%h = h*max(self%fac_min, self%safety*err**(-1.0_wp/3.0_wp))
+        else
+          self%h = h*self%fac_min
+        end if
+        if (self%age > 0) self%age = -1
+        rejected = .true.
+        cycle
+      end if
+      h_new = h*min(self%fac_max, max(self%fac_min, &
+                                       self%safety*max(err, 1.0e-10_wp)**(-1.0_wp/3.0_wp)))
+      if (rejected) h_new = min(h_new, h)
+      y = self%ynew
+      self%steps = self%steps + 1
+      self%age = self%age + 1
+      rejected = .false.
+      if (last) then
+        self%h = min(self%h, h_new)
+        exit
+      end if
+      tc = tc + h
+      self%h = h_new
+      call problem%rhs(tc, y, self%f0)
+      self%rhs_evaluations = self%rhs_evaluations + 1
+    end do
+    t = merge(t_end, tc, .not. self%failed)
+  end subroutine rosw_step
+
+  pure function rosw_name(self) result(name)
+    class(rosenbrock_w_type), intent(in) :: self
+    character(len=:), allocatable :: name
+    name = "rosw"
+  end function rosw_name
+
+end module davit_solve_rosenbrock_w
