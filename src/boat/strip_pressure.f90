@@ -21,16 +21,23 @@
 !> ramp, with its time derivative at fixed geometry (for the slow clock's Hermite cubic).
 module davit_boat_strip_pressure
   use davit_kinds, only: wp, gravity, rho_water
+  use davit_core_fastmath, only: fast_sincos
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_stokes2, wave_ramp, &
                                   wave_chunk
   use davit_boat_hull, only: boat_hull_type, section_wet_type
   implicit none
   private
-  public :: surface_plane, section_wave_load
+  public :: surface_plane, section_wave_load, section_wave_loads
 
   !> Below this |z| the edge integrals use their power series (cancellation above ~eps/|z|^2).
   real(wp), parameter :: series_limit = 0.5_wp
   integer, parameter :: series_terms = 14
+  integer :: n_
+  !> 1/n, 1/(n + 1), 1/(n + 2) for n = 1 .. series_terms: the series multiplies by them (a
+  !> division per term would dominate the vectorised block).
+  real(wp), parameter :: inv_n(series_terms) = [(1.0_wp/real(n_, wp), n_ = 1, series_terms)]
+  real(wp), parameter :: inv_n1(series_terms) = [(1.0_wp/real(n_ + 1, wp), n_ = 1, series_terms)]
+  real(wp), parameter :: inv_n2(series_terms) = [(1.0_wp/real(n_ + 2, wp), n_ = 1, series_terms)]
 
 contains
 
@@ -76,9 +83,37 @@ contains
     type(section_wet_type), intent(in) :: wet
     real(wp), intent(in) :: t, c(3, 3), pk(3), d0, gy, gz
     real(wp), intent(out) :: load(3), rate(3)
-    real(wp) :: depth(5), dxy(2, 5), geo(5, 5), lag(5), th, j(4)
-    complex(wp) :: q, fv(5), w0, w1
-    integer :: i, v, e, m
+    real(wp) :: loads(3, 1), rates(3, 1)
+    call section_wave_loads(field, [t], hull, wet, c, pk, d0, gy, gz, loads, rates)
+    load = loads(:, 1)
+    rate = rates(:, 1)
+  end subroutine section_wave_load
+
+  !> section_wave_load at several times for one wet geometry: load(:, j) and rate(:, j) at
+  !> times(j). Per component only the time phasor q = a exp(i theta) depends on t; the edge
+  !> integrals (the exponentials, the trigonometry of the lags, the divisions) are shared
+  !> by all times, so the slow clock's two window ends cost little more than one.
+  !> Components are processed in blocks of wave_chunk with real arithmetic in loops over
+  !> the block (vectorised: exp and fast_sincos have SIMD forms, complex exp and libm
+  !> sincos do not), summed per lane and reduced once at the end.
+  pure subroutine section_wave_loads(field, times, hull, wet, c, pk, d0, gy, gz, load, rate)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: times(:)
+    type(boat_hull_type), intent(in) :: hull
+    type(section_wet_type), intent(in) :: wet
+    real(wp), intent(in) :: c(3, 3), pk(3), d0, gy, gz
+    real(wp), intent(out) :: load(:, :), rate(:, :)
+    real(wp) :: depth(5), dxy(2, 5), geo(5, 5), j(4)
+    ! per block: lags and vertex factors f_v = exp(-k d_v) (cos lag_v, -sin lag_v), time
+    ! phasors (qr, qi) per time, edge integrals, and the per-lane partial sums
+    ! acc(lane, (Re q w0, Re q w1, w Im q w0, w Im q w1), edge, time)
+    real(wp) :: lag(wave_chunk, 5), fr(wave_chunk, 5), fi(wave_chunk, 5)
+    real(wp) :: sn(wave_chunk), cs(wave_chunk), th(wave_chunk)
+    real(wp) :: qr(wave_chunk, size(times)), qi(wave_chunk, size(times))
+    real(wp) :: w0r(wave_chunk), w0i(wave_chunk), w1r(wave_chunk), w1i(wave_chunk)
+    real(wp) :: acc(wave_chunk, 4, 5, size(times))
+    integer :: i0, i1, nc, nt, v, e, m, it, l
+    nt = size(times)
     load = 0.0_wp
     rate = 0.0_wp
     if (field%kind == wave_none .or. wet%m < 3) return
@@ -88,57 +123,120 @@ contains
       depth(v) = max(0.0_wp, d0 + gy*wet%poly(1, v) + gz*wet%poly(2, v))
       dxy(:, v) = c(1:2, 2)*wet%poly(1, v) + c(1:2, 3)*wet%poly(2, v)
     end do
-    do i = 1, field%n
-      th = field%omega(i)*t + field%phase(i) - field%kx(i)*pk(1) - field%ky(i)*pk(2)
-      q = field%amplitude(i)*cmplx(cos(th), sin(th), wp)
-      do v = 1, m
-        lag(v) = field%kx(i)*dxy(1, v) + field%ky(i)*dxy(2, v)
-        fv(v) = exp(cmplx(-field%k(i)*depth(v), -lag(v), wp))
-      end do
+    acc = 0.0_wp
+    do i0 = 1, field%n, wave_chunk
+      nc = min(wave_chunk, field%n - i0 + 1)
+      i1 = i0 + nc - 1
+      associate (k => field%k(i0:i1), kx => field%kx(i0:i1), ky => field%ky(i0:i1), &
+                 a => field%amplitude(i0:i1), w => field%omega(i0:i1))
+        do v = 1, m
+          lag(1:nc, v) = kx*dxy(1, v) + ky*dxy(2, v)
+          call fast_sincos(lag(1:nc, v), sn(1:nc), cs(1:nc))
+          th(1:nc) = exp(-k*depth(v))
+          fr(1:nc, v) = th(1:nc)*cs(1:nc)
+          fi(1:nc, v) = -th(1:nc)*sn(1:nc)
+        end do
+        do it = 1, nt
+          th(1:nc) = w*times(it) + field%phase(i0:i1) - kx*pk(1) - ky*pk(2)
+          call fast_sincos(th(1:nc), sn(1:nc), cs(1:nc))
+          qr(1:nc, it) = a*cs(1:nc)
+          qi(1:nc, it) = a*sn(1:nc)
+        end do
+        do v = 1, m
+          if (geo(1, v) == 0.0_wp) cycle
+          e = merge(1, v + 1, v == m)
+          call edge_integrals(nc, k, depth(e) - depth(v), lag(:, v), lag(:, e), fr(:, v), &
+                              fi(:, v), fr(:, e), fi(:, e), w0r, w0i, w1r, w1i)
+          ! J = Re(q w) and dJ/dt = Re(i omega q w) = -omega Im(q w) (sign at the end)
+          do it = 1, nt
+            do l = 1, nc
+              acc(l, 1, v, it) = acc(l, 1, v, it) + (qr(l, it)*w0r(l) - qi(l, it)*w0i(l))
+              acc(l, 2, v, it) = acc(l, 2, v, it) + (qr(l, it)*w1r(l) - qi(l, it)*w1i(l))
+              acc(l, 3, v, it) = acc(l, 3, v, it) + w(l)*(qr(l, it)*w0i(l) + qi(l, it)*w0r(l))
+              acc(l, 4, v, it) = acc(l, 4, v, it) + w(l)*(qr(l, it)*w1i(l) + qi(l, it)*w1r(l))
+            end do
+          end do
+        end do
+      end associate
+    end do
+    do it = 1, nt
       do v = 1, m
         if (geo(1, v) == 0.0_wp) cycle
-        e = merge(1, v + 1, v == m)
-        call edge_integrals(fv(v), fv(e), lag(v), lag(e), &
-                            cmplx(-field%k(i)*(depth(e) - depth(v)), lag(v) - lag(e), wp), &
-                            w0, w1)
-        ! J = Re(q w) and dJ/dt = Re(i omega q w) = -omega Im(q w)
-        w0 = q*w0
-        w1 = q*w1
-        j = [real(w0, wp), real(w1, wp), -field%omega(i)*aimag(w0), -field%omega(i)*aimag(w1)]
+        j = sum(acc(:, :, v, it), dim=1)
+        j(3:4) = -j(3:4)
         ! (F2, F3, M1) += -rho g t_s L (n2 J0, n3 J0, c0 J0 + L J1)
-        load = load + geo(1, v)*[geo(2, v)*j(1), geo(3, v)*j(1), geo(4, v)*j(1) + geo(5, v)*j(2)]
-        rate = rate + geo(1, v)*[geo(2, v)*j(3), geo(3, v)*j(3), geo(4, v)*j(3) + geo(5, v)*j(4)]
+        load(:, it) = load(:, it) + geo(1, v)*[geo(2, v)*j(1), geo(3, v)*j(1), &
+                                               geo(4, v)*j(1) + geo(5, v)*j(2)]
+        rate(:, it) = rate(:, it) + geo(1, v)*[geo(2, v)*j(3), geo(3, v)*j(3), &
+                                               geo(4, v)*j(3) + geo(5, v)*j(4)]
       end do
     end do
-  end subroutine section_wave_load
+  end subroutine section_wave_loads
 
-  !> int_0^1 (exp(-k d(s) - i phi(s)) - (1 - i phi(s))) ds and the same with the weight s,
-  !> d and phi linear from the edge's start A to its end B (vertex factors fa, fb, lags
-  !> phi_a, phi_b, exponent z = ln(fb/fa)): the exact pressure minus the tangent plane's.
-  pure subroutine edge_integrals(fa, fb, phi_a, phi_b, z, w0, w1)
-    complex(wp), intent(in) :: fa, fb, z
-    real(wp), intent(in) :: phi_a, phi_b
-    complex(wp), intent(out) :: w0, w1
-    complex(wp) :: term, e1, e2
-    integer :: n
-    if (abs(z) < series_limit) then
-      ! E1 = sum z^n/(n+1)!, E2 = sum z^n/(n! (n+2))
-      term = (1.0_wp, 0.0_wp)
-      e1 = term
-      e2 = 0.5_wp*term
-      do n = 1, series_terms
-        term = term*z/real(n, wp)
-        e1 = e1 + term/real(n + 1, wp)
-        e2 = e2 + term/real(n + 2, wp)
+  !> For the nc components of a block, int_0^1 (exp(-k d(s) - i phi(s)) - (1 - i phi(s))) ds
+  !> (w0) and the same with the weight s (w1), d and phi linear from the edge's start A to
+  !> its end B (depth step dd = d_B - d_A, lags phi_a, phi_b, vertex factors fa, fb as real
+  !> and imaginary parts, exponent z = ln(fb/fa) = -k dd + i (phi_a - phi_b)): the exact
+  !> pressure minus the tangent plane's. The closed form runs over the whole block with a
+  !> safe divisor (one loop, vectorised); the few components with |z| below series_limit
+  !> are then overwritten by the series.
+  pure subroutine edge_integrals(nc, k, dd, phi_a, phi_b, far, fai, fbr, fbi, &
+                                 w0r, w0i, w1r, w1i)
+    integer, intent(in) :: nc
+    real(wp), intent(in) :: k(nc), dd, phi_a(nc), phi_b(nc), far(nc), fai(nc), fbr(nc), fbi(nc)
+    real(wp), intent(out) :: w0r(nc), w0i(nc), w1r(nc), w1i(nc)
+    real(wp) :: zr, zi, z2, rz, ir, ii, dr, di
+    complex(wp) :: term, e1, e2, z, fa
+    logical :: small(nc)
+    integer :: l, n
+    do l = 1, nc
+      zr = -k(l)*dd
+      zi = phi_a(l) - phi_b(l)
+      ! squared modulus: no hypot; a series lane divides by 1 (result overwritten below)
+      z2 = zr*zr + zi*zi
+      small(l) = z2 < series_limit**2
+      rz = 1.0_wp/merge(1.0_wp, z2, small(l))
+      ir = zr*rz
+      ii = -zi*rz
+      ! w0 = (fb - fa)/z, w1 = (fb - w0)/z
+      dr = fbr(l) - far(l)
+      di = fbi(l) - fai(l)
+      w0r(l) = dr*ir - di*ii
+      w0i(l) = dr*ii + di*ir
+      dr = fbr(l) - w0r(l)
+      di = fbi(l) - w0i(l)
+      w1r(l) = dr*ir - di*ii
+      w1i(l) = dr*ii + di*ir
+    end do
+    if (any(small)) then
+      do l = 1, nc
+        if (.not. small(l)) cycle
+        ! E1 = sum z^n/(n+1)!, E2 = sum z^n/(n! (n+2)); w0 = fa E1, w1 = fa E2
+        z = cmplx(-k(l)*dd, phi_a(l) - phi_b(l), wp)
+        term = (1.0_wp, 0.0_wp)
+        e1 = term
+        e2 = 0.5_wp*term
+        do n = 1, series_terms
+          term = term*z*inv_n(n)
+          e1 = e1 + term*inv_n1(n)
+          e2 = e2 + term*inv_n2(n)
+        end do
+        fa = cmplx(far(l), fai(l), wp)
+        e1 = fa*e1
+        e2 = fa*e2
+        w0r(l) = real(e1, wp)
+        w0i(l) = aimag(e1)
+        w1r(l) = real(e2, wp)
+        w1i(l) = aimag(e2)
       end do
-      w0 = fa*e1
-      w1 = fa*e2
-    else
-      w0 = (fb - fa)/z
-      w1 = fb/z - w0/z
     end if
-    w0 = w0 - cmplx(1.0_wp, -0.5_wp*(phi_a + phi_b), wp)
-    w1 = w1 - cmplx(0.5_wp, -(phi_a/6.0_wp + phi_b/3.0_wp), wp)
+    ! less the tangent plane's share 1 - i phi (weights 1 and s)
+    do l = 1, nc
+      w0r(l) = w0r(l) - 1.0_wp
+      w0i(l) = w0i(l) + 0.5_wp*(phi_a(l) + phi_b(l))
+      w1r(l) = w1r(l) - 0.5_wp
+      w1i(l) = w1i(l) + (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)
+    end do
   end subroutine edge_integrals
 
   !> Per polygon edge v -> v+1 of the wet section: (-rho g t_s L, n2, n3, c0, L) with L the

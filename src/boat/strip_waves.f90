@@ -25,7 +25,7 @@ module davit_boat_strip_waves
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, wave_chunk, &
                                   component_phases
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
-  use davit_boat_strip_pressure, only: section_wave_load
+  use davit_boat_strip_pressure, only: section_wave_loads
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
@@ -147,16 +147,15 @@ contains
     integer, intent(in) :: k
     real(wp), intent(in) :: c(3, 3), p(3), ramp
     type(section_wet_type) :: wet
-    real(wp) :: grad(3), d0
-    integer :: j
+    real(wp) :: grad(3), d0, load(3, 2), rate(3, 2)
     grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
     d0 = p(3) + ramp*cache%ep(1, 1, k)
     wet = section_immersion(hull, k, d0, grad(2), grad(3))
     if (wet%area <= 0.0_wp) return
-    do j = 1, 2
-      call section_wave_load(field, cache%t(j), hull, wet, c, p, d0, grad(2), grad(3), &
-                             cache%fk(:, 1, j, k), cache%fk(:, 2, j, k))
-    end do
+    ! both window ends in one pass: they share the edge integrals, only the phase differs
+    call section_wave_loads(field, cache%t, hull, wet, c, p, d0, grad(2), grad(3), load, rate)
+    cache%fk(:, 1, :, k) = load
+    cache%fk(:, 2, :, k) = rate
     cache%loaded(k) = .true.
   end subroutine sample_section_load
 
