@@ -16,6 +16,7 @@ program davit
   use davit_sweep_cases, only: sweep_case
   use davit_sweep_driver, only: sweep_options, sweep_outcome, run_sweep, prepare_cases
   use davit_run_linear_modes, only: linear_modes
+  use davit_core_blas_threads, only: single_threaded_blas
   implicit none
 
   interface
@@ -30,6 +31,7 @@ program davit
   character(len=:), allocatable :: command
   integer :: nargs
 
+  call single_threaded_blas()
   nargs = command_argument_count()
   if (nargs < 1) call usage_error("missing subcommand")
   command = argument(1)

@@ -14,7 +14,8 @@ import numpy as np  # noqa: E402
 from . import layout  # noqa: E402
 from .figures import _save  # noqa: E402
 
-COLOURS = {"rk4": "tab:blue", "dopri5": "tab:orange", "rosenbrock": "tab:green"}
+COLOURS = {"rk4": "tab:blue", "dopri5": "tab:orange", "rosenbrock": "tab:green",
+           "rosw": "tab:red"}
 
 
 def _png_name(path):
@@ -22,28 +23,38 @@ def _png_name(path):
     return os.path.splitext(os.path.basename(path))[0] + ".png"
 
 
+PRECISION_PANELS = (("err_smooth", "max boat CG error before first contact [m]"),
+                    ("err_contact", "max boat CG error after first contact [m]"),
+                    ("sling_err", "relative error of the resolved peak sling tension [-]"),
+                    ("segment_err", "relative error of the resolved peak segment tension [-]"))
+
+
 def work_precision(path, outdir):
-    """Smooth-phase CG error and peak-tension error against wall time, per run."""
+    """Errors against wall time, per run: the CG before and after the first contact and
+    the resolved peak sling and segment tensions (older study files: the smooth-phase CG
+    and the sampled peak tension)."""
     d = layout.load_study(path, "work_precision")
     if d is None:
         return None
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    panels = [p for p in PRECISION_PANELS if p[0] in d] or [
+        ("err_smooth", "max boat CG position error before first contact [m]"),
+        ("tension_err", "relative error of peak cable segment tension [-]")]
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.5 * len(panels), 5))
     for i, label in enumerate(d["label"]):
         if not d["ok"][i]:
             continue
         integ = label.split()[0]
         lod = any(k in label for k in ("lumps", "sheaves", "strips", "frozen", "wave_update",
-                                       "n_frequencies"))
+                                       "n_frequencies", "blocks"))
         style = dict(color=COLOURS.get(integ, "k"), marker="s" if lod else "o",
                      markerfacecolor="none" if lod else COLOURS.get(integ, "k"))
-        for ax, key in zip(axes, ("err_smooth", "tension_err")):
+        for ax, (key, _) in zip(axes, panels):
             y = max(d[key][i], 1e-13)
             ax.loglog(d["wall"][i], y, linestyle="none", **style)
             ax.annotate(" ".join(label.split()[1:]) or label, (d["wall"][i], y), fontsize=6,
                         xytext=(3, 2), textcoords="offset points")
-    axes[0].set_ylabel("max boat CG position error before first contact [m]")
-    axes[1].set_ylabel("relative error of peak cable segment tension [-]")
-    for ax in axes:
+    for ax, (_, ylabel) in zip(axes, panels):
+        ax.set_ylabel(ylabel)
         ax.set_xlabel("wall time, one thread [s]")
         ax.grid(True, which="both", alpha=0.3)
     handles = [plt.Line2D([], [], color=c, marker="o", linestyle="none", label=n)
@@ -52,7 +63,8 @@ def work_precision(path, outdir):
                               linestyle="none", label="level-of-detail switch"))
     axes[0].legend(handles=handles, fontsize=8)
     a = d["attrs"]
-    fig.suptitle(f"Work-precision on {os.path.basename(a['base'])}, {a['t_end']:.0f} s; "
+    span = f"{a['t_end']:.0f} s" if a["t_end"] > 0 else "whole launch"
+    fig.suptitle(f"Work-precision on {os.path.basename(a['base'])}, {span}; "
                  f"reference: {a['reference']}")
     fig.tight_layout()
     return _save(fig, outdir, _png_name(path), dpi=120)

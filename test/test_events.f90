@@ -12,7 +12,9 @@ module test_events
   use davit_solve_event_location, only: event_stepper_type
   use davit_error, only: error_type
   use davit_io_config, only: config_type
-  use davit_boat_contact, only: hertz_peak
+  use davit_boat_contact, only: hertz_peak, contact_law_type, fender_state_type, &
+                                fender_update, fender_next_phase, new_contact_law, &
+                                new_rubber_fender_law, law_hertz_elastoplastic
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, deck_config
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -38,7 +40,8 @@ contains
     suite%cases = [new_case("bouncing_mass_event_times_vs_analytic", bounce_times), &
                    new_case("located_events_restore_rk4_order", restored_order), &
                    new_case("hanging_boat_sling_slack_and_taut_times", sling_slack), &
-                   new_case("hertz_impact_onset_and_peak_located", hertz_located)]
+                   new_case("hertz_impact_onset_and_peak_located", hertz_located), &
+                   new_case("fender_next_phase_is_fender_update", next_phase)]
   end function collect_events
 
   subroutine bouncer_rhs(self, t, y, dydt)
@@ -323,5 +326,40 @@ contains
     call check(state, onset, 0.01_wp, "onset after 0.01 m at 1 m/s", abs_tol=1.0e-9_wp)
     call check(state, fmax, fm, "peak force = Hertz f_m", rel_tol=2.0e-3_wp)
   end subroutine hertz_located
+
+  !> Event location asks each fender which phase it would switch to (fender_next_phase);
+  !> the after-step hook switches it (fender_update). Over every phase, both laws and a grid
+  !> of indentations (through the offset, the permanent set and the recorded maximum) and
+  !> rates, the two agree.
+  subroutine next_phase(state)
+    type(case_state), intent(inout) :: state
+    type(contact_law_type) :: laws(2)
+    type(fender_state_type) :: s, u
+    real(wp) :: delta, rate
+    integer :: l, p, i, j, bad, tried
+    laws(1) = new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.3_wp, 200.0e9_wp, &
+                              0.3_wp, 0.5_wp, 0.0_wp, 0.8_wp)
+    laws(2) = new_rubber_fender_law(1.0_wp, 182.0e3_wp, 0.8_wp)
+    bad = 0
+    tried = 0
+    do l = 1, 2
+      do p = 0, 3
+        do i = -4, 40
+          do j = -1, 1
+            s = fender_state_type(phase=p, v0=1.0_wp, delta_max=0.2_wp, f_max=1.0e4_wp, &
+                                  offset=0.05_wp, exponent=2.0_wp)
+            delta = 0.01_wp*real(i, wp)
+            rate = real(j, wp)
+            u = s
+            call fender_update(laws(l), u, delta, rate)
+            tried = tried + 1
+            if (u%phase /= fender_next_phase(laws(l), s, delta, rate)) bad = bad + 1
+          end do
+        end do
+      end do
+    end do
+    call note(state, "states tried", real(tried, wp))
+    call check_true(state, bad == 0, "next phase = the phase fender_update sets")
+  end subroutine next_phase
 
 end module test_events

@@ -10,6 +10,7 @@ module test_integrators
   use davit_solve_rk4, only: rk4_type
   use davit_solve_dopri5, only: dopri5_type
   use davit_solve_rosenbrock, only: rosenbrock_type
+  use davit_solve_rosenbrock_w, only: rosenbrock_w_type
   use davit_solve_factory, only: new_integrator
   use test_problems, only: oscillator
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -30,6 +31,21 @@ module test_integrators
   contains
     procedure :: rhs => stiff_pair_rhs
   end type stiff_pair
+
+  !> The pair with the light mass's states (x2, v2) named stiff and the heavy mass's
+  !> coupled: the Rosenbrock-W method's W is the light mass's rows only.
+  type, extends(stiff_pair) :: stiff_pair_w
+  contains
+    procedure :: stiff_states => pair_stiff_states
+    procedure :: coupled_states => pair_coupled_states
+  end type stiff_pair_w
+
+  !> x'' = -x with both states stiff (W = the exact Jacobian) or none (W = 0).
+  type, extends(oscillator) :: oscillator_w
+    logical :: with_w = .true.
+  contains
+    procedure :: stiff_states => oscillator_stiff_states
+  end type oscillator_w
 
   !> Ball of unit mass on a linear spring-dashpot ground contact, y = (x, v). The contact
   !> force switches on at x = 0 (a jump of c v with damping); after_step counts impacts.
@@ -55,6 +71,8 @@ contains
     suite%name = "integrators"
     suite%cases = [new_case("dopri5_fixed_step_order_5", dopri5_order), &
                    new_case("rosenbrock_fixed_step_order_3", rosenbrock_order), &
+                   new_case("rosw_order_3_for_any_w", rosw_order), &
+                   new_case("rosw_stiff_pair_with_partial_w", rosw_stiff_pair), &
                    new_case("tolerance_proportionality", tolerance_proportionality), &
                    new_case("stiff_spring_pair", stiff_spring_pair), &
                    new_case("exact_macro_step", exact_macro_step), &
@@ -159,7 +177,96 @@ contains
     ratio = err(1)/err(2)
   end function oscillator_ratio
 
+  pure function pair_stiff_states(self) result(idx)
+    class(stiff_pair_w), intent(in) :: self
+    integer, allocatable :: idx(:)
+    idx = [2, 4]
+  end function pair_stiff_states
+
+  !> The heavy mass's position and speed pull on the light one through the stiff spring.
+  pure function pair_coupled_states(self) result(idx)
+    class(stiff_pair_w), intent(in) :: self
+    integer, allocatable :: idx(:)
+    idx = [1, 3]
+  end function pair_coupled_states
+
+  pure function oscillator_stiff_states(self) result(idx)
+    class(oscillator_w), intent(in) :: self
+    integer, allocatable :: idx(:)
+    if (self%with_w) then
+      idx = [1, 2]
+    else
+      allocate (idx(0))
+    end if
+  end function oscillator_stiff_states
+
   ! ---------------------------------------------------------------- cases
+
+  !> ROS34PW2 is a W-method: third order whatever W is. Fixed steps on x'' = -x to t = 10
+  !> with W the exact Jacobian and with W = 0 (every row explicit): halving dt divides the
+  !> global error by 2^3 = 8 either way.
+  subroutine rosw_order(state)
+    type(case_state), intent(inout) :: state
+    type(rosenbrock_w_type) :: integ
+    type(oscillator_w) :: p
+    real(wp) :: err(2), y(2), ratio
+    integer :: i, k, n
+    do k = 1, 2
+      p%with_w = k == 1
+      do i = 1, 2
+        n = 200*2**(i - 1)
+        y = [1.0_wp, 0.0_wp]
+        call integ%init(2)
+        integ%fixed_step = .true.
+        n = integrate(integ, p, y, 10.0_wp/real(n, wp), n)
+        err(i) = hypot(y(1) - cos(10.0_wp), y(2) + sin(10.0_wp))
+      end do
+      ratio = err(1)/err(2)
+      call note(state, merge("W = J: error ratio dt=0.05 -> 0.025 (expect 8)", &
+                             "W = 0: error ratio dt=0.05 -> 0.025 (expect 8)", k == 1), ratio)
+      call check(state, ratio, 8.0_wp, "rosw fixed-step error ratio", rel_tol=0.2_wp)
+    end do
+  end subroutine rosw_order
+
+  !> The stiff pair (fast mode ~1e4 rad/s) with W on the light mass's states only: the
+  !> Rosenbrock-W method steps over the fast mode at the 1e-2 s macro step (where RK4
+  !> blows up, test stiff_spring_pair), keeps the slow mode within 1 % at 10 s and needs
+  !> far fewer RHS evaluations than dopri5, which sits at its stability boundary.
+  subroutine rosw_stiff_pair(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: dt = 1.0e-2_wp, t_end = 10.0_wp
+    type(stiff_pair_w) :: p
+    type(rosenbrock_w_type) :: rw
+    type(dopri5_type) :: dp
+    complex(wp) :: ls, lf
+    real(wp) :: y(4), y0(4), ye(4), dev, w
+    integer :: n, done
+    ls = pair_eigenvalue(p%stiff_pair, cmplx(0.0_wp, sqrt(p%k1/(p%m1 + p%m2)), wp))
+    lf = pair_eigenvalue(p%stiff_pair, cmplx(-0.5_wp*p%c2/p%m2, sqrt(p%k2/p%m2), wp))
+    y0 = pair_exact(p%stiff_pair, ls, lf, 0.0_wp)
+    ye = pair_exact(p%stiff_pair, ls, lf, t_end)
+    n = nint(t_end/dt)
+    w = aimag(ls)
+    call rw%init(4)
+    rw%rtol = 1.0e-6_wp
+    rw%atol = 1.0e-9_wp
+    y = y0
+    done = integrate(rw, p, y, dt, n)
+    dev = hypot(y(1) - ye(1), (y(3) - ye(3))/w)/hypot(ye(1), ye(3)/w)
+    call note(state, "rosw slow-mode deviation / amplitude at 10 s", dev)
+    call note(state, "rosw RHS evaluations", real(rw%rhs_evaluations, wp))
+    call note(state, "rosw W formed", real(rw%jacobians, wp))
+    call check_true(state, done == n .and. .not. rw%failed, "rosw completes")
+    call check_true(state, dev < 1.0e-2_wp, "rosw slow mode within 1 % at 10 s")
+    call dp%init(4)
+    dp%rtol = 1.0e-6_wp
+    dp%atol = 1.0e-9_wp
+    y = y0
+    done = integrate(dp, p, y, dt, n)
+    call note(state, "dopri5 RHS evaluations", real(dp%rhs_evaluations, wp))
+    call check_true(state, rw%rhs_evaluations*5 < dp%rhs_evaluations, &
+                    "rosw needs < 1/5 of dopri5's RHS evaluations")
+  end subroutine rosw_stiff_pair
 
   !> One fixed Dormand-Prince step per macro step is fifth order: halving dt divides the
   !> global error by 2^5 = 32.

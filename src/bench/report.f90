@@ -89,16 +89,20 @@ contains
       rec%cpu//", "//rec%compiler//", load average "//sig(rec%load_start)//" -> "// &
       sig(rec%load_end), "", &
       "| benchmark | deck | threads | dt [s] | simulated [s] | wall [s] | steps | "// &
-      "RHS evaluations | RHS/s | steps/s | real-time factor |", &
-      "|---|---|---|---|---|---|---|---|---|---|---|"
+      "RHS evaluations | RHS/s | steps/s | real-time factor | CG error before / after "// &
+      "first contact [m] | peak sling / segment tension error |", &
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     do i = 1, size(rec%runs)
       associate (r => rec%runs(i))
         write (unit, "(a)") "| "//r%name//" | "//r%deck//" | "//int_text(int(r%threads, i8))// &
           " | "//sig(r%dt)//" | "//sig(r%simulated)//" | "//sig(r%wall)//" | "// &
           int_text(r%steps)//" | "//int_text(r%rhs_evaluations)//" | "//sig(rhs_rate(r))// &
-          " | "//sig(step_rate(r))//" | "//sig(real_time_factor(r))//" |"
+          " | "//sig(step_rate(r))//" | "//sig(real_time_factor(r))//" | "// &
+          accuracy_text(r)//" |"
       end associate
     end do
+    write (unit, "(a)") "", "Errors against each scene's converged reference ("// &
+      "bench_reference.h5 in the decks folder; n/a without one or with --quick)."
     write (unit, "(a)") "", "sweep speed-up, 1 -> 2 threads: "//sig(rec%speed_up)//" ("// &
       int_text(int(rec%sweep_cases, i8))//" cases)", &
       "paper-literal step: "//sig(rec%safety)//" x RK4 limit 2.83/|lambda|max = "// &
@@ -110,6 +114,18 @@ contains
         rec%sea(i)%unit//" |"
     end do
   end subroutine print_report
+
+  !> "2.1e-05 / 3.4e-03 | 0.2 % / 12 %", or n/a.
+  function accuracy_text(r) result(s)
+    type(timed_run), intent(in) :: r
+    character(len=:), allocatable :: s
+    if (.not. r%accuracy%known) then
+      s = "n/a | n/a"
+      return
+    end if
+    s = sig(r%accuracy%cg_before)//" / "//sig(r%accuracy%cg_after)//" | "// &
+        sig(100.0_wp*r%accuracy%sling)//" % / "//sig(100.0_wp*r%accuracy%segment)//" %"
+  end function accuracy_text
 
   !> "davit bench: regular, 1 thread: 100 s simulated in 2.31 s (43.3x real time)"
   subroutine print_progress(unit, run)
@@ -178,6 +194,18 @@ contains
     call w%write_1d("bench/runs/real_time_factor", &
                     [(real_time_factor(runs(i)), i = 1, size(runs))], "-", &
                     "simulated_time / wall_time")
+    call w%write_1d_int("bench/runs/accuracy_known", &
+                        [(merge(1_i8, 0_i8, runs(i)%accuracy%known), i = 1, size(runs))], &
+                        "-", "1 where the run was compared with a converged reference "// &
+                        "(the error columns are 0 otherwise)")
+    call w%write_1d("bench/runs/cg_error_before_contact", runs%accuracy%cg_before, "m", &
+                    "Largest boat CG distance from the reference before its first contact")
+    call w%write_1d("bench/runs/cg_error_after_contact", runs%accuracy%cg_after, "m", &
+                    "Largest boat CG distance from the reference after its first contact")
+    call w%write_1d("bench/runs/peak_sling_tension_error", runs%accuracy%sling, "-", &
+                    "Largest relative error of a sling's resolved peak tension")
+    call w%write_1d("bench/runs/peak_segment_tension_error", runs%accuracy%segment, "-", &
+                    "Largest relative error of a cable segment's resolved peak tension")
   end subroutine write_runs
 
   subroutine write_sea(w, sea)

@@ -13,7 +13,9 @@ module davit_bench_scenes
   use davit_run_run_summary, only: run_summary
   use davit_run_driver, only: integrate
   use davit_run_linear_modes, only: linear_modes
+  use davit_run_launch_log, only: launch_log, new_launch_log
   use davit_bench_timing, only: timed_run
+  use davit_bench_accuracy, only: scene_accuracy
   implicit none
   private
   public :: step_limit, time_deck, rk4_bound, safety_factor
@@ -27,9 +29,10 @@ contains
 
   !> Run deck `path` for `t_end` seconds (its own t_end when t_end <= 0), at its own step
   !> or, with `at_limit`, at the step of step_limit. `rate_max` is the deck's largest
-  !> |eigenvalue| at t = 0 when at_limit (else 0).
-  subroutine time_deck(name, path, t_end, at_limit, run, rate_max, error)
-    character(len=*), intent(in) :: name, path
+  !> |eigenvalue| at t = 0 when at_limit (else 0). The run's errors are measured against
+  !> scene `name` of the reference file `reference` (where it has one).
+  subroutine time_deck(name, path, t_end, at_limit, reference, run, rate_max, error)
+    character(len=*), intent(in) :: name, path, reference
     real(wp), intent(in) :: t_end
     logical, intent(in) :: at_limit
     type(timed_run), intent(out) :: run
@@ -46,7 +49,7 @@ contains
     end if
     run%name = name
     run%deck = path
-    call time_config(cfg, run, error)
+    call time_config(cfg, reference, run, error)
   end subroutine time_deck
 
   !> Set the deck's step to safety_factor x the RK4 limit rk4_bound/|lambda|max of its
@@ -70,14 +73,18 @@ contains
   end subroutine step_limit
 
   !> Build the boat scene of `cfg` and time its time loop (the driver's own clock and
-  !> counters). A run that diverges is an error: its rates would mean nothing.
-  subroutine time_config(cfg, run, error)
+  !> counters) with the launch log watching it, as `davit run` does: a launch ends where
+  !> the run would (after_release past the hook release). A run that diverges is an
+  !> error: its rates would mean nothing.
+  subroutine time_config(cfg, reference, run, error)
     type(config_type), intent(in) :: cfg
+    character(len=*), intent(in) :: reference
     type(timed_run), intent(inout) :: run
     type(error_type), allocatable, intent(out) :: error
     type(system_type) :: sys
     type(boat_recorder) :: rec
     type(run_summary) :: summary
+    type(launch_log) :: log
     type(error_type), allocatable :: run_error
     real(wp), allocatable :: y(:)
     select case (cfg%simulation%scene)
@@ -91,7 +98,8 @@ contains
     if (allocated(error)) return
     call initial_state(sys, cfg, y, error)
     if (allocated(error)) return
-    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error)
+    log = new_launch_log(cfg, sys)
+    call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, log)
     if (allocated(error)) return
     if (allocated(run_error)) then
       call fatal_error(error, cfg%filename//" (dt = "//fmt_real(cfg%simulation%dt)// &
@@ -100,11 +108,14 @@ contains
     end if
     run%threads = 1
     run%dt = cfg%simulation%dt
-    ! with no step monitor a complete run ends exactly at t_end (the last step lands on it)
-    run%simulated = cfg%simulation%t_end
+    ! the last sample is the last state: t_end, or where the launch log ended the run
+    run%simulated = rec%time(rec%n)
     run%wall = summary%wall_time
     run%steps = summary%steps
     run%rhs_evaluations = summary%rhs_evaluations
+    run%accuracy = scene_accuracy(reference, run%name, rec%time(1:rec%n), &
+                                  rec%position(:, 1:rec%n), log%loads%sling, &
+                                  log%loads%segment)
   end subroutine time_config
 
 end module davit_bench_scenes

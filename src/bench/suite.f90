@@ -43,6 +43,8 @@ module davit_bench_suite
     scene_spec("irregular", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, .false.), &
     scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true.)]
 
+  !> The scenes' converged references (davit_bench_accuracy), in the decks folder.
+  character(len=*), parameter :: reference_file = "bench_reference.h5"
   !> The sweep deck; full: whole launches (each to its hook release), quick: 10 s each.
   character(len=*), parameter :: sweep_deck = "bench_sweep.nml"
   real(wp), parameter :: sweep_t_quick = 10.0_wp
@@ -83,12 +85,16 @@ contains
     type(timed_run) :: run
     type(scene_spec) :: sc
     real(wp) :: rate_max
+    character(len=:), allocatable :: reference
     integer :: i
+    ! a quick run's shortened scenes have no reference to be measured against
+    reference = opts%decks//"/"//reference_file
+    if (opts%quick) reference = ""
     do i = 1, size(scenes)
       sc = scenes(i)
       call time_deck(trim(sc%name), opts%decks//"/"//trim(sc%deck), &
-                     merge(sc%t_quick, sc%t_full, opts%quick), sc%at_limit, run, rate_max, &
-                     error)
+                     merge(sc%t_quick, sc%t_full, opts%quick), sc%at_limit, &
+                     reference, run, rate_max, error)
       if (allocated(error)) return
       if (sc%at_limit) then
         rec%rate_max = rate_max

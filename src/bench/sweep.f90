@@ -11,7 +11,7 @@ module davit_bench_sweep
   use davit_run_recorders, only: boat_recorder
   use davit_sweep_keys, only: sweep_config, read_sweep
   use davit_sweep_cases, only: sweep_case, case_config
-  use davit_sweep_driver, only: prepare_cases, run_case
+  use davit_sweep_driver, only: prepare_cases, run_case, longest_first
   use davit_sweep_metrics, only: case_result, status_ok
   use davit_bench_timing, only: timed_run, wall_seconds
   implicit none
@@ -44,15 +44,19 @@ contains
     type(sweep_case), allocatable :: cases(:)
     type(case_result), allocatable :: rows(:)
     real(wp) :: clearance0, t0
+    integer, allocatable :: order(:)
     integer :: k
     call prepare_cases(s, cases, clearance0, error)
     if (allocated(error)) return
     allocate (rows(size(cases)))
+    ! dearest cases first, as davit sweep runs them
+    order = [(k, k = 1, size(cases))]
+    call longest_first(s, cases, order)
     t0 = wall_seconds()
     !$omp parallel do schedule(dynamic, 1) num_threads(threads) default(none) &
-    !$omp shared(s, cases, clearance0, rows)
+    !$omp shared(s, cases, clearance0, rows, order)
     do k = 1, size(cases)
-      call run_one(s, cases(k), clearance0, rows(k))
+      call run_one(s, cases(order(k)), clearance0, rows(order(k)))
     end do
     !$omp end parallel do
     run%wall = wall_seconds() - t0

@@ -3,6 +3,7 @@
 !> printed table and the HDF5 file agree with each other by construction.
 module davit_bench_timing
   use davit_kinds, only: wp, i8
+  use davit_bench_accuracy, only: accuracy_type
   implicit none
   private
   public :: timed_run, wall_seconds, rhs_rate, step_rate, real_time_factor
@@ -20,6 +21,8 @@ module davit_bench_timing
     real(wp) :: simulated = 0.0_wp, wall = 0.0_wp
     !> The run driver's counters (summed over a sweep's cases).
     integer(i8) :: steps = 0, rhs_evaluations = 0
+    !> A scene's errors against its converged reference (unknown for sweeps).
+    type(accuracy_type) :: accuracy
   end type timed_run
 
 contains

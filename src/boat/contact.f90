@@ -22,7 +22,7 @@ module davit_boat_contact
   implicit none
   private
   public :: contact_law_type, fender_state_type, new_contact_law, contact_force
-  public :: fender_update, hertz_peak, law_hertz_elastoplastic, law_lankarani_nikravesh
+  public :: fender_update, fender_next_phase, hertz_peak, law_hertz_elastoplastic, law_lankarani_nikravesh
   public :: law_rubber_fender, new_rubber_fender_law
   public :: phase_free, phase_compression, phase_restitution, phase_separated
 
@@ -151,6 +151,51 @@ contains
       end if
     end select
   end subroutine fender_update
+
+  !> The phase fender_update would leave the fender in, without its bookkeeping (the
+  !> rubber fender's unloading exponent is a root solve): what event location asks at
+  !> every point it tries (davit_system_model's modes). The same branches as
+  !> fender_update and rubber_update; a test holds the two together.
+  pure integer function fender_next_phase(c, s, delta, delta_dot) result(phase)
+    type(contact_law_type), intent(in) :: c
+    type(fender_state_type), intent(in) :: s
+    real(wp), intent(in) :: delta, delta_dot
+    phase = s%phase
+    if (c%law == law_rubber_fender) then
+      if (delta <= 0.0_wp) then
+        phase = phase_free
+      else if (s%phase == phase_free) then
+        phase = phase_compression
+      else if (s%phase == phase_compression .and. delta_dot <= 0.0_wp) then
+        phase = phase_restitution
+      else if (s%phase == phase_restitution .and. delta > s%delta_max) then
+        phase = phase_compression
+      end if
+      return
+    end if
+    select case (s%phase)
+    case (phase_free)
+      if (delta > 0.0_wp) phase = phase_compression
+    case (phase_compression)
+      if (delta <= s%offset) then
+        phase = phase_free
+      else if (delta_dot <= 0.0_wp) then
+        phase = phase_restitution
+      end if
+    case (phase_restitution)
+      if (delta <= 0.0_wp) then
+        phase = phase_free
+      else if (delta <= permanent_set(c, s)) then
+        phase = phase_separated
+      end if
+    case (phase_separated)
+      if (delta <= 0.0_wp) then
+        phase = phase_free
+      else if (delta_dot > 0.0_wp .and. delta > s%offset) then
+        phase = phase_compression
+      end if
+    end select
+  end function fender_next_phase
 
   !> The rubber fender's phases: compression on the loading curve until delta_dot <= 0, then
   !> the unloading path of this turning point (its exponent solved once here) until the

@@ -112,7 +112,7 @@ contains
     real(wp) :: qr(wave_chunk, size(times)), qi(wave_chunk, size(times))
     real(wp) :: w0r(wave_chunk), w0i(wave_chunk), w1r(wave_chunk), w1i(wave_chunk)
     real(wp) :: acc(wave_chunk, 4, 5, size(times))
-    integer :: i0, i1, nc, nt, v, e, m, it, l
+    integer :: i0, i1, nc, nt, v, e, m, it, l, lanes
     nt = size(times)
     load = 0.0_wp
     rate = 0.0_wp
@@ -123,7 +123,9 @@ contains
       depth(v) = max(0.0_wp, d0 + gy*wet%poly(1, v) + gz*wet%poly(2, v))
       dxy(:, v) = c(1:2, 2)*wet%poly(1, v) + c(1:2, 3)*wet%poly(2, v)
     end do
-    acc = 0.0_wp
+    ! only the lanes a block fills are used (a regular sea has one component)
+    lanes = min(wave_chunk, field%n)
+    acc(1:lanes, :, :, :) = 0.0_wp
     do i0 = 1, field%n, wave_chunk
       nc = min(wave_chunk, field%n - i0 + 1)
       i1 = i0 + nc - 1
@@ -162,7 +164,7 @@ contains
     do it = 1, nt
       do v = 1, m
         if (geo(1, v) == 0.0_wp) cycle
-        j = sum(acc(:, :, v, it), dim=1)
+        j = sum(acc(1:lanes, :, v, it), dim=1)
         j(3:4) = -j(3:4)
         ! (F2, F3, M1) += -rho g t_s L (n2 J0, n3 J0, c0 J0 + L J1)
         load(:, it) = load(:, it) + geo(1, v)*[geo(2, v)*j(1), geo(3, v)*j(1), &

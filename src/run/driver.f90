@@ -164,6 +164,9 @@ contains
     call new_integrator(sim%integrator, size(y), integ, error, sim%rtol, sim%atol, &
                         fixed_step=sim%fixed_step)
     if (allocated(error)) return
+    ! adaptive integrators return after each accepted step: the history, the monitors
+    ! and event location see every step, and dt is the largest step
+    integ%single_step = .true.
     call stepper%init(size(y), problem%n_modes())
     ! Samples at exact multiples of the output interval; each step is the deck's dt or what
     ! the problem allows (problem%max_step, e.g. near a contact), shortened to land on the

@@ -133,15 +133,24 @@ contains
     type(bem_database_type), intent(in) :: db
     real(wp), intent(in) :: x(:), u_dof(6)
     real(wp), intent(out) :: xdot(:), mu(6)
-    integer :: k
+    real(wp) :: s, m
+    integer :: k, r, q, i0, n
     mu = 0.0_wp
+    ! written out: the pairs' realisations are a few states each, where matmul's and
+    ! dot_product's set-up on allocatable components costs more than the arithmetic
     do k = 1, size(db%pairs)
-      associate (p => db%pairs(k), i0 => db%pairs(k)%first)
-        associate (xs => x(i0:i0 + p%n - 1))
-          xdot(i0:i0 + p%n - 1) = matmul(p%a, xs) + p%b*u_dof(p%j)
-          mu(p%i) = mu(p%i) + dot_product(p%c, xs)
-        end associate
-      end associate
+      i0 = db%pairs(k)%first - 1
+      n = db%pairs(k)%n
+      m = 0.0_wp
+      do r = 1, n
+        s = db%pairs(k)%b(r)*u_dof(db%pairs(k)%j)
+        do q = 1, n
+          s = s + db%pairs(k)%a(r, q)*x(i0 + q)
+        end do
+        xdot(i0 + r) = s
+        m = m + db%pairs(k)%c(r)*x(i0 + r)
+      end do
+      mu(db%pairs(k)%i) = mu(db%pairs(k)%i) + m
     end do
   end subroutine bem_memory
 

@@ -167,6 +167,10 @@ contains
         end if
         tc = tc + h
         self%h = h_new
+        if (self%single_step) then
+          t = tc
+          return
+        end if
       else
         self%h = h/min(1.0_wp/self%fac_min, fac/self%safety)
         rejected = .true.

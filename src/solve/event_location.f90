@@ -42,9 +42,10 @@ contains
     self%located = 0
   end subroutine stepper_init
 
-  !> Advance (t, y) to t_new with `integ` (t = t_new exactly on return); where the modes
-  !> change inside the step, stop just past their first change instead (t < t_new on
-  !> return, event = .true.). A failed integrator step returns at once (integ%failed).
+  !> Advance (t, y) to t_new with `integ` (t = t_new exactly on return, or where a
+  !> single-step integrator ended its one step); where the modes change inside the step,
+  !> stop just past their first change instead (event = .true.). A failed integrator step
+  !> returns at once (integ%failed).
   subroutine located_step(self, integ, problem, t, y, t_new, event)
     class(event_stepper_type), intent(inout) :: self
     class(integrator_type), intent(inout) :: integ
@@ -52,27 +53,37 @@ contains
     real(wp), intent(inout) :: t, y(:)
     real(wp), intent(in) :: t_new
     logical, intent(out) :: event
-    real(wp) :: t0
+    real(wp) :: t0, t1
     event = .false.
     if (size(self%m0) == 0) then
-      call integ%step(problem, t, y, t_new - t)
-      t = t_new
+      call advance(integ, problem, t, y, t_new)
       return
     end if
     t0 = t
     self%y0 = y
     call problem%modes(t0, y, self%m0)
-    call integ%step(problem, t, y, t_new - t0)
+    call advance(integ, problem, t, y, t_new)
     if (integ%failed) return
-    t = t_new
     call problem%modes(t, y, self%m1)
     if (all(self%m1 == self%m0)) return
     integ%rhs_evaluations = integ%rhs_evaluations + 1
     call problem%rhs(t0, self%y0, self%f0)
-    call refine(self, integ, problem, t0, t, y, t_new)
-    event = t < t_new
+    t1 = t
+    call refine(self, integ, problem, t0, t, y)
+    event = t < t1
     if (event) self%located = self%located + 1
   end subroutine located_step
+
+  !> One step of `integ` towards t_new; t lands exactly on t_new when the step reached
+  !> it (t0 + (t_new - t0) may round an ulp away), else where a single step ended.
+  subroutine advance(integ, problem, t, y, t_new)
+    class(integrator_type), intent(inout) :: integ
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(inout) :: t, y(:)
+    real(wp), intent(in) :: t_new
+    call integ%step(problem, t, y, t_new - t)
+    if (abs(t - t_new) <= 4.0_wp*epsilon(1.0_wp)*max(1.0_wp, abs(t_new))) t = t_new
+  end subroutine advance
 
   !> The step [t0, t1] (y = y(t1)) crossed a mode change. Bracket it on the interpolant,
   !> redo the step to the bracket's near end ta (still the old modes: the right-hand side
@@ -81,16 +92,21 @@ contains
   !> redone step finds the modes already changed at ta (the interpolant, built over a
   !> step that crossed a kink, put the switch late), bracket again over [t0, ta], now on
   !> the redone end: each pass shrinks the step that crosses the switch. On return
-  !> (t, y) is just past the switch (t < t_new), or at t_new if the switch was not found
-  !> again inside the step.
-  subroutine refine(self, integ, problem, t0, t, y, t_new)
+  !> (t, y) is just past the switch, or at the step's end if the switch was not found
+  !> again inside it. A single-step integrator redoes each part as one step (it is
+  !> given exactly that span, within its proposed step or not).
+  subroutine refine(self, integ, problem, t0, t, y)
     class(event_stepper_type), intent(inout) :: self
     class(integrator_type), intent(inout) :: integ
     class(ode_problem), intent(in) :: problem
-    real(wp), intent(in) :: t0, t_new
+    real(wp), intent(in) :: t0
     real(wp), intent(inout) :: t, y(:)
     real(wp) :: ta, tb, t1
     integer :: pass
+    logical :: single
+    ! the redone parts must end exactly at ta and tb
+    single = integ%single_step
+    integ%single_step = .false.
     t1 = t
     do pass = 1, max_passes
       call problem%rhs(t1, y, self%f1)
@@ -109,8 +125,9 @@ contains
         call integ%step(problem, t, y, tb - ta)
         t = tb
       end if
-      return
+      exit
     end do
+    integ%single_step = single
   end subroutine refine
 
   !> The bracket [ta, tb] of the first mode change on the interpolant over [t0, t1].

@@ -23,6 +23,9 @@ module davit_solve_integrator
     !> The states whose own Jacobian block holds the stiff modes (the Rosenbrock-W
     !> method's W, davit_solve_rosenbrock_w); none by default.
     procedure :: stiff_states => no_stiff_states
+    !> The other states the stiff rows depend on stiffly (a block's acceleration on its
+    !> hook's position): W holds the stiff rows' columns for them too.
+    procedure :: coupled_states => no_stiff_states
     procedure :: n_modes => no_n_modes
     procedure :: modes => no_modes
   end type ode_problem
@@ -45,6 +48,10 @@ module davit_solve_integrator
     !> cannot complete a step; y is then left at the last accepted state. Never stops.
     logical :: failed = .false.
     character(len=:), allocatable :: failure
+    !> Adaptive integrators: return after ONE accepted internal step (t < t + dt possible)
+    !> instead of reaching t + dt, so that the time loop's after-step hook, its monitors
+    !> and event location see every step, and dt is only the largest step (issue 14).
+    logical :: single_step = .false.
   contains
     procedure(init_interface), deferred :: init
     procedure(step_interface), deferred :: step
@@ -59,7 +66,8 @@ module davit_solve_integrator
       integer, intent(in) :: n
     end subroutine init_interface
 
-    !> Advance y from t to t + dt; t is updated.
+    !> Advance y from t to t + dt (with single_step, by one accepted step of at most
+    !> dt); t is updated.
     subroutine step_interface(self, problem, t, y, dt)
       import :: integrator_type, ode_problem, wp
       class(integrator_type), intent(inout) :: self

@@ -1,10 +1,13 @@
 !> Rosenbrock-W method ROS34PW2 (Rang & Angermann, BIT 45 (2005) 761-787): 4 stages, order
 !> 3 with an embedded order-2 solution, L-stable and stiffly accurate, and of order 3 for
 !> ANY matrix W in place of the Jacobian (a W-method). That is what lets davit treat only
-!> the stiff part implicitly (issue 14): W is the Jacobian block of the problem's stiff
-!> states (the rigging: blocks, lumps, sheaves; `ode_problem%stiff_states`) on
-!> themselves, formed by forward differences (one RHS per stiff state) and kept for many
-!> steps; every other row is explicit. The stiff springs (the 50 kg block on its 1 m sling,
+!> the stiff part implicitly (issue 14): W is the Jacobian's rows of the problem's stiff
+!> states (the rigging: blocks, lumps, sheaves; `ode_problem%stiff_states`), in the
+!> columns of those states and of the states they are stiffly coupled to
+!> (`coupled_states`: the boat and ship, whose hooks and heads pull on the blocks with
+!> the wire's stiffness), formed by forward differences (one RHS per column) and kept for
+!> many steps; every other row is explicit, so I/(h gamma) - W is block lower triangular:
+!> the explicit rows first, then one small solve for the stiff ones. The stiff springs (the 50 kg block on its 1 m sling,
 !> |lambda| ~ 1260 1/s) are then damped where they are not excited instead of capping the
 !> step, while the error control still resolves them where they are (a snatch).
 !>
@@ -12,8 +15,9 @@
 !>   (I/(h gamma) - W) u_i = f(t + alpha_i h, y + sum_j a_ij u_j) + sum_j (c_ij/h) u_j,
 !>   y_new = y + sum_i m_i u_i,   error = sum_i (m_i - mhat_i) u_i,
 !> a = alpha Gamma^-1, c = diag(1/gamma) - Gamma^-1, m = b Gamma^-1 (computed once here
-!> from the published alpha, Gamma, b, bhat). W is zero outside the stiff block, so the
-!> other rows are u_i = h gamma (...) and only the stiff block is factored. The explicit
+!> from the published alpha, Gamma, b, bhat). W is zero outside the stiff rows, so the
+!> other rows are u_i = h gamma (...), and the stiff rows solve
+!> (I/(h gamma) - W_SS) u_S = r_S + W_SC u_C with only W_SS factored. The explicit
 !> time dependence (df/dt) is left out of W as W-methods allow (t is a state whose column
 !> of W is zero).
 !>
@@ -64,8 +68,9 @@ module davit_solve_rosenbrock_w
     integer :: jacobians = 0, decompositions = 0
     real(wp) :: a(ns, ns) = 0.0_wp, c(ns, ns) = 0.0_wp, m(ns) = 0.0_wp, e(ns) = 0.0_wp
     real(wp) :: alpha(ns) = 0.0_wp
-    integer, allocatable :: stiff(:), piv(:)
-    real(wp), allocatable :: w(:, :), lu(:, :), u(:, :), f0(:), fcn(:), ytmp(:), ynew(:)
+    integer, allocatable :: stiff(:), coupled(:), piv(:)
+    real(wp), allocatable :: w(:, :), wc(:, :), lu(:, :), u(:, :), f0(:), fcn(:), ytmp(:)
+    real(wp), allocatable :: ynew(:)
     real(wp), allocatable :: yerr(:)
     integer :: age = -1
     real(wp) :: h_lu = -1.0_wp
@@ -85,7 +90,9 @@ contains
     integer :: i
     if (allocated(self%u)) deallocate (self%u, self%f0, self%fcn, self%ytmp, self%ynew, &
                                        self%yerr)
-    if (allocated(self%stiff)) deallocate (self%stiff)
+    ! the stiff set and W are the problem's: taken on the first step
+    if (allocated(self%stiff)) deallocate (self%stiff, self%coupled, self%w, self%wc, &
+                                           self%lu, self%piv)
     allocate (self%u(n, ns), self%f0(n), self%fcn(n), self%ytmp(n), self%ynew(n), &
               self%yerr(n))
     ginv = lower_inverse(gamma_rw)
@@ -123,29 +130,42 @@ contains
     end do
   end function lower_inverse
 
-  !> W = df_S/dy_S by one forward difference per stiff state, at (t, y) with f0 = f(t, y).
+  !> W_SS = df_S/dy_S and W_SC = df_S/dy_C by one forward difference per column, at
+  !> (t, y) with f0 = f(t, y).
   subroutine form_w(self, problem, t, y)
     class(rosenbrock_w_type), intent(inout) :: self
     class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:)
-    real(wp), parameter :: sqrt_eps = sqrt(epsilon(1.0_wp))
-    real(wp) :: del
-    integer :: j, js
-    self%ytmp = y
+    integer :: j
     do j = 1, size(self%stiff)
-      js = self%stiff(j)
-      del = sqrt_eps*max(abs(y(js)), 1.0e-5_wp)
-      self%ytmp(js) = y(js) + del
-      del = self%ytmp(js) - y(js)
-      call problem%rhs(t, self%ytmp, self%fcn)
-      self%w(:, j) = (self%fcn(self%stiff) - self%f0(self%stiff))/del
-      self%ytmp(js) = y(js)
+      call difference(self, problem, t, y, self%stiff(j), self%w(:, j))
     end do
-    self%rhs_evaluations = self%rhs_evaluations + size(self%stiff)
+    do j = 1, size(self%coupled)
+      call difference(self, problem, t, y, self%coupled(j), self%wc(:, j))
+    end do
+    self%rhs_evaluations = self%rhs_evaluations + size(self%stiff) + size(self%coupled)
     self%jacobians = self%jacobians + 1
     self%age = 0
     self%h_lu = -1.0_wp
   end subroutine form_w
+
+  !> Column js of the stiff rows' Jacobian by a forward difference (ytmp = y on return).
+  subroutine difference(self, problem, t, y, js, col)
+    class(rosenbrock_w_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(in) :: js
+    real(wp), intent(out) :: col(:)
+    real(wp), parameter :: sqrt_eps = sqrt(epsilon(1.0_wp))
+    real(wp) :: del
+    self%ytmp = y
+    del = sqrt_eps*max(abs(y(js)), 1.0e-5_wp)
+    self%ytmp(js) = y(js) + del
+    del = self%ytmp(js) - y(js)
+    call problem%rhs(t, self%ytmp, self%fcn)
+    col = (self%fcn(self%stiff) - self%f0(self%stiff))/del
+    self%ytmp(js) = y(js)
+  end subroutine difference
 
   !> LU (partial pivoting) of I/(h gamma) - W on the stiff block; ok = .false. if singular.
   subroutine factor(self, h, ok)
@@ -184,17 +204,19 @@ contains
     end do
   end subroutine factor
 
-  !> Solve (I/(h gamma) - W) x = r in place: the stiff rows by the LU, the others by the
-  !> diagonal h gamma.
-  pure subroutine solve_stage(stiff, lu, piv, h, r)
-    integer, intent(in) :: stiff(:), piv(:)
-    real(wp), intent(in) :: lu(:, :), h
+  !> Solve (I/(h gamma) - W) x = r in place: the explicit rows by the diagonal h gamma,
+  !> then the stiff rows by the LU with the coupled rows' part W_SC x_C moved right.
+  pure subroutine solve_stage(stiff, coupled, wc, lu, piv, h, r)
+    integer, intent(in) :: stiff(:), coupled(:), piv(:)
+    real(wp), intent(in) :: wc(:, :), lu(:, :), h
     real(wp), intent(inout) :: r(:)
-    real(wp) :: x(size(stiff))
+    real(wp) :: x(size(stiff)), rs(size(stiff))
     integer :: i, n
     n = size(stiff)
-    x = r(stiff(piv))
+    rs = r(stiff)
     r = (h*gam)*r
+    if (size(coupled) > 0) rs = rs + matmul(wc, r(coupled))
+    x = rs(piv)
     do i = 2, n
       x(i) = x(i) - dot_product(lu(i, 1:i - 1), x(1:i - 1))
     end do
@@ -225,7 +247,8 @@ contains
       do j = 1, i - 1
         self%u(:, i) = self%u(:, i) + (self%c(i, j)/h)*self%u(:, j)
       end do
-      call solve_stage(self%stiff, self%lu, self%piv, h, self%u(:, i))
+      call solve_stage(self%stiff, self%coupled, self%wc, self%lu, self%piv, h, &
+                       self%u(:, i))
     end do
     self%ynew = y
     self%yerr = 0.0_wp
@@ -247,7 +270,9 @@ contains
     if (self%failed) return
     if (.not. allocated(self%stiff)) then
       self%stiff = problem%stiff_states()
+      self%coupled = problem%coupled_states()
       allocate (self%w(size(self%stiff), size(self%stiff)), &
+                self%wc(size(self%stiff), size(self%coupled)), &
                 self%lu(size(self%stiff), size(self%stiff)), self%piv(size(self%stiff)))
     end if
     t_end = t + dt
@@ -303,6 +328,10 @@ contains
       end if
       tc = tc + h
       self%h = h_new
+      if (self%single_step) then
+        t = tc
+        return
+      end if
       call problem%rhs(tc, y, self%f0)
       self%rhs_evaluations = self%rhs_evaluations + 1
     end do

@@ -23,14 +23,14 @@ module davit_sweep_driver
   use davit_run_driver, only: integrate
   use davit_run_launch_log, only: new_launch_log
   use davit_run_budget, only: check_run_budget, memory_limit, run_memory_estimate
-  use davit_sweep_keys, only: sweep_config
+  use davit_sweep_keys, only: sweep_config, wave_type_names
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
                                  status_failed, not_run_result
   use davit_sweep_summary, only: write_summary, read_results
   implicit none
   private
-  public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case
+  public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case, longest_first
 
   type :: sweep_options
     !> OpenMP threads; 0 = OMP_NUM_THREADS (or the runtime's default).
@@ -119,6 +119,7 @@ contains
       if (allocated(error)) return
     end if
     pending = pack([(k, k = 1, size(cases))], state%results%status == status_not_run)
+    call longest_first(s, cases, pending)
     nthreads = thread_count(opts%threads, s%base)
     state%threads = nthreads
     state%todo = size(pending)
@@ -160,6 +161,49 @@ contains
   end subroutine sweep_body
 
   end subroutine run_sweep
+
+  !> Order the cases to run by their expected cost, dearest first (stable: equal costs keep
+  !> their index order), so that no thread is left with a long case at the end while
+  !> the others idle (issue 14). Only the order of work changes: every row is stored
+  !> under its own index, so the summary is the same in any order.
+  subroutine longest_first(s, cases, pending)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: cases(:)
+    integer, intent(inout) :: pending(:)
+    real(wp) :: cost(size(pending)), key
+    integer :: i, j, moving
+    do i = 1, size(pending)
+      cost(i) = expected_cost(s, cases(pending(i)))
+    end do
+    ! insertion sort: a few thousand cases, once
+    do i = 2, size(pending)
+      key = cost(i)
+      moving = pending(i)
+      j = i - 1
+      do while (j >= 1)
+        if (cost(j) >= key) exit
+        cost(j + 1) = cost(j)
+        pending(j + 1) = pending(j)
+        j = j - 1
+      end do
+      cost(j + 1) = key
+      pending(j + 1) = moving
+    end do
+  end subroutine longest_first
+
+  !> Relative cost of a case: steps (1/dt) times the work per step, which the wave sums of
+  !> an irregular sea's components (n_frequencies x n_directions) dominate (README
+  !> Benchmark: ~1 RHS of the default scene per 100 components).
+  pure real(wp) function expected_cost(s, c) result(cost)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: c
+    real(wp) :: dt, components
+    dt = merge(c%dt, s%base%simulation%dt, c%dt > 0.0_wp)
+    components = 1.0_wp
+    if (wave_type_names(c%wave_type) == "irregular") components = &
+      real(s%base%sea%n_frequencies, wp)*real(s%base%sea%n_directions, wp)
+    cost = (1.0_wp + components/100.0_wp)/dt
+  end function expected_cost
 
   !> The cases of the sweep and the base deck's initial clearance [m].
   subroutine prepare_cases(s, cases, clearance0, error)

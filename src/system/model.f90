@@ -21,7 +21,7 @@ module davit_system_model
   use davit_system_contact_policy, only: contact_policy_type, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks
   use davit_system_events, only: advance_history
-  use davit_boat_contact, only: fender_state_type, fender_update
+  use davit_boat_contact, only: fender_next_phase
   use davit_system_observables, only: boat_kinematics, rigging_state, sling_tensions, &
                                       contact_state, energy
   implicit none
@@ -38,6 +38,7 @@ module davit_system_model
     procedure :: after_step => system_after_step
     procedure :: max_step => system_max_step
     procedure :: stiff_states => system_stiff_states
+    procedure :: coupled_states => system_coupled_states
     procedure :: n_modes => system_n_modes
     procedure :: modes => system_modes
     procedure :: observe
@@ -137,6 +138,21 @@ contains
     end if
   end function system_stiff_states
 
+  !> The states the rigging's rows depend on through the wire's stiffness: the boat's
+  !> (hooks) and the ship's body states (davit heads, lead sheave, drum), the first 12 of
+  !> the ship's slice (its q and u, davit_ship_ship_model's layout).
+  pure function system_coupled_states(self) result(idx)
+    class(system_type), intent(in) :: self
+    integer, allocatable :: idx(:)
+    integer :: i
+    allocate (idx(0))
+    if (.not. self%par%on_davit) return
+    associate (b => self%par%boat_part, s => self%par%ship_slice)
+      idx = [(i, i=b%q(1), b%q(2)), (i, i=b%u(1), b%u(2))]
+      if (self%par%with_ship) idx = [idx, (i, i=s(1), s(1) + 11)]
+    end associate
+  end function system_coupled_states
+
   !> Modes located as events ('event' contact approach): each fender's contact phase as
   !> the after-step hook would set it, then, on the davit before release, whether each
   !> sling and cable segment is taut (the kinks of their tension-only laws), or whether
@@ -155,15 +171,13 @@ contains
     real(wp), intent(in) :: t, y(:)
     integer, intent(out) :: m(:)
     real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
-    type(fender_state_type) :: s
     integer :: j, n
     n = 0
     if (self%par%contact) then
       call fender_gaps(self%par, y, delta, delta_dot)
       do j = 1, self%par%fenders%nf
-        s = self%hist%fender_states(j)
-        call fender_update(self%par%fenders%law, s, delta(j), delta_dot(j))
-        m(j) = s%phase
+        m(j) = fender_next_phase(self%par%fenders%law, self%hist%fender_states(j), &
+                                 delta(j), delta_dot(j))
       end do
       n = self%par%fenders%nf
     end if

@@ -1,0 +1,71 @@
+"""The converged references of `davit bench`'s scenes (its accuracy column, issue 14).
+
+    python -m postproc.bench_reference [--decks input] [-o input/bench_reference.h5]
+                                       [--davit PATH]
+
+Runs each bench scene's deck with classical RK4 at a step well inside its converged range
+(the default level of detail at 1e-4 s, 10x below the paper's 1e-3 s: its own error is
+below 1e-9 m before contact, study_speed; the paper-literal scene at 0.02/1024 s, 4x below
+its stability-limited bench step) and keeps what the bench compares: the sample times,
+the boat's CG positions, the first contact time and the launch log's resolved peak sling
+and segment tensions. Group per scene: /regular, /irregular, /paper_literal. The scenes
+and spans are those of src/bench/suite.f90 (the paper-literal one 20 s).
+"""
+import argparse
+import os
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+from . import layout
+from .study import run_davit, variant
+
+SCENES = (("regular", "iiib_level5_090.nml", 0.0, "rk4 dt=1e-4"),
+          ("irregular", "iiib_level5_090_irregular.nml", 0.0, "rk4 dt=1e-4"),
+          ("paper_literal", "iiib_level5_090_literal.nml", 20.0, "rk4 dt=1.953125e-5"))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m postproc.bench_reference",
+                                     description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--decks", default="input")
+    parser.add_argument("-o", "--output", default=None,
+                        help="default: DECKS/bench_reference.h5")
+    parser.add_argument("--davit", default=os.environ.get("DAVIT", "davit"))
+    args = parser.parse_args(argv)
+    out = args.output or os.path.join(args.decks, "bench_reference.h5")
+    os.environ["DAVIT_PATH"] = os.pathsep.join(
+        p for p in (os.path.abspath(args.decks), os.environ.get("DAVIT_PATH", "")) if p)
+    with tempfile.TemporaryDirectory() as work, h5py.File(out + ".tmp", "w") as f:
+        f.attrs["description"] = "Converged references of davit bench's scenes " \
+                                 "(python -m postproc.bench_reference)"
+        for name, deck, t_end, spec in SCENES:
+            text = variant(open(os.path.join(args.decks, deck)).read(), spec, t_end)
+            path, ok, msg = run_davit(args.davit, text, work, name)
+            if not ok:
+                print(f"postproc.bench_reference: {name}: {msg}", file=sys.stderr)
+                return 1
+            with h5py.File(path, "r") as r:
+                g = f.create_group(name)
+                g.attrs["deck"] = deck
+                g.attrs["settings"] = spec
+                g.attrs["wall_time"] = float(r.attrs[layout.WALL_TIME])
+                g["time"] = r[layout.TIME][:]
+                g["position"] = r[layout.BOAT_POSITION][:]
+                contact = (float(np.ravel(r[layout.FIRST_CONTACT_TIME])[0])
+                           if layout.FIRST_CONTACT_TIME in r else -1.0)
+                g["first_contact_time"] = np.array([contact])
+                g["peak_sling_tension"] = r[layout.PEAK_SLING_TENSION][:]
+                g["peak_segment_tension"] = r[layout.PEAK_SEGMENT_TENSION][:]
+            print(f"postproc.bench_reference: {name}: {spec}, "
+                  f"{g.attrs['wall_time']:.1f} s", flush=True)
+    os.replace(out + ".tmp", out)
+    print(f"postproc.bench_reference: wrote {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
