@@ -17,6 +17,8 @@ module test_events
                                 new_rubber_fender_law, law_hertz_elastoplastic
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, deck_config
+  use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_bench_accuracy, only: accuracy_type, scene_accuracy
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -41,7 +43,8 @@ contains
                    new_case("located_events_restore_rk4_order", restored_order), &
                    new_case("hanging_boat_sling_slack_and_taut_times", sling_slack), &
                    new_case("hertz_impact_onset_and_peak_located", hertz_located), &
-                   new_case("fender_next_phase_is_fender_update", next_phase)]
+                   new_case("fender_next_phase_is_fender_update", next_phase), &
+                   new_case("bench_accuracy_against_a_written_reference", bench_accuracy)]
   end function collect_events
 
   subroutine bouncer_rhs(self, t, y, dydt)
@@ -361,5 +364,56 @@ contains
     call note(state, "states tried", real(tried, wp))
     call check_true(state, bad == 0, "next phase = the phase fender_update sets")
   end subroutine next_phase
+
+  !> davit bench's accuracy column: a reference written here (samples every 0.02 s, first
+  !> contact at 0.5 s, peaks 100/80 kN and 50 kN) and a run offset from it by 1 mm before
+  !> 0.5 s and 2 cm after, its last sample off the grid (a launch the log ended between
+  !> samples: left out), peaks 110/70 kN and 49 kN: errors 1 mm, 2 cm, 10 %, 2 %. A missing
+  !> file or scene, or other sling counts, leave the accuracy unknown.
+  subroutine bench_accuracy(state)
+    type(case_state), intent(inout) :: state
+    character(len=*), parameter :: path = "build/test_bench_reference.h5"
+    type(h5_writer_type) :: w
+    type(error_type), allocatable :: error
+    type(accuracy_type) :: acc
+    real(wp) :: t(51), x(3, 51), xr(3, 51)
+    integer :: k
+    t = [(0.02_wp*real(k - 1, wp), k = 1, 51)]
+    xr = 0.0_wp
+    call w%create(path, error)
+    call check_true(state, .not. allocated(error), "reference file created")
+    if (allocated(error)) return
+    call w%group("regular")
+    call w%write_1d("regular/time", t, "s", "")
+    call w%write_2d("regular/position", xr, "m", "")
+    call w%write_1d("regular/first_contact_time", [0.5_wp], "s", "")
+    call w%write_1d("regular/peak_sling_tension", [100.0e3_wp, 80.0e3_wp], "N", "")
+    call w%write_1d("regular/peak_segment_tension", [50.0e3_wp], "N", "")
+    call w%close(error)
+    x = xr
+    do k = 1, 51
+      if (t(k) < 0.5_wp) then
+        x(1, k) = 1.0e-3_wp
+      else
+        x(2, k) = 2.0e-2_wp
+      end if
+    end do
+    t(51) = 0.9713_wp
+    x(:, 51) = 5.0_wp
+    acc = scene_accuracy(path, "regular", t, x, [110.0e3_wp, 70.0e3_wp], [49.0e3_wp])
+    call check_true(state, acc%known, "compared")
+    call check(state, acc%cg_before, 1.0e-3_wp, "CG error before contact", abs_tol=1e-12_wp)
+    call check(state, acc%cg_after, 2.0e-2_wp, "CG error after contact", abs_tol=1e-12_wp)
+    call check(state, acc%sling, 0.125_wp, "worst sling peak error (70 vs 80 kN)", &
+               abs_tol=1e-12_wp)
+    call check(state, acc%segment, 0.02_wp, "segment peak error", abs_tol=1e-12_wp)
+    acc = scene_accuracy(path, "irregular", t, x, [1.0_wp, 1.0_wp], [1.0_wp])
+    call check_true(state, .not. acc%known, "scene missing: unknown")
+    acc = scene_accuracy("build/no_such_reference.h5", "regular", t, x, [1.0_wp, 1.0_wp], &
+                         [1.0_wp])
+    call check_true(state, .not. acc%known, "file missing: unknown")
+    acc = scene_accuracy(path, "regular", t, x, [1.0_wp], [1.0_wp])
+    call check_true(state, .not. acc%known, "other sling count: unknown")
+  end subroutine bench_accuracy
 
 end module test_events

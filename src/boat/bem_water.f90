@@ -34,7 +34,7 @@ module davit_boat_bem_water
   implicit none
   private
   public :: boat_bem_type, new_boat_bem, boat_bem_loads, boat_bem_immersion, &
-            boat_bem_kinetic_energy
+            boat_bem_kinetic_energy, diffraction_cache_type, diffraction_refresh
 
   !> Time constant of the immersion state [s]: short against the boat's periods (~2 s)
   !> and its entry (V_wet reaches f V_0 in ~0.15 s at 1 m/s).
@@ -55,6 +55,21 @@ module davit_boat_bem_water
     !> (6, heading, component), DOF order.
     complex(wp), allocatable :: diffraction(:, :, :)
   end type boat_bem_type
+
+  !> The diffraction load on the strips' slow clock (issue 14: summed over every wave
+  !> component it was half the cost of an irregular launch's water phase). At both ends
+  !> t_j of the window, at the CG's horizontal position r0 and the yaw psi0 of the
+  !> window's start: the unramped load (DOF order, heading frame), its time rate and its
+  !> horizontal gradient, d(6, (value, d/dt, d/dx, d/dy), end). In between: the cubic
+  !> Hermite in time plus the gradient (linear in time) times the CG's offset from r0.
+  !> What it leaves out: the yaw's change within the window (the heading interpolation of
+  !> X, ~d|X|/d(beta) x 0.005 rad) and second order in k |r - r0| (< 2e-3 of a component
+  !> for k = 0.6 1/m and 0.1 m).
+  type :: diffraction_cache_type
+    logical :: valid = .false.
+    real(wp) :: t(2) = 0.0_wp, r0(2) = 0.0_wp, psi0 = 0.0_wp
+    real(wp) :: d(6, 4, 2) = 0.0_wp
+  end type diffraction_cache_type
 
   interface
     subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
@@ -137,10 +152,11 @@ contains
   !> CG r (inertial), yaw psi, speeds u, geometric immersion s_geom, and its states x =
   !> (s, memory states) with their rates xdot; the modal masses v = 1 + s lambda of the
   !> boat's coupled mass block (davit_core_layout).
-  pure subroutine boat_bem_loads(self, sea, t, c, r, psi, u, s_geom, x, xdot, f, v)
+  pure subroutine boat_bem_loads(self, sea, t, c, r, psi, u, s_geom, x, cache, xdot, f, v)
     type(boat_bem_type), intent(in) :: self
     type(wave_field_type), intent(in) :: sea
     real(wp), intent(in) :: t, c(3, 3), r(3), psi, u(6), s_geom, x(:)
+    type(diffraction_cache_type), intent(in) :: cache
     real(wp), intent(out) :: xdot(:), f(6), v(6)
     real(wp) :: mu(6), s, load(6), m(3, 3)
     s = x(1)
@@ -158,11 +174,79 @@ contains
     f(1) = f(1) - s*self%b44*u(1)
     v = 1.0_wp + s*self%lambda
     if (s <= 0.0_wp .or. sea%kind == wave_none) return
-    load = wave_ramp(sea, t)*diffraction_load(self, sea, t, r, psi)
+    if (cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)) then
+      load = wave_ramp(sea, t)*cached_diffraction(cache, t, r)
+    else
+      load = wave_ramp(sea, t)*diffraction_load(self, sea, t, r, psi)
+    end if
     m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, psi]))
     f(1:3) = f(1:3) + s*matmul(m, load(4:6))
     f(4:6) = f(4:6) + s*matmul(m, load(1:3))
   end subroutine boat_bem_loads
+
+  !> Sample the window [t1, t2] at the CG's horizontal position r(1:2) and yaw psi.
+  pure subroutine diffraction_refresh(self, sea, t1, t2, r, psi, cache)
+    type(boat_bem_type), intent(in) :: self
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: t1, t2, r(3), psi
+    type(diffraction_cache_type), intent(out) :: cache
+    integer :: j
+    cache%t = [t1, t2]
+    cache%r0 = r(1:2)
+    cache%psi0 = psi
+    do j = 1, 2
+      call diffraction_sums(self, sea, cache%t(j), r, psi, cache%d(:, :, j))
+    end do
+    cache%valid = .true.
+  end subroutine diffraction_refresh
+
+  !> The unramped load at t and CG position r from the window.
+  pure function cached_diffraction(cache, t, r) result(load)
+    type(diffraction_cache_type), intent(in) :: cache
+    real(wp), intent(in) :: t, r(3)
+    real(wp) :: load(6), h, s, hw(4), dx(2)
+    h = cache%t(2) - cache%t(1)
+    s = (t - cache%t(1))/h
+    hw = [(1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2, h*s*(1.0_wp - s)**2, s*s*(3.0_wp - 2.0_wp*s), &
+          h*s*s*(s - 1.0_wp)]
+    dx = r(1:2) - cache%r0
+    associate (d => cache%d)
+      load = hw(1)*d(:, 1, 1) + hw(2)*d(:, 2, 1) + hw(3)*d(:, 1, 2) + hw(4)*d(:, 2, 2) + &
+             (1.0_wp - s)*(d(:, 3, 1)*dx(1) + d(:, 4, 1)*dx(2)) + &
+             s*(d(:, 3, 2)*dx(1) + d(:, 4, 2)*dx(2))
+    end associate
+  end function cached_diffraction
+
+  !> The unramped diffraction load at (t, r, psi) with its time rate and horizontal
+  !> gradient: with D e^(i Phi) = P + i Q per component (Phi = w t + eps - kx x - ky y),
+  !> the load is sum P, d/dt = -sum w Q, d/dx = sum kx Q, d/dy = sum ky Q.
+  pure subroutine diffraction_sums(self, sea, t, r, psi, d)
+    type(boat_bem_type), intent(in) :: self
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: t, r(3), psi
+    real(wp), intent(out) :: d(6, 4)
+    real(wp) :: sn(wave_chunk), cs(wave_chunk), beta, w, p(6), q(6)
+    complex(wp) :: dc(6)
+    integer :: i, k, i0, m
+    d = 0.0_wp
+    associate (h => self%db%heading)
+      do i0 = 1, sea%n, wave_chunk
+        m = min(wave_chunk, sea%n - i0 + 1)
+        call component_phases(sea, i0, m, t, r(1), r(2), sn, cs)
+        do i = i0, i0 + m - 1
+          beta = modulo(sea%direction(i) - psi - h(1), 2.0_wp*pi) + h(1)
+          call bracket(h, beta, k, w)
+          dc = (1.0_wp - w)*self%diffraction(:, k, i) + w*self%diffraction(:, k + 1, i)
+          p = real(dc, wp)*cs(i - i0 + 1) - aimag(dc)*sn(i - i0 + 1)
+          q = real(dc, wp)*sn(i - i0 + 1) + aimag(dc)*cs(i - i0 + 1)
+          d(:, 1) = d(:, 1) + p
+          d(:, 2) = d(:, 2) - sea%omega(i)*q
+          d(:, 3) = d(:, 3) + sea%kx(i)*q
+          d(:, 4) = d(:, 4) + sea%ky(i)*q
+        end do
+      end do
+    end associate
+  end subroutine diffraction_sums
 
   !> Sum over the components of Re[a (X - X_FK) e^(i Phi)] (DOF order, heading frame),
   !> Phi = w t + eps - k . r_G, X at beta = g - psi, linear in beta.

@@ -65,7 +65,8 @@ contains
     f = f + fw
     if (par%bem_water) then
       call boat_bem_loads(par%bem, par%sea, t, c, r, q(3), u, &
-                          boat_bem_immersion(par%bem, volume), x, xdot, fw, v)
+                          boat_bem_immersion(par%bem, volume), x, hist%diffraction, xdot, &
+                          fw, v)
       f = f + fw
     end if
     f(4:6) = f(4:6) + boat_wind_force(par%air, u(4:6) - matmul(wind_velocity(par%wind), c), &

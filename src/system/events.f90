@@ -8,6 +8,7 @@ module davit_system_events
   use davit_boat_contact, only: fender_update, phase_compression
   use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: watch_refresh, strip_surely_dry
+  use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, &
                                      hook_kinematics, fender_gaps
   use davit_system_history, only: system_history_type
@@ -56,6 +57,13 @@ contains
     end do
     if (any(maybe_wet)) call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, &
                                                  c, r, maybe_wet)
+    ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
+    if (par%bem_water .and. any(maybe_wet)) then
+      call diffraction_refresh(par%bem, par%sea, hist%waves%t(1), hist%waves%t(2), r, &
+                               q(3), hist%diffraction)
+    else
+      hist%diffraction%valid = .false.
+    end if
   end subroutine refresh_strip_waves
 
   !> Each fender's contact phase on the accepted state; the first contact.

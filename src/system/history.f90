@@ -7,6 +7,7 @@ module davit_system_history
   use davit_boat_contact, only: fender_state_type
   use davit_boat_surface_watch, only: surface_watch_type
   use davit_boat_strip_waves, only: strip_wave_cache_type
+  use davit_boat_bem_water, only: diffraction_cache_type
   use davit_system_parameters, only: nslings
   implicit none
   private
@@ -28,6 +29,8 @@ module davit_system_history
     type(surface_watch_type) :: watch
     !> Slow clock of the water at the strips (`&simulation wave_update`, irregular seas).
     type(strip_wave_cache_type) :: waves
+    !> The BEM water model's diffraction load on the same clock (irregular seas).
+    type(diffraction_cache_type) :: diffraction
   end type system_history_type
 
 end module davit_system_history

@@ -38,3 +38,31 @@ def test_bounce_decay_recovers_a_damped_sine_with_drift(tmp_path):
     om, sigma = study.bounce_decay(path)
     assert abs(om / (omega * np.sqrt(1 - zeta**2)) - 1) < 0.01
     assert abs(sigma / (zeta * omega) - 1) < 0.05
+
+
+def _run(time, x, contact=-1.0, sling=(100.0, 100.0), segment=(50.0,), impact=0.0):
+    return {"time": np.asarray(time), "x": np.asarray(x), "a": np.zeros((len(time), 3)),
+            "tension": np.zeros(len(time)), "contact": contact,
+            "peak_sling": max(sling), "peak_segment": max(segment), "peak_impact": impact}
+
+
+def test_compare_splits_at_first_contact_and_drops_an_off_grid_last_sample():
+    t = np.arange(0.0, 1.0001, 0.02)
+    ref_x = np.zeros((len(t), 3))
+    ref = _run(t, ref_x, contact=0.5, sling=(100.0, 80.0), impact=20.0)
+    x = ref_x.copy()
+    x[t < 0.5, 0] += 1e-3           # 1 mm before the reference's first contact
+    x[t >= 0.5, 1] += 2e-2          # 2 cm after it
+    # the run ended between samples (launch log): its last time is off the grid
+    tr = np.append(t[:-1], 0.9713)
+    x[-1] = [5.0, 5.0, 5.0]         # ... and that sample must not count
+    run = _run(tr, x, sling=(110.0, 70.0), segment=(49.0,), impact=15.0)
+    e = study.compare(run, ref)
+    assert abs(e["err_smooth"] - 1e-3) < 1e-12
+    assert abs(e["err_contact"] - 2e-2) < 1e-12
+    assert abs(e["sling_err"] - 0.10) < 1e-12      # resolved peak 110 vs 100
+    assert abs(e["segment_err"] - 0.02) < 1e-12
+    assert abs(e["impact_err"] - 0.25) < 1e-12
+    # no contact in either: every sample is "before contact", none after
+    e = study.compare(_run(t, x[:len(t)] * 0), _run(t, ref_x))
+    assert e["err_contact"] == 0.0 and e["impact_err"] == 0.0
