@@ -40,8 +40,9 @@ def main(argv=None):
     os.environ["DAVIT_PATH"] = os.pathsep.join(
         p for p in (os.path.abspath(args.decks), os.environ.get("DAVIT_PATH", "")) if p)
     with tempfile.TemporaryDirectory() as work, h5py.File(out + ".tmp", "w") as f:
-        f.attrs["description"] = "Converged references of davit bench's scenes " \
-                                 "(python -m postproc.bench_reference)"
+        attr = layout.BENCH_REFERENCE_ATTRS
+        f.attrs[attr["description"]] = ("Converged references of davit bench's scenes "
+                                        "(python -m postproc.bench_reference)")
         for name, deck, t_end, spec in SCENES:
             text = variant(open(os.path.join(args.decks, deck)).read(), spec, t_end)
             path, ok, msg = run_davit(args.davit, text, work, name)
@@ -50,18 +51,17 @@ def main(argv=None):
                 return 1
             with h5py.File(path, "r") as r:
                 g = f.create_group(name)
-                g.attrs["deck"] = deck
-                g.attrs["settings"] = spec
-                g.attrs["wall_time"] = float(r.attrs[layout.WALL_TIME])
-                g["time"] = r[layout.TIME][:]
-                g["position"] = r[layout.BOAT_POSITION][:]
+                wall = float(r.attrs[layout.WALL_TIME])
+                g.attrs[attr["deck"]] = deck
+                g.attrs[attr["settings"]] = spec
+                g.attrs[attr["wall_time"]] = wall
                 contact = (float(np.ravel(r[layout.FIRST_CONTACT_TIME])[0])
                            if layout.FIRST_CONTACT_TIME in r else -1.0)
-                g["first_contact_time"] = np.array([contact])
-                g["peak_sling_tension"] = r[layout.PEAK_SLING_TENSION][:]
-                g["peak_segment_tension"] = r[layout.PEAK_SEGMENT_TENSION][:]
-            print(f"postproc.bench_reference: {name}: {spec}, "
-                  f"{g.attrs['wall_time']:.1f} s", flush=True)
+                values = (r[layout.TIME][:], r[layout.BOAT_POSITION][:], np.array([contact]),
+                          r[layout.PEAK_SLING_TENSION][:], r[layout.PEAK_SEGMENT_TENSION][:])
+                for dataset, value in zip(layout.BENCH_REFERENCE_DATASETS, values):
+                    g[dataset] = value
+            print(f"postproc.bench_reference: {name}: {spec}, {wall:.1f} s", flush=True)
     os.replace(out + ".tmp", out)
     print(f"postproc.bench_reference: wrote {out}")
     return 0

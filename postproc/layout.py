@@ -510,3 +510,11 @@ def load_sweep_columns(path, fields):
             raise ValueError(f"{path}: not a complete davit sweep summary "
                              f"(missing dataset {', '.join('/' + m for m in missing)})")
         return {field: np.ravel(f[name][()]) for field, name in fields.items()}
+
+
+# The converged references of davit bench's scenes (postproc.bench_reference, read by
+# src/bench/accuracy.f90): one group per scene with these datasets and attributes.
+BENCH_REFERENCE_DATASETS = ("time", "position", "first_contact_time", "peak_sling_tension",
+                            "peak_segment_tension")
+BENCH_REFERENCE_ATTRS = {"description": "description", "deck": "deck",
+                         "settings": "settings", "wall_time": "wall_time"}

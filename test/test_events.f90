@@ -377,7 +377,14 @@ contains
     type(error_type), allocatable :: error
     type(accuracy_type) :: acc
     real(wp) :: t(51), x(3, 51), xr(3, 51)
-    integer :: k
+    integer :: k, unit, ios
+    logical :: exists
+    ! a file left by an earlier run is not a davit output: the writer would refuse it
+    inquire (file=path, exist=exists)
+    if (exists) then
+      open (newunit=unit, file=path, status="old", iostat=ios)
+      if (ios == 0) close (unit, status="delete")
+    end if
     t = [(0.02_wp*real(k - 1, wp), k = 1, 51)]
     xr = 0.0_wp
     call w%create(path, error)

@@ -30,9 +30,12 @@ contains
   !> Run deck `path` for `t_end` seconds (its own t_end when t_end <= 0), at its own step
   !> or, with `at_limit`, at the step of step_limit. `rate_max` is the deck's largest
   !> |eigenvalue| at t = 0 when at_limit (else 0). The run's errors are measured against
-  !> scene `name` of the reference file `reference` (where it has one).
-  subroutine time_deck(name, path, t_end, at_limit, reference, run, rate_max, error)
-    character(len=*), intent(in) :: name, path, reference
+  !> group `group` of the reference file `reference` (where it has one). A nonblank
+  !> `integrator` replaces the deck's, with its tolerances and largest step dt.
+  subroutine time_deck(name, path, t_end, at_limit, reference, group, integrator, rtol, &
+                       atol, dt, run, rate_max, error)
+    character(len=*), intent(in) :: name, path, reference, group, integrator
+    real(wp), intent(in) :: rtol, atol, dt
     real(wp), intent(in) :: t_end
     logical, intent(in) :: at_limit
     type(timed_run), intent(out) :: run
@@ -42,6 +45,12 @@ contains
     rate_max = 0.0_wp
     call read_config(path, cfg, error)
     if (allocated(error)) return
+    if (len(integrator) > 0) then
+      cfg%simulation%integrator = integrator
+      cfg%simulation%rtol = rtol
+      cfg%simulation%atol = atol
+      cfg%simulation%dt = dt
+    end if
     if (t_end > 0.0_wp) cfg%simulation%t_end = max(t_end, cfg%simulation%dt)
     if (at_limit) then
       call step_limit(cfg, rate_max, error)
@@ -49,7 +58,7 @@ contains
     end if
     run%name = name
     run%deck = path
-    call time_config(cfg, reference, run, error)
+    call time_config(cfg, reference, group, run, error)
   end subroutine time_deck
 
   !> Set the deck's step to safety_factor x the RK4 limit rk4_bound/|lambda|max of its
@@ -76,9 +85,9 @@ contains
   !> counters) with the launch log watching it, as `davit run` does: a launch ends where
   !> the run would (after_release past the hook release). A run that diverges is an
   !> error: its rates would mean nothing.
-  subroutine time_config(cfg, reference, run, error)
+  subroutine time_config(cfg, reference, group, run, error)
     type(config_type), intent(in) :: cfg
-    character(len=*), intent(in) :: reference
+    character(len=*), intent(in) :: reference, group
     type(timed_run), intent(inout) :: run
     type(error_type), allocatable, intent(out) :: error
     type(system_type) :: sys
@@ -113,7 +122,7 @@ contains
     run%wall = summary%wall_time
     run%steps = summary%steps
     run%rhs_evaluations = summary%rhs_evaluations
-    run%accuracy = scene_accuracy(reference, run%name, rec%time(1:rec%n), &
+    run%accuracy = scene_accuracy(reference, group, rec%time(1:rec%n), &
                                   rec%position(:, 1:rec%n), log%loads%sling, &
                                   log%loads%segment)
   end subroutine time_config

@@ -28,20 +28,42 @@ module davit_bench_suite
   end type bench_options
 
   !> A scene: label, deck (in the decks folder), simulated time of the full and of the
-  !> quick bench [s] (0: the deck's own), step at the RK4 stability limit or the deck's.
+  !> quick bench [s] (0: the deck's own, i.e. the whole launch to hook release + 5 s), step
+  !> at the RK4 stability limit or the deck's, the reference group it is measured against
+  !> (bench_reference.h5) and an integrator override ("" keeps the deck's; with rtol,
+  !> atol and the largest step dt).
   type :: scene_spec
-    character(len=16) :: name
+    character(len=24) :: name
     character(len=48) :: deck
     real(wp) :: t_full, t_quick
     logical :: at_limit
+    character(len=16) :: reference
+    character(len=8) :: integrator = ""
+    real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, dt = 0.0_wp
   end type scene_spec
 
-  !> Full: the whole 100 s launch (hanging, lowering, contact, water) for the default level
-  !> of detail; 20 s of the paper-literal one (its step is 13x smaller). Quick: the start.
-  type(scene_spec), parameter :: scenes(3) = [ &
-    scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false.), &
-    scene_spec("irregular", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, .false.), &
-    scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true.)]
+  !> The default level of detail (RK4 1e-3 s, massive blocks, events located) in the
+  !> regular and irregular seas; the same scenes with the Rosenbrock-W method (the
+  !> rigging implicit) and with the fast level of detail (quasi-static blocks, RK4 1e-2
+  !> s); the paper-literal level of detail (2 lumps per sling, rotating sheaves) at RK4's
+  !> stability limit and with the Rosenbrock-W method, 20 s (its explicit step is 13x
+  !> smaller). Quick: the start of each.
+  type(scene_spec), parameter :: scenes(8) = [ &
+    scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., "regular"), &
+    scene_spec("regular_rosw", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
+               "regular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
+    scene_spec("regular_fast", "iiib_level5_090_fast.nml", 0.0_wp, 20.0_wp, .false., &
+               "regular"), &
+    scene_spec("irregular", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, .false., &
+               "irregular"), &
+    scene_spec("irregular_rosw", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, &
+               .false., "irregular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
+    scene_spec("irregular_fast", "iiib_level5_090_irregular_fast.nml", 0.0_wp, 20.0_wp, &
+               .false., "irregular"), &
+    scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true., &
+               "paper_literal"), &
+    scene_spec("paper_literal_rosw", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
+               .false., "paper_literal", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp)]
 
   !> The scenes' converged references (davit_bench_accuracy), in the decks folder.
   character(len=*), parameter :: reference_file = "bench_reference.h5"
@@ -94,7 +116,8 @@ contains
       sc = scenes(i)
       call time_deck(trim(sc%name), opts%decks//"/"//trim(sc%deck), &
                      merge(sc%t_quick, sc%t_full, opts%quick), sc%at_limit, &
-                     reference, run, rate_max, error)
+                     reference, trim(sc%reference), trim(sc%integrator), sc%rtol, sc%atol, &
+                     sc%dt, run, rate_max, error)
       if (allocated(error)) return
       if (sc%at_limit) then
         rec%rate_max = rate_max

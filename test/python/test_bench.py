@@ -13,14 +13,25 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RUN_FIELDS = ("name", "deck", "cases", "threads", "dt", "simulated_time", "wall_time",
               "steps", "rhs_evaluations", "rhs_per_second", "steps_per_second",
-              "real_time_factor")
+              "real_time_factor", "accuracy_known", "cg_error_before_contact",
+              "cg_error_after_contact", "peak_sling_tension_error",
+              "peak_segment_tension_error")
 DATASETS = ({f"bench/runs/{field}" for field in RUN_FIELDS}
             | {"bench/sweep/speed_up", "bench/paper_literal/rate_max",
                "bench/paper_literal/rk4_limit", "bench/paper_literal/safety_factor",
                "bench/sea/name", "bench/sea/value", "bench/sea/unit"})
-ROWS = [("regular", "iiib_level5_090.nml", 1), ("irregular", "iiib_level5_090_irregular.nml", 1),
-        ("paper_literal", "iiib_level5_090_literal.nml", 1), ("sweep", "bench_sweep.nml", 1),
-        ("sweep", "bench_sweep.nml", 2)]
+ROWS = [("regular", "iiib_level5_090.nml", 1), ("regular_rosw", "iiib_level5_090.nml", 1),
+        ("regular_fast", "iiib_level5_090_fast.nml", 1),
+        ("irregular", "iiib_level5_090_irregular.nml", 1),
+        ("irregular_rosw", "iiib_level5_090_irregular.nml", 1),
+        ("irregular_fast", "iiib_level5_090_irregular_fast.nml", 1),
+        ("paper_literal", "iiib_level5_090_literal.nml", 1),
+        ("paper_literal_rosw", "iiib_level5_090_literal.nml", 1),
+        ("sweep", "bench_sweep.nml", 1), ("sweep", "bench_sweep.nml", 2)]
+SCENES = [name for name, _, _ in ROWS if name != "sweep"]
+RK4 = [SCENES.index(n) for n in ("regular", "regular_fast", "irregular", "irregular_fast",
+                                 "paper_literal")]
+S1, S2 = len(SCENES), len(SCENES) + 1
 EXACT = dict(rtol=1e-12, atol=0)
 
 
@@ -61,7 +72,7 @@ def test_bench_rows_are_the_fixed_scenes_and_the_sweep(bench):
                     data["bench/runs/threads"].tolist()))
     assert [(name, pathlib.Path(deck).name, threads) for name, deck, threads in rows] == ROWS
     cases = data["bench/runs/cases"]
-    assert cases[:3].tolist() == [1, 1, 1] and cases[3] == cases[4] == 8
+    assert cases[:S1].tolist() == [1] * S1 and cases[S1] == cases[S2] == 8
 
 
 def test_rates_are_counts_over_wall_time(bench):
@@ -73,20 +84,24 @@ def test_rates_are_counts_over_wall_time(bench):
     np.testing.assert_allclose(runs["steps_per_second"], runs["steps"] / wall, **EXACT)
     np.testing.assert_allclose(runs["real_time_factor"], runs["simulated_time"] / wall,
                                **EXACT)
-    # every bench deck is RK4: four evaluations per step, counted by the run driver
-    np.testing.assert_array_equal(runs["rhs_evaluations"], 4 * runs["steps"])
-    # quick: the first 20 s of the default scenes, 2 s of the paper-literal one
-    np.testing.assert_allclose(runs["simulated_time"][:3], [20.0, 20.0, 2.0], **EXACT)
-    np.testing.assert_allclose(runs["steps"][:2], [20000, 20000], **EXACT)
+    # RK4 scenes: four evaluations per step, counted by the run driver (a located event
+    # adds two or three for its interpolant and counts its redone step as a step)
+    rk4_rhs, rk4_steps = runs["rhs_evaluations"][RK4], runs["steps"][RK4]
+    assert np.all(rk4_rhs >= 4 * rk4_steps) and np.all(rk4_rhs <= 4.1 * rk4_steps)
+    # quick: the first 20 s of the launch scenes, 2 s of the paper-literal ones
+    np.testing.assert_allclose(runs["simulated_time"][:S1], [20.0] * 6 + [2.0] * 2, **EXACT)
+    assert runs["steps"][0] >= 20000 and runs["steps"][3] >= 20000
+    # quick scenes are not compared with the references (the full ones are)
+    np.testing.assert_array_equal(runs["accuracy_known"], 0)
 
 
 def test_sweep_speed_up_is_the_wall_time_ratio(bench):
     _, data, _, _ = bench
     wall = data["bench/runs/wall_time"]
-    np.testing.assert_allclose(data["bench/sweep/speed_up"], [wall[3] / wall[4]], **EXACT)
+    np.testing.assert_allclose(data["bench/sweep/speed_up"], [wall[S1] / wall[S2]], **EXACT)
     # a case does not depend on the thread that runs it: the same work on 1 and 2 threads
     for field in ("steps", "rhs_evaluations", "simulated_time"):
-        assert data[f"bench/runs/{field}"][3] == data[f"bench/runs/{field}"][4], field
+        assert data[f"bench/runs/{field}"][S1] == data[f"bench/runs/{field}"][S2], field
 
 
 def test_paper_literal_step_is_the_rk4_limit_with_margin(bench):
@@ -94,22 +109,21 @@ def test_paper_literal_step_is_the_rk4_limit_with_margin(bench):
     rate = data["bench/paper_literal/rate_max"][0]
     limit = data["bench/paper_literal/rk4_limit"][0]
     safety = data["bench/paper_literal/safety_factor"][0]
-    dt = data["bench/runs/dt"][2]
+    dt = data["bench/runs/dt"][SCENES.index("paper_literal")]
     np.testing.assert_allclose(limit, 2.83 / rate, **EXACT)
     assert 0 < safety < 1
     # the largest whole fraction of the deck's 0.02 s output interval below safety x limit
     n = round(0.02 / dt)
     assert math.isclose(n * dt, 0.02, rel_tol=1e-12)
     assert dt <= safety * limit < 0.02 / (n - 1)
-    np.testing.assert_array_equal(data["bench/runs/dt"][[0, 1, 3, 4]], 1e-3)
+    np.testing.assert_array_equal(data["bench/runs/dt"][[0, 3, S1, S2]], 1e-3)
 
 
 def test_printed_table_is_the_file(bench):
     stdout, data, _, _ = bench
     lines = [line for line in stdout.splitlines() if line.startswith("| ")]
-    rows = [line for line in lines if line.split("|")[1].strip() in ("regular", "irregular",
-                                                                     "paper_literal", "sweep")]
-    assert len(rows) == 5
+    rows = [line for line in lines if line.split("|")[1].strip() in SCENES + ["sweep"]]
+    assert len(rows) == len(ROWS)
     for i, row in enumerate(rows):
         cells = [c.strip() for c in row.strip("|").split("|")]
         assert int(cells[6]) == data["bench/runs/steps"][i]
