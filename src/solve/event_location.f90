@@ -25,6 +25,13 @@ module davit_solve_event_location
   type :: event_stepper_type
     real(wp), allocatable :: y0(:), f0(:), f1(:), ym(:)
     integer, allocatable :: m0(:), m1(:), mm(:)
+    !> The modes at the end of the last step taken without an event, and that state: the
+    !> next step starts from them unless the caller moved (t, y) since. (The after-step
+    !> hook may still switch a history mode there; a start whose modes are then stale is
+    !> a switch at the start, located as any other, and the next step takes fresh ones.)
+    real(wp), allocatable :: y_last(:)
+    real(wp) :: t_last = -huge(1.0_wp)
+    logical :: cached = .false.
     !> Events located so far (steps cut at an event).
     integer :: located = 0
   contains
@@ -37,7 +44,8 @@ contains
   subroutine stepper_init(self, n, n_modes)
     class(event_stepper_type), intent(inout) :: self
     integer, intent(in) :: n, n_modes
-    allocate (self%y0(n), self%f0(n), self%f1(n), self%ym(n))
+    allocate (self%y0(n), self%f0(n), self%f1(n), self%ym(n), self%y_last(n))
+    self%cached = .false.
     allocate (self%m0(n_modes), self%m1(n_modes), self%mm(n_modes))
     self%located = 0
   end subroutine stepper_init
@@ -61,11 +69,22 @@ contains
     end if
     t0 = t
     self%y0 = y
-    call problem%modes(t0, y, self%m0)
+    if (self%cached .and. t0 == self%t_last) self%cached = all(y == self%y_last)
+    if (self%cached .and. t0 == self%t_last) then
+      self%m0 = self%m1
+    else
+      call problem%modes(t0, y, self%m0)
+    end if
+    self%cached = .false.
     call advance(integ, problem, t, y, t_new)
     if (integ%failed) return
     call problem%modes(t, y, self%m1)
-    if (all(self%m1 == self%m0)) return
+    if (all(self%m1 == self%m0)) then
+      self%cached = .true.
+      self%t_last = t
+      self%y_last = y
+      return
+    end if
     integ%rhs_evaluations = integ%rhs_evaluations + 1
     call problem%rhs(t0, self%y0, self%f0)
     t1 = t
