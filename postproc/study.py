@@ -123,8 +123,11 @@ def metrics(path):
                    if layout.RIGGING_SEGMENT_TENSION in f else np.zeros(len(time)))
         contact = (float(np.ravel(f[layout.FIRST_CONTACT_TIME])[0])
                    if layout.FIRST_CONTACT_TIME in f else -1.0)
+        release = (float(np.ravel(f[layout.RELEASE_TIME])[0])
+                   if layout.RELEASE_TIME in f else -1.0)
         out = {"time": time, "x": f[layout.BOAT_POSITION][:],
                "a": f[layout.BOAT_ACCELERATION][:], "tension": tension, "contact": contact,
+               "release": release,
                "peak_segment": peak(f, layout.PEAK_SEGMENT_TENSION),
                "peak_sling": peak(f, layout.PEAK_SLING_TENSION),
                "peak_impact": peak(f, layout.IMPACT_PEAK_ACCELERATION),
@@ -145,7 +148,8 @@ def compare(run, ref):
     reference's first contact (smooth phase), after it and over the whole run; relative
     error of the peak segment tension (sampled) and of the launch log's resolved peaks
     (segment and sling tension, impact CG acceleration); the peak horizontal acceleration
-    (sampled)."""
+    (sampled); and the max CG distance while the boat is on its falls (before the
+    reference's hook release; the whole run where it has none)."""
     n = min(len(run["time"]), len(ref["time"]))
     while n > 1 and abs(run["time"][n - 1] - ref["time"][n - 1]) > 1e-9:
         n -= 1
@@ -154,7 +158,10 @@ def compare(run, ref):
     dist = np.linalg.norm(run["x"][:n] - ref["x"][:n], axis=1)
     smooth = ref["time"][:n] < ref["contact"] if ref["contact"] > 0 else np.ones(n, bool)
     ah = np.hypot(run["a"][:n, 0], run["a"][:n, 1])
+    on_falls = (ref["time"][:n] < ref["release"] if ref.get("release", -1.0) > 0
+                else np.ones(n, bool))
     return {"err_smooth": dist[smooth].max(), "err_all": dist.max(),
+            "err_falls": dist[on_falls].max(),
             "err_contact": dist[~smooth].max() if (~smooth).any() else 0.0,
             "tension_err": (abs(run["tension"][:n].max() / ref["tension"][:n].max() - 1)
                             if ref["tension"][:n].max() > 0 else 0.0),
@@ -189,6 +196,7 @@ def format_row(row):
         return f"{row['label']:<52s} FAILED: {row['message'][:80]}"
     return (f"{row['label']:<52s} {row['wall']:8.3f} s {row['rhs']:10d} rhs "
             f"{row['err_smooth']:10.2e} m {row['err_contact']:10.2e} m "
+            f"{row['err_falls']:10.2e} m "
             f"{100 * row['segment_err']:8.3f} % {100 * row['sling_err']:8.3f} % "
             f"{100 * row['impact_err']:8.3f} %")
 

@@ -17,6 +17,7 @@ module test_sweep
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance, &
                                splitmix64, case_seed
   use davit_sweep_metrics, only: launch_metrics, case_result
+  use davit_sweep_driver, only: longest_first
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -34,7 +35,8 @@ contains
                    new_case("cartesian_product_and_level_presets", product_and_presets), &
                    new_case("clearance_in_boat_widths_hangs_in_equilibrium", clearances), &
                    new_case("metrics_fender_impact_hertz", impact_metrics), &
-                   new_case("metrics_window_ends_at_release", release_window)]
+                   new_case("metrics_window_ends_at_release", release_window), &
+                   new_case("dearest_cases_first", dearest_first)]
   end function collect_sweep
 
   function sweep_from_text(text) result(s)
@@ -111,6 +113,33 @@ contains
     call check_true(state, any(abs(cases(1:3)%phase_deg - cases(2)%phase_deg) > 1.0_wp), &
                     "realisations draw different phases")
   end subroutine product_and_presets
+
+  !> Cases run dearest first (irregular seas: 1300 components; a smaller dt): a sweep of
+  !> 2 wave types x 2 dts x 2 realisations is taken as the irregular cases at 1e-4 s, then
+  !> the irregular at 1e-3 s, then the regular ones at 1e-4 s and 1e-3 s, each group in
+  !> its index order (stable).
+  subroutine dearest_first(state)
+    type(case_state), intent(inout) :: state
+    type(sweep_config) :: s
+    type(sweep_case), allocatable :: cases(:)
+    integer, allocatable :: order(:)
+    integer :: i
+    s = sweep_from_text("&sweep base_deck = 'iiib_level5_090.nml', "// &
+                        "wave_types = 'stokes2', 'irregular', dts = 1.0e-3, 1.0e-4, "// &
+                        "realisations = 2 /")
+    call build_cases(s, 1.5_wp, cases)
+    order = [(i, i = 1, size(cases))]
+    call longest_first(s, cases, order)
+    call check_true(state, size(cases) == 8, "8 cases")
+    call check_true(state, all(cases(order(1:2))%wave_type == 3) .and. &
+                    all(cases(order(1:2))%dt == 1.0e-4_wp), "irregular at 1e-4 s first")
+    call check_true(state, all(cases(order(3:4))%wave_type == 3) .and. &
+                    all(cases(order(3:4))%dt == 1.0e-3_wp), "then irregular at 1e-3 s")
+    call check_true(state, all(cases(order(5:6))%wave_type /= 3) .and. &
+                    all(cases(order(5:6))%dt == 1.0e-4_wp), "then regular at 1e-4 s")
+    call check_true(state, order(1) < order(2) .and. order(3) < order(4) .and. &
+                    order(5) < order(6) .and. order(7) < order(8), "index order within groups")
+  end subroutine dearest_first
 
   pure function unique_seeds(seeds) result(u)
     integer, intent(in) :: seeds(:)

@@ -50,6 +50,7 @@ def test_compare_splits_at_first_contact_and_drops_an_off_grid_last_sample():
     t = np.arange(0.0, 1.0001, 0.02)
     ref_x = np.zeros((len(t), 3))
     ref = _run(t, ref_x, contact=0.5, sling=(100.0, 80.0), impact=20.0)
+    ref["release"] = 0.3           # hooks let go at 0.3 s: on the falls only the 1 mm
     x = ref_x.copy()
     x[t < 0.5, 0] += 1e-3           # 1 mm before the reference's first contact
     x[t >= 0.5, 1] += 2e-2          # 2 cm after it
@@ -63,6 +64,7 @@ def test_compare_splits_at_first_contact_and_drops_an_off_grid_last_sample():
     assert abs(e["sling_err"] - 0.10) < 1e-12      # resolved peak 110 vs 100
     assert abs(e["segment_err"] - 0.02) < 1e-12
     assert abs(e["impact_err"] - 0.25) < 1e-12
+    assert abs(e["err_falls"] - 1e-3) < 1e-12
     # no contact in either: every sample is "before contact", none after
     e = study.compare(_run(t, x[:len(t)] * 0), _run(t, ref_x))
     assert e["err_contact"] == 0.0 and e["impact_err"] == 0.0
