@@ -24,7 +24,7 @@ def _png_name(path):
 
 
 PRECISION_PANELS = (("err_smooth", "max boat CG error before first contact [m]"),
-                    ("err_contact", "max boat CG error after first contact [m]"),
+                    ("err_falls", "max boat CG error on the falls (to hook release) [m]"),
                     ("sling_err", "relative error of the resolved peak sling tension [-]"),
                     ("segment_err", "relative error of the resolved peak segment tension [-]"))
 
