@@ -249,27 +249,15 @@ contains
   end subroutine diffraction_sums
 
   !> Sum over the components of Re[a (X - X_FK) e^(i Phi)] (DOF order, heading frame),
-  !> Phi = w t + eps - k . r_G, X at beta = g - psi, linear in beta.
+  !> Phi = w t + eps - k . r_G, X at beta = g - psi, linear in beta: the exact load where
+  !> the slow clock has no window (regular seas, or a step outside it).
   pure function diffraction_load(self, sea, t, r, psi) result(load)
     type(boat_bem_type), intent(in) :: self
     type(wave_field_type), intent(in) :: sea
     real(wp), intent(in) :: t, r(3), psi
-    real(wp) :: load(6), sn(wave_chunk), cs(wave_chunk), beta, w
-    complex(wp) :: d(6)
-    integer :: i, k, i0, m
-    load = 0.0_wp
-    associate (h => self%db%heading)
-      do i0 = 1, sea%n, wave_chunk
-        m = min(wave_chunk, sea%n - i0 + 1)
-        call component_phases(sea, i0, m, t, r(1), r(2), sn, cs)
-        do i = i0, i0 + m - 1
-          beta = modulo(sea%direction(i) - psi - h(1), 2.0_wp*pi) + h(1)
-          call bracket(h, beta, k, w)
-          d = (1.0_wp - w)*self%diffraction(:, k, i) + w*self%diffraction(:, k + 1, i)
-          load = load + real(d, wp)*cs(i - i0 + 1) - aimag(d)*sn(i - i0 + 1)
-        end do
-      end do
-    end associate
+    real(wp) :: load(6), d(6, 4)
+    call diffraction_sums(self, sea, t, r, psi, d)
+    load = d(:, 1)
   end function diffraction_load
 
 end module davit_boat_bem_water

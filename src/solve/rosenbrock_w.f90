@@ -284,6 +284,10 @@ contains
     if (self%fixed_step) then
       call self%form_w(problem, tc, y)
       call self%factor(dt, ok)
+      if (.not. ok) then
+        call record_failure(self, t, dt, "singular iteration matrix")
+        return
+      end if
       call self%stages(problem, tc, y, dt)
       y = self%ynew
       t = t_end
@@ -297,6 +301,7 @@ contains
     end if
     rejected = .false.
     tries = 0
+    ok = .true.
     do
       last = stretch_to(self%h, t_end - tc)
       h = merge(t_end - tc, self%h, last)
@@ -304,6 +309,14 @@ contains
       if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
       if (self%age < 0 .or. self%age >= self%max_age) call self%form_w(problem, tc, y)
       if (h /= self%h_lu) call self%factor(h, ok)
+      if (.not. ok) then
+        ! a singular I/(h gamma) - W: take a fresh W at a smaller step
+        self%h = h*self%fac_min
+        self%age = -1
+        self%h_lu = -1.0_wp
+        rejected = .true.
+        cycle
+      end if
       call self%stages(problem, tc, y, h)
       err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
       if (.not. is_finite_real(err) .or. err > 1.0_wp) then
