@@ -10,7 +10,7 @@ from postproc import layout
 from test_sweep import BASE, SWEEP, _setup
 
 # attributes that legitimately differ between the single run and the merge
-VOLATILE = {"threads", "shard_index", "shard_count"}
+VOLATILE = {"threads", *layout.SWEEP_SHARD_ATTRIBUTES}
 
 
 def _ok(result):
@@ -87,7 +87,7 @@ def test_merge_equals_the_single_run_bitwise(davit, shards, tmp_path):
     assert "missing" not in result.stderr
     _assert_bitwise(merged, whole)
     a, b = _attrs(merged), _attrs(whole)
-    assert "shard_index" not in a and "shard_count" not in a
+    assert not set(layout.SWEEP_SHARD_ATTRIBUTES) & set(a)
     assert a["complete"] == 1
     for key in set(a) | set(b):
         if key not in VOLATILE:
