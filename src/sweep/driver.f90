@@ -6,6 +6,8 @@
 !> (diverges) is recorded with its message and the sweep goes on. The summary is written
 !> whole at the start, at checkpoints and at the end, so an interrupted sweep leaves a
 !> valid summary that --resume completes without recomputing finished cases.
+!> With --shard K/N only that slice of the cases runs (davit_sweep_shards), for job arrays
+!> whose summaries `davit sweep --merge` joins.
 module davit_sweep_driver
   !$ use omp_lib, only: omp_get_max_threads, omp_get_num_procs
   use, intrinsic :: iso_fortran_env, only: error_unit

@@ -51,6 +51,11 @@ contains
     logical :: own_lock
     call check_output_path(out_path, error)
     if (allocated(error)) return
+    if (any(inputs == out_path)) then
+      call fatal_error(error, "cannot merge: the output '"//out_path//"' is also an input; "// &
+                       "name a new file")
+      return
+    end if
     call read_shard_file(trim(inputs(1)), first, error)
     if (allocated(error)) return
     allocate (given(first%shard%count), owner(size(first%cases)))

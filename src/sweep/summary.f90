@@ -273,9 +273,10 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(i8), allocatable :: iv(:)
     integer(i8), parameter :: top = huge(1)
-    allocate (cases(n))
+    ! the index column first: its length checks ncase before anything of that size is made
     call int_column(f, "cases/index", n, 1_i8, int(n, i8), iv, error)
     if (allocated(error)) return
+    allocate (cases(n))
     cases%index = int(iv)
     call int_column(f, "cases/realisation", n, 0_i8, top, iv, error)
     if (allocated(error)) return

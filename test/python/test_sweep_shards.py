@@ -154,6 +154,16 @@ def test_merge_refuses_overlapping_shards(davit, shards, tmp_path):
     result = davit("sweep", "--merge", out, parts[0], whole)
     assert result.returncode == 1 and "not a shard summary" in result.stderr
     assert not out.exists()
+    # a crafted shard number, and the output among the inputs
+    with h5py.File(fake, "r+") as f:
+        f.attrs["shard_index"] = np.int64(5)
+    result = davit("sweep", "--merge", out, parts[0], fake)
+    assert result.returncode == 1 and "is not 1 <= K <= N" in result.stderr
+    assert not out.exists()
+    before = parts[1].read_bytes()
+    result = davit("sweep", "--merge", parts[1], parts[0], parts[1])
+    assert result.returncode == 1 and "is also an input" in result.stderr
+    assert parts[1].read_bytes() == before
 
 
 def test_merge_refuses_another_deck_or_n(davit, shards, tmp_path):
