@@ -15,6 +15,8 @@ program davit
   use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
   use davit_sweep_cases, only: sweep_case
   use davit_sweep_driver, only: sweep_options, sweep_outcome, run_sweep, prepare_cases
+  use davit_sweep_shards, only: parse_shard, shard_text
+  use davit_sweep_merge, only: merge_outcome, merge_shards
   use davit_run_linear_modes, only: linear_modes
   use davit_core_blas_threads, only: single_threaded_blas
   implicit none
@@ -102,7 +104,8 @@ contains
   end subroutine cmd_run
 
   !> `sweep SWEEP.nml [-o SUMMARY.h5] [--threads N] [--resume] [--quiet] [--series DIR]
-  !> [--max-cases K] [--checkpoint S] [--dry-run]`
+  !> [--max-cases K] [--checkpoint S] [--dry-run] [--shard K/N]`, or
+  !> `sweep --merge OUT.h5 SHARD.h5...`
   subroutine cmd_sweep()
     character(len=:), allocatable :: deck, out, arg
     type(sweep_config) :: sweep
@@ -114,12 +117,18 @@ contains
     deck = ""
     out = ""
     dry_run = .false.
+    if (any([(argument(i) == "--merge", i = 2, nargs)])) then
+      call cmd_merge()
+      return
+    end if
     i = 2
     do while (i <= nargs)
       arg = argument(i)
       select case (arg)
       case ("-o", "--output")
         call take_value(i, out)
+      case ("--shard")
+        call take_shard(i, opts)
       case ("--threads")
         call take_int(i, 1, opts%threads)
       case ("--series")
@@ -155,8 +164,87 @@ contains
     if (allocated(error)) call fail(error)
     write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,f0.1,a,i0,a)") "davit: wrote '"//out// &
       "' (", outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
-      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, " thread(s))"
+      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, &
+      " thread(s))"//shard_line(opts, outcome)
   end subroutine cmd_sweep
+
+  !> " for shard K/N (M of its cases)" after a shard's summary line.
+  function shard_line(opts, outcome) result(line)
+    type(sweep_options), intent(in) :: opts
+    type(sweep_outcome), intent(in) :: outcome
+    character(len=:), allocatable :: line
+    line = ""
+    if (opts%shard%count > 0) line = " for shard "//shard_text(opts%shard)//" ("// &
+                                     int_to_str(outcome%shard_cases)//" of its cases)"
+  end function shard_line
+
+  !> The K/N of --shard (option i); advances i past both.
+  subroutine take_shard(i, opts)
+    integer, intent(inout) :: i
+    type(sweep_options), intent(inout) :: opts
+    character(len=:), allocatable :: v
+    type(error_type), allocatable :: error
+    call take_value(i, v)
+    call parse_shard(v, opts%shard, error)
+    if (allocated(error)) call usage_error(error%message)
+  end subroutine take_shard
+
+  !> `sweep --merge OUT.h5 SHARD.h5... [--quiet]`: join shard summaries.
+  subroutine cmd_merge()
+    character(len=:), allocatable :: out, arg, inputs(:)
+    type(merge_outcome) :: outcome
+    type(error_type), allocatable :: error
+    logical :: quiet
+    integer :: i, n, width
+    out = ""
+    quiet = .false.
+    width = maxval([(len(argument(i)), i = 1, nargs)])
+    allocate (character(len=width) :: inputs(nargs))
+    n = 0
+    i = 2
+    do while (i <= nargs)
+      arg = argument(i)
+      select case (arg)
+      case ("--merge")
+        if (len(out) > 0) call usage_error("option --merge is given twice")
+        call take_value(i, out)
+      case ("--quiet")
+        quiet = .true.
+        i = i + 1
+      case default
+        if (arg(1:min(1, len(arg))) == "-") call usage_error("option '"//arg// &
+          "' does not go with --merge (davit sweep --merge OUT.h5 SHARD.h5...)")
+        n = n + 1
+        inputs(n) = arg
+        i = i + 1
+      end select
+    end do
+    call refuse_empty_names()
+    if (n == 0) call usage_error("'sweep --merge' needs the shard summaries: davit sweep "// &
+                                 "--merge OUT.h5 SHARD1.h5 SHARD2.h5...")
+    call merge_shards(out, inputs(1:n), outcome, error)
+    if (allocated(error)) call fail(error)
+    if (size(outcome%missing) > 0 .and. .not. quiet) write (error_unit, "(a)") &
+      "davit sweep: note: shard(s) "//int_list(outcome%missing)//" of "// &
+      int_to_str(outcome%count)//" missing: their "//int_to_str(outcome%not_run)// &
+      " case(s) stay not run; complete them with davit sweep "//outcome%sweep_file// &
+      " --resume -o "//out
+    write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,i0,a,i0,a)") "davit: wrote '"//out//"' (", &
+      outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
+      outcome%not_run, " not run; from ", n, " of ", outcome%count, " shards)"
+  end subroutine cmd_merge
+
+  !> "1, 4, 7"
+  function int_list(v) result(text)
+    integer, intent(in) :: v(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ""
+    do k = 1, size(v)
+      if (k > 1) text = text//", "
+      text = text//int_to_str(v(k))
+    end do
+  end function int_list
 
   !> The value of option i (the next argument); advances i past both.
   subroutine take_value(i, v)
@@ -189,7 +277,7 @@ contains
     character(len=:), allocatable :: a
     do k = 2, nargs - 1
       a = argument(k)
-      if (a == "-o" .or. a == "--output" .or. a == "--series") then
+      if (a == "-o" .or. a == "--output" .or. a == "--series" .or. a == "--merge") then
         if (len_trim(argument(k + 1)) == 0) call usage_error("option "//a// &
                                                               " needs a name, got ''")
       end if
@@ -297,8 +385,13 @@ contains
       "  davit rao DECK.nml [-o OUT.h5]   ship response amplitude operators (&rao, &ship)", &
       "  davit sweep SWEEP.nml [-o SUMMARY.h5] [--threads N] [--resume] [--quiet]", &
       "              [--series DIR] [--max-cases K] [--checkpoint S] [--dry-run]", &
+      "              [--shard K/N]", &
       "                                   run every case of a sweep deck (&sweep) in", &
-      "                                   parallel; default summary out/SWEEP.h5", &
+      "                                   parallel; default summary out/SWEEP.h5;", &
+      "                                   --shard K/N runs only the K-th of N slices", &
+      "                                   (job arrays)", &
+      "  davit sweep --merge OUT.h5 SHARD.h5...", &
+      "                                   join shard summaries into one summary", &
       "  davit keys                       print every deck key (Markdown tables)", &
       "  davit modes DECK.nml             fastest rates at t = 0 and the RK4 step limit", &
       "  davit bench [--quick] [-o OUT.h5] [--decks DIR]", &

@@ -374,6 +374,8 @@ SWEEP_WAVE_TYPES = {0: "calm", 1: "airy", 2: "stokes2", 3: "irregular"}
 SWEEP_NOT_RUN, SWEEP_OK, SWEEP_FAILED = 0, 1, 2
 SWEEP_ROOT_ATTRIBUTES = ("davit_version", "sweep_file", "sweep_namelist", "base_deck",
                          "base_namelist", "ncase", "threads", "complete", "series_dir")
+# root attributes of a shard's summary only (`davit sweep --shard K/N`): K and N
+SWEEP_SHARD_ATTRIBUTES = ("shard_index", "shard_count")
 
 # field of Sweep -> dataset; every summary holds these
 SWEEP_FIELDS = {

@@ -18,6 +18,7 @@ module test_sweep
                                splitmix64, case_seed
   use davit_sweep_metrics, only: launch_metrics, case_result
   use davit_sweep_driver, only: longest_first
+  use davit_sweep_shards, only: shard_spec, parse_shard, shard_mask
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -36,7 +37,9 @@ contains
                    new_case("clearance_in_boat_widths_hangs_in_equilibrium", clearances), &
                    new_case("metrics_fender_impact_hertz", impact_metrics), &
                    new_case("metrics_window_ends_at_release", release_window), &
-                   new_case("dearest_cases_first", dearest_first)]
+                   new_case("dearest_cases_first", dearest_first), &
+                   new_case("shards_deal_the_dearest_order_round_robin", shards_round_robin), &
+                   new_case("shard_argument_k_of_n", shard_argument)]
   end function collect_sweep
 
   function sweep_from_text(text) result(s)
@@ -140,6 +143,58 @@ contains
     call check_true(state, order(1) < order(2) .and. order(3) < order(4) .and. &
                     order(5) < order(6) .and. order(7) < order(8), "index order within groups")
   end subroutine dearest_first
+
+  !> The deck of dearest_first (4 irregular cases, then 4 regular) in 4 shards: each shard
+  !> gets one irregular and one regular case (balanced cost); in 3 shards, 3, 3 and 2 cases,
+  !> shard 1 holding the dearest. Every case lies in exactly one shard.
+  subroutine shards_round_robin(state)
+    type(case_state), intent(inout) :: state
+    type(sweep_config) :: s
+    type(sweep_case), allocatable :: cases(:)
+    logical :: mine(8, 4)
+    integer :: k, n, order(8)
+    s = sweep_from_text("&sweep base_deck = 'iiib_level5_090.nml', "// &
+                        "wave_types = 'stokes2', 'irregular', dts = 1.0e-3, 1.0e-4, "// &
+                        "realisations = 2 /")
+    call build_cases(s, 1.5_wp, cases)
+    order = [(k, k = 1, 8)]
+    call longest_first(s, cases, order)
+    do n = 3, 4
+      mine = .false.
+      do k = 1, n
+        mine(:, k) = shard_mask(s, cases, shard_spec(k, n))
+      end do
+      call check_true(state, all(count(mine(:, 1:n), dim=2) == 1), "a partition")
+      if (n == 3) then
+        call check_true(state, all(count(mine(:, 1:3), dim=1) == [3, 3, 2]), "3, 3, 2 cases")
+        call check_true(state, mine(order(1), 1) .and. mine(order(4), 1) .and. &
+                        mine(order(7), 1), "shard 1 of 3: dearest cases 1, 4, 7")
+      else
+        do k = 1, 4
+          call check_true(state, count(mine(:, k) .and. cases%wave_type == 3) == 1 .and. &
+                          count(mine(:, k)) == 2, "one irregular, one regular case")
+        end do
+      end if
+    end do
+    call check_true(state, all(shard_mask(s, cases, shard_spec())), "whole sweep: all")
+  end subroutine shards_round_robin
+
+  !> --shard K/N: 1 <= K <= N, digits only.
+  subroutine shard_argument(state)
+    type(case_state), intent(inout) :: state
+    type(shard_spec) :: shard
+    type(error_type), allocatable :: error
+    character(len=6), parameter :: bad(7) = [character(len=6) :: "0/3", "4/3", "x", "1/0", &
+                                             "/3", "1/3/5", "-1/3"]
+    integer :: k
+    call parse_shard("2/8", shard, error)
+    call check_true(state, .not. allocated(error) .and. shard%index == 2 .and. &
+                    shard%count == 8, "2/8")
+    do k = 1, size(bad)
+      call parse_shard(trim(bad(k)), shard, error)
+      call check_true(state, allocated(error), "refused: "//trim(bad(k)))
+    end do
+  end subroutine shard_argument
 
   pure function unique_seeds(seeds) result(u)
     integer, intent(in) :: seeds(:)

@@ -35,6 +35,7 @@ module davit_io_hdf5_reader
     procedure :: read_strings => reader_read_strings
     procedure :: attr_str => reader_attr_str
     procedure :: attr_int => reader_attr_int
+    procedure :: has_attr => reader_has_attr
   end type h5_reader_type
 
 contains
@@ -269,5 +270,14 @@ contains
     call h5aclose_f(attr, hdferr)
     if (hdferr /= 0) call fatal_error(error, "'"//self%path//"': cannot read attribute "//name)
   end subroutine reader_attr_int
+
+  !> Whether the root group has attribute `name` (optional attributes: a sweep shard's).
+  logical function reader_has_attr(self, name) result(exists)
+    class(h5_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: hdferr
+    call h5aexists_by_name_f(self%file, "/", name, exists, hdferr)
+    if (hdferr /= 0) exists = .false.
+  end function reader_has_attr
 
 end module davit_io_hdf5_reader

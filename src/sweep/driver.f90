@@ -6,6 +6,8 @@
 !> (diverges) is recorded with its message and the sweep goes on. The summary is written
 !> whole at the start, at checkpoints and at the end, so an interrupted sweep leaves a
 !> valid summary that --resume completes without recomputing finished cases.
+!> With --shard K/N only that slice of the cases runs (davit_sweep_shards), for job arrays
+!> whose summaries `davit sweep --merge` joins.
 module davit_sweep_driver
   !$ use omp_lib, only: omp_get_max_threads, omp_get_num_procs
   use, intrinsic :: iso_fortran_env, only: error_unit
@@ -23,11 +25,12 @@ module davit_sweep_driver
   use davit_run_driver, only: integrate
   use davit_run_launch_log, only: new_launch_log
   use davit_run_budget, only: check_run_budget, memory_limit, run_memory_estimate
-  use davit_sweep_keys, only: sweep_config, wave_type_names
+  use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
                                  status_failed, not_run_result
   use davit_sweep_summary, only: write_summary, read_results
+  use davit_sweep_shards, only: shard_spec, shard_mask, shard_text, longest_first
   implicit none
   private
   public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case, longest_first
@@ -47,10 +50,14 @@ module davit_sweep_driver
     real(wp) :: checkpoint_interval = 30.0_wp
     !> Seconds between progress lines.
     real(wp) :: progress_interval = 5.0_wp
+    !> Run only this slice of the cases (--shard K/N; count 0 = all of them).
+    type(shard_spec) :: shard
   end type sweep_options
 
   type :: sweep_outcome
     integer :: ncase = 0, ok = 0, failed = 0, not_run = 0, ran = 0, threads = 1
+    !> Cases of the shard run (ncase for the whole sweep).
+    integer :: shard_cases = 0
     real(wp) :: wall_time = 0.0_wp
   end type sweep_outcome
 
@@ -84,6 +91,7 @@ contains
     type(sweep_case), allocatable :: cases(:)
     type(sweep_state), target :: state
     integer, allocatable :: pending(:)
+    logical, allocatable :: mine(:)
     real(wp) :: clearance0
     integer :: k, claimed, slot, nthreads
     logical :: exists, own_lock
@@ -115,24 +123,26 @@ contains
     state%results = not_run_result()
     inquire (file=out_path, exist=exists)
     if (opts%resume .and. exists) then
-      call read_results(out_path, s, size(cases), state%results, error)
+      call read_results(out_path, s, size(cases), opts%shard, state%results, error)
       if (allocated(error)) return
     end if
-    pending = pack([(k, k = 1, size(cases))], state%results%status == status_not_run)
+    mine = shard_mask(s, cases, opts%shard)
+    pending = pack([(k, k = 1, size(cases))], state%results%status == status_not_run .and. mine)
     call longest_first(s, cases, pending)
     nthreads = thread_count(opts%threads, s%base)
     state%threads = nthreads
     state%todo = size(pending)
     if (opts%max_cases > 0) state%todo = min(state%todo, opts%max_cases)
     ! a valid summary from the start (also checks that the path is writable)
-    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), error)
+    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), &
+                       opts%shard, error)
     if (allocated(error)) return
     call system_clock(state%clock0, state%rate)
     state%last_progress = state%clock0
     state%last_checkpoint = state%clock0
     if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: "// &
       int_to_str(state%todo)//" of "//int_to_str(size(cases))//" cases to run on "// &
-      int_to_str(nthreads)//" thread(s)"
+      int_to_str(nthreads)//" thread(s)"//shard_note(opts%shard, count(mine))
     claimed = 0
 
     !$omp parallel do schedule(dynamic, 1) num_threads(nthreads) default(none) &
@@ -148,7 +158,8 @@ contains
     end do
     !$omp end parallel do
 
-    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), error)
+    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), &
+                       opts%shard, error)
     if (.not. allocated(error) .and. allocated(state%io_error)) &
       call move_alloc(state%io_error, error)
     outcome%ncase = size(cases)
@@ -157,53 +168,11 @@ contains
     outcome%not_run = count(state%results%status == status_not_run)
     outcome%ran = state%done
     outcome%threads = nthreads
+    outcome%shard_cases = count(mine)
     outcome%wall_time = seconds_since(state, state%clock0)
   end subroutine sweep_body
 
   end subroutine run_sweep
-
-  !> Order the cases to run by their expected cost, dearest first (stable: equal costs keep
-  !> their index order), so that no thread is left with a long case at the end while
-  !> the others idle (issue 14). Only the order of work changes: every row is stored
-  !> under its own index, so the summary is the same in any order.
-  subroutine longest_first(s, cases, pending)
-    type(sweep_config), intent(in) :: s
-    type(sweep_case), intent(in) :: cases(:)
-    integer, intent(inout) :: pending(:)
-    real(wp) :: cost(size(pending)), key
-    integer :: i, j, moving
-    do i = 1, size(pending)
-      cost(i) = expected_cost(s, cases(pending(i)))
-    end do
-    ! insertion sort: a few thousand cases, once
-    do i = 2, size(pending)
-      key = cost(i)
-      moving = pending(i)
-      j = i - 1
-      do while (j >= 1)
-        if (cost(j) >= key) exit
-        cost(j + 1) = cost(j)
-        pending(j + 1) = pending(j)
-        j = j - 1
-      end do
-      cost(j + 1) = key
-      pending(j + 1) = moving
-    end do
-  end subroutine longest_first
-
-  !> Relative cost of a case: steps (1/dt) times the work per step, which the wave sums of
-  !> an irregular sea's components (n_frequencies x n_directions) dominate (README
-  !> Benchmark: ~1 RHS of the default scene per 100 components).
-  pure real(wp) function expected_cost(s, c) result(cost)
-    type(sweep_config), intent(in) :: s
-    type(sweep_case), intent(in) :: c
-    real(wp) :: dt, components
-    dt = merge(c%dt, s%base%simulation%dt, c%dt > 0.0_wp)
-    components = 1.0_wp
-    if (wave_type_names(c%wave_type) == "irregular") components = &
-      real(s%base%sea%n_frequencies, wp)*real(s%base%sea%n_directions, wp)
-    cost = (1.0_wp + components/100.0_wp)/dt
-  end function expected_cost
 
   !> The cases of the sweep and the base deck's initial clearance [m].
   subroutine prepare_cases(s, cases, clearance0, error)
@@ -303,7 +272,7 @@ contains
     if (state%done < state%todo .and. &
         seconds_since(state, state%last_checkpoint) >= opts%checkpoint_interval) then
       call write_summary(out_path, s, cases, state%results, state%threads, series(opts), &
-                         error)
+                         opts%shard, error)
       if (allocated(error) .and. .not. allocated(state%io_error)) &
         call move_alloc(error, state%io_error)
       state%last_checkpoint = now
@@ -355,6 +324,16 @@ contains
     if (allocated(error) .and. .not. allocated(state%io_error)) &
       call move_alloc(error, state%io_error)
   end subroutine write_series
+
+  !> " (shard K/N: M cases)" for a shard, else nothing.
+  function shard_note(shard, ncase) result(note)
+    type(shard_spec), intent(in) :: shard
+    integer, intent(in) :: ncase
+    character(len=:), allocatable :: note
+    note = ""
+    if (shard%count > 0) note = " (shard "//shard_text(shard)//": "//int_to_str(ncase)// &
+                                " cases)"
+  end function shard_note
 
   function series(opts) result(dir)
     type(sweep_options), intent(in) :: opts

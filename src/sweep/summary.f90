@@ -13,10 +13,11 @@ module davit_sweep_summary
   use davit_io_text, only: int_text
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case
-  use davit_sweep_metrics, only: case_result, status_not_run
+  use davit_sweep_metrics, only: case_result, status_not_run, not_run_result
+  use davit_sweep_shards, only: shard_spec, shard_text
   implicit none
   private
-  public :: write_summary, read_results
+  public :: write_summary, read_results, read_summary
 
   character(len=*), parameter :: wave_type_codes = "0 calm, 1 airy (regular, linear), "// &
                                                    "2 stokes2 (regular), 3 irregular"
@@ -24,13 +25,15 @@ module davit_sweep_summary
 
 contains
 
-  !> Write the whole summary to `path` (atomically: `path.tmp`, then renamed).
-  subroutine write_summary(path, s, cases, results, threads, series_dir, error)
+  !> Write the whole summary to `path` (atomically: `path.tmp`, then renamed). A shard's
+  !> summary (shard%count > 0) also records shard_index and shard_count.
+  subroutine write_summary(path, s, cases, results, threads, series_dir, shard, error)
     character(len=*), intent(in) :: path, series_dir
     type(sweep_config), intent(in) :: s
     type(sweep_case), intent(in) :: cases(:)
     type(case_result), intent(in) :: results(:)
     integer, intent(in) :: threads
+    type(shard_spec), intent(in) :: shard
     type(error_type), allocatable, intent(out) :: error
     type(h5_writer_type) :: w
     call w%create(path, error)
@@ -46,6 +49,10 @@ contains
     call w%attr_int("/", "threads", int(threads, i8))
     call w%attr_int("/", "complete", merge(1_i8, 0_i8, all(results%status /= status_not_run)))
     call w%attr_str("/", "series_dir", series_dir)
+    if (shard%count > 0) then
+      call w%attr_int("/", "shard_index", int(shard%index, i8))
+      call w%attr_int("/", "shard_count", int(shard%count, i8))
+    end if
     call w%close(error)
   end subroutine write_summary
 
@@ -164,22 +171,139 @@ contains
     if (field == "outcome" .and. allocated(r%outcome)) text = r%outcome
   end function row_text
 
-  !> The results of an earlier summary of the same sweep (resume). Fails with a clear
-  !> message when the file is not a summary of this sweep deck and base deck.
-  subroutine read_results(path, s, ncase, results, error)
+  !> The results of an earlier summary of the same sweep and shard (resume). Fails with a
+  !> clear message when the file is not a summary of this sweep deck, base deck and shard.
+  subroutine read_results(path, s, ncase, shard, results, error)
     character(len=*), intent(in) :: path
     type(sweep_config), intent(in) :: s
     integer, intent(in) :: ncase
+    type(shard_spec), intent(in) :: shard
     type(case_result), intent(inout) :: results(:)
     type(error_type), allocatable, intent(out) :: error
     type(h5_reader_type) :: f
     call f%open(path, error)
     if (allocated(error)) return
     call check_same_sweep(f, s, ncase, error)
+    if (.not. allocated(error)) call check_same_shard(f, shard, error)
     if (.not. allocated(error)) call read_rows(f, results, error)
     call f%close()
     if (allocated(error)) error%message = "cannot resume: "//error%message
   end subroutine read_results
+
+  !> A shard resumes only its own summary; the whole sweep only a whole (or merged) one.
+  subroutine check_same_shard(f, shard, error)
+    type(h5_reader_type), intent(inout) :: f
+    type(shard_spec), intent(in) :: shard
+    type(error_type), allocatable, intent(out) :: error
+    type(shard_spec) :: stored
+    call read_shard(f, stored, error)
+    if (allocated(error)) return
+    if (stored%index == shard%index .and. stored%count == shard%count) return
+    if (stored%count == 0) then
+      call fatal_error(error, "'"//f%path//"' is the summary of the whole sweep, not of "// &
+                       "shard "//shard_text(shard)//"; resume it without --shard")
+    else if (shard%count == 0) then
+      call fatal_error(error, "'"//f%path//"' is the summary of shard "// &
+                       shard_text(stored)//"; resume it with --shard "//shard_text(stored)// &
+                       " or merge the shards (davit sweep --merge)")
+    else
+      call fatal_error(error, "'"//f%path//"' is the summary of shard "// &
+                       shard_text(stored)//", not of shard "//shard_text(shard))
+    end if
+  end subroutine check_same_shard
+
+  !> The shard a summary records (absent: the whole sweep), checked for 1 <= K <= N.
+  subroutine read_shard(f, shard, error)
+    type(h5_reader_type), intent(inout) :: f
+    type(shard_spec), intent(out) :: shard
+    type(error_type), allocatable, intent(out) :: error
+    integer(i8) :: k, n
+    if (.not. (f%has_attr("shard_index") .or. f%has_attr("shard_count"))) return
+    call f%attr_int("shard_index", k, error)
+    if (.not. allocated(error)) call f%attr_int("shard_count", n, error)
+    if (allocated(error)) return
+    if (n < 1 .or. k < 1 .or. k > n .or. n > huge(1)) then
+      call fatal_error(error, "'"//f%path//"': shard "//int_text(k)//"/"//int_text(n)// &
+                       " is not 1 <= K <= N")
+      return
+    end if
+    shard = shard_spec(int(k), int(n))
+  end subroutine read_shard
+
+  !> A whole summary (merge): its sweep's identity (file names and deck texts in `s`), the
+  !> cases, the rows, the shard and the thread count.
+  subroutine read_summary(path, s, cases, results, shard, threads, series_dir, error)
+    character(len=*), intent(in) :: path
+    type(sweep_config), intent(out) :: s
+    type(sweep_case), allocatable, intent(out) :: cases(:)
+    type(case_result), allocatable, intent(out) :: results(:)
+    type(shard_spec), intent(out) :: shard
+    integer, intent(out) :: threads
+    character(len=:), allocatable, intent(out) :: series_dir
+    type(error_type), allocatable, intent(out) :: error
+    type(h5_reader_type) :: f
+    integer(i8) :: n
+    call f%open(path, error)
+    if (allocated(error)) return
+    call f%attr_str("sweep_file", s%filename, error)
+    if (.not. allocated(error)) call f%attr_str("sweep_namelist", s%deck_text, error)
+    if (.not. allocated(error)) call f%attr_str("base_deck", s%base_deck, error)
+    if (.not. allocated(error)) call f%attr_str("base_namelist", s%base%deck_text, error)
+    if (.not. allocated(error)) call f%attr_str("series_dir", series_dir, error)
+    if (.not. allocated(error)) call f%attr_int("threads", n, error)
+    threads = int(min(max(n, 0_i8), int(huge(1), i8)))
+    if (.not. allocated(error)) call f%attr_int("ncase", n, error)
+    if (.not. allocated(error) .and. (n < 0 .or. n > huge(1))) &
+      call fatal_error(error, "'"//path//"': ncase = "//int_text(n)//" is out of range")
+    if (.not. allocated(error)) call read_shard(f, shard, error)
+    if (.not. allocated(error)) call read_cases(f, int(n), cases, error)
+    if (.not. allocated(error)) then
+      allocate (results(n))
+      results = not_run_result()
+      call read_rows(f, results, error)
+    end if
+    call f%close()
+  end subroutine read_summary
+
+  !> The /cases columns, each of length n (written back unchanged by a merge).
+  subroutine read_cases(f, n, cases, error)
+    type(h5_reader_type), intent(inout) :: f
+    integer, intent(in) :: n
+    type(sweep_case), allocatable, intent(out) :: cases(:)
+    type(error_type), allocatable, intent(out) :: error
+    integer(i8), allocatable :: iv(:)
+    integer(i8), parameter :: top = huge(1)
+    ! the index column first: its length checks ncase before anything of that size is made
+    call int_column(f, "cases/index", n, 1_i8, int(n, i8), iv, error)
+    if (allocated(error)) return
+    allocate (cases(n))
+    cases%index = int(iv)
+    call int_column(f, "cases/realisation", n, 0_i8, top, iv, error)
+    if (allocated(error)) return
+    cases%realisation = int(iv)
+    call int_column(f, "cases/seed", n, -top - 1, top, iv, error)
+    if (allocated(error)) return
+    cases%seed = int(iv)
+    call int_column(f, "cases/level", n, -top - 1, top, iv, error)
+    if (allocated(error)) return
+    cases%level = int(iv)
+    call int_column(f, "cases/wave_type", n, 0_i8, 3_i8, iv, error)
+    if (allocated(error)) return
+    cases%wave_type = int(iv)
+    call int_column(f, "cases/wind", n, 0_i8, 1_i8, iv, error)
+    if (allocated(error)) return
+    cases%wind = iv == 1
+    call real_column(f, "cases/wind_speed", cases%wind_speed, error)
+    if (.not. allocated(error)) call real_column(f, "cases/wave_height", cases%wave_height, &
+                                                 error)
+    if (.not. allocated(error)) call real_column(f, "cases/wave_period", cases%wave_period, &
+                                                 error)
+    if (.not. allocated(error)) call real_column(f, "cases/angle_deg", cases%angle_deg, error)
+    if (.not. allocated(error)) call real_column(f, "cases/clearance_b", cases%clearance_b, &
+                                                 error)
+    if (.not. allocated(error)) call real_column(f, "cases/dt", cases%dt, error)
+    if (.not. allocated(error)) call real_column(f, "cases/phase_deg", cases%phase_deg, error)
+  end subroutine read_cases
 
   subroutine check_same_sweep(f, s, ncase, error)
     type(h5_reader_type), intent(inout) :: f
