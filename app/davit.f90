@@ -19,6 +19,7 @@ program davit
   use davit_sweep_merge, only: merge_outcome, merge_shards
   use davit_run_linear_modes, only: linear_modes
   use davit_core_blas_threads, only: single_threaded_blas
+  use davit_io_text, only: join_ints
   implicit none
 
   interface
@@ -225,7 +226,7 @@ contains
     call merge_shards(out, inputs(1:n), outcome, error)
     if (allocated(error)) call fail(error)
     if (size(outcome%missing) > 0 .and. .not. quiet) write (error_unit, "(a)") &
-      "davit sweep: note: shard(s) "//int_list(outcome%missing)//" of "// &
+      "davit sweep: note: shard(s) "//join_ints(outcome%missing)//" of "// &
       int_to_str(outcome%count)//" missing: their "//int_to_str(outcome%not_run)// &
       " case(s) stay not run; complete them with davit sweep "//outcome%sweep_file// &
       " --resume -o "//out
@@ -233,18 +234,6 @@ contains
       outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
       outcome%not_run, " not run; from ", n, " of ", outcome%count, " shards)"
   end subroutine cmd_merge
-
-  !> "1, 4, 7"
-  function int_list(v) result(text)
-    integer, intent(in) :: v(:)
-    character(len=:), allocatable :: text
-    integer :: k
-    text = ""
-    do k = 1, size(v)
-      if (k > 1) text = text//", "
-      text = text//int_to_str(v(k))
-    end do
-  end function int_list
 
   !> The value of option i (the next argument); advances i past both.
   subroutine take_value(i, v)
