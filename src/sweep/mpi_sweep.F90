@@ -39,10 +39,12 @@ module davit_sweep_mpi_sweep
   logical, parameter :: built_with_mpi = .false.
 #endif
 
-  !> The coordinator's nap between polls [us] when no request is waiting: a blocking
-  !> MPI_Probe spins a core, which on a node shared with workers (or SMT siblings) slows
-  !> them by ~10 %; 100 us is nothing against a case of even a millisecond.
-  integer(c_int), parameter :: idle_nap_us = 100
+  !> The coordinator's naps between polls [us] when no request is waiting, doubling from
+  !> the first to the longest while none comes: a blocking MPI_Probe spins a core, which
+  !> slowed the worker beside it (sharing the node, or SMT siblings) by 13 %; short naps
+  !> first keep the answer prompt when requests come thick (millisecond cases), and 1 ms
+  !> is nothing against a case of a second.
+  integer(c_int), parameter :: first_nap_us = 10, longest_nap_us = 1000
 
   interface
     integer(c_int) function c_usleep(us) bind(C, name="usleep")
@@ -165,10 +167,13 @@ contains
   subroutine wait_for_request(status)
     type(MPI_Status), intent(out) :: status
     logical :: waiting
+    integer(c_int) :: nap
+    nap = first_nap_us
     do
       call MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, waiting, status)
       if (waiting) return
-      if (c_usleep(idle_nap_us) /= 0) continue
+      if (c_usleep(nap) /= 0) continue
+      nap = min(2*nap, longest_nap_us)
     end do
   end subroutine wait_for_request
 
