@@ -230,7 +230,7 @@ def test_killed_worker_leaves_its_cases_not_run(mpi_bin, davit, tmp_path):
     base = BASE.replace("t_end = 1.0 ", "t_end = 8.0 ")
     deck = _setup(tmp_path, base=base)
     ref = tmp_path / "openmp.h5"
-    _ok(davit("sweep", deck, "-o", ref, "--threads", "2", "--quiet"))
+    _ok(davit("sweep", deck, "-o", ref, "--threads", "1", "--quiet"))
     out = tmp_path / "killed.h5"
     job = subprocess.Popen(["mpirun", "--oversubscribe", "--bind-to", "none", "-np", "3",
                             mpi_bin, "sweep", deck, "-o", out, "--checkpoint", "0",
@@ -261,5 +261,5 @@ def test_killed_worker_leaves_its_cases_not_run(mpi_bin, davit, tmp_path):
     r = layout.load_sweep(ref)
     finished = s.status == layout.SWEEP_OK
     np.testing.assert_array_equal(s.min_clearance[finished], r.min_clearance[finished])
-    _ok(davit("sweep", deck, "-o", out, "--resume", "--quiet"))
+    _ok(davit("sweep", deck, "-o", out, "--resume", "--threads", "1", "--quiet"))
     _assert_bitwise(ref, out)
