@@ -391,7 +391,9 @@ contains
       "                                   run every case of a sweep deck (&sweep) in", &
       "                                   parallel; default summary out/SWEEP.h5;", &
       "                                   --shard K/N runs only the K-th of N slices", &
-      "                                   (job arrays)", &
+      "                                   (job arrays); the MPI build (bash make.sh", &
+      "                                   mpi) under mpirun -np N spreads the cases", &
+      "                                   over N - 1 worker ranks", &
       "  davit sweep --merge OUT.h5 SHARD.h5...", &
       "                                   join shard summaries into one summary", &
       "  davit keys                       print every deck key (Markdown tables)", &
