@@ -7,6 +7,9 @@
 #   bash make.sh paper  build, run every paper deck (and the sweeps, where `davit sweep`
 #                       exists) into out/, then draw every figure and print the regression
 #                       report (python -m postproc all / regress)
+#   bash make.sh mpi    install Open MPI if mpifort is missing, build the MPI binary (the
+#                       sweep across MPI ranks: mpirun -np N build/davit-mpi sweep ...),
+#                       print its path (test also builds it and runs its tests)
 # Both are idempotent: a second run installs nothing and rebuilds only what changed.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -20,6 +23,11 @@ DEFAULT_DECK=input/iiib_level5_090.nml
 # 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
 # (-fstack-arrays) instead of malloc in the RHS: 7 % less CPU on the default scene.
 FPM_FLAGS=(--profile release --flag "-march=native -fstack-arrays")
+
+# Open MPI (Debian's): mpifort and mpirun, for the MPI build of `davit sweep`
+MPI_APT_PACKAGES=(libopenmpi-dev openmpi-bin)
+MPI_FLAGS=(--profile release --flag "-march=native -fstack-arrays -DDAVIT_MPI")
+MPI_BIN=build/davit-mpi
 
 log() { printf '%s\n' "make.sh: $*" >&2; }
 
@@ -37,6 +45,29 @@ setup_apt() {
     as_root apt-get update -qq
     as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}" >/dev/null
   fi
+}
+
+# The MPI binary (fpm puts it under its own hashed folder; build/davit-mpi is a stable
+# name), after installing Open MPI when mpifort is missing.
+setup_mpi() {
+  if ! command -v mpifort >/dev/null 2>&1; then
+    log "installing ${MPI_APT_PACKAGES[*]}"
+    as_root apt-get update -qq
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${MPI_APT_PACKAGES[@]}" >/dev/null
+  fi
+  log "building the MPI binary (release, mpifort -DDAVIT_MPI)"
+  FPM_FC=mpifort fpm build "${MPI_FLAGS[@]}" >/dev/null 2>&1 || FPM_FC=mpifort fpm build "${MPI_FLAGS[@]}"
+  local bin
+  bin="$(FPM_FC=mpifort fpm run "${MPI_FLAGS[@]}" --runner echo 2>/dev/null | tail -n 1)"
+  cp -f "$bin" "$MPI_BIN.tmp" && mv -f "$MPI_BIN.tmp" "$MPI_BIN"
+  export DAVIT_MPI_BIN="$PWD/$MPI_BIN"
+}
+
+mpi() {
+  setup_apt
+  setup_python
+  setup_mpi
+  echo "$DAVIT_MPI_BIN"
 }
 
 python_ready() {
@@ -157,6 +188,7 @@ paper() {
 
 run_tests() {
   setup
+  setup_mpi
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"
   plog="$(mktemp)"
@@ -189,6 +221,7 @@ case "${1:-}" in
   demo) demo ;;
   test) run_tests ;;
   paper) paper ;;
+  mpi) mpi ;;
   setup) setup ;;
-  *) echo "usage: bash make.sh demo|test|paper|setup" >&2; exit 2 ;;
+  *) echo "usage: bash make.sh demo|test|paper|mpi|setup" >&2; exit 2 ;;
 esac

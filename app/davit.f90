@@ -14,9 +14,10 @@ program davit
   use davit_run_rao, only: run_rao
   use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
   use davit_sweep_cases, only: sweep_case
-  use davit_sweep_driver, only: sweep_options, sweep_outcome, run_sweep, prepare_cases
+  use davit_sweep_driver, only: sweep_options, sweep_outcome, prepare_cases
   use davit_sweep_shards, only: parse_shard, shard_text
   use davit_sweep_merge, only: merge_outcome, merge_shards
+  use davit_sweep_mpi_sweep, only: sweep_anywhere
   use davit_run_linear_modes, only: linear_modes
   use davit_core_blas_threads, only: single_threaded_blas
   use davit_io_text, only: join_ints
@@ -113,7 +114,7 @@ contains
     type(sweep_options) :: opts
     type(sweep_outcome) :: outcome
     type(error_type), allocatable :: error
-    logical :: dry_run
+    logical :: dry_run, report
     integer :: i, seconds
     deck = ""
     out = ""
@@ -161,8 +162,9 @@ contains
       return
     end if
     if (len(out) == 0) out = default_output(deck)
-    call run_sweep(sweep, opts, out, outcome, error)
+    call sweep_anywhere(sweep, opts, out, outcome, report, error)
     if (allocated(error)) call fail(error)
+    if (.not. report) return
     write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,f0.1,a,i0,a)") "davit: wrote '"//out// &
       "' (", outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
       outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, &
@@ -378,7 +380,9 @@ contains
       "                                   run every case of a sweep deck (&sweep) in", &
       "                                   parallel; default summary out/SWEEP.h5;", &
       "                                   --shard K/N runs only the K-th of N slices", &
-      "                                   (job arrays)", &
+      "                                   (job arrays); the MPI build (bash make.sh", &
+      "                                   mpi) under mpirun -np N spreads the cases", &
+      "                                   over N - 1 worker ranks", &
       "  davit sweep --merge OUT.h5 SHARD.h5...", &
       "                                   join shard summaries into one summary", &
       "  davit keys                       print every deck key (Markdown tables)", &

@@ -19,6 +19,8 @@ module test_sweep
   use davit_sweep_metrics, only: launch_metrics, case_result
   use davit_sweep_driver, only: longest_first
   use davit_sweep_shards, only: shard_spec, parse_shard, shard_mask
+  use davit_sweep_row_codec, only: encode_row, decode_row
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_negative_inf
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -39,7 +41,9 @@ contains
                    new_case("metrics_window_ends_at_release", release_window), &
                    new_case("dearest_cases_first", dearest_first), &
                    new_case("shards_deal_the_dearest_order_round_robin", shards_round_robin), &
-                   new_case("shard_argument_k_of_n", shard_argument)]
+                   new_case("shard_argument_k_of_n", shard_argument), &
+                   new_case("row_message_round_trip_bitwise", row_round_trip), &
+                   new_case("row_message_refuses_wrong_length", row_wrong_length)]
   end function collect_sweep
 
   function sweep_from_text(text) result(s)
@@ -326,5 +330,65 @@ contains
     call check_true(state, summary%steps == nint(r%end_time/cfg%simulation%dt), &
                     "no step after the release")
   end subroutine release_window
+
+  !> A row through the MPI message bytes comes back bit for bit: NaN payloads, -0, an
+  !> infinity, extreme integers, text with blanks and an unallocated message.
+  subroutine row_round_trip(state)
+    type(case_state), intent(inout) :: state
+    type(case_result) :: row, back
+    type(error_type), allocatable :: error
+    integer :: c
+    row%status = 2
+    row%min_clearance = -0.0_wp
+    row%peak_horizontal_acceleration = ieee_value(1.0_wp, ieee_quiet_nan)
+    row%peak_vertical_acceleration = ieee_value(1.0_wp, ieee_negative_inf)
+    row%peak_segment_tension = 1.0_wp/3.0_wp
+    row%impact_speed_exceeded_time = tiny(1.0_wp)
+    row%wall_time = huge(1.0_wp)
+    row%outcome = "  run diverged at t = 0.5 s: x  "
+    row%collided = 1
+    row%impacts = -7
+    row%steps = huge(1_i8)
+    row%rhs_evaluations = -huge(1_i8)
+    call decode_row(encode_row(123456, row), c, back, error)
+    call check_true(state, .not. allocated(error), "decoded")
+    call check_true(state, c == 123456, "case index")
+    call check_true(state, all(transfer(reals_of(back), [0_i8]) == &
+                               transfer(reals_of(row), [0_i8])), "reals bit for bit")
+    call check_true(state, back%status == 2 .and. back%collided == 1 .and. &
+                    back%impacts == -7, "integers")
+    call check_true(state, back%steps == huge(1_i8) .and. &
+                    back%rhs_evaluations == -huge(1_i8), "64-bit counters")
+    call check_true(state, .not. allocated(back%message), "message stays unallocated")
+    call check_true(state, back%outcome == row%outcome .and. &
+                    len(back%outcome) == len(row%outcome), "outcome with its blanks")
+  end subroutine row_round_trip
+
+  !> Bytes cut short or with a byte too many are an error, not a row.
+  subroutine row_wrong_length(state)
+    type(case_state), intent(inout) :: state
+    type(case_result) :: row, back
+    type(error_type), allocatable :: error
+    character(len=:), allocatable :: buf
+    integer :: c
+    row%message = "abc"
+    buf = encode_row(5, row)
+    call decode_row(buf(:len(buf) - 1), c, back, error)
+    call check_true(state, allocated(error), "one byte short")
+    call decode_row(buf//"x", c, back, error)
+    call check_true(state, allocated(error), "one byte too many")
+    call decode_row(buf(:10), c, back, error)
+    call check_true(state, allocated(error), "header cut")
+  end subroutine row_wrong_length
+
+  function reals_of(r) result(x)
+    type(case_result), intent(in) :: r
+    real(wp) :: x(15)
+    x = [r%min_clearance, r%peak_horizontal_acceleration, r%peak_vertical_acceleration, &
+         r%peak_segment_tension, r%first_contact_time, r%waterborne_time, r%end_time, &
+         r%wall_time, r%peak_sling_tension, r%peak_fall_tension, r%max_impact_speed, &
+         r%peak_seat_acceleration, r%swl_exceeded_time, r%mbl_exceeded_time, &
+         r%impact_speed_exceeded_time]
+  end function reals_of
 
 end module test_sweep

@@ -34,6 +34,9 @@ module davit_sweep_driver
   implicit none
   private
   public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case, longest_first
+  ! for the MPI sweep (davit_sweep_mpi_sweep), which shares the set-up, rows and summary
+  public :: sweep_state, sweep_run, start_sweep, finish_sweep, store_case, thread_count
+  public :: series
 
   type :: sweep_options
     !> OpenMP threads; 0 = OMP_NUM_THREADS (or the runtime's default).
@@ -70,6 +73,18 @@ module davit_sweep_driver
     type(error_type), allocatable :: io_error
   end type sweep_state
 
+  !> A sweep under way: its cases, the base deck's clearance, the shared state, the cases
+  !> to run (dearest first; the first state%todo of them), the shard's cases, and whether
+  !> this process holds the summary's lock.
+  type :: sweep_run
+    type(sweep_case), allocatable :: cases(:)
+    real(wp) :: clearance0 = 0.0_wp
+    type(sweep_state) :: state
+    integer, allocatable :: pending(:)
+    logical, allocatable :: mine(:)
+    logical :: own_lock = .false.
+  end type sweep_run
+
   interface
     function c_mkdir(path, mode) bind(C, name="mkdir") result(status)
       import :: c_int, c_char
@@ -88,63 +103,30 @@ contains
     character(len=*), intent(in) :: out_path
     type(sweep_outcome), intent(out) :: outcome
     type(error_type), allocatable, intent(out) :: error
-    type(sweep_case), allocatable :: cases(:)
-    type(sweep_state), target :: state
-    integer, allocatable :: pending(:)
-    logical, allocatable :: mine(:)
-    real(wp) :: clearance0
-    integer :: k, claimed, slot, nthreads
-    logical :: exists, own_lock
+    type(sweep_run) :: run
+    integer :: nthreads
 
-    ! The whole set-up is checked before the summary is touched: decks, output name and
-    ! lock, series folder, and the earlier summary when resuming.
-    call prepare_cases(s, cases, clearance0, error)
-    if (allocated(error)) return
-    call check_output_path(out_path, error)
-    if (allocated(error)) return
-    if (len(series(opts)) > 0) then
-      if (series(opts) == out_path) then
-        call fatal_error(error, "the series folder and the summary are both '"//out_path// &
-                         "'; name two different paths")
-        return
-      end if
-    end if
-    call acquire_lock(out_path, own_lock, error)
-    if (allocated(error)) return
-    call sweep_body()
-    if (own_lock) call release_lock(out_path)
-
-  contains
-
-  subroutine sweep_body()
-    if (len(series(opts)) > 0) call make_folder(series(opts), error)
-    if (allocated(error)) return
-    allocate (state%results(size(cases)))
-    state%results = not_run_result()
-    inquire (file=out_path, exist=exists)
-    if (opts%resume .and. exists) then
-      call read_results(out_path, s, size(cases), opts%shard, state%results, error)
-      if (allocated(error)) return
-    end if
-    mine = shard_mask(s, cases, opts%shard)
-    pending = pack([(k, k = 1, size(cases))], state%results%status == status_not_run .and. mine)
-    call longest_first(s, cases, pending)
     nthreads = thread_count(opts%threads, s%base)
-    state%threads = nthreads
-    state%todo = size(pending)
-    if (opts%max_cases > 0) state%todo = min(state%todo, opts%max_cases)
-    ! a valid summary from the start (also checks that the path is writable)
-    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), &
-                       opts%shard, error)
+    call start_sweep(s, opts, out_path, nthreads, int_to_str(nthreads)//" thread(s)", run, &
+                     error)
     if (allocated(error)) return
-    call system_clock(state%clock0, state%rate)
-    state%last_progress = state%clock0
-    state%last_checkpoint = state%clock0
-    if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: "// &
-      int_to_str(state%todo)//" of "//int_to_str(size(cases))//" cases to run on "// &
-      int_to_str(nthreads)//" thread(s)"//shard_note(opts%shard, count(mine))
-    claimed = 0
+    call run_pending(s, run%cases, run%pending, run%clearance0, opts, run%state, out_path, &
+                     nthreads)
+    call finish_sweep(s, opts, out_path, run, outcome, error)
+  end subroutine run_sweep
 
+  !> The first state%todo pending cases on `nthreads` threads (dynamic: cases differ in
+  !> cost; a shared counter rather than the loop index caps them at --max-cases).
+  subroutine run_pending(s, cases, pending, clearance0, opts, state, out_path, nthreads)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: cases(:)
+    integer, intent(in) :: pending(:), nthreads
+    real(wp), intent(in) :: clearance0
+    type(sweep_options), intent(in) :: opts
+    type(sweep_state), intent(inout) :: state
+    character(len=*), intent(in) :: out_path
+    integer :: k, claimed, slot
+    claimed = 0
     !$omp parallel do schedule(dynamic, 1) num_threads(nthreads) default(none) &
     !$omp shared(s, cases, pending, clearance0, opts, state, out_path) &
     !$omp private(slot) shared(claimed)
@@ -157,22 +139,96 @@ contains
       call run_and_store(s, cases, pending(k), clearance0, opts, state, out_path)
     end do
     !$omp end parallel do
+  end subroutine run_pending
 
-    call write_summary(out_path, s, cases, state%results, nthreads, series(opts), &
+  !> Everything before the first case: decks, output name and lock, series folder, the
+  !> earlier summary when resuming (all checked before the summary is touched), the cases
+  !> to run dearest first, a valid summary from the start and the opening progress line.
+  !> `nthreads` goes into the summary, `where` into the progress line. The lock is held
+  !> on success only (finish_sweep releases it).
+  subroutine start_sweep(s, opts, out_path, nthreads, where, run, error)
+    type(sweep_config), intent(in) :: s
+    type(sweep_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path, where
+    integer, intent(in) :: nthreads
+    type(sweep_run), intent(out) :: run
+    type(error_type), allocatable, intent(out) :: error
+    call prepare_cases(s, run%cases, run%clearance0, error)
+    if (allocated(error)) return
+    call check_output_path(out_path, error)
+    if (allocated(error)) return
+    if (len(series(opts)) > 0) then
+      if (series(opts) == out_path) then
+        call fatal_error(error, "the series folder and the summary are both '"//out_path// &
+                         "'; name two different paths")
+        return
+      end if
+    end if
+    call acquire_lock(out_path, run%own_lock, error)
+    if (allocated(error)) return
+    call open_summary(s, opts, out_path, nthreads, where, run, error)
+    if (allocated(error) .and. run%own_lock) call release_lock(out_path)
+  end subroutine start_sweep
+
+  subroutine open_summary(s, opts, out_path, nthreads, where, run, error)
+    type(sweep_config), intent(in) :: s
+    type(sweep_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path, where
+    integer, intent(in) :: nthreads
+    type(sweep_run), intent(inout) :: run
+    type(error_type), allocatable, intent(out) :: error
+    logical :: exists
+    integer :: k
+    if (len(series(opts)) > 0) call make_folder(series(opts), error)
+    if (allocated(error)) return
+    allocate (run%state%results(size(run%cases)))
+    run%state%results = not_run_result()
+    inquire (file=out_path, exist=exists)
+    if (opts%resume .and. exists) then
+      call read_results(out_path, s, size(run%cases), opts%shard, run%state%results, error)
+      if (allocated(error)) return
+    end if
+    run%mine = shard_mask(s, run%cases, opts%shard)
+    run%pending = pack([(k, k = 1, size(run%cases))], &
+                       run%state%results%status == status_not_run .and. run%mine)
+    call longest_first(s, run%cases, run%pending)
+    run%state%threads = nthreads
+    run%state%todo = size(run%pending)
+    if (opts%max_cases > 0) run%state%todo = min(run%state%todo, opts%max_cases)
+    ! a valid summary from the start (also checks that the path is writable)
+    call write_summary(out_path, s, run%cases, run%state%results, nthreads, series(opts), &
                        opts%shard, error)
-    if (.not. allocated(error) .and. allocated(state%io_error)) &
-      call move_alloc(state%io_error, error)
-    outcome%ncase = size(cases)
-    outcome%ok = count(state%results%status == status_ok)
-    outcome%failed = count(state%results%status == status_failed)
-    outcome%not_run = count(state%results%status == status_not_run)
-    outcome%ran = state%done
-    outcome%threads = nthreads
-    outcome%shard_cases = count(mine)
-    outcome%wall_time = seconds_since(state, state%clock0)
-  end subroutine sweep_body
+    if (allocated(error)) return
+    call system_clock(run%state%clock0, run%state%rate)
+    run%state%last_progress = run%state%clock0
+    run%state%last_checkpoint = run%state%clock0
+    if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: "// &
+      int_to_str(run%state%todo)//" of "//int_to_str(size(run%cases))//" cases to run on "// &
+      where//shard_note(opts%shard, count(run%mine))
+  end subroutine open_summary
 
-  end subroutine run_sweep
+  !> The final summary, the outcome, and the lock released.
+  subroutine finish_sweep(s, opts, out_path, run, outcome, error)
+    type(sweep_config), intent(in) :: s
+    type(sweep_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path
+    type(sweep_run), intent(inout) :: run
+    type(sweep_outcome), intent(out) :: outcome
+    type(error_type), allocatable, intent(out) :: error
+    call write_summary(out_path, s, run%cases, run%state%results, run%state%threads, &
+                       series(opts), opts%shard, error)
+    if (.not. allocated(error) .and. allocated(run%state%io_error)) &
+      call move_alloc(run%state%io_error, error)
+    outcome%ncase = size(run%cases)
+    outcome%ok = count(run%state%results%status == status_ok)
+    outcome%failed = count(run%state%results%status == status_failed)
+    outcome%not_run = count(run%state%results%status == status_not_run)
+    outcome%ran = run%state%done
+    outcome%threads = run%state%threads
+    outcome%shard_cases = count(run%mine)
+    outcome%wall_time = seconds_since(run%state, run%state%clock0)
+    if (run%own_lock) call release_lock(out_path)
+  end subroutine finish_sweep
 
   !> The cases of the sweep and the base deck's initial clearance [m].
   subroutine prepare_cases(s, cases, clearance0, error)
