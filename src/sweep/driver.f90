@@ -279,14 +279,20 @@ contains
     real(wp), allocatable :: y(:)
     integer(i8) :: clock0, clock1, rate
     call system_clock(clock0, rate)
+    ! Set-up runs one thread at a time, under the lock that also guards the summary's
+    ! writes: it reads the BEM databases with the serial HDF5 library, which is not
+    ! thread-safe.
+    !$omp critical (davit_sweep_io)
     call check_run_budget(cfg, error, in_sweep=.true.)
     if (.not. allocated(error)) call new_system(sys, cfg, error)
     if (.not. allocated(error)) call initial_state(sys, cfg, y, error)
     if (.not. allocated(error)) then
       metrics%stop_at_release = stop_at_release
       metrics%log = new_launch_log(cfg, sys)
-      call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     end if
+    !$omp end critical (davit_sweep_io)
+    if (.not. allocated(error)) &
+      call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     if (allocated(error)) call move_alloc(error, run_error)
     if (allocated(run_error)) then
       row = not_run_result()
