@@ -31,6 +31,7 @@ module davit_boat_bem_water
   use davit_ship_bem_loads, only: bem_memory, to_kane_order, bem_roll_damping
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp, wave_chunk, &
                                   component_phases
+  use davit_core_hermite, only: hermite_weights
   implicit none
   private
   public :: boat_bem_type, new_boat_bem, boat_bem_loads, boat_bem_immersion, &
@@ -204,11 +205,9 @@ contains
   pure function cached_diffraction(cache, t, r) result(load)
     type(diffraction_cache_type), intent(in) :: cache
     real(wp), intent(in) :: t, r(3)
-    real(wp) :: load(6), h, s, hw(4), dx(2)
-    h = cache%t(2) - cache%t(1)
-    s = (t - cache%t(1))/h
-    hw = [(1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2, h*s*(1.0_wp - s)**2, s*s*(3.0_wp - 2.0_wp*s), &
-          h*s*s*(s - 1.0_wp)]
+    real(wp) :: load(6), s, hw(4), dx(2)
+    s = (t - cache%t(1))/(cache%t(2) - cache%t(1))
+    hw = hermite_weights(cache%t, t)
     dx = r(1:2) - cache%r0
     associate (d => cache%d)
       load = hw(1)*d(:, 1, 1) + hw(2)*d(:, 2, 1) + hw(3)*d(:, 1, 2) + hw(4)*d(:, 2, 2) + &

@@ -26,6 +26,7 @@ module davit_boat_strip_waves
                                   component_phases
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
+  use davit_core_hermite, only: hermite_weights
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
@@ -231,17 +232,6 @@ contains
     end do
   end subroutine kinematic_sums
 
-  !> Cubic Hermite weights (h00, h10 h, h01, h11 h) at s = (t - t1)/h.
-  pure function hermite_weights(cache, t) result(hw)
-    type(strip_wave_cache_type), intent(in) :: cache
-    real(wp), intent(in) :: t
-    real(wp) :: hw(4), h, s
-    h = cache%t(2) - cache%t(1)
-    s = (t - cache%t(1))/h
-    hw = [(1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2, h*s*(1.0_wp - s)**2, s*s*(3.0_wp - 2.0_wp*s), &
-          h*s*s*(s - 1.0_wp)]
-  end function hermite_weights
-
   !> Unramped value at t and offset dx from elevation terms e(ne, 2).
   pure real(wp) function expand_elevation(e, hw, lam, dx) result(f)
     real(wp), intent(in) :: e(ne, 2), hw(4), lam, dx(2)
@@ -257,7 +247,7 @@ contains
     real(wp), intent(in) :: t, x, y
     real(wp) :: lam
     lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
-    eta = wave_ramp(field, t)*expand_elevation(cache%ep(:, :, k), hermite_weights(cache, t), &
+    eta = wave_ramp(field, t)*expand_elevation(cache%ep(:, :, k), hermite_weights(cache%t, t), &
                                                lam, [x, y] - cache%p(:, k))
   end function cached_elevation
 
@@ -271,7 +261,7 @@ contains
     real(wp), intent(out) :: eta, velocity(3)
     real(wp) :: hw(4), lam, ramp, dx(3)
     integer :: i
-    hw = hermite_weights(cache, t)
+    hw = hermite_weights(cache%t, t)
     lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
     ramp = wave_ramp(field, t)
     dx(1:2) = pt(1:2) - cache%q(1:2, k)
@@ -313,7 +303,7 @@ contains
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
-    hw = hermite_weights(cache, t)
+    hw = hermite_weights(cache%t, t)
     associate (g => cache%fk(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*g(:, 1, 1) + hw(2)*g(:, 2, 1) + hw(3)*g(:, 1, 2) + &
                                   hw(4)*g(:, 2, 2))

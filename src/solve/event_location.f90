@@ -69,8 +69,8 @@ contains
     end if
     t0 = t
     self%y0 = y
-    if (self%cached .and. t0 == self%t_last) self%cached = all(y == self%y_last)
-    if (self%cached .and. t0 == self%t_last) then
+    if (self%cached) self%cached = t0 == self%t_last .and. all(y == self%y_last)
+    if (self%cached) then
       self%m0 = self%m1
     else
       call problem%modes(t0, y, self%m0)
