@@ -103,6 +103,9 @@ contains
     if (allocated(error)) call fail(error)
     write (output_unit, "(a,i0,a,i0,a,f0.3,a)") "davit: wrote '"//out//"' (", summary%steps, &
       " steps, ", summary%rhs_evaluations, " RHS evaluations, ", summary%wall_time, " s)"
+    if (allocated(summary%report)) then
+      if (len(summary%report) > 0) write (output_unit, "(a)") summary%report
+    end if
   end subroutine cmd_run
 
   !> `sweep SWEEP.nml [-o SUMMARY.h5] [--threads N] [--resume] [--quiet] [--series DIR]

@@ -23,6 +23,9 @@ module davit_io_limits_keys
     !> Seat position in the boat frame [m], the occupant filter's -3 dB frequency [Hz] and
     !> the interval its input is resampled at [s].
     real(wp) :: seat(3), seat_filter, seat_interval
+    !> Occupant: SRSS limit of the filtered seat acceleration [m/s^2] (0 = none); the spine
+    !> model's natural frequency [rad/s], damping ratio [-] and DRI limit [-].
+    real(wp) :: srss_limit, dr_frequency, dr_damping, dri_limit
   end type limits_config
 
 contains
@@ -52,7 +55,29 @@ contains
     call r%real(g, "seat_interval", s%seat_interval, 1.0e-3_wp, 1.0e-5_wp, 0.01_wp, "s", &
                 "Interval the seat velocity is resampled at before filtering (>= 10 "// &
                 "samples per filter period).")
+    call read_occupant(r, s)
   end subroutine read_limits
+
+  !> The occupant's acceleration limits and dynamic response model, indicative for davit
+  !> launches (MSC/Circ.616 was written for free-fall lifeboats).
+  subroutine read_occupant(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(limits_config), intent(inout) :: s
+    character(len=*), parameter :: g = "limits"
+    call r%real(g, "srss_limit", s%srss_limit, 0.0_wp, 0.0_wp, 1.0e4_wp, "m/s^2", &
+                "Limit of the filtered seat acceleration's SRSS over the boat's axes "// &
+                "(MSC/Circ.616 6.8.3 names the criterion; its number was not confirmed "// &
+                "from a source, so 0 = reported without a limit).")
+    call r%real(g, "dri_frequency", s%dr_frequency, 52.9_wp, 1.0_wp, 1.0e3_wp, "rad/s", &
+                "Natural frequency of the spine's dynamic response model (52.9 rad/s: "// &
+                "the seated occupant's vertical axis, MSC/Circ.616, STANAG 4569).")
+    call r%real(g, "dri_damping", s%dr_damping, 0.224_wp, 0.0_wp, 2.0_wp, "-", &
+                "Damping ratio of the spine model (0.224, same sources).")
+    call r%real(g, "dri_limit", s%dri_limit, 18.0_wp, 0.0_wp, 1.0e3_wp, "-", &
+                "Limit of the dynamic response index DRI = omega^2 delta_max / g up the "// &
+                "spine (18: about 5 % probability of spinal injury, ejection-seat "// &
+                "practice; STANAG 4569 gives 17.7 for 10 % serious injury).", lo_open=.true.)
+  end subroutine read_occupant
 
   !> EN 12385-4 minimum breaking load [N] of a rope of diameter d [m].
   pure real(wp) function minimum_breaking_load(s, d)

@@ -63,6 +63,7 @@ contains
       if (allocated(error)) return
       log = new_launch_log(cfg, boat)
       call integrate_scene(cfg, boat, y, brec, out_path, summary, error, log)
+      if (.not. allocated(error)) summary%report = log%report(boat)
     end select
   end subroutine run_simulation
 

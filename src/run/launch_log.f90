@@ -22,7 +22,16 @@ module davit_run_launch_log
   use davit_run_impact_events, only: impact_tracker
   use davit_run_load_peaks, only: load_peaks
   use davit_run_seat_trace, only: seat_trace
-  use davit_run_launch_report, only: write_impacts, write_loads, write_seat
+  use davit_run_launch_report, only: write_impacts, write_loads, write_seat, &
+                                     write_assessment, launch_text
+  use davit_run_rule_watch, only: rule_watch, new_rule_watch
+  use davit_assess_rules, only: n_checks, rule_check, new_check, not_applicable, &
+                                check_lowering_speed, check_impact_speed, check_fall_swl, &
+                                check_fall_mbl, check_sling_swl, check_sling_mbl, &
+                                check_brake_load, check_release_load, check_seat_srss, &
+                                check_seat_dri
+  use davit_assess_occupant, only: response_peaks
+  use davit_io_limits_keys, only: limits_config
   use davit_io_hdf5_writer, only: h5_writer_type
   implicit none
   private
@@ -36,6 +45,10 @@ module davit_run_launch_log
     type(impact_tracker) :: impacts
     type(load_peaks) :: loads
     type(seat_trace) :: seat
+    !> What the rule checks need beyond the peaks, and the deck's limits.
+    type(rule_watch) :: rules
+    type(limits_config) :: limits
+    logical :: contact = .false.
     !> CG: inertial velocity of the last step, its peak step-mean acceleration and when.
     real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp, peak_cg = 0.0_wp, peak_cg_time = -1.0_wp
     !> Outcome: shares of time in contact and with slack falls (averages over ~judge_time),
@@ -49,6 +62,8 @@ module davit_run_launch_log
     procedure :: outcome => log_outcome
     procedure :: write => log_write
     procedure :: seat_peaks => log_seat_peaks
+    procedure :: checks => log_checks
+    procedure :: report => log_report
   end type launch_log
 
 contains
@@ -71,6 +86,9 @@ contains
     log%seat_point = cfg%limits%seat
     log%after_release = cfg%simulation%after_release
     log%weight = sys%par%boat%mass*gravity
+    log%rules = new_rule_watch(cfg, sys)
+    log%limits = cfg%limits
+    log%contact = sys%par%contact
   end function new_launch_log
 
   subroutine log_watch(self, problem, t, y, done)
@@ -84,6 +102,7 @@ contains
     type is (system_type)
       call watch_motion(self, sys, t, y)
       call watch_loads(self, sys, t, y)
+      call self%rules%watch(sys, t, y)
       self%t_prev = t
       self%t_last = t
       done = sys%hist%release_time >= 0.0_wp .and. &
@@ -103,7 +122,7 @@ contains
       c = rotation_matrix(q(1:3))
       v = matmul(c, u(4:6))
       self%lowest = min(self%lowest, -dot_product(c(3, :), q(4:6)))
-      call self%seat%add(t, matmul(c, body_point_velocity(u, self%seat_point)))
+      call self%seat%add(t, matmul(c, body_point_velocity(u, self%seat_point)), c)
     end associate
     a_cg = 0.0_wp
     if (self%t_prev >= 0.0_wp .and. t > self%t_prev) a_cg = norm2(v - self%v_prev)/(t - self%t_prev)
@@ -144,6 +163,7 @@ contains
     end if
     call sys%rigging_state(t, y, seg, sling, paid, lumps)
     call self%loads%update(t, seg, maxval(sling, dim=1))
+    call self%rules%loads(t, max(0.0_wp, maxval(seg)), sum(max(0.0_wp, maxval(sling, dim=1))))
     fall = max(max(0.0_wp, maxval(seg)), maxval(sling))
     if (self%slack .and. fall > 0.1_wp*self%weight) self%snatches = self%snatches + 1
     if (fall < 0.01_wp*self%weight) then
@@ -186,8 +206,84 @@ contains
       call w%write_1d("peaks/seat_acceleration", peak, "m/s^2, s", "Largest filtered "// &
                       "seat acceleration (/seat) and when")
       call w%attr_str("/", "outcome", self%outcome(sys))
+      block
+        type(rule_check) :: c(n_checks)
+        real(wp) :: dr(2)
+        c = self%checks(dr)
+        call write_assessment(w, c, self%rules%head_height, dr)
+      end block
     end select
   end subroutine log_write
+
+  !> The rule checks of the launch so far (davit_assess_rules).
+  function log_checks(self, dr) result(c)
+    class(launch_log), intent(in) :: self
+    !> The spine's dynamic response index: peak up and down, 0 without a seat trace.
+    real(wp), intent(out), optional :: dr(2)
+    type(rule_check) :: c(n_checks)
+    real(wp) :: drs(2)
+    real(wp) :: speed, height, before, peak, sling, fall
+    call self%rules%lowering_speed(speed, height)
+    c = not_applicable()
+    if (speed == speed) c(check_lowering_speed) = new_check(check_lowering_speed, speed, &
+                                                            0.4_wp + 0.02_wp*height)
+    if (self%contact) c(check_impact_speed) = new_check(check_impact_speed, &
+                                                        self%loads%max_impact_speed, &
+                                                        self%loads%impact%value)
+    sling = max(0.0_wp, maxval(self%loads%sling))
+    c(check_sling_swl) = new_check(check_sling_swl, sling, self%loads%swl%value)
+    c(check_sling_mbl) = new_check(check_sling_mbl, sling, self%loads%mbl%value)
+    if (size(self%loads%segment) > 0) then
+      fall = max(0.0_wp, maxval(self%loads%segment))
+      c(check_fall_swl) = new_check(check_fall_swl, fall, self%loads%swl%value)
+      c(check_fall_mbl) = new_check(check_fall_mbl, fall, self%loads%mbl%value)
+    end if
+    call self%rules%stop_loads(before, peak)
+    if (before == before) c(check_brake_load) = new_check(check_brake_load, peak, &
+                                                          1.1_wp*before)
+    if (self%rules%release_load >= 0.0_wp) &
+      c(check_release_load) = new_check(check_release_load, self%rules%release_load, &
+                                        1.1_wp*self%weight)
+    call occupant_checks(self, c, drs)
+    if (present(dr)) dr = drs
+  end function log_checks
+
+  !> The peak SRSS of the filtered seat acceleration over the boat's axes (against the
+  !> deck's limit; reported only without one) and the dynamic response index up the spine
+  !> (the seat pushed up: -z in the boat's z-down axes), with its downward peak.
+  subroutine occupant_checks(self, c, drs)
+    type(launch_log), intent(in) :: self
+    type(rule_check), intent(inout) :: c(n_checks)
+    real(wp), intent(out) :: drs(2)
+    real(wp), allocatable :: a(:, :)
+    drs = 0.0_wp
+    a = self%seat%body_filtered()
+    if (size(a, 2) == 0) return
+    if (self%limits%srss_limit > 0.0_wp) then
+      c(check_seat_srss) = new_check(check_seat_srss, maxval(norm2(a, dim=1)), &
+                                     self%limits%srss_limit)
+    else
+      c(check_seat_srss)%value = maxval(norm2(a, dim=1))
+    end if
+    drs = response_peaks(-a(3, :), self%seat%dt, self%limits%dr_frequency, &
+                         self%limits%dr_damping)
+    c(check_seat_dri) = new_check(check_seat_dri, drs(1), self%limits%dri_limit)
+  end subroutine occupant_checks
+
+  !> The launch's outcome, events, peaks and rule checks in words (end of davit run).
+  function log_report(self, sys) result(text)
+    class(launch_log), intent(in) :: self
+    type(system_type), intent(in) :: sys
+    character(len=:), allocatable :: text
+    type(impact_tracker) :: impacts
+    real(wp), allocatable :: a(:, :)
+    real(wp) :: peak(2)
+    text = ""
+    if (.not. allocated(self%impacts%open)) return
+    impacts = self%impacts
+    call self%seat_peaks(a, impacts, peak)
+    text = launch_text(self%outcome(sys), impacts, self%loads, peak(1), self%checks())
+  end function log_report
 
   !> The seat's filtered acceleration a (3, n), each impact's filtered peak from its onset
   !> to 0.2 s after its end, and the largest filtered value with its time.

@@ -8,9 +8,12 @@ module davit_run_launch_report
   use davit_run_impact_events, only: impact_tracker
   use davit_run_load_peaks, only: load_peaks, limit_watch
   use davit_run_seat_trace, only: seat_trace
+  use davit_assess_rules, only: n_checks, rule_check, check_ids, check_units, check_sources, &
+                                check_texts, check_lower, check_passes
+  use davit_io_namelist, only: int_to_str
   implicit none
   private
-  public :: write_impacts, write_loads, write_seat
+  public :: write_impacts, write_loads, write_seat, write_assessment, launch_text
 
 contains
 
@@ -88,5 +91,113 @@ contains
     call w%write_1d("seat/raw_peak", [s%raw_peak, s%raw_time], "m/s^2, s", "Largest "// &
                     "step-mean seat acceleration |Delta v/Delta t| and when")
   end subroutine write_seat
+
+  !> /assessment: one dataset per rule check, [value, limit, margin] (NaN: does not apply),
+  !> with what it checks, its source and whether it passed; the davit head height H and the
+  !> occupant's dynamic response indices.
+  subroutine write_assessment(w, c, head_height, dr)
+    type(h5_writer_type), intent(inout) :: w
+    type(rule_check), intent(in) :: c(n_checks)
+    real(wp), intent(in) :: head_height, dr(2)
+    character(len=:), allocatable :: name
+    integer :: k
+    call w%group("assessment")
+    call w%attr_real("assessment", "head_height", head_height)
+    call w%attr_int("assessment", "failed", int(count(.not. check_passes(c)), i8))
+    do k = 1, n_checks
+      name = "assessment/"//trim(check_ids(k))
+      call w%write_1d(name, [c(k)%value, c(k)%limit, c(k)%margin], &
+                      trim(check_units(k))//", "//trim(check_units(k))//", -", &
+                      trim(check_texts(k))//": value, limit, relative margin (>= 0 "// &
+                      "passes; NaN: does not apply to this run)")
+      call w%attr_str(name, "source", trim(check_sources(k)))
+      call w%attr_str(name, "verdict", verdict(c(k)))
+    end do
+    call w%write_1d("assessment/dynamic_response", dr, "-", "Peak dynamic response index "// &
+                    "up the spine (seat pushed up) and down, the spine model on the "// &
+                    "filtered seat acceleration along the boat's vertical axis")
+  end subroutine write_assessment
+
+  elemental function verdict(c) result(text)
+    type(rule_check), intent(in) :: c
+    character(len=14) :: text
+    if (c%margin /= c%margin .and. c%value == c%value) then
+      text = "reported only"
+    else if (c%margin /= c%margin) then
+      text = "not applicable"
+    else if (check_passes(c)) then
+      text = "pass"
+    else
+      text = "FAIL"
+    end if
+  end function verdict
+
+  !> The end-of-run summary: outcome, impacts, peaks and the rule checks, one per line.
+  function launch_text(outcome, impacts, loads, seat_peak, c) result(text)
+    character(len=*), intent(in) :: outcome
+    type(impact_tracker), intent(in) :: impacts
+    type(load_peaks), intent(in) :: loads
+    real(wp), intent(in) :: seat_peak
+    type(rule_check), intent(in) :: c(n_checks)
+    character(len=:), allocatable :: text
+    character(len=*), parameter :: nl = new_line("a")
+    integer :: k
+    text = ""
+    if (len(outcome) > 0) text = "launch: "//outcome//nl
+    text = text//"impacts: "//int_to_str(impacts%n)//", fastest "// &
+           num(loads%max_impact_speed)//" m/s; peak fall tension "// &
+           num(max(0.0_wp, maxval(loads%segment))/1.0e3_wp)//" kN, peak sling tension "// &
+           num(max(0.0_wp, maxval(loads%sling))/1.0e3_wp)//" kN; peak seat acceleration "// &
+           num(seat_peak)//" m/s^2 (filtered)"//nl
+    text = text//"rule checks (value vs limit, margin; /assessment):"
+    do k = 1, n_checks
+      text = text//nl//"  "//pad(check_ids(k), 15)//pad(verdict(c(k)), 15)
+      if (c(k)%margin == c(k)%margin) then
+        text = text//pad(shown(c(k)%value, k)//merge(" >= ", " <= ", check_lower(k))// &
+                         shown(c(k)%limit, k), 30)//pad(num(100.0_wp*c(k)%margin)//" %", 10)
+      else if (c(k)%value == c(k)%value) then
+        text = text//pad(shown(c(k)%value, k), 40)
+      end if
+      text = text//trim(check_sources(k))
+    end do
+  end function launch_text
+
+  !> A value of check k in its display unit (kN for forces).
+  function shown(x, k) result(s)
+    real(wp), intent(in) :: x
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    if (trim(check_units(k)) == "N") then
+      s = num(x/1.0e3_wp)//" kN"
+    else
+      s = num(x)//" "//trim(check_units(k))
+    end if
+  end function shown
+
+  !> x to about 3-4 significant digits.
+  function num(x) result(s)
+    real(wp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    if (abs(x) < 1.0e-3_wp .and. x /= 0.0_wp) then
+      write (buf, "(es10.3)") x
+    else if (abs(x) < 10.0_wp) then
+      write (buf, "(f0.3)") x
+    else if (abs(x) < 1.0e4_wp) then
+      write (buf, "(f0.1)") x
+    else
+      write (buf, "(es10.3)") x
+    end if
+    s = trim(adjustl(buf))
+    if (s(1:1) == ".") s = "0"//s
+    if (s(1:2) == "-.") s = "-0"//s(2:)
+  end function num
+
+  function pad(s, n) result(t)
+    character(len=*), intent(in) :: s
+    integer, intent(in) :: n
+    character(len=max(n, len_trim(s) + 1)) :: t
+    t = trim(s)
+  end function pad
 
 end module davit_run_launch_report

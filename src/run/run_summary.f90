@@ -14,6 +14,8 @@ module davit_run_run_summary
     real(wp) :: wall_time = 0.0_wp
     integer :: samples = 0
     logical :: complete = .false.
+    !> The launch's outcome, peaks and rule checks in words (boat scenes; else empty).
+    character(len=:), allocatable :: report
   end type run_summary
 
 contains

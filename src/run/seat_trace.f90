@@ -14,26 +14,30 @@ module davit_run_seat_trace
     !> Grid interval [s] and the filter's -3 dB frequency [Hz].
     real(wp) :: dt = 1.0e-3_wp, cutoff = 20.0_wp
     integer :: n = 0
-    !> Velocity at t = (k - 1) dt, inertial [m/s].
-    real(wp), allocatable :: v(:, :)
+    !> Velocity at t = (k - 1) dt, inertial [m/s], and the boat's rotation matrix (boat ->
+    !> inertial, by columns) at the step that reached it.
+    real(wp), allocatable :: v(:, :), axes(:, :)
     real(wp) :: t_last = -1.0_wp, v_last(3) = 0.0_wp
     real(wp) :: raw_peak = 0.0_wp, raw_time = -1.0_wp, last_raw = 0.0_wp
   contains
     procedure :: add => trace_add
     procedure :: filtered => trace_filtered
+    procedure :: body_filtered => trace_body_filtered
   end type seat_trace
 
 contains
 
-  !> The seat velocity v after the step ending at t (the first call is at t = 0).
-  subroutine trace_add(self, t, v)
+  !> The seat velocity v after the step ending at t (the first call is at t = 0), with the
+  !> boat's rotation matrix c then.
+  subroutine trace_add(self, t, v, c)
     class(seat_trace), intent(inout) :: self
-    real(wp), intent(in) :: t, v(3)
+    real(wp), intent(in) :: t, v(3), c(3, 3)
     real(wp) :: tk
     if (self%t_last < 0.0_wp) then
-      allocate (self%v(3, 1024))
+      allocate (self%v(3, 1024), self%axes(9, 1024))
       self%n = 1
       self%v(:, 1) = v
+      self%axes(:, 1) = reshape(c, [9])
     else if (t > self%t_last) then
       self%last_raw = norm2(v - self%v_last)/(t - self%t_last)
       if (self%last_raw > self%raw_peak) then
@@ -47,6 +51,7 @@ contains
         self%n = self%n + 1
         self%v(:, self%n) = self%v_last + (v - self%v_last)*(tk - self%t_last)/ &
                             (t - self%t_last)
+        self%axes(:, self%n) = reshape(c, [9])
       end do
     end if
     self%t_last = t
@@ -55,11 +60,13 @@ contains
 
   subroutine grow(self)
     type(seat_trace), intent(inout) :: self
-    real(wp), allocatable :: bigger(:, :)
+    real(wp), allocatable :: bigger(:, :), axes(:, :)
     if (self%n < size(self%v, 2)) return
-    allocate (bigger(3, 2*size(self%v, 2)))
+    allocate (bigger(3, 2*size(self%v, 2)), axes(9, 2*size(self%v, 2)))
     bigger(:, 1:self%n) = self%v(:, 1:self%n)
+    axes(:, 1:self%n) = self%axes(:, 1:self%n)
     call move_alloc(bigger, self%v)
+    call move_alloc(axes, self%axes)
   end subroutine grow
 
   !> Filtered acceleration at the grid's midpoints t = (k - 1/2) dt, k = 1..n-1, (3, n-1).
@@ -74,5 +81,23 @@ contains
       a(i, :) = phaseless_lowpass(a(i, :), self%dt, self%cutoff)
     end do
   end function trace_filtered
+
+  !> The filtered acceleration in the boat's axes (x forward, y starboard, z down) at the
+  !> grid's midpoints, (3, n-1): each step-mean acceleration turned into the axes of the
+  !> step's end, then filtered as `filtered` does.
+  pure function trace_body_filtered(self) result(a)
+    class(seat_trace), intent(in) :: self
+    real(wp), allocatable :: a(:, :)
+    integer :: i
+    allocate (a(3, max(self%n - 1, 0)))
+    if (self%n < 2) return
+    do i = 1, self%n - 1
+      a(:, i) = matmul((self%v(:, i + 1) - self%v(:, i))/self%dt, &
+                       reshape(self%axes(:, i + 1), [3, 3]))
+    end do
+    do i = 1, 3
+      a(i, :) = phaseless_lowpass(a(i, :), self%dt, self%cutoff)
+    end do
+  end function trace_body_filtered
 
 end module davit_run_seat_trace
