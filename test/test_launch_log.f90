@@ -82,16 +82,18 @@ contains
     type(seat_trace) :: tr
     real(wp), parameter :: w = 2.0_wp*pi, r = 2.0_wp
     real(wp), allocatable :: a(:, :)
-    real(wp) :: t, h
+    real(wp) :: t, h, eye(3, 3)
     integer :: k
+    eye = reshape([1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], &
+                  [3, 3])
     t = 0.0_wp
-    call tr%add(t, w*r*[0.0_wp, 1.0_wp, 0.0_wp])
+    call tr%add(t, w*r*[0.0_wp, 1.0_wp, 0.0_wp], eye)
     k = 0
     do while (t < 3.0_wp - 1.0e-12_wp)
       k = k + 1
       h = merge(1.0e-4_wp, 1.0e-3_wp, mod(k/200, 2) == 1)
       t = t + h
-      call tr%add(t, w*r*[-sin(w*t), cos(w*t), 0.0_wp])
+      call tr%add(t, w*r*[-sin(w*t), cos(w*t), 0.0_wp], eye)
     end do
     a = tr%filtered()
     call note(state, "raw peak (m/s^2)", tr%raw_peak)

@@ -27,6 +27,7 @@ module davit_sweep_metrics
   use davit_run_step_monitor, only: step_monitor
   use davit_run_launch_log, only: launch_log
   use davit_run_impact_events, only: impact_tracker
+  use davit_assess_rules, only: n_checks, rule_check
   implicit none
   private
   public :: launch_metrics, case_result, status_not_run, status_ok, status_failed
@@ -52,6 +53,10 @@ module davit_sweep_metrics
     real(wp) :: swl_exceeded_time = -1.0_wp, mbl_exceeded_time = -1.0_wp
     real(wp) :: impact_speed_exceeded_time = -1.0_wp
     character(len=:), allocatable :: outcome
+    !> The rule checks (davit_assess_rules): value, limit and relative margin (>= 0 passes,
+    !> NaN: does not apply).
+    real(wp) :: check_value(n_checks) = 0.0_wp, check_limit(n_checks) = 0.0_wp
+    real(wp) :: check_margin(n_checks) = 0.0_wp
     integer :: collided = -1, impacts = -1
     integer(i8) :: steps = 0, rhs_evaluations = 0
   end type case_result
@@ -99,7 +104,9 @@ contains
     r%mbl_exceeded_time = nan
     r%impact_speed_exceeded_time = nan
     r%outcome = ""
-
+    r%check_value = nan
+    r%check_limit = nan
+    r%check_margin = nan
     r%collided = -1
     r%impacts = -1
   end function not_run_result
@@ -227,6 +234,13 @@ contains
     r%mbl_exceeded_time = self%log%loads%mbl%first
     r%impact_speed_exceeded_time = self%log%loads%impact%first
     r%outcome = self%log%outcome(sys)
+    block
+      type(rule_check) :: c(n_checks)
+      c = self%log%checks()
+      r%check_value = c%value
+      r%check_limit = c%limit
+      r%check_margin = c%margin
+    end block
   end function metrics_result
 
 end module davit_sweep_metrics

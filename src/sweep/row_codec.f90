@@ -3,16 +3,18 @@
 !> and integers are copied as raw bytes (transfer), never formatted, so the receiver stores
 !> exactly what the sender computed. Layout: 8 integer(i8) (case, status, collided, impacts,
 !> steps, RHS evaluations, message and outcome lengths, -1 = unallocated), the 15 reals in
-!> declaration order, then the message and outcome text.
+!> declaration order and the rule checks' values, limits and margins, then the message and
+!> outcome text.
 module davit_sweep_row_codec
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_sweep_metrics, only: case_result
+  use davit_assess_rules, only: n_checks
   implicit none
   private
   public :: encode_row, decode_row
 
-  integer, parameter :: nint_fields = 8, nreal_fields = 15
+  integer, parameter :: nint_fields = 8, nreal_fields = 15 + 3*n_checks
   integer, parameter :: int_bytes = nint_fields*storage_size(0_i8)/8
   integer, parameter :: real_bytes = nreal_fields*storage_size(0.0_wp)/8
 
@@ -75,7 +77,8 @@ contains
          row%peak_vertical_acceleration, row%peak_segment_tension, row%first_contact_time, &
          row%waterborne_time, row%end_time, row%wall_time, row%peak_sling_tension, &
          row%peak_fall_tension, row%max_impact_speed, row%peak_seat_acceleration, &
-         row%swl_exceeded_time, row%mbl_exceeded_time, row%impact_speed_exceeded_time]
+         row%swl_exceeded_time, row%mbl_exceeded_time, row%impact_speed_exceeded_time, &
+         row%check_value, row%check_limit, row%check_margin]
   end function real_fields
 
   pure subroutine set_reals(row, x)
@@ -96,6 +99,9 @@ contains
     row%swl_exceeded_time = x(13)
     row%mbl_exceeded_time = x(14)
     row%impact_speed_exceeded_time = x(15)
+    row%check_value = x(16:15 + n_checks)
+    row%check_limit = x(16 + n_checks:15 + 2*n_checks)
+    row%check_margin = x(16 + 2*n_checks:15 + 3*n_checks)
   end subroutine set_reals
 
   pure integer(i8) function text_length(s) result(n)

@@ -14,6 +14,7 @@ module davit_sweep_summary
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case
   use davit_sweep_metrics, only: case_result, status_not_run, not_run_result
+  use davit_assess_rules, only: n_checks, check_ids, check_units, check_texts, check_sources
   use davit_sweep_shards, only: shard_spec, shard_text
   implicit none
   private
@@ -144,7 +145,27 @@ contains
     call w%write_strings("results/outcome", text_column(r, "outcome"), "-", "How the "// &
                          "launch ended: released, waterborne, or not waterborne and why; "// &
                          "empty if not run")
+    call write_check_columns(w, r)
   end subroutine write_log_columns
+
+  !> The rule checks (davit_assess_rules, /assessment of a run): value, limit and margin
+  !> of each, one column per check and quantity.
+  subroutine write_check_columns(w, r)
+    type(h5_writer_type), intent(inout) :: w
+    type(case_result), intent(in) :: r(:)
+    character(len=:), allocatable :: stem, units
+    integer :: k
+    do k = 1, n_checks
+      stem = "results/check_"//trim(check_ids(k))
+      units = trim(check_units(k))
+      call w%write_1d(stem//"_value", r%check_value(k), units, trim(check_texts(k))// &
+                      " ("//trim(check_sources(k))//"): measured value; NaN = does not "// &
+                      "apply"//defined)
+      call w%write_1d(stem//"_limit", r%check_limit(k), units, "Its limit"//defined)
+      call w%write_1d(stem//"_margin", r%check_margin(k), "-", "Relative margin, >= 0 "// &
+                      "passes"//defined)
+    end do
+  end subroutine write_check_columns
 
   !> A text field of every row ('message' or 'outcome'), padded to the longest (unset: empty).
   pure function text_column(r, field) result(texts)
@@ -397,6 +418,17 @@ contains
                                                  r%mbl_exceeded_time, error)
     if (.not. allocated(error)) call real_column(f, "results/impact_speed_exceeded_time", &
                                                  r%impact_speed_exceeded_time, error)
+    do i = 1, n_checks
+      if (allocated(error)) return
+      call real_column(f, "results/check_"//trim(check_ids(i))//"_value", &
+                       r%check_value(i), error)
+      if (.not. allocated(error)) call real_column(f, "results/check_"// &
+                                                   trim(check_ids(i))//"_limit", &
+                                                   r%check_limit(i), error)
+      if (.not. allocated(error)) call real_column(f, "results/check_"// &
+                                                   trim(check_ids(i))//"_margin", &
+                                                   r%check_margin(i), error)
+    end do
     if (allocated(error)) return
     do i = 1, size(r)
       if (r(i)%status == 1 .and. (.not. ieee_is_finite(r(i)%wall_time) .or. &
