@@ -167,9 +167,17 @@ contains
     if (.not. report) return
     write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,f0.1,a,i0,a)") "davit: wrote '"//out// &
       "' (", outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
-      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, &
-      " thread(s))"//shard_line(opts, outcome)
+      outcome%not_run, " not run"//not_needed_note(outcome)//"; ", outcome%wall_time, &
+      " s on ", outcome%threads, " thread(s))"//shard_line(opts, outcome)
   end subroutine cmd_sweep
+
+  !> ", N not needed" when an adaptive sweep's converged cells left cases out.
+  function not_needed_note(outcome) result(note)
+    type(sweep_outcome), intent(in) :: outcome
+    character(len=:), allocatable :: note
+    note = ""
+    if (outcome%not_needed > 0) note = ", "//int_to_str(outcome%not_needed)//" not needed"
+  end function not_needed_note
 
   !> " for shard K/N (M of its cases)" after a shard's summary line.
   function shard_line(opts, outcome) result(line)
