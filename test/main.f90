@@ -21,6 +21,7 @@ program main
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use test_strip_pressure, only: collect_strip_pressure
   use test_events, only: collect_events
+  use test_adaptive, only: collect_adaptive
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -42,7 +43,8 @@ program main
             collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
             collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_launch_log(), &
-            collect_boat_bem(), collect_strip_pressure(), collect_events()]
+            collect_boat_bem(), collect_strip_pressure(), collect_events(), &
+            collect_adaptive()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.
