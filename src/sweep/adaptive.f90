@@ -79,16 +79,15 @@ contains
     type(adaptive_plan), intent(in) :: plan
     type(case_result), intent(in) :: results(:)
     integer, allocatable :: pending(:)
-    integer :: j, r, c
-    allocate (pending(0))
+    logical :: due(size(results))
+    integer :: j, c
+    due = .false.
     do j = 1, size(plan%open)
-      if (.not. plan%open(j)) cycle
-      do r = 1, plan%scheduled(j)
-        c = (j - 1)*plan%slots + r
-        if (results(c)%status == status_not_run .or. results(c)%status == status_not_needed) &
-          pending = [pending, c]
-      end do
+      if (plan%open(j)) due((j - 1)*plan%slots + 1:(j - 1)*plan%slots + plan%scheduled(j)) = &
+        .true.
     end do
+    due = due .and. (results%status == status_not_run .or. results%status == status_not_needed)
+    pending = pack([(c, c = 1, size(results))], due)
   end function round_cases
 
   !> After a round whose cases all ran: close the cells the rule stops, give the others
@@ -137,7 +136,7 @@ contains
       call cell_counts(plan, results, j, k, n, runs)
       why = "not needed: cell's 95 % half-width "//fmt_width(wilson_halfwidth(k, n))// &
             " <= "//fmt_width(s%target_halfwidth)//" after "//int_to_str(runs)// &
-            " realisations ("//int_to_str(k)//" of "//int_to_str(n)//" ok collided)"
+            " realisations ("//int_to_str(k)//" of "//int_to_str(n)//" ok cases collided)"
       do c = (j - 1)*plan%slots + plan%scheduled(j) + 1, j*plan%slots
         if (results(c)%status /= status_not_run .and. results(c)%status /= status_not_needed) &
           cycle
