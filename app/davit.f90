@@ -170,9 +170,17 @@ contains
     if (.not. report) return
     write (output_unit, "(a,i0,a,i0,a,i0,a,i0,a,f0.1,a,i0,a)") "davit: wrote '"//out// &
       "' (", outcome%ncase, " cases: ", outcome%ok, " ok, ", outcome%failed, " failed, ", &
-      outcome%not_run, " not run; ", outcome%wall_time, " s on ", outcome%threads, &
-      " thread(s))"//shard_line(opts, outcome)
+      outcome%not_run, " not run"//not_needed_note(outcome)//"; ", outcome%wall_time, &
+      " s on ", outcome%threads, " thread(s))"//shard_line(opts, outcome)
   end subroutine cmd_sweep
+
+  !> ", N not needed" when an adaptive sweep's converged cells left cases out.
+  function not_needed_note(outcome) result(note)
+    type(sweep_outcome), intent(in) :: outcome
+    character(len=:), allocatable :: note
+    note = ""
+    if (outcome%not_needed > 0) note = ", "//int_to_str(outcome%not_needed)//" not needed"
+  end function not_needed_note
 
   !> " for shard K/N (M of its cases)" after a shard's summary line.
   function shard_line(opts, outcome) result(line)
@@ -287,8 +295,20 @@ contains
     call prepare_cases(sweep, cases, clearance0, error)
     if (allocated(error)) call fail(error)
     write (output_unit, "(a,i0,a,f0.4,a)") "davit: '"//sweep%filename//"': ", size(cases), &
-      " cases on base deck '"//sweep%base_deck//"' (its initial clearance ", clearance0, " m)"
+      " cases on base deck '"//sweep%base_deck//"' (its initial clearance ", clearance0, &
+      " m)"//adaptive_note(sweep)
   end subroutine sweep_dry_run
+
+  !> "; at most: adaptive realisations ..." for a sweep with target_halfwidth > 0, whose
+  !> case count is every cell's max_realisations slots.
+  function adaptive_note(sweep) result(note)
+    type(sweep_config), intent(in) :: sweep
+    character(len=:), allocatable :: note
+    note = ""
+    if (sweep%target_halfwidth > 0.0_wp) note = "; at most: adaptive realisations run "// &
+      int_to_str(sweep%realisations)//" to "//int_to_str(sweep%max_realisations)// &
+      " per cell"
+  end function adaptive_note
 
   !> Fastest rates of the deck's system at t = 0 and the RK4 step limit they imply.
   subroutine cmd_modes()

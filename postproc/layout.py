@@ -308,7 +308,7 @@ SUMMARY_WIND = "cases/wind"
 SUMMARY_WAVE_TYPE = "cases/wave_type"          # 1 airy, 2 stokes2, 3 irregular
 SUMMARY_ANGLE = "cases/angle_deg"
 SUMMARY_CLEARANCE = "cases/clearance_b"        # initial clearance in boat widths B
-SUMMARY_STATUS = "results/status"              # 0 not run, 1 ok, 2 failed
+SUMMARY_STATUS = "results/status"              # 0 not run, 1 ok, 2 failed, 3 not needed
 SUMMARY_MIN_CLEARANCE = "results/min_clearance"
 SUMMARY_PEAK_HORIZONTAL_ACCELERATION = "results/peak_horizontal_acceleration"
 SUMMARY_COLLIDED = "results/collided"
@@ -355,7 +355,7 @@ SWEEP_CASE_CLEARANCE = "cases/clearance_b"          # initial clearance in boat 
 SWEEP_CASE_WIND_SPEED = "cases/wind_speed"
 SWEEP_CASE_DT = "cases/dt"
 SWEEP_CASE_PHASE = "cases/phase_deg"
-SWEEP_STATUS = "results/status"                     # 0 not run, 1 ok, 2 failed
+SWEEP_STATUS = "results/status"                     # 0 not run, 1 ok, 2 failed, 3 not needed
 SWEEP_MESSAGE = "results/message"
 SWEEP_MIN_CLEARANCE = "results/min_clearance"
 SWEEP_COLLIDED = "results/collided"
@@ -372,8 +372,12 @@ SWEEP_RHS = "results/rhs_evaluations"
 
 SWEEP_WAVE_TYPES = {0: "calm", 1: "airy", 2: "stokes2", 3: "irregular"}
 SWEEP_NOT_RUN, SWEEP_OK, SWEEP_FAILED = 0, 1, 2
+# adaptive realisations (&sweep target_halfwidth > 0): the case's cell converged before
+# reaching it; the message says why. Done, unlike SWEEP_NOT_RUN (an interrupted sweep).
+SWEEP_NOT_NEEDED = 3
 SWEEP_ROOT_ATTRIBUTES = ("davit_version", "sweep_file", "sweep_namelist", "base_deck",
-                         "base_namelist", "ncase", "threads", "complete", "series_dir")
+                         "base_namelist", "ncase", "threads", "complete", "series_dir",
+                         "target_halfwidth", "max_realisations", "realisation_batch")
 # root attributes of a shard's summary only (`davit sweep --shard K/N`): K and N
 SWEEP_SHARD_ATTRIBUTES = ("shard_index", "shard_count")
 

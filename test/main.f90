@@ -22,6 +22,7 @@ program main
   use test_strip_pressure, only: collect_strip_pressure
   use test_events, only: collect_events
   use test_assess, only: collect_assess
+  use test_adaptive, only: collect_adaptive
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -44,7 +45,7 @@ program main
             collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
-            collect_assess()]
+            collect_assess(), collect_adaptive()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

@@ -4,6 +4,9 @@
 !> Seeds: case i (1-based) gets the i-th output of SplitMix64 (Steele, Lea and Flood 2014)
 !> started at the base seed, truncated to its top 31 bits (the deck's seed range). So a
 !> case's seed depends only on the base seed and its index, never on threads or order.
+!> Every cell (combination of the other inputs) has max_realisations slots (= realisations
+!> unless adaptive), so an adaptive sweep's case indices and seeds are fixed by the deck,
+!> whichever of them the rounds end up running.
 !>
 !> Clearance: the initial fender-to-side distance is set by moving the boat and both davit
 !> heads (or, on the foundation slings, their anchors) together along the ship's s2 axis,
@@ -39,7 +42,8 @@ contains
 
   !> Every combination of the swept values: case k's position in each list is the digit of
   !> k - 1 in the mixed radix (wave types, levels, heights, periods, wind, angles,
-  !> clearances, dts, realisations), so realisations vary fastest. `clearance0` is the base
+  !> clearances, dts, realisations up to max_realisations), so realisations vary fastest
+  !> and cell j holds cases (j - 1) max_realisations + 1 .. j max_realisations. `clearance0` is the base
   !> deck's initial clearance [m] (recorded when clearances are not swept).
   subroutine build_cases(s, clearance0, cases)
     type(sweep_config), intent(in) :: s
@@ -48,7 +52,7 @@ contains
     integer :: sizes(9), digit(9), k, d, rest
     sizes = [size(s%wave_types), size(s%levels), size(s%heights), size(s%periods), &
              size(s%winds), size(s%angles_deg), size(s%clearances_b), size(s%dts), &
-             s%realisations]
+             s%max_realisations]
     allocate (cases(product(sizes)))
     do k = 1, size(cases)
       rest = k - 1

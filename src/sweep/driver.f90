@@ -7,7 +7,8 @@
 !> whole at the start, at checkpoints and at the end, so an interrupted sweep leaves a
 !> valid summary that --resume completes without recomputing finished cases.
 !> With --shard K/N only that slice of the cases runs (davit_sweep_shards), for job arrays
-!> whose summaries `davit sweep --merge` joins.
+!> whose summaries `davit sweep --merge` joins. With &sweep target_halfwidth > 0 the cases
+!> run in rounds (davit_sweep_adaptive), each round through the same parallel loop.
 module davit_sweep_driver
   !$ use omp_lib, only: omp_get_max_threads, omp_get_num_procs
   use, intrinsic :: iso_fortran_env, only: error_unit
@@ -28,9 +29,12 @@ module davit_sweep_driver
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case, build_cases, case_config, initial_clearance
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
-                                 status_failed, not_run_result
+                                 status_failed, status_not_needed, not_run_result
   use davit_sweep_summary, only: write_summary, read_results
   use davit_sweep_shards, only: shard_spec, shard_mask, shard_text, longest_first
+  use davit_sweep_adaptive, only: adaptive, refuse_adaptive, adaptive_plan, new_plan, &
+                                  round_cases, close_round, mark_not_needed, plan_text, &
+                                  fmt_width
   implicit none
   private
   public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case, longest_first
@@ -59,6 +63,8 @@ module davit_sweep_driver
 
   type :: sweep_outcome
     integer :: ncase = 0, ok = 0, failed = 0, not_run = 0, ran = 0, threads = 1
+    !> Cases an adaptive sweep's converged cells did not need (status 3).
+    integer :: not_needed = 0
     !> Cases of the shard run (ncase for the whole sweep).
     integer :: shard_cases = 0
     real(wp) :: wall_time = 0.0_wp
@@ -110,10 +116,46 @@ contains
     call start_sweep(s, opts, out_path, nthreads, int_to_str(nthreads)//" thread(s)", run, &
                      error)
     if (allocated(error)) return
-    call run_pending(s, run%cases, run%pending, run%clearance0, opts, run%state, out_path, &
-                     nthreads)
+    if (adaptive(s)) then
+      call run_rounds(s, run, opts, out_path, nthreads)
+    else
+      call run_pending(s, run%cases, run%pending, run%clearance0, opts, run%state, out_path, &
+                       nthreads)
+    end if
     call finish_sweep(s, opts, out_path, run, outcome, error)
   end subroutine run_sweep
+
+  !> Adaptive realisations: each round's pending cases, dearest first, through the same
+  !> parallel loop; then the stopping rule on the complete round. A --max-cases budget
+  !> that runs out mid-round ends the sweep with that round's rest not run, so a resume
+  !> replays the same rounds from the stored rows.
+  subroutine run_rounds(s, run, opts, out_path, nthreads)
+    type(sweep_config), intent(in) :: s
+    type(sweep_run), intent(inout) :: run
+    type(sweep_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path
+    integer, intent(in) :: nthreads
+    type(adaptive_plan) :: plan
+    integer, allocatable :: pending(:)
+    integer :: ntodo
+    plan = new_plan(s, size(run%cases))
+    do
+      pending = round_cases(plan, run%state%results)
+      call longest_first(s, run%cases, pending)
+      ntodo = size(pending)
+      if (opts%max_cases > 0) ntodo = max(0, min(ntodo, opts%max_cases - run%state%done))
+      run%state%todo = run%state%done + ntodo
+      if (ntodo > 0) call run_pending(s, run%cases, pending(:ntodo), run%clearance0, opts, &
+                                      run%state, out_path, nthreads)
+      if (ntodo < size(pending)) exit
+      call close_round(s, run%state%results, plan)
+      ! at once, so that every later checkpoint tells these slots from unrun ones
+      call mark_not_needed(s, plan, run%state%results)
+      if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: "// &
+        plan_text(s, plan, run%state%results)
+      if (.not. any(plan%open)) exit
+    end do
+  end subroutine run_rounds
 
   !> The first state%todo pending cases on `nthreads` threads (dynamic: cases differ in
   !> cost; a shared counter rather than the loop index caps them at --max-cases).
@@ -153,6 +195,8 @@ contains
     integer, intent(in) :: nthreads
     type(sweep_run), intent(out) :: run
     type(error_type), allocatable, intent(out) :: error
+    if (opts%shard%count > 0) call refuse_adaptive(s, "shards (--shard K/N)", error)
+    if (allocated(error)) return
     call prepare_cases(s, run%cases, run%clearance0, error)
     if (allocated(error)) return
     call check_output_path(out_path, error)
@@ -202,9 +246,19 @@ contains
     call system_clock(run%state%clock0, run%state%rate)
     run%state%last_progress = run%state%clock0
     run%state%last_checkpoint = run%state%clock0
-    if (.not. opts%quiet) write (error_unit, "(a)") "davit sweep: "// &
-      int_to_str(run%state%todo)//" of "//int_to_str(size(run%cases))//" cases to run on "// &
-      where//shard_note(opts%shard, count(run%mine))
+    if (opts%quiet) return
+    if (adaptive(s)) then
+      write (error_unit, "(a)") "davit sweep: adaptive realisations, "// &
+        int_to_str(size(run%cases)/s%max_realisations)//" cells of up to "// &
+        int_to_str(s%max_realisations)//" realisations (first "// &
+        int_to_str(s%realisations)//", then "//int_to_str(s%realisation_batch)// &
+        " per round until the 95 % half-width <= "//fmt_width(s%target_halfwidth)// &
+        ") on "//where
+    else
+      write (error_unit, "(a)") "davit sweep: "//int_to_str(run%state%todo)//" of "// &
+        int_to_str(size(run%cases))//" cases to run on "//where// &
+        shard_note(opts%shard, count(run%mine))
+    end if
   end subroutine open_summary
 
   !> The final summary, the outcome, and the lock released.
@@ -223,6 +277,7 @@ contains
     outcome%ok = count(run%state%results%status == status_ok)
     outcome%failed = count(run%state%results%status == status_failed)
     outcome%not_run = count(run%state%results%status == status_not_run)
+    outcome%not_needed = count(run%state%results%status == status_not_needed)
     outcome%ran = run%state%done
     outcome%threads = run%state%threads
     outcome%shard_cases = count(run%mine)

@@ -7,10 +7,15 @@
 !> `heights` and `periods` override the height and the period. When `angles_deg` is given
 !> the wind blows along the waves (paper III.B). Keys are read and range-checked by the same
 !> deck reader as run decks, so errors name the file, line, group, key and allowed range.
+!>
+!> Adaptive realisations (issue 16): with target_halfwidth > 0 each cell (a combination of
+!> the swept inputs other than the realisation) gets `realisations`, then batches of
+!> `realisation_batch` more until the 95 % Wilson half-width of its collision probability
+!> is at most the target or it has max_realisations (davit_sweep_adaptive).
 module davit_sweep_keys
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
-  use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
+  use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at, int_to_str
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_config, only: config_type, read_config
   implicit none
@@ -38,6 +43,11 @@ module davit_sweep_keys
     logical :: has_levels = .false., has_heights = .false., has_periods = .false.
     logical :: has_angles = .false., has_clearances = .false.
     integer :: realisations = 1, base_seed = 0
+    !> Adaptive realisations: target 95 % half-width of a cell's collision probability
+    !> (0 = off: every cell runs `realisations`), the cap per cell and the batch per round.
+    !> The case list always holds max_realisations per cell (= realisations when off).
+    real(wp) :: target_halfwidth = 0.0_wp
+    integer :: max_realisations = 1, realisation_batch = 1
     logical :: random_phase = .true., stop_at_release = .true.
   end type sweep_config
 
@@ -137,6 +147,18 @@ contains
     call r%int(g, "realisations", s%realisations, 1, 1, 100000, "-", &
                "Random realisations of every combination: random phase (regular waves) "// &
                "or random component phases (irregular).")
+    call r%real(g, "target_halfwidth", s%target_halfwidth, 0.0_wp, 0.0_wp, 0.5_wp, "-", &
+                "Adaptive realisations: add realisation_batch realisations to a cell (a "// &
+                "combination of the other swept values) until the 95 % Wilson half-width "// &
+                "of its collision probability (status-ok cases) is at most this, or it has "// &
+                "max_realisations; realisations is the first round. 0 = off. Not with "// &
+                "--shard or MPI.")
+    call r%int(g, "max_realisations", s%max_realisations, s%realisations, 1, 100000, "-", &
+               "Adaptive realisations: most realisations of a cell (>= realisations).", &
+               default_text="realisations")
+    call r%int(g, "realisation_batch", s%realisation_batch, s%realisations, 1, 100000, "-", &
+               "Adaptive realisations: realisations added to each open cell per round.", &
+               default_text="realisations")
     call r%int(g, "base_seed", s%base_seed, 0, 0, huge(1), "-", "Seed from which each "// &
                "case's seed derives (SplitMix64 of base seed and case index).", &
                default_text="base deck's seed")
@@ -197,6 +219,8 @@ contains
         return
       end if
     end do
+    call check_adaptive(s, deck, error)
+    if (allocated(error)) return
     if (s%has_clearances .and. s%base%simulation%scene == "hanging_boat" .and. &
         .not. s%base%slings%attached) then
       call fatal_error(error, key_at(deck, "sweep", ["clearances_b"])// &
@@ -204,6 +228,27 @@ contains
                        "(the base deck's slings are detached)")
     end if
   end subroutine check_sweep
+
+  !> The adaptive keys agree: the cap holds the first round, and without a target the cap
+  !> and batch would be silently ignored.
+  subroutine check_adaptive(s, deck, error)
+    type(sweep_config), intent(in) :: s
+    type(nml_deck), intent(in) :: deck
+    type(error_type), allocatable, intent(out) :: error
+    if (s%target_halfwidth <= 0.0_wp .and. s%max_realisations /= s%realisations) then
+      call fatal_error(error, key_at(deck, "sweep", ["max_realisations"])// &
+                       "&sweep: max_realisations needs target_halfwidth > 0 (adaptive "// &
+                       "realisations); without it every cell runs realisations")
+    else if (s%target_halfwidth <= 0.0_wp .and. s%realisation_batch /= s%realisations) then
+      call fatal_error(error, key_at(deck, "sweep", ["realisation_batch"])// &
+                       "&sweep: realisation_batch needs target_halfwidth > 0 (adaptive "// &
+                       "realisations)")
+    else if (s%max_realisations < s%realisations) then
+      call fatal_error(error, key_at(deck, "sweep", ["max_realisations"])// &
+                       "&sweep: max_realisations = "//int_to_str(s%max_realisations)// &
+                       " must be >= realisations = "//int_to_str(s%realisations))
+    end if
+  end subroutine check_adaptive
 
   !> `path` relative to the folder of `deck` (unchanged if absolute).
   pure function relative_to(deck, path) result(full)

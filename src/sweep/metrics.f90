@@ -31,9 +31,11 @@ module davit_sweep_metrics
   implicit none
   private
   public :: launch_metrics, case_result, status_not_run, status_ok, status_failed
-  public :: not_run_result
+  public :: not_run_result, status_not_needed
 
   integer, parameter :: status_not_run = 0, status_ok = 1, status_failed = 2
+  !> Adaptive realisations: the case's cell converged before reaching it (counts as done).
+  integer, parameter :: status_not_needed = 3
 
   !> One row of the summary. Results are defined for status ok; otherwise the reals are NaN
   !> and the integers -1, except wall time, steps and RHS evaluations of a failed case.

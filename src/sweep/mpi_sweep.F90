@@ -27,6 +27,7 @@ module davit_sweep_mpi_sweep
                                 prepare_cases, run_case, series
   use davit_sweep_row_codec, only: encode_row, decode_row
 #ifdef DAVIT_MPI
+  use davit_sweep_adaptive, only: refuse_adaptive
   use mpi_f08
 #endif
   implicit none
@@ -105,6 +106,9 @@ contains
       call fatal_error(error, "--series is not available across MPI ranks; run the "// &
                        "sweep on one rank (or without mpirun) to write time series")
     else
+      call refuse_adaptive(s, "MPI ranks (mpirun -np "//int_to_str(nranks)//")", error)
+    end if
+    if (.not. allocated(error)) then
       call start_sweep(s, opts, out_path, requesters, int_to_str(nranks - 1)// &
                        " worker rank(s), "//int_to_str(requesters)//" thread(s)", run, error)
     end if

@@ -50,6 +50,9 @@ contains
     call w%attr_int("/", "threads", int(threads, i8))
     call w%attr_int("/", "complete", merge(1_i8, 0_i8, all(results%status /= status_not_run)))
     call w%attr_str("/", "series_dir", series_dir)
+    call w%attr_real("/", "target_halfwidth", s%target_halfwidth)
+    call w%attr_int("/", "max_realisations", int(s%max_realisations, i8))
+    call w%attr_int("/", "realisation_batch", int(s%realisation_batch, i8))
     if (shard%count > 0) then
       call w%attr_int("/", "shard_index", int(shard%index, i8))
       call w%attr_int("/", "shard_count", int(shard%count, i8))
@@ -92,9 +95,11 @@ contains
     type(case_result), intent(in) :: r(:)
     call w%group("results")
     call w%write_1d_int("results/status", int(r%status, i8), "-", &
-                        "0 not run, 1 ok, 2 failed (see message)")
+                        "0 not run, 1 ok, 2 failed (see message), 3 not needed "// &
+                        "(adaptive realisations: its cell converged; see message)")
     call w%write_strings("results/message", text_column(r, "message"), "-", &
-                         "'ok', the error of a failed case, or empty when not run")
+                         "'ok', the error of a failed case, why it was not needed, or "// &
+                         "empty when not run")
     call w%write_1d("results/min_clearance", r%min_clearance, "m", "Smallest fender-to-"// &
                     "ship-side distance over the lowering; negative = indentation"//defined)
     call w%write_1d_int("results/collided", int(r%collided, i8), "-", &
@@ -278,6 +283,13 @@ contains
       call fatal_error(error, "'"//path//"': ncase = "//int_text(n)//" is out of range")
     if (.not. allocated(error)) call read_shard(f, shard, error)
     if (.not. allocated(error)) call read_cases(f, int(n), cases, error)
+    ! shards are never adaptive (davit_sweep_adaptive refuses them): every cell ran all
+    ! of its realisations, which is what the merged summary's attributes then say
+    if (.not. allocated(error)) then
+      s%realisations = max(1, maxval(cases%realisation))
+      s%max_realisations = s%realisations
+      s%realisation_batch = s%realisations
+    end if
     if (.not. allocated(error)) then
       allocate (results(n))
       results = not_run_result()
@@ -366,7 +378,7 @@ contains
     integer(i8), allocatable :: iv(:)
     character(len=:), allocatable :: sv(:)
     integer :: i
-    call int_column(f, "results/status", size(r), 0_i8, 2_i8, iv, error)
+    call int_column(f, "results/status", size(r), 0_i8, 3_i8, iv, error)
     if (allocated(error)) return
     r%status = int(iv)
     call int_column(f, "results/collided", size(r), -1_i8, 1_i8, iv, error)
