@@ -447,13 +447,17 @@ contains
   !> residual: max |Q - T (lam_out - lam_in)|/|Q| over the blocks (0 for consistent
   !> geometry, e.g. a head midway above each hook; option A also needs equal hook loads);
   !> an error if it exceeds residual_max (the start would not be an equilibrium).
-  subroutine rigging_initial_state(self, hook_pos, hook_force, ship, y, residual, error, mode)
+  subroutine rigging_initial_state(self, hook_pos, hook_force, ship, y, residual, error, mode, &
+                                   hook_vel)
     class(rigging_type), intent(inout) :: self
     real(wp), intent(in) :: hook_pos(3, 2), hook_force(3, 2)
     type(pose_type), intent(in) :: ship
     real(wp), intent(out) :: y(:), residual
     type(error_type), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: mode
+    !> The hooks' velocities: each sling's lumps and block start moving with its hook (a
+    !> ship making headway carries the rigging along; at rest: zero).
+    real(wp), intent(in), optional :: hook_vel(3, 2)
     real(wp) :: q(3, 2), br(3, 2)
     character(len=16) :: text
     logical :: unstretched
@@ -464,6 +468,7 @@ contains
     do a = 1, 2
       call place_sling(self, a, hook_pos(:, a), hook_force(:, a), unstretched, y, q(:, a))
     end do
+    if (present(hook_vel)) call move_with_hooks(self, hook_vel, y)
     br = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
     call set_cable_lengths(self%falls_type, br, q, ship, unstretched, residual)
     if (residual > residual_max) then
@@ -473,6 +478,21 @@ contains
                        "davit heads above the hooks")
     end if
   end subroutine rigging_initial_state
+
+  !> Lumps and blocks moving with their hooks (velocities of massive blocks and lumps).
+  pure subroutine move_with_hooks(self, hook_vel, y)
+    type(rigging_type), intent(in) :: self
+    real(wp), intent(in) :: hook_vel(3, 2)
+    real(wp), intent(inout) :: y(:)
+    integer :: a, k, iv(2)
+    do a = 1, 2
+      iv = sling_range(self%lumps%u, self%nlump, a)
+      do k = 1, self%nlump
+        y(iv(1) + 3*(k - 1):iv(1) + 3*k - 1) = hook_vel(:, a)
+      end do
+      y(self%block_v(1) + 3*(a - 1):self%block_v(1) + 3*a - 1) = hook_vel(:, a)
+    end do
+  end subroutine move_with_hooks
 
   !> Lay out sling a from its hook: segment k carries F_k = F_hook - (k-1) m_p g N3 (lump
   !> statics), along F_k, stretched by |F_k|/k_seg; returns the cable force Q its block needs.

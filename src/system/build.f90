@@ -284,7 +284,7 @@ contains
       call par%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
                                  -0.5_wp*par%boat%mass*gravity], 2, 2), pose, &
                                  y(par%rig_slice(1):par%rig_slice(2)), &
-                                 residual, error)
+                                 residual, error, hook_vel=hook_vel)
     end associate
   end subroutine initial_state
 
