@@ -438,8 +438,9 @@ contains
     character(len=*), parameter :: g = "sea"
     real(wp) :: preset_height, deg
     deg = pi/180.0_wp
-    call r%int(g, "level", s%level, 5, 4, 5, "-", &
-               "Sea-state preset (review G19): 4 = H 2.5 m, wind 8 m/s; 5 = H 4 m, wind 10 m/s.")
+    call r%int(g, "level", s%level, 5, 3, 5, "-", &
+               "Sea-state preset (review G19): 3 = H 1.25 m, wind 5.5 m/s (issue 16); 4 = "// &
+               "H 2.5 m, wind 8 m/s; 5 = H 4 m, wind 10 m/s.")
     preset_height = level_wave_height(s%level)
     call r%choice(g, "wave_type", s%wave_type, "calm", &
                   [character(len=10) :: "calm", "airy", "stokes2", "irregular"], &
@@ -503,16 +504,32 @@ contains
     w%direction = w%direction*pi/180.0_wp
   end subroutine read_wind
 
-  !> Wave height H of a sea-state level's preset [m] (review G19: upper bounds of the level).
+  !> Wave height H of a sea-state level's preset [m] (review G19: upper bounds of the level;
+  !> Level 3, added for the operability tables, likewise: sea state 3 is 0.5-1.25 m).
   pure real(wp) function level_wave_height(level)
     integer, intent(in) :: level
-    level_wave_height = merge(2.5_wp, 4.0_wp, level == 4)
+    select case (level)
+    case (3)
+      level_wave_height = 1.25_wp
+    case (4)
+      level_wave_height = 2.5_wp
+    case default
+      level_wave_height = 4.0_wp
+    end select
   end function level_wave_height
 
-  !> Wind speed of a sea-state level's preset [m/s] (review G19).
+  !> Wind speed of a sea-state level's preset [m/s] (review G19; Level 3: the upper bound of
+  !> Beaufort 3, 5.4 m/s, rounded as G19 rounds 7.9 to 8).
   pure real(wp) function level_wind_speed(level)
     integer, intent(in) :: level
-    level_wind_speed = merge(8.0_wp, 10.0_wp, level == 4)
+    select case (level)
+    case (3)
+      level_wind_speed = 5.5_wp
+    case (4)
+      level_wind_speed = 8.0_wp
+    case default
+      level_wind_speed = 10.0_wp
+    end select
   end function level_wind_speed
 
   !> Checks that involve more than one key.

@@ -119,7 +119,7 @@ contains
     call r%string(g, "base_deck", s%base_deck, "", "Run deck every case starts from "// &
                   "(relative to the sweep deck's folder); required. Sweep decks only hold "// &
                   "&sweep.")
-    call r%int_list(g, "levels", s%levels, [5], 4, 5, "-", "Sea-state levels; each sets "// &
+    call r%int_list(g, "levels", s%levels, [5], 3, 5, "-", "Sea-state levels; each sets "// &
                     "the level's preset wave height and wind speed (review G19) and the "// &
                     "peak period of the height (G18).", 1, 10, default_text="base deck")
     call r%real_list(g, "heights", s%heights, [4.0_wp], 0.0_wp, 20.0_wp, "m", &

@@ -240,7 +240,7 @@ def test_sweep_usage_errors_exit_2(davit, args):
 
 @pytest.mark.parametrize("text, message", [
     ("&sweep base_deck = 'base.nml', levels = 4, 6 /",
-     "sweep.nml:1: &sweep: levels = 4, 6: out of range; allowed: 4 <= levels <= 5"),
+     "sweep.nml:1: &sweep: levels = 4, 6: out of range; allowed: 3 <= levels <= 5"),
     ("&sweep base_deck = 'base.nml', wave_types = 'stokes3' /",
      "item 1 ('stokes3') is an unknown choice"),
     ("&sweep base_deck = 'missing.nml' /", "cannot open input deck"),
