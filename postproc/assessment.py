@@ -56,14 +56,16 @@ def _poly(coefficients, x):
 
 def normal_quantile(p):
     """The standard normal quantile z(p), 0 < p < 1: Acklam's algorithm, whose ~1e-9
-    error one Halley step on the exact CDF (math.erfc) removes."""
+    error one Halley step on the exact CDF (math.erfc) removes; the upper half by
+    symmetry."""
     if not 0.0 < p < 1.0:
         raise ValueError(f"normal_quantile: p = {p} is not in (0, 1)")
+    if p > 0.5:
+        return -normal_quantile(1 - p)      # the Halley step is exact in the lower tail
     low = 0.02425
-    if p < low or p > 1 - low:
-        q = math.sqrt(-2 * math.log(min(p, 1 - p)))
+    if p < low:
+        q = math.sqrt(-2 * math.log(p))
         x = _poly(_C, q) / (_poly(_D, q) * q + 1)
-        x = x if p < low else -x
     else:
         q = p - 0.5
         r = q * q

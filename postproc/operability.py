@@ -154,18 +154,17 @@ def sea_state(summary):
 
 
 def _keys(summary, by):
-    """(ncase, 4) array of the cell keys (sea, period, angle, clearance), NaN where pooled;
-    the period is a key only where the sweep has more than one."""
+    """(keys, used): the (ncase, 4) cell keys (sea, period, angle, clearance) and which of
+    them are keys at all (the others are pooled); the period is a key only where the sweep
+    has more than one."""
     c = summary.columns
     periods = c["wave_period"].astype(float)
     columns = {"sea": sea_state(summary)[1], "period": periods,
                "angle": c["angle_deg"].astype(float),
                "clearance": c["clearance_b"].astype(float)}
-    use = set(by)
-    if np.unique(periods).size <= 1:
-        use.discard("period")
-    return np.column_stack([columns[d] if d in use else np.full(summary.ncase, np.nan)
-                            for d in DIMENSIONS])
+    used = np.array([d in by and (d != "period" or np.unique(periods).size > 1)
+                     for d in DIMENSIONS])
+    return np.column_stack([columns[d] for d in DIMENSIONS]), used
 
 
 def _maxima(summary, rows):
@@ -205,11 +204,14 @@ def table(summary, risk=RISK, by=DIMENSIONS, confidence=CONFIDENCE):
     """The cells of the summary (every case in exactly one), sorted by their key."""
     if isinstance(summary, (str, os.PathLike)):
         summary = load(summary)
-    keys = _keys(summary, by)
+    keys, used = _keys(summary, by)
+    keys = keys[:, used]
     cells = []
     for key in np.unique(keys, axis=0):
-        rows = np.all((keys == key) | (np.isnan(keys) & np.isnan(key)), axis=1)
-        cells.append(cell(summary, rows, tuple(float(v) for v in key), risk, confidence))
+        rows = np.all(keys == key, axis=1)
+        full = np.full(len(DIMENSIONS), np.nan)
+        full[used] = key
+        cells.append(cell(summary, rows, tuple(float(v) for v in full), risk, confidence))
     return cells
 
 
