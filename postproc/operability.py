@@ -437,7 +437,8 @@ def limiting_map(cells, summary, outdir, stem):
     colours = plt.get_cmap("tab20")
 
     def draw(ax, i, j, c):
-        colour = colours(names.index(c.limiting) % 20) if c.n else "lightgrey"
+        colour = ("lightgrey" if not c.n else "white" if c.limiting == NONE
+                  else colours(names.index(c.limiting) % 20))
         ax.add_patch(Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=colour, edgecolor="white"))
         short = {ACCEPTABLE: "ok", NOT_ACCEPTABLE: "NOT ok", UNDECIDED: "undecided"}
         ax.text(i, j, f"{c.limiting}\n{short.get(c.verdict, '-')}", ha="center",
