@@ -12,6 +12,11 @@
   python -m postproc all [FOLDER] [-o OUTDIR]     every figure whose inputs are in FOLDER
   python -m postproc sweep SUMMARY.h5 [-o OUTDIR] the Figs. 19-23 style charts of a
                                                    `davit sweep` summary
+  python -m postproc operability SUMMARY.h5 [-o OUTDIR] [--risk 0.05] [--by sea,angle,...]
+                                                   operability table of a sweep summary:
+                                                   collision and rule-check failure shares
+                                                   with Wilson intervals, Gumbel maxima,
+                                                   verdict per cell (postproc.operability)
   python -m postproc regress [FOLDER] [--strict]  the paper's stated facts vs the outputs
                                                    in FOLDER, as a table
 
@@ -22,7 +27,7 @@ import argparse
 import os
 import sys
 
-from . import dispatch, figures, layout, paper, regress, sweep_figures
+from . import dispatch, figures, layout, operability, paper, regress, sweep_figures
 
 FOLDER_COMMANDS = ("all", "regress")
 
@@ -31,7 +36,7 @@ def _parser():
     parser = argparse.ArgumentParser(prog="python -m postproc", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     choices = (sorted(figures.RUN_FIGURES) + ["run"] + sorted(paper.FOLDER_FIGURES)
-               + list(FOLDER_COMMANDS) + ["sweep"])
+               + list(FOLDER_COMMANDS) + ["sweep", "operability"])
     parser.add_argument("figure", choices=choices, metavar="FIGURE",
                         help="one of: " + ", ".join(choices))
     parser.add_argument("input", nargs="?", default=None,
@@ -39,6 +44,13 @@ def _parser():
     parser.add_argument("-o", "--outdir", default="out", help="folder for PNG files")
     parser.add_argument("--strict", action="store_true",
                         help="regress: exit 1 if any fact fails")
+    parser.add_argument("--risk", type=float, default=operability.RISK,
+                        help="operability: the acceptable failure probability r "
+                             "(default %(default)s)")
+    parser.add_argument("--by", default=",".join(operability.DIMENSIONS),
+                        help="operability: the cell keys, comma-separated, of "
+                             + ", ".join(operability.DIMENSIONS) + " (default all; the "
+                             "others are pooled)")
     return parser
 
 
@@ -109,12 +121,33 @@ def _sweep(args):
     return 0
 
 
+def _operability(args):
+    """The operability table of a `davit sweep` summary, then the paper's conclusion."""
+    if args.input is None:
+        return _error("'operability' needs a davit sweep summary file")
+    by = [d.strip() for d in args.by.split(",") if d.strip()]
+    unknown = [d for d in by if d not in operability.DIMENSIONS]
+    if unknown or not 0 < args.risk < 1:
+        return _error(f"operability: --by takes {', '.join(operability.DIMENSIONS)} and "
+                      f"--risk a probability in (0, 1) (got --by {args.by} --risk {args.risk})")
+    try:
+        paths, _, text = operability.write(args.input, args.outdir, args.risk, by)
+    except (OSError, ValueError) as exc:
+        return _error(exc)
+    print(text)
+    for path in paths:
+        print(f"postproc: wrote {path}")
+    return 0
+
+
 def main(argv=None):
     args = _parser().parse_args(argv)
     if args.figure in figures.RUN_FIGURES or args.figure == "run":
         return _single_run(args)
     if args.figure == "sweep":
         return _sweep(args)
+    if args.figure == "operability":
+        return _operability(args)
     return _folder(args)
 
 

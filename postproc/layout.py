@@ -524,3 +524,82 @@ BENCH_REFERENCE_DATASETS = ("time", "position", "first_contact_time", "peak_slin
                             "peak_segment_tension")
 BENCH_REFERENCE_ATTRS = {"description": "description", "deck": "deck",
                          "settings": "settings", "wall_time": "wall_time"}
+
+
+# --- Rule checks and the operability table (issue 16; postproc.operability) ---------------
+# `davit sweep` writes, for each rule check below, three float columns per case:
+# results/check_<id>_value, results/check_<id>_limit and results/check_<id>_margin. The
+# margin is relative: >= 0 passes, < 0 fails, NaN = the rule does not apply to that case
+# (e.g. no emergency stop scripted). A summary without a check's columns simply has no such
+# check (older summaries have none).
+@dataclass(frozen=True)
+class Check:
+    """One rule check: its id, which side of the limit passes ('lower': value >= limit,
+    'upper': value <= limit), what it means and where the rule comes from."""
+    id: str
+    bound: str
+    meaning: str
+    source: str
+
+
+CHECKS = (
+    Check("lowering_speed", "lower", "lowering speed >= 0.4 + 0.02 H m/s (H: fall length)",
+          "S1 LSA Code 6.1.2"),
+    Check("impact_speed", "upper", "lateral impact speed on the ship's side <= 3.5 m/s",
+          "S5 LSA Code 4.4.1"),
+    Check("fall_swl", "upper", "fall tension <= safe working load (MBL/6)",
+          "S8 LSA Code 6.1.1 (breaking strength >= 6 x load)"),
+    Check("fall_mbl", "upper", "fall tension <= minimum breaking load",
+          "S8 LSA Code 6.1.1"),
+    Check("sling_swl", "upper", "sling tension <= safe working load (MBL/6)",
+          "S8 LSA Code 6.1.1 (breaking strength >= 6 x load)"),
+    Check("sling_mbl", "upper", "sling tension <= minimum breaking load",
+          "S8 LSA Code 6.1.1"),
+    Check("brake_load", "upper", "dynamic brake load <= 1.1 x working load",
+          "S6 LSA Code 6.1.2 / MSC.81(70)"),
+    Check("release_load", "upper", "on-load release load <= 1.1 x loaded mass weight",
+          "S9 LSA Code 4.4.7.6"),
+    Check("seat_srss", "upper", "seat acceleration SRSS <= limit (indicative for davit "
+          "launches)", "S12 MSC/Circ.616 / MSC.81(70)"),
+    Check("seat_dri", "upper", "seat dynamic response index <= limit (indicative for davit "
+          "launches)", "S12 MSC/Circ.616 / MSC.81(70)"),
+)
+CHECK_PARTS = ("value", "limit", "margin")
+
+
+def check_columns(check_id):
+    """{part: dataset} of rule check `check_id`: its value, limit and relative margin."""
+    return {part: f"results/check_{check_id}_{part}" for part in CHECK_PARTS}
+
+
+# what the operability table needs of every summary ...
+OPERABILITY_FIELDS = {
+    "level": SWEEP_CASE_LEVEL, "wave_height": SWEEP_CASE_WAVE_HEIGHT,
+    "wave_period": SWEEP_CASE_WAVE_PERIOD, "angle_deg": SWEEP_CASE_ANGLE,
+    "clearance_b": SWEEP_CASE_CLEARANCE, "status": SWEEP_STATUS, "collided": SWEEP_COLLIDED,
+}
+# ... and the per-launch maxima it fits when the summary has them (the launch log's columns)
+OPERABILITY_MAXIMA = {
+    "peak_horizontal_acceleration": SWEEP_PEAK_HORIZONTAL,
+    "peak_fall_tension": "results/peak_fall_tension",
+    "peak_sling_tension": "results/peak_sling_tension",
+}
+
+
+def load_sweep_optional(path, fields):
+    """{field: 1-D float array} of those datasets of `fields` (field -> dataset name) that
+    the summary holds; the absent ones are left out, not an error."""
+    with _open(path) as f:
+        return {field: np.ravel(f[name][()]).astype(float)
+                for field, name in fields.items() if name in f}
+
+
+def load_checks(path):
+    """{check id: {part: 1-D float array}} of the rule checks whose three columns the
+    summary holds, in the order of CHECKS; a check with any column missing is absent."""
+    out = {}
+    for check in CHECKS:
+        columns = load_sweep_optional(path, check_columns(check.id))
+        if len(columns) == len(CHECK_PARTS):
+            out[check.id] = columns
+    return out
