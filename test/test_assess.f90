@@ -19,6 +19,10 @@ module test_assess
                                 check_lowering_speed, check_impact_speed, check_fall_swl, &
                                 check_brake_load, check_release_load, check_seat_dri
   use davit_assess_occupant, only: response_peaks
+  use davit_io_config, only: parse_config
+  use davit_ship_ship_model, only: ship_system_type
+  use davit_run_ship_scene, only: build_ship_scene
+  use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -35,7 +39,8 @@ contains
                    new_case("lowering_speed_drum_over_four_parts", lowering_speed), &
                    new_case("emergency_stop_snatch_of_mass_on_spring", emergency_stop), &
                    new_case("impact_at_3p6_flagged", impact_speed), &
-                   new_case("release_load_waterborne", release_load)]
+                   new_case("release_load_waterborne", release_load), &
+                   new_case("solas_list_trim_equilibrium_bem_ship", list_trim)]
   end function collect_assess
 
   !> Lower limit: 0.175 against 0.811 fails by (0.175 - 0.811)/0.811; upper limit: 3.6
@@ -241,5 +246,38 @@ contains
     call check(state, c(check_seat_dri)%value, 0.0_wp, "calm lowering: DRI ~ 0", &
                abs_tol=0.5_wp)
   end subroutine release_load
+
+  !> SOLAS III/16 / LSA 6.1.1.1's launch envelope on the BEM ship: listed 20 deg to
+  !> starboard and trimmed 10 deg by the head, in calm water and still air, the ship is in
+  !> static equilibrium (the list and trim are those of the heeling and trimming moments
+  !> the deck stands for): after 200 s nothing has moved.
+  subroutine list_trim(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(ship_system_type) :: ship
+    type(rk4_type) :: rk
+    real(wp), allocatable :: y(:), y0(:)
+    real(wp) :: t
+    integer :: i
+    call parse_config("ship.nml", "&simulation scene = 'ship' / &ship model = 'bem', "// &
+                      "list_deg = 20, trim_deg = -10 / &wind speed = 0 / &sea wave_type "// &
+                      "= 'calm' /", cfg, error)
+    if (.not. allocated(error)) call build_ship_scene(cfg, ship, y, error)
+    call check_true(state, .not. allocated(error), "BEM ship built")
+    if (allocated(error)) return
+    y0 = y
+    call rk%init(size(y))
+    t = 0.0_wp
+    do i = 1, 10000
+      call rk%step(ship, t, y, 0.02_wp)
+      call ship%after_step(t, y)
+    end do
+    call check(state, y(1), 20.0_wp*pi/180.0_wp, "list held", abs_tol=1e-9_wp)
+    call check(state, y(2), -10.0_wp*pi/180.0_wp, "trim held", abs_tol=1e-9_wp)
+    call check(state, maxval(abs(y(3:6) - y0(3:6))), 0.0_wp, "no yaw, drift or sinkage", &
+               abs_tol=1e-9_wp)
+    call check(state, maxval(abs(y(7:12))), 0.0_wp, "at rest", abs_tol=1e-9_wp)
+  end subroutine list_trim
 
 end module test_assess
