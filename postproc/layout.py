@@ -543,7 +543,7 @@ class Check:
 
 
 CHECKS = (
-    Check("lowering_speed", "lower", "lowering speed >= 0.4 + 0.02 H m/s (H: fall length)",
+    Check("lowering_speed", "lower", "lowering speed >= 0.4 + 0.02 H m/s (H: davit head above the water)",
           "S1 LSA Code 6.1.2"),
     Check("impact_speed", "upper", "lateral impact speed on the ship's side <= 3.5 m/s",
           "S5 LSA Code 4.4.1"),
@@ -561,9 +561,19 @@ CHECKS = (
           "S9 LSA Code 4.4.7.6"),
     Check("seat_srss", "upper", "seat acceleration SRSS <= limit (indicative for davit "
           "launches)", "S12 MSC/Circ.616 / MSC.81(70)"),
-    Check("seat_dri", "upper", "seat dynamic response index <= limit (indicative for davit "
-          "launches)", "S12 MSC/Circ.616 / MSC.81(70)"),
+    Check("seat_dri", "upper", "spine dynamic response index <= 18 (indicative for davit "
+          "launches)", "S12 DRI (52.9 rad/s, 0.224)"),
 )
+# A run's file holds the same checks in /assessment/<id> = [value, limit, margin] (NaN: does
+# not apply) with attributes `source` and `verdict`; the group's attributes `head_height`
+# (H [m]) and `failed` (count); /assessment/dynamic_response = [up, down] peaks of the DRI.
+ASSESSMENT = "assessment"
+ASSESSMENT_DRI = "assessment/dynamic_response"
+
+
+def assessment_dataset(check_id):
+    """The run file's dataset of rule check `check_id`."""
+    return f"{ASSESSMENT}/{check_id}"
 CHECK_PARTS = ("value", "limit", "margin")
 
 
