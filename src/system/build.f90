@@ -281,12 +281,32 @@ contains
       if (.not. par%on_davit) return
       call hook_kinematics(par, y, hook_pos, hook_vel)
       pose = ship_pose(par, y)
-      call par%rig%initial_state(hook_pos, spread([0.0_wp, 0.0_wp, &
-                                 -0.5_wp*par%boat%mass*gravity], 2, 2), pose, &
-                                 y(par%rig_slice(1):par%rig_slice(2)), &
+      call par%rig%initial_state(hook_pos, hook_loads(cfg, pose, hook_pos, par%boat%mass), &
+                                 pose, y(par%rig_slice(1):par%rig_slice(2)), &
                                  residual, error, hook_vel=hook_vel)
     end associate
   end subroutine initial_state
+
+  !> Each hook's load at the start: W/2 upwards, along the line from the hook to its davit
+  !> head (head_fore for the fore hook), so that slings and falls start in line. A boat
+  !> hanging plumb gets W/2 straight up; one held off the plumb line (against the side of a
+  !> ship listed away from it) starts with its falls leaning, the lean's horizontal pull
+  !> taken by the ship's side once the fenders touch.
+  pure function hook_loads(cfg, ship, hook_pos, mass) result(f)
+    type(config_type), intent(in) :: cfg
+    type(pose_type), intent(in) :: ship
+    real(wp), intent(in) :: hook_pos(3, nslings), mass
+    real(wp) :: f(3, nslings), up(3), heads(3, nslings)
+    integer :: a
+    heads(:, 1) = ship%r + matmul(ship%c, cfg%rigging%head_fore)
+    heads(:, 2) = ship%r + matmul(ship%c, cfg%rigging%head_aft)
+    do a = 1, nslings
+      up = heads(:, a) - hook_pos(:, a)
+      f(:, a) = [0.0_wp, 0.0_wp, -0.5_wp*mass*gravity]
+      ! only a head above its hook gives a lean (else the plain weight, the error path)
+      if (up(3) < 0.0_wp) f(:, a) = (0.5_wp*mass*gravity/(-up(3)))*up
+    end do
+  end function hook_loads
 
   !> The boat's immersion state at the start: the geometric immersion of its initial pose
   !> (a boat released afloat starts with its added mass; no radiation memory yet).
