@@ -34,6 +34,15 @@ module test_events
     procedure :: modes => bouncer_modes
   end type bouncer
 
+  !> y' = 1 with a mode that changes every 1e-9 s: every step holds a switch just past the
+  !> last one, as a link at zero tension chatters between taut and slack.
+  type, extends(ode_problem) :: chatterer
+  contains
+    procedure :: rhs => chatterer_rhs
+    procedure :: n_modes => chatterer_n_modes
+    procedure :: modes => chatterer_modes
+  end type chatterer
+
 contains
 
   function collect_events() result(suite)
@@ -44,7 +53,8 @@ contains
                    new_case("hanging_boat_sling_slack_and_taut_times", sling_slack), &
                    new_case("hertz_impact_onset_and_peak_located", hertz_located), &
                    new_case("fender_next_phase_is_fender_update", next_phase), &
-                   new_case("bench_accuracy_against_a_written_reference", bench_accuracy)]
+                   new_case("bench_accuracy_against_a_written_reference", bench_accuracy), &
+                   new_case("chattering_modes_do_not_stall_the_run", chattering)]
   end function collect_events
 
   subroutine bouncer_rhs(self, t, y, dydt)
@@ -60,6 +70,57 @@ contains
     class(bouncer), intent(in) :: self
     bouncer_n_modes = 1
   end function bouncer_n_modes
+
+  subroutine chatterer_rhs(self, t, y, dydt)
+    class(chatterer), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: dydt(:)
+    dydt = 1.0_wp
+  end subroutine chatterer_rhs
+
+  pure integer function chatterer_n_modes(self)
+    class(chatterer), intent(in) :: self
+    chatterer_n_modes = 1
+  end function chatterer_n_modes
+
+  subroutine chatterer_modes(self, t, y, m)
+    class(chatterer), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(out) :: m(:)
+    m(1) = int(y(1)/1.0e-9_wp)
+  end subroutine chatterer_modes
+
+  !> Located one by one, the chatterer's switches would take 1e7 events to reach 0.01 s
+  !> (a hung run, seen in a sweep); after 20 events in a row closer than 1e-7 s apart the
+  !> stepper takes one step whole. Reaching 0.01 s at 1e-3 s steps then takes 10 whole
+  !> steps and at most 21 x 10 calls; y' = 1 stays exact (y = t).
+  subroutine chattering(state)
+    type(case_state), intent(inout) :: state
+    type(chatterer) :: p
+    type(event_stepper_type) :: stepper
+    class(integrator_type), allocatable :: integ
+    type(error_type), allocatable :: error
+    real(wp) :: t, y(2), t_next
+    integer :: calls
+    logical :: event
+    call new_integrator("rk4", 2, integ, error)
+    call stepper%init(2, 1)
+    t = 0.0_wp
+    y = 0.0_wp
+    calls = 0
+    t_next = 0.0_wp
+    do while (t < 0.01_wp - 1.0e-12_wp .and. calls < 100000)
+      if (t >= t_next) t_next = t_next + 1.0e-3_wp
+      call stepper%step(integ, p, t, y, t_next, event)
+      calls = calls + 1
+    end do
+    call note(state, "stepper calls", real(calls, wp))
+    call note(state, "steps taken whole", real(stepper%unlocated, wp))
+    call check_true(state, calls <= 220, "at most 21 calls per 1e-3 s step")
+    call check_true(state, stepper%unlocated >= 9, "whole steps after chattering")
+    call check(state, y(1), t, "y = t", abs_tol=1e-15_wp)
+    call check(state, t, 0.01_wp, "reached the end", abs_tol=1e-12_wp)
+  end subroutine chattering
 
   subroutine bouncer_modes(self, t, y, m)
     class(bouncer), intent(in) :: self

@@ -20,6 +20,12 @@ module davit_solve_event_location
   integer, parameter :: max_bisections = 80
   !> Brackets tried on ever shorter steps before the switch is crossed where it is.
   integer, parameter :: max_passes = 6
+  !> Chattering: events closer than chatter_gap [s] to the one before, max_chatter of them in
+  !> a row (a link at zero tension switching taut and slack at every crossing step, found
+  !> in a Level 3 launch at the water: 3e-9 s apart, without end); the next step is then
+  !> taken whole, its switches made at its end as without event location.
+  real(wp), parameter :: chatter_gap = 1.0e-7_wp
+  integer, parameter :: max_chatter = 20
 
   !> Work arrays of the located step and what it found.
   type :: event_stepper_type
@@ -32,8 +38,10 @@ module davit_solve_event_location
     real(wp), allocatable :: y_last(:)
     real(wp) :: t_last = -huge(1.0_wp)
     logical :: cached = .false.
-    !> Events located so far (steps cut at an event).
-    integer :: located = 0
+    !> Events located so far (steps cut at an event); the last one's time, how many came
+    !> in a row within chatter_gap of each other, and steps taken whole because of it.
+    integer :: located = 0, chatter = 0, unlocated = 0
+    real(wp) :: t_event = -huge(1.0_wp)
   contains
     procedure :: init => stepper_init
     procedure :: step => located_step
@@ -48,6 +56,9 @@ contains
     self%cached = .false.
     allocate (self%m0(n_modes), self%m1(n_modes), self%mm(n_modes))
     self%located = 0
+    self%chatter = 0
+    self%unlocated = 0
+    self%t_event = -huge(1.0_wp)
   end subroutine stepper_init
 
   !> Advance (t, y) to t_new with `integ` (t = t_new exactly on return, or where a
@@ -63,7 +74,10 @@ contains
     logical, intent(out) :: event
     real(wp) :: t0, t1
     event = .false.
-    if (size(self%m0) == 0) then
+    if (size(self%m0) == 0 .or. self%chatter >= max_chatter) then
+      if (self%chatter >= max_chatter) self%unlocated = self%unlocated + 1
+      self%chatter = 0
+      self%cached = .false.
       call advance(integ, problem, t, y, t_new)
       return
     end if
@@ -90,7 +104,10 @@ contains
     t1 = t
     call refine(self, integ, problem, t0, t, y)
     event = t < t1
-    if (event) self%located = self%located + 1
+    if (.not. event) return
+    self%located = self%located + 1
+    self%chatter = merge(self%chatter + 1, 0, t - self%t_event < chatter_gap)
+    self%t_event = t
   end subroutine located_step
 
   !> One step of `integ` towards t_new; t lands exactly on t_new when the step reached
