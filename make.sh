@@ -163,18 +163,30 @@ run_sweeps() {
   return $failed
 }
 
-# The launch assessment (issue 16): the operability sweep (Levels 3-5 x headings x
-# clearances, 12 irregular seas each; ~6 min on 2 cores), its table, heat maps and the
-# paper's conclusion with intervals (out/sweep_operability_operability.{csv,md,png}).
-operability_table() {
-  python3 -m postproc operability out/sweep_operability.h5 -o out | tee out/operability.md
+# The launch assessment (issue 16): the operability sweeps (Levels 3-5 x headings x
+# clearances, 12 irregular seas each, at the paper's and at the LSA Code's lowering speed),
+# their tables, heat maps and the paper's conclusion with intervals
+# (out/sweep_operability{,_lsa}_operability.{csv,md,png}).
+OPERABILITY_SWEEPS="sweep_operability sweep_operability_lsa"
+
+operability_tables() {
+  local stem failed=0
+  for stem in $OPERABILITY_SWEEPS; do
+    [ -e "out/$stem.h5" ] || continue
+    python3 -m postproc operability "out/$stem.h5" -o out >"out/$stem.operability.log" || failed=1
+    log "operability: out/${stem}_operability.md"
+  done
+  return $failed
 }
 
 operability() {
   setup
   mkdir -p out
-  "$DAVIT_BIN" sweep input/sweep_operability.nml -o out/sweep_operability.h5
-  operability_table
+  local stem
+  for stem in $OPERABILITY_SWEEPS; do
+    "$DAVIT_BIN" sweep "input/$stem.nml" -o "out/$stem.h5"
+  done
+  operability_tables
 }
 
 paper() {
@@ -194,7 +206,7 @@ paper() {
   run_sweeps || failed=1
   t_sweeps=$((SECONDS - start - t_runs))
   python3 -m postproc all out -o out || failed=1
-  if [ -e out/sweep_operability.h5 ]; then operability_table || failed=1; fi
+  operability_tables || failed=1
   python3 -m postproc regress out | tee out/regress.md
   log "paper: runs ${t_runs} s, sweeps ${t_sweeps} s, figures and report" \
       "$((SECONDS - start - t_runs - t_sweeps)) s, total $((SECONDS - start)) s"

@@ -231,40 +231,60 @@ class Conclusion:
     more_launches: int
     verdict: str
     pool: str
+    criterion: str = "collision"
 
     def statement(self):
         """The conclusion and its verdict, in one paragraph."""
-        share = f"{self.k}/{self.n} collided" if self.n else "no finished launch in this pool"
-        text = (f"Claim: a launch from {self.pool} does not collide with the ship's side "
-                f"(collision probability <= {self.risk:g}). Evidence: {share}, "
-                f"P(collision) in [{self.lower:.4f}, {self.upper:.4f}] "
+        event, word, noun = CRITERIA[self.criterion]
+        share = f"{self.k}/{self.n} {word}" if self.n else "no finished launch in this pool"
+        text = (f"Claim: a launch from {self.pool} does not {event} "
+                f"(probability <= {self.risk:g}). Evidence: {share}, "
+                f"P({noun}) in [{self.lower:.4f}, {self.upper:.4f}] "
                 f"({self.confidence:.0%} Wilson). Verdict: {self.verdict}.")
         if self.verdict != "supported":
-            text += (f" {self.more_launches} further collision-free launches would bring "
+            text += (f" {self.more_launches} further launches without one would bring "
                      f"the upper bound to <= {self.risk:g}.")
         return text
 
 
+# What a conclusion counts: the paper's collision (any fender touching the ship's side) or
+# a rule check's failure (e.g. 'impact_speed': an impact faster than the LSA Code's
+# 3.5 m/s, which a lifeboat is built to withstand): (claim, count word, noun).
+CRITERIA = {
+    "collision": ("collide with the ship's side", "collided", "collision"),
+    "impact_speed": ("hit the ship's side faster than the LSA Code's 3.5 m/s (4.4.1)",
+                     "hit faster", "impact > 3.5 m/s"),
+}
+
+
 def conclusion(summary, min_clearance_b=1.5, below_level=5, risk=RISK,
-               confidence=CONFIDENCE, below_height=LEVEL5_HEIGHT):
+               confidence=CONFIDENCE, below_height=LEVEL5_HEIGHT, criterion="collision"):
     """The paper's conclusion tested: pool the finished launches with clearance_b >=
     min_clearance_b in sea states below `below_level` (a case without a level, -1, counts
     as below it when its wave height is < below_height, the Level 5 height) and call it
-    'supported' (upper bound <= risk), 'refuted' (lower bound > risk) or 'undecided'."""
+    'supported' (upper bound <= risk), 'refuted' (lower bound > risk) or 'undecided'.
+    `criterion` (CRITERIA) is what counts against it: the paper's collision, or a rule
+    check's failure (a launch where the check does not apply is left out)."""
     if isinstance(summary, (str, os.PathLike)):
         summary = load(summary)
     c = summary.columns
     level = c["level"]
     calm_enough = np.where(level >= 0, level < below_level, c["wave_height"] < below_height)
-    rows = ((c["status"] == layout.SWEEP_OK) & (c["collided"] >= 0)
+    if criterion == "collision":
+        defined, failed = c["collided"] >= 0, c["collided"] == 1
+    else:
+        margin = summary.checks[criterion]["margin"]
+        defined, failed = ~np.isnan(margin), np.nan_to_num(margin, nan=0.0) < 0
+    rows = ((c["status"] == layout.SWEEP_OK) & defined
             & (c["clearance_b"] >= min_clearance_b) & calm_enough)
-    k, n = int(np.sum(c["collided"][rows] == 1)), int(rows.sum())
+    k, n = int(np.sum(failed[rows])), int(rows.sum())
     lower, upper = assessment.wilson_interval(k, n, confidence)
     word = "supported" if n and upper <= risk else "refuted" if lower > risk else "undecided"
     pool = (f"an initial clearance >= {min_clearance_b:g} B in sea states below Level "
             f"{below_level:g} (H < {below_height:g} m where no level is given)")
     return Conclusion(k, n, lower, upper, risk, confidence,
-                      assessment.launches_needed(k, n, risk, confidence), word, pool)
+                      assessment.launches_needed(k, n, risk, confidence), word, pool,
+                      criterion)
 
 
 # --- CSV, Markdown -------------------------------------------------------------------------
@@ -324,7 +344,7 @@ def _fit_text(fit, scale):
     return f"{fit.mpm * scale:.3g} / {fit.p90 * scale:.3g}{mark}"
 
 
-def markdown(cells, summary, risk, conclusion_=None):
+def markdown(cells, summary, risk, conclusions=()):
     """The table as Markdown, with the checks' legend, the statistics used and the
     conclusion."""
     sea = "Level" if _sea_name(summary) == "level" else "H [m]"
@@ -353,8 +373,9 @@ def markdown(cells, summary, risk, conclusion_=None):
         lines += [f"| {ch.id} | {ch.meaning} | {ch.source} |" for ch in checks]
     else:
         lines.append("This summary holds no rule checks: collisions only.")
-    if conclusion_ is not None:
-        lines += ["", "## The paper's conclusion", "", conclusion_.statement()]
+    if conclusions:
+        lines += ["", "## The paper's conclusion", ""]
+        lines += [f"- {found.statement()}" for found in conclusions]
     return "\n".join(lines) + "\n"
 
 
@@ -455,7 +476,10 @@ def write(path, outdir="out", risk=RISK, by=DIMENSIONS, confidence=CONFIDENCE):
     (paths, conclusion)."""
     summary = load(path)
     cells = table(summary, risk, by, confidence)
-    found = conclusion(summary, risk=risk, confidence=confidence)
+    found = [conclusion(summary, risk=risk, confidence=confidence)]
+    if "impact_speed" in summary.checks:
+        found.append(conclusion(summary, risk=risk, confidence=confidence,
+                                criterion="impact_speed"))
     stem = os.path.splitext(os.path.basename(str(path)))[0]
     os.makedirs(outdir, exist_ok=True)
     csv_path = os.path.join(outdir, f"{stem}_operability.csv")

@@ -142,6 +142,12 @@ contains
       s = "0"
       return
     end if
+    if (x /= x .or. abs(x) > huge(x)) then
+      ! NaN or infinite (a diverged state): the processor's own word for it
+      write (buf, "(g0)") x
+      s = trim(adjustl(buf))
+      return
+    end if
     if (abs(x) >= 1.0e-3_wp .and. abs(x) < 1.0e6_wp) then
       write (buf, "(f0.8)") x
       s = trim(buf)

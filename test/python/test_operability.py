@@ -278,6 +278,24 @@ def test_conclusion_pools_clear_launches_below_level_5(known):
     assert found.verdict == "refuted"     # 7/135: lower bound 0.025 > 0.01
 
 
+def test_conclusion_on_a_rule_check(tmp_path):
+    """Counted on the LSA's impact speed instead of the paper's contact: launches where the
+    check does not apply (NaN) are left out; a collided launch with a positive margin does
+    not count against it."""
+    cases = (_cases(20, level=4, angle=90.0, clearance=2.0, status=1, collided=1,
+                    margins={"impact_speed": 0.4})
+             + _cases(2, level=4, angle=90.0, clearance=2.0, status=1, collided=1,
+                      margins={"impact_speed": -0.02})
+             + _cases(5, level=4, angle=90.0, clearance=2.0, status=1))
+    path = _write(tmp_path / "impact.h5", cases, ("impact_speed",))
+    found = operability.conclusion(path, criterion="impact_speed")
+    assert (found.k, found.n) == (2, 22)
+    assert (found.lower, found.upper) == assessment.wilson_interval(2, 22)
+    assert "3.5 m/s" in found.statement() and "2/22 hit faster" in found.statement()
+    paper = operability.conclusion(path)
+    assert (paper.k, paper.n, paper.verdict) == (22, 27, "refuted")
+
+
 def test_conclusion_falls_back_to_wave_height_without_levels(tmp_path):
     cases = (_cases(10, height=3.0, angle=90.0, clearance=2.0, status=1)
              + _cases(10, height=4.5, angle=90.0, clearance=2.0, status=1, collided=1)
