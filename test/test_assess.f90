@@ -130,9 +130,9 @@ contains
   end subroutine lowering_run
 
   !> Rope kinematics: the boat comes down at 0.7/4 = 0.175 m/s (0.14 % faster: the falls
-  !> lean in by a, half the heads' 0.32 m spacing over ~3 m, and each part shortens
-  !> by its length times cos a); H = 20.55 m (the heads'
-  !> height above the still water of the ship at rest), limit 0.4 + 0.02 H = 0.811 m/s.
+  !> lean in by a, half the heads' 0.32 m spacing over ~3 m, so the blocks drop by the
+  !> paid-out length over cos a); H = 20.55 m, the heads' height above the still water of
+  !> the ship at rest: limit 0.4 + 0.02 H = 0.811 m/s.
   subroutine lowering_speed(state)
     type(case_state), intent(inout) :: state
     type(launch_log) :: log

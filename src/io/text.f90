@@ -7,7 +7,7 @@ module davit_io_text
   private
   public :: int_text
   public :: count_range, optional_text, join_ints, join_logicals, is_number, is_integer, unquote, &
-            join_reals, fmt_real
+            join_reals, fmt_real, fmt_fixed
 
 contains
 
@@ -133,6 +133,20 @@ contains
   end function join_reals
 
   !> Shortest readable form of a real (no trailing zeros).
+  !> x with `decimals` digits after the point, a zero before it ("0.0812", "-0.5").
+  function fmt_fixed(x, decimals) result(s)
+    real(wp), intent(in) :: x
+    integer, intent(in) :: decimals
+    character(len=:), allocatable :: s
+    character(len=40) :: buf
+    character(len=12) :: form
+    write (form, "(a,i0,a)") "(f0.", decimals, ")"
+    write (buf, form) x
+    s = trim(adjustl(buf))
+    if (s(1:1) == ".") s = "0"//s
+    if (s(1:min(2, len(s))) == "-.") s = "-0"//s(2:)
+  end function fmt_fixed
+
   pure function fmt_real(x) result(s)
     real(wp), intent(in) :: x
     character(len=:), allocatable :: s

@@ -11,6 +11,7 @@ module davit_run_launch_report
   use davit_assess_rules, only: n_checks, rule_check, check_ids, check_units, check_sources, &
                                 check_texts, check_lower, check_passes
   use davit_io_namelist, only: int_to_str
+  use davit_io_text, only: fmt_fixed
   implicit none
   private
   public :: write_impacts, write_loads, write_seat, write_assessment, launch_text
@@ -179,18 +180,12 @@ contains
     real(wp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=24) :: buf
-    if (abs(x) < 1.0e-3_wp .and. x /= 0.0_wp) then
+    if ((abs(x) < 1.0e-3_wp .and. x /= 0.0_wp) .or. abs(x) >= 1.0e4_wp) then
       write (buf, "(es10.3)") x
-    else if (abs(x) < 10.0_wp) then
-      write (buf, "(f0.3)") x
-    else if (abs(x) < 1.0e4_wp) then
-      write (buf, "(f0.1)") x
+      s = trim(adjustl(buf))
     else
-      write (buf, "(es10.3)") x
+      s = fmt_fixed(x, merge(3, 1, abs(x) < 10.0_wp))
     end if
-    s = trim(adjustl(buf))
-    if (s(1:1) == ".") s = "0"//s
-    if (s(1:2) == "-.") s = "-0"//s(2:)
   end function num
 
   function pad(s, n) result(t)

@@ -16,6 +16,7 @@ module davit_sweep_adaptive
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: int_to_str
+  use davit_io_text, only: fmt_fixed
   use davit_assess_statistics, only: wilson_halfwidth
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_metrics, only: case_result, status_not_run, status_ok, status_failed, &
@@ -177,10 +178,7 @@ contains
   function fmt_width(x) result(text)
     real(wp), intent(in) :: x
     character(len=:), allocatable :: text
-    character(len=16) :: buf
-    write (buf, "(f0.4)") x
-    text = trim(buf)
-    if (text(1:1) == ".") text = "0"//text
+    text = fmt_fixed(x, 4)
   end function fmt_width
 
 end module davit_sweep_adaptive

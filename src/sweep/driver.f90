@@ -19,6 +19,7 @@ module davit_sweep_driver
   use davit_io_hdf5_writer, only: h5_writer_type, check_output_path, acquire_lock, release_lock
   use davit_io_namelist, only: int_to_str
   use davit_io_deck_reader, only: fmt_real
+  use davit_io_text, only: fmt_fixed
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
   use davit_run_recorders, only: boat_recorder
@@ -404,7 +405,7 @@ contains
     elapsed = seconds_since(state, state%clock0)
     rate = real(state%done, wp)/max(elapsed, 1.0e-9_wp)
     line = "davit sweep: "//int_to_str(state%done)//"/"//int_to_str(state%todo)// &
-           " cases ("//int_to_str(state%failed)//" failed), "//fmt_rate(rate)//" cases/s"
+           " cases ("//int_to_str(state%failed)//" failed), "//fmt_fixed(rate, 3)//" cases/s"
     if (state%done < state%todo) then
       line = line//", ETA "//fmt_duration(real(state%todo - state%done, wp)/rate)
     else
@@ -526,14 +527,6 @@ contains
     dt = real(now - clock, wp)/real(state%rate, wp)
   end function seconds_since
 
-  function fmt_rate(x) result(s)
-    real(wp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write (buf, "(f0.3)") x
-    s = trim(buf)
-    if (s(1:1) == ".") s = "0"//s
-  end function fmt_rate
 
   !> "2 h 5 min", "3 min 21 s" or "42 s".
   function fmt_duration(seconds) result(s)
