@@ -23,6 +23,8 @@ module test_assess
   use davit_ship_ship_model, only: ship_system_type
   use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
+  use davit_io_text, only: fmt_real, fmt_fixed
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -40,7 +42,8 @@ contains
                    new_case("emergency_stop_snatch_of_mass_on_spring", emergency_stop), &
                    new_case("impact_at_3p6_flagged", impact_speed), &
                    new_case("release_load_waterborne", release_load), &
-                   new_case("solas_list_trim_equilibrium_bem_ship", list_trim)]
+                   new_case("solas_list_trim_equilibrium_bem_ship", list_trim), &
+                   new_case("diagnostic_numbers", numbers)]
   end function collect_assess
 
   !> Lower limit: 0.175 against 0.811 fails by (0.175 - 0.811)/0.811; upper limit: 3.6
@@ -279,5 +282,20 @@ contains
                abs_tol=1e-9_wp)
     call check(state, maxval(abs(y(7:12))), 0.0_wp, "at rest", abs_tol=1e-9_wp)
   end subroutine list_trim
+
+  !> A diverged state is named as such in diagnostics ("boat roll = NaN", was "= e0"), and
+  !> the report's fixed-point numbers keep their leading zero.
+  subroutine numbers(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: nan, inf
+    nan = ieee_value(nan, ieee_quiet_nan)
+    inf = ieee_value(inf, ieee_positive_inf)
+    call check_true(state, fmt_real(nan) == "NaN", "NaN: "//fmt_real(nan))
+    call check_true(state, fmt_real(inf) == "Inf", "Inf: "//fmt_real(inf))
+    call check_true(state, fmt_real(-inf) == "-Inf", "-Inf: "//fmt_real(-inf))
+    call check_true(state, fmt_fixed(0.0812_wp, 4) == "0.0812", fmt_fixed(0.0812_wp, 4))
+    call check_true(state, fmt_fixed(-0.5_wp, 1) == "-0.5", fmt_fixed(-0.5_wp, 1))
+    call check_true(state, fmt_fixed(22.46_wp, 1) == "22.5", fmt_fixed(22.46_wp, 1))
+  end subroutine numbers
 
 end module test_assess
