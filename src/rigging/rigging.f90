@@ -448,16 +448,17 @@ contains
   !> geometry, e.g. a head midway above each hook; option A also needs equal hook loads);
   !> an error if it exceeds residual_max (the start would not be an equilibrium).
   subroutine rigging_initial_state(self, hook_pos, hook_force, ship, y, residual, error, mode, &
-                                   hook_vel)
+                                   hook_vel, heads, head_vel)
     class(rigging_type), intent(inout) :: self
     real(wp), intent(in) :: hook_pos(3, 2), hook_force(3, 2)
     type(pose_type), intent(in) :: ship
     real(wp), intent(out) :: y(:), residual
     type(error_type), allocatable, intent(out) :: error
     character(len=*), intent(in), optional :: mode
-    !> The hooks' velocities: each sling's lumps and block start moving with its hook (a
-    !> ship making headway carries the rigging along; at rest: zero).
-    real(wp), intent(in), optional :: hook_vel(3, 2)
+    !> The hooks' velocities and the davit heads' positions and velocities: each sling's
+    !> lumps and block start as points of a rigid pendulum from its head to its hook (a ship
+    !> making headway carries the rigging along; a boat pushed sideways swings it).
+    real(wp), intent(in), optional :: hook_vel(3, 2), heads(3, 2), head_vel(3, 2)
     real(wp) :: q(3, 2), br(3, 2)
     character(len=16) :: text
     logical :: unstretched
@@ -468,7 +469,8 @@ contains
     do a = 1, 2
       call place_sling(self, a, hook_pos(:, a), hook_force(:, a), unstretched, y, q(:, a))
     end do
-    if (present(hook_vel)) call move_with_hooks(self, hook_vel, y)
+    if (present(hook_vel) .and. present(heads) .and. present(head_vel)) &
+      call move_with_hooks(self, hook_pos, hook_vel, heads, head_vel, y)
     br = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
     call set_cable_lengths(self%falls_type, br, q, ship, unstretched, residual)
     if (residual > residual_max) then
@@ -479,19 +481,34 @@ contains
     end if
   end subroutine rigging_initial_state
 
-  !> Lumps and blocks moving with their hooks (velocities of massive blocks and lumps).
-  pure subroutine move_with_hooks(self, hook_vel, y)
+  !> Velocities of the lumps and (massive) blocks as points of a rigid pendulum from each
+  !> head to its hook: v = v_head + s (v_hook - v_head), s the point's distance from the
+  !> head over the hook's. Uniform (the ship's) when the boat moves with the ship.
+  pure subroutine move_with_hooks(self, hook_pos, hook_vel, heads, head_vel, y)
     type(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: hook_vel(3, 2)
+    real(wp), intent(in) :: hook_pos(3, 2), hook_vel(3, 2), heads(3, 2), head_vel(3, 2)
     real(wp), intent(inout) :: y(:)
-    integer :: a, k, iv(2)
+    integer :: a, k, il(2), iv(2), ib
     do a = 1, 2
+      il = sling_range(self%lumps%q, self%nlump, a)
       iv = sling_range(self%lumps%u, self%nlump, a)
       do k = 1, self%nlump
-        y(iv(1) + 3*(k - 1):iv(1) + 3*k - 1) = hook_vel(:, a)
+        y(iv(1) + 3*(k - 1):iv(1) + 3*k - 1) = &
+          pendulum_velocity(y(il(1) + 3*(k - 1):il(1) + 3*k - 1), a)
       end do
-      y(self%block_v(1) + 3*(a - 1):self%block_v(1) + 3*a - 1) = hook_vel(:, a)
+      ib = self%block_r(1) + 3*(a - 1)
+      y(self%block_v(1) + 3*(a - 1):self%block_v(1) + 3*a - 1) = &
+        pendulum_velocity(y(ib:ib + 2), a)
     end do
+  contains
+    pure function pendulum_velocity(p, a) result(v)
+      real(wp), intent(in) :: p(3)
+      integer, intent(in) :: a
+      real(wp) :: v(3), s
+      s = min(1.0_wp, norm2(p - heads(:, a))/max(norm2(hook_pos(:, a) - heads(:, a)), &
+                                                   tiny(1.0_wp)))
+      v = head_vel(:, a) + s*(hook_vel(:, a) - head_vel(:, a))
+    end function pendulum_velocity
   end subroutine move_with_hooks
 
   !> Lay out sling a from its hook: segment k carries F_k = F_hook - (k-1) m_p g N3 (lump

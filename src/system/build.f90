@@ -3,7 +3,7 @@
 module davit_system_build
   use davit_kinds, only: wp, gravity, rho_water
   use davit_error, only: error_type
-  use davit_core_rotation, only: rotation_matrix
+  use davit_core_rotation, only: rotation_matrix, cross
   use davit_core_pose, only: pose_type
   use davit_io_config, only: config_type, contact_config
   use davit_rigging_elastic_sling, only: elastic_sling_type
@@ -266,7 +266,9 @@ contains
     real(wp), allocatable, intent(out) :: y(:)
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: c(3, 3), hook_pos(3, nslings), hook_vel(3, nslings), residual
+    real(wp) :: heads(3, nslings), head_vel(3, nslings)
     type(pose_type) :: pose
+    integer :: a
     allocate (y(self%par%layout%n))
     associate (par => self%par, b => self%par%boat_part, s => self%par%ship_part)
       if (par%with_ship) y(par%ship_slice(1):par%ship_slice(2)) = &
@@ -281,9 +283,15 @@ contains
       if (.not. par%on_davit) return
       call hook_kinematics(par, y, hook_pos, hook_vel)
       pose = ship_pose(par, y)
-      call par%rig%initial_state(hook_pos, hook_loads(cfg, pose, hook_pos, par%boat%mass), &
+      heads(:, 1) = pose%r + matmul(pose%c, cfg%rigging%head_fore)
+      heads(:, 2) = pose%r + matmul(pose%c, cfg%rigging%head_aft)
+      do a = 1, nslings
+        head_vel(:, a) = pose%v + cross(pose%w, heads(:, a) - pose%r)
+      end do
+      call par%rig%initial_state(hook_pos, hook_loads(heads, hook_pos, par%boat%mass), &
                                  pose, y(par%rig_slice(1):par%rig_slice(2)), &
-                                 residual, error, hook_vel=hook_vel)
+                                 residual, error, hook_vel=hook_vel, heads=heads, &
+                                 head_vel=head_vel)
     end associate
   end subroutine initial_state
 
@@ -292,14 +300,10 @@ contains
   !> hanging plumb gets W/2 straight up; one held off the plumb line (against the side of a
   !> ship listed away from it) starts with its falls leaning, the lean's horizontal pull
   !> taken by the ship's side once the fenders touch.
-  pure function hook_loads(cfg, ship, hook_pos, mass) result(f)
-    type(config_type), intent(in) :: cfg
-    type(pose_type), intent(in) :: ship
-    real(wp), intent(in) :: hook_pos(3, nslings), mass
-    real(wp) :: f(3, nslings), up(3), heads(3, nslings)
+  pure function hook_loads(heads, hook_pos, mass) result(f)
+    real(wp), intent(in) :: heads(3, nslings), hook_pos(3, nslings), mass
+    real(wp) :: f(3, nslings), up(3)
     integer :: a
-    heads(:, 1) = ship%r + matmul(ship%c, cfg%rigging%head_fore)
-    heads(:, 2) = ship%r + matmul(ship%c, cfg%rigging%head_aft)
     do a = 1, nslings
       up = heads(:, a) - hook_pos(:, a)
       f(:, a) = [0.0_wp, 0.0_wp, -0.5_wp*mass*gravity]

@@ -138,7 +138,9 @@ def test_seeds_derive_from_base_seed_and_index(davit, one_thread, tmp_path):
     assert s.seed.tolist() == [_splitmix64(11, int(i)) >> 33 for i in s.index]
     pairs = s.realisation == 1
     assert (s.phase_deg[pairs] != s.phase_deg[~pairs]).all()
-    assert (s.peak_segment_tension[pairs] != s.peak_segment_tension[~pairs]).all()
+    # the sea moves the boat: its closest approach to the ship differs (the peak tension is
+    # the static load at t = 0 in all of these 1 s runs, which start in equilibrium)
+    assert (s.min_clearance[pairs] != s.min_clearance[~pairs]).all()
     again = tmp_path / "again.h5"
     _sweep(davit, deck, again, "--threads", "2", "--quiet")
     _assert_same(out, again)
