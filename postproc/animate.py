@@ -123,6 +123,9 @@ class Drawing:
                 fenders=ax.add_collection(LineCollection([], colors="k", lw=4, zorder=7)))
             view["sea_x"], view["bottom"] = np.linspace(lo, hi, SEA_SAMPLES), lo_z
             self.views[h] = view
+            if not geo.has_sea(self.run):
+                ax.text(0.02, 0.97, "sea: still water level (the run file records no waves)",
+                        transform=ax.transAxes, fontsize=7, color="#1f3f5f", va="top")
         bar = self.fig.colorbar(self.views[0]["lines"], ax=[self.end, self.side],
                                 shrink=0.8, pad=0.01)
         bar.set_label("tension [kN]")
@@ -188,6 +191,7 @@ class Drawing:
         self.moving = [self.title] + self.cursors + [
             a for view in self.views.values() for k, a in view.items()
             if k not in ("sea_x", "bottom")]
+        self.moving.sort(key=lambda artist: artist.get_zorder())  # draw_artist keeps order
         for artist in self.moving:
             artist.set_animated(True)
         self.fig.canvas.draw()

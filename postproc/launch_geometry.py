@@ -239,12 +239,16 @@ def _assemble(columns, kinds, segments, tensions, slings):
                  sling=np.array(slings))
 
 
+def has_sea(run):
+    """Whether the file records its waves (/sea/components); a launch run does not."""
+    return run.has(layout.SEA_OMEGA, layout.SEA_K, layout.SEA_DIRECTION, layout.SEA_AMPLITUDE,
+                   layout.SEA_PHASE)
+
+
 def sea_elevation(run, t, x, y):
     """Surface elevation eta (up) at (x, y) and time t: the recorded wave components where
-    the file has them (/sea/components), else the still water (0): a launch run does not
-    record its sea."""
-    if not run.has(layout.SEA_OMEGA, layout.SEA_K, layout.SEA_DIRECTION,
-                   layout.SEA_AMPLITUDE, layout.SEA_PHASE):
+    the file has them, else the still water (0)."""
+    if not has_sea(run):
         return np.zeros(np.broadcast(np.asarray(x), np.asarray(y)).shape)
     return layout.sea_elevation(run, t, x, y)
 

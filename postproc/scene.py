@@ -64,7 +64,7 @@ class Scene:
         """A square patch around the boat's mean horizontal position."""
         centre = np.mean(self.run.get(layout.BOAT_POSITION)[:, :2], axis=0)
         half = max(SEA_MARGIN * float(geo.deck(self.run, "boat", "length")), SEA_MIN_HALF)
-        waves = self.run.has(layout.SEA_OMEGA)
+        waves = geo.has_sea(self.run)
         axis = np.linspace(-half, half, SEA_POINTS if waves else 2)
         return np.meshgrid(centre[0] + axis, centre[1] + axis, indexing="ij")
 
