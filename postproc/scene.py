@@ -179,7 +179,7 @@ def part(name, opacity=1.0, colour=None, array=None, width=None, points=None):
 part("ship", opacity=0.35, colour=[0.55, 0.55, 0.6])
 part("boat", colour=[1.0, 0.45, 0.0])
 part("sea", opacity=0.5, colour=[0.2, 0.45, 0.8])
-part("falls", array=("POINTS", "tension"), width=4)
+part("falls", array=("CELLS", "tension"), width=4)
 GetColorTransferFunction("tension").RescaleTransferFunction(0.0, {tension_max!r})
 part("nodes", colour=[0.1, 0.1, 0.1], points=10)
 part("fenders", array=("CELLS", "contact_force"), width=8)
