@@ -17,7 +17,7 @@ cd "$(dirname "$0")"
 APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config python3)
 # capytaine (with xarray, scipy, pandas) and h5netcdf: the ship's BEM database
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
-PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf)
+PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg)
 DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
 # 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
@@ -72,7 +72,7 @@ mpi() {
 
 python_ready() {
   command -v fpm >/dev/null 2>&1 &&
-    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf" >/dev/null 2>&1
+    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg" >/dev/null 2>&1
 }
 
 # Use the Python packages already installed if all are there; otherwise a project venv
@@ -111,6 +111,7 @@ demo() {
   stem="$(basename "$DEFAULT_DECK" .nml)"
   "$DAVIT_BIN" run "$DEFAULT_DECK" -o "out/$stem.h5"
   python3 -m postproc run "out/$stem.h5" -o out
+  python3 -m postproc animate "out/$stem.h5" -o "out/$stem.mp4" --every 10
 }
 
 # The decks behind the paper's figures and facts: Section III.B regular runs with and

@@ -58,6 +58,9 @@ RIGGING_SEGMENT_TENSION = "rigging/segment_tension"
 RIGGING_PAID_OUT = "rigging/paid_out"
 RIGGING_PULLEY_ANGLE = "rigging/pulley_angle"
 SLING_LUMPS = "slings/lump_position"
+# the movable blocks (nt, 2, 3): fore, aft, inertial N (the state's copy for quasi-static
+# blocks); files written before it was recorded have none (postproc.scene then draws none)
+RIGGING_BLOCKS = "rigging/block_position"
 SEA_ELEVATION = "sea/elevation"
 SEA_PROBES = "sea/probe_position"
 SEA_OMEGA = "sea/components/omega"
