@@ -47,6 +47,7 @@ PEAK_SEGMENT_TENSION = "peaks/segment_tension"
 PEAK_SEGMENT_TENSION_TIME = "peaks/segment_tension_time"
 PEAK_CG_ACCELERATION = "peaks/cg_acceleration"
 PEAK_SEAT_ACCELERATION = "peaks/seat_acceleration"
+PEAK_TILT = "peaks/tilt"                          # [largest tilt of b3 from vertical (rad), t]
 SEAT_ACCELERATION = "seat/acceleration"
 SEAT_GROUP = "seat"
 LIMITS_GROUP = "limits"
