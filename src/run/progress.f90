@@ -7,6 +7,7 @@ module davit_run_progress
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: error_unit
   use davit_kinds, only: wp, i8
+  use davit_io_text, only: fmt_fixed
   implicit none
   private
   public :: progress_meter, new_progress_meter, stderr_is_terminal
@@ -91,18 +92,18 @@ contains
     type(progress_meter), intent(inout) :: self
     real(wp), intent(in) :: t
     integer(i8), intent(in) :: now
-    character(len=160) :: line
+    character(len=:), allocatable :: line
     real(wp) :: wall, factor
     integer :: n
     wall = max(real(now - self%clock0, wp)/real(self%rate, wp), tiny(1.0_wp))
     factor = t/wall
-    write (line, "(a,f0.2,a,f0.2,a,f0.1,a,f0.1,a)") "davit: t = ", t, " / ", self%t_end, &
-      " s (", 100.0_wp*t/max(self%t_end, tiny(1.0_wp)), " %), ", factor, &
-      "x real time, ETA "
-    line = trim(line)//" "//eta_text(self%t_end - t, factor)
+    line = "davit: t = "//fmt_fixed(t, 2)//" / "//fmt_fixed(self%t_end, 2)//" s ("// &
+           fmt_fixed(100.0_wp*t/max(self%t_end, tiny(1.0_wp)), 1)//" %), "// &
+           fmt_fixed(factor, 1)//"x real time, ETA "//eta_text(self%t_end - t, factor)
     n = len_trim(line)
     ! blank what is left of a longer earlier line
-    write (error_unit, "(a)", advance="no") achar(13)//line(1:max(n, self%width))
+    write (error_unit, "(a)", advance="no") achar(13)//line// &
+      repeat(" ", max(self%width - n, 0))
     flush (error_unit)
     self%width = n
     self%shown = .true.
