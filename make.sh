@@ -349,7 +349,8 @@ paper_summary() {
   echo "  decks: $n_ran run, $n_fresh up to date (FORCE=1 reruns them), $n_failed failed" \
        "-> out/<deck>.h5, logs out/<deck>.log"
   echo "  sweeps (PAPER_SWEEPS=${PAPER_SWEEPS:-none}${PAPER_IRREGULAR:+, PAPER_IRREGULAR=$PAPER_IRREGULAR}):" \
-       "${sweeps:+classes ${sweeps//$'\n'/ }}"
+       "${sweeps:-no class chosen}" | tr '\n' ' '
+  echo
   while read -r what deck secs class; do
     case "$what" in
       skipped) ;;
