@@ -15,7 +15,7 @@
 #                       the regression report (python -m postproc all / regress): minutes.
 #                       PAPER_SWEEPS adds sweeps (a comma-separated list; see paper_sweeps):
 #                         regular      Figs. 19-21 and the SOLAS sweeps (~30 min, 2 cores)
-#                         operability  the launch assessment's sweeps and tables (~15 min)
+#                         operability  the launch assessment's sweeps and tables (~1 h)
 #                         irregular    the irregular sweep of Figs. 22-23 (~1 h)
 #                         all          all three (PAPER_IRREGULAR=1, the old switch, too)
 #                       and closes with a summary: what ran, where it went, how long it took
@@ -244,7 +244,7 @@ paper_sweeps() {
 }
 
 # A sweep deck's class: operability (input/sweep_operability*.nml, the launch assessment,
-# irregular seas, ~15 min), irregular (wave_types = 'irregular': Figs. 22-23, ~1 h), or
+# irregular seas, ~1 h on 2 cores), irregular (wave_types = 'irregular': Figs. 22-23, ~1 h), or
 # regular (Figs. 19-21 ~30 min, and the SOLAS list/trim/headway sweeps, ~1 min, which need
 # no class of their own).
 sweep_class() {
@@ -413,7 +413,7 @@ usage: bash make.sh COMMAND
   paper              the paper decks, every figure and the regression report (minutes);
                      PAPER_SWEEPS=regular,operability,irregular (any of them) or all adds
                      sweeps: regular = Figs. 19-21 and SOLAS (~30 min on 2 cores),
-                     operability = the launch assessment (~15 min), irregular = Figs. 22-23
+                     operability = the launch assessment (~1 h), irregular = Figs. 22-23
                      (~1 h); PAPER_IRREGULAR=1 is all; JOBS=n decks at a time, FORCE=1
                      reruns decks whose outputs are up to date
   operability        the operability sweeps, their tables and heat maps
