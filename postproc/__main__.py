@@ -19,6 +19,9 @@
                                                    verdict per cell (postproc.operability)
   python -m postproc regress [FOLDER] [--strict]  the paper's stated facts vs the outputs
                                                    in FOLDER, as a table
+  python -m postproc readme-tables [FOLDER] [--run] [--write|--check]
+                                                   the README's tables made from the runs
+                                                   in FOLDER (postproc.readme_tables)
   python -m postproc scene RUN.h5 [-o OUTDIR] [--every N]
                                                    the launch as a ParaView time series:
                                                    .vtu frames, .pvd index, state .py
@@ -36,7 +39,7 @@ import argparse
 import os
 import sys
 
-from . import dispatch, figures, layout, operability, paper, regress, sweep_figures
+from . import dispatch, figures, layout, operability, paper, readme_tables, regress, sweep_figures
 
 MOVIE_COMMANDS = ("scene", "animate")
 
@@ -180,6 +183,9 @@ def _movie(args):
 
 
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["readme-tables"]:
+        return readme_tables.main(argv[1:])
     args = _parser().parse_args(argv)
     if args.figure in MOVIE_COMMANDS:
         return _movie(args)

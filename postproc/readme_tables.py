@@ -1,0 +1,175 @@
+"""The README's deterministic tables, made from runs: `davit-post readme-tables [FOLDER]`.
+
+Each table sits in README.md between `<!-- table:NAME -->` and `<!-- /table:NAME -->` and
+is made here from the run files in FOLDER (default out/): the launch loads of every III.A
+and III.B deck, the regression report's rows that the decks decide (the sweeps' rows need
+hours of sweeps and stay by hand, with the command and the machine beside them), and the
+SOLAS decks in calm water. `--run` first runs the decks each table needs into FOLDER (the
+davit of DAVIT_BIN, else `davit` on PATH), `--write` puts the tables into the README,
+`--check` compares (exit 1 naming each stale table). test/python/test_readme_tables.py
+runs the decks afresh and checks the README's copies, so its numbers cannot go stale
+silently.
+"""
+import argparse
+import concurrent.futures
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+from . import launch_table, layout, regress
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ANGLES = ("000", "045", "090", "135", "180")
+III_A = ("iiia_model_scale_1", "iiia_model_scale_2")
+III_B = tuple(f"iiib_level{level}_{angle}{kind}" for level in (4, 5) for angle in ANGLES
+              for kind in ("", "_irregular", "_nowind"))
+# the launch table's rows: every III.A and III.B deck (README "Loads, impacts and limits")
+LAUNCH_DECKS = tuple(sorted(III_A + III_B + ("iiib_level5_090_frozen",
+                                             "iiib_level5_090_literal")))
+# the regression report's deck facts (F2, F7 and F8 on the paper decks, F9)
+REGRESS_DECKS = tuple(sorted(set(III_A + III_B) | {"fig13_tension", "iiib_level5_090_frozen"}))
+SOLAS_DECKS = ("iiib_level5_090", "solas_list_p20", "solas_list_m20", "solas_trim_p10",
+               "solas_trim_m10", "solas_headway")
+
+
+def launch_loads(folder):
+    """README "Loads, impacts and limits": one row per III.A/III.B run."""
+    return launch_table.table([os.path.join(folder, f"{d}.h5") for d in LAUNCH_DECKS])
+
+
+def regress_decks(folder):
+    """The regression rows the decks decide: F2, F7 and F8 on the paper decks, F9."""
+    verdicts = [v for v in regress.report(folder)
+                if "(sweeps)" not in v.fact and not v.fact.startswith(("F10", "F11"))]
+    lines = ["| fact | paper | davit | result |", "|---|---|---|---|"]
+    lines += [f"| {v.fact} | {v.paper} | {v.davit or '-'} | {v.result} |" for v in verdicts]
+    return "\n".join(lines)
+
+
+def solas_calm(folder):
+    """README "SOLAS launch conditions": the calm-water decks' rule checks and peaks."""
+    rows = ["| run | H (m) | lowering speed / limit (m/s) | impacts | fastest (m/s) | "
+            "fall (kN) | sling (kN) | seat SRSS (m/s²) | DRI | released (s) | checks failed |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for deck in SOLAS_DECKS:
+        run = layout.load(os.path.join(folder, f"{deck}.h5"))
+        checks = {c.id: run.get(layout.assessment_dataset(c.id)) for c in layout.CHECKS}
+        failed = [c.id for c in layout.CHECKS
+                  if not np.isnan(checks[c.id][2]) and checks[c.id][2] < 0.0]
+        speeds = run.get(layout.IMPACT_SPEED)
+        speeds = np.zeros(0) if speeds is None else speeds
+        release = float(run.get(layout.RELEASE_TIME)[0])
+        height = float(run.group_attrs[layout.ASSESSMENT]["head_height"])
+        rows.append(
+            f"| {deck} | {height:.2f} | {checks['lowering_speed'][0]:.3f} / "
+            f"{checks['lowering_speed'][1]:.3f} | {len(speeds)} | "
+            f"{speeds.max() if len(speeds) else 0.0:.2f} | {checks['fall_swl'][0] / 1e3:.1f} | "
+            f"{checks['sling_swl'][0] / 1e3:.1f} | {checks['seat_srss'][0]:.1f} | "
+            f"{checks['seat_dri'][0]:.2f} | {release:.1f} | {', '.join(failed) or 'none'} |")
+    return "\n".join(rows)
+
+
+# name -> (decks it needs in the folder, maker)
+TABLES = {"launch_loads": (LAUNCH_DECKS, launch_loads),
+          "regress_decks": (REGRESS_DECKS, regress_decks),
+          "solas_calm": (SOLAS_DECKS, solas_calm)}
+
+
+def _markers(name):
+    return f"<!-- table:{name} -->\n", f"\n<!-- /table:{name} -->"
+
+
+def readme_copy(text, name):
+    """The README's copy of table `name` (None if it has no such table)."""
+    start, end = _markers(name)
+    if start not in text or end not in text:
+        return None
+    return text.split(start, 1)[1].split(end, 1)[0]
+
+
+def replace(text, name, table):
+    """`text` with table `name` replaced by `table`."""
+    start, end = _markers(name)
+    head, rest = text.split(start, 1)
+    return head + start + table + end + rest.split(end, 1)[1]
+
+
+def davit_binary():
+    """The davit to run: DAVIT_BIN, else `davit` on PATH."""
+    binary = os.environ.get("DAVIT_BIN") or shutil.which("davit")
+    if not binary:
+        raise OSError("no davit: set DAVIT_BIN or put davit on PATH (bash make.sh install)")
+    return binary
+
+
+def run_decks(folder, decks, binary, jobs=2):
+    """Run input/<deck>.nml -> FOLDER/<deck>.h5, `jobs` at a time; an error names the deck."""
+    os.makedirs(folder, exist_ok=True)
+
+    def one(deck):
+        out = os.path.join(folder, f"{deck}.h5")
+        result = subprocess.run([binary, "run", os.path.join(ROOT, "input", f"{deck}.nml"),
+                                 "-o", out], capture_output=True, text=True,
+                                env=dict(os.environ, OMP_NUM_THREADS="1"))
+        if result.returncode != 0:
+            raise OSError(f"davit run input/{deck}.nml failed: {result.stderr.strip()}")
+    with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
+        list(pool.map(one, decks))
+
+
+def make(folder, names):
+    """{name: table} made from the run files in `folder`."""
+    return {name: TABLES[name][1](folder) for name in names}
+
+
+def stale(tables, text):
+    """Names of the tables whose README copy differs from (or lacks) the made one."""
+    return [name for name, table in tables.items() if readme_copy(text, name) != table]
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="davit-post readme-tables",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("folder", nargs="?", default="out", help="run files (default out/)")
+    parser.add_argument("--run", action="store_true", help="run the decks first")
+    parser.add_argument("--write", action="store_true", help="put the tables into README")
+    parser.add_argument("--check", action="store_true", help="exit 1 if README is stale")
+    parser.add_argument("--readme", default=os.path.join(ROOT, "README.md"))
+    parser.add_argument("--only", action="append", choices=sorted(TABLES),
+                        help="this table only (repeatable)")
+    args = parser.parse_args(argv)
+    names = args.only or list(TABLES)
+    try:
+        if args.run:
+            decks = sorted({d for n in names for d in TABLES[n][0]})
+            run_decks(args.folder, decks, davit_binary())
+        tables = make(args.folder, names)
+        with open(args.readme) as f:
+            text = f.read()
+    except (OSError, ValueError, KeyError) as exc:
+        print(f"davit-post readme-tables: {exc}", file=sys.stderr)
+        return 1
+    if args.write:
+        for name, table in tables.items():
+            text = replace(text, name, table)
+        with open(args.readme, "w") as f:
+            f.write(text)
+        print(f"readme-tables: wrote {', '.join(tables)} into {args.readme}")
+    elif args.check:
+        old = stale(tables, text)
+        for name in old:
+            print(f"readme-tables: {args.readme}: table '{name}' is stale (or missing): "
+                  f"davit-post readme-tables {args.folder} --write", file=sys.stderr)
+        return 1 if old else 0
+    else:
+        for name, table in tables.items():
+            print(f"{name}:\n{table}\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
