@@ -202,9 +202,10 @@ contains
       call write_seat(w, self%seat, a, self%seat_point)
       call w%write_1d("peaks/cg_acceleration", [self%peak_cg, self%peak_cg_time], &
                       "m/s^2, s", "Largest step-mean CG acceleration |Delta v/Delta t| "// &
-                      "over every step, and when (the sampled /boat/acceleration misses it)")
+                      "over every step, and when (the sampled /boat/acceleration misses it)", &
+                      dims="value_time")
       call w%write_1d("peaks/seat_acceleration", peak, "m/s^2, s", "Largest filtered "// &
-                      "seat acceleration (/seat) and when")
+                      "seat acceleration (/seat) and when", dims="value_time")
       call w%attr_str("/", "outcome", self%outcome(sys))
       block
         type(rule_check) :: c(n_checks)
