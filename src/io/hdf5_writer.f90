@@ -103,6 +103,7 @@ contains
     self%path = path
     self%final_path = path
     self%failed = .false.
+    if (allocated(self%scales)) deallocate (self%scales)
     allocate (self%scales(0))
     call check_output_path(path, error)
     if (allocated(error)) return
@@ -530,29 +531,28 @@ contains
     character(len=*), intent(in) :: name, dims
     integer(hid_t), intent(in) :: dset
     integer(hsize_t), intent(in) :: extent(:)
-    character(len=:), allocatable :: names(:), group
-    integer :: k, hdferr
+    character(len=:), allocatable :: group
+    integer :: k, rank, hdferr
     integer(hid_t) :: scale
-    names = split_words(dims)
     group = parent_of(name)
-    if (size(names) /= size(extent)) then
-      call check(self, 1, name//" (dims '"//dims//"' for rank "// &
-                 int_to_str(size(extent))//")")
+    rank = size(extent)
+    if (word_count(dims) /= rank) then
+      call check(self, 1, name//" (dims '"//dims//"' for rank "//int_to_str(rank)//")")
       return
     end if
-    if (size(names) == 1 .and. group_path(group, names(1)) == name) then
-      call h5dsset_scale_f(dset, hdferr, trim(names(1)))
+    if (rank == 1 .and. group_path(group, word(dims, 1)) == name) then
+      call h5dsset_scale_f(dset, hdferr, word(dims, 1))
       call check(self, hdferr, "dimension scale "//name)
-      call remember(self, group, trim(names(1)), extent(1))
+      call remember(self, group, word(dims, 1), extent(1))
       return
     end if
-    do k = 1, size(names)
-      call open_scale(self, group, trim(names(k)), extent(k), name, scale)
+    do k = 1, rank
+      call open_scale(self, group, word(dims, k), extent(k), name, scale)
       if (scale < 0) return
       ! HDF5 1.10's Fortran H5DS numbers the axes in C order (1-based), reversed from
       ! the Fortran array's (a Fortran (component, time) array is (time, component) there)
-      call h5dsattach_scale_f(dset, scale, size(names) - k + 1, hdferr)
-      call check(self, hdferr, "dimension "//trim(names(k))//" of "//name)
+      call h5dsattach_scale_f(dset, scale, rank - k + 1, hdferr)
+      call check(self, hdferr, "dimension "//word(dims, k)//" of "//name)
       call h5dclose_f(scale, hdferr)
     end do
   end subroutine attach_dims
@@ -658,44 +658,35 @@ contains
     end if
   end function group_path
 
-  !> The blank-separated words of `text`, each blank-padded to the longest.
-  pure function split_words(text) result(words)
+  !> Word k of the blank-separated `text` ("" past its last word).
+  pure function word(text, k) result(w)
     character(len=*), intent(in) :: text
-    character(len=:), allocatable :: words(:)
-    integer :: i, n, start, width
+    integer, intent(in) :: k
+    character(len=:), allocatable :: w
+    integer :: i, n, first
+    w = ""
     n = 0
-    width = 1
-    start = 0
-    do i = 1, len(text) + 1
-      if (i <= len(text)) then
-        if (text(i:i) /= " ") then
-          if (start == 0) start = i
-          cycle
-        end if
-      end if
-      if (start > 0) then
+    first = 0
+    do i = 1, len(text)
+      if (text(i:i) /= " " .and. first == 0) first = i
+      if (first > 0 .and. (text(i:i) == " " .or. i == len(text))) then
         n = n + 1
-        width = max(width, i - start)
-        start = 0
+        if (n == k) then
+          w = trim(text(first:i))
+          return
+        end if
+        first = 0
       end if
     end do
-    allocate (character(len=width) :: words(n))
+  end function word
+
+  pure integer function word_count(text) result(n)
+    character(len=*), intent(in) :: text
     n = 0
-    start = 0
-    do i = 1, len(text) + 1
-      if (i <= len(text)) then
-        if (text(i:i) /= " ") then
-          if (start == 0) start = i
-          cycle
-        end if
-      end if
-      if (start > 0) then
-        n = n + 1
-        words(n) = text(start:i - 1)
-        start = 0
-      end if
+    do while (len(word(text, n + 1)) > 0)
+      n = n + 1
     end do
-  end function split_words
+  end function word_count
 
   subroutine check(self, hdferr, what)
     type(h5_writer_type), intent(inout) :: self
