@@ -1,23 +1,38 @@
 #!/usr/bin/env bash
 # davit's two commands (the README's first lines), plus their shared set-up:
-#   bash make.sh demo   install what is missing, build (release), run the default scenario,
-#                       write out/*.h5 and out/*.png
+#   bash make.sh demo   install what is missing, build (release), install the commands
+#                       davit and davit-post into ~/.local/bin (as install does), run the
+#                       default scenario, write out/*.h5 and out/*.png
 #   bash make.sh test   install what is missing, build, run every Fortran and Python test,
 #                       closing with one line "N passed, N failed"
-#   bash make.sh paper  build, run every paper deck (and the sweeps, where `davit sweep`
-#                       exists) into out/, then draw every figure and print the regression
-#                       report (python -m postproc all / regress)
+#   bash make.sh install [PREFIX]
+#                       build, then install PREFIX/bin/davit (a wrapper around a copy of the
+#                       binary in PREFIX/libexec/davit, with the project's data files from
+#                       PREFIX/share/davit/input on DAVIT_PATH) and PREFIX/bin/davit-post
+#                       (python -m postproc from any folder, with the project's Python);
+#                       PREFIX defaults to ~/.local
+#   bash make.sh paper  build, run every paper deck into out/, draw every figure and print
+#                       the regression report (python -m postproc all / regress): minutes.
+#                       PAPER_SWEEPS adds sweeps (a comma-separated list; see paper_sweeps):
+#                         regular      Figs. 19-21 and the SOLAS sweeps (~30 min, 2 cores)
+#                         operability  the launch assessment's sweeps and tables (~15 min)
+#                         irregular    the irregular sweep of Figs. 22-23 (~1 h)
+#                         all          all three (PAPER_IRREGULAR=1, the old switch, too)
+#                       and closes with a summary: what ran, where it went, how long it took
+#   bash make.sh operability  the operability sweeps, their tables and heat maps
+#   bash make.sh help   this text
 #   bash make.sh mpi    install Open MPI if mpifort is missing, build the MPI binary (the
 #                       sweep across MPI ranks: mpirun -np N build/davit-mpi sweep ...),
 #                       print its path (test also builds it and runs its tests)
 # Both are idempotent: a second run installs nothing and rebuilds only what changed.
 set -euo pipefail
+CALLER_DIR="$PWD"  # where a relative install PREFIX is meant from
 cd "$(dirname "$0")"
 
 APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config python3)
 # capytaine (with xarray, scipy, pandas) and h5netcdf: the ship's BEM database
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
-PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf)
+PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg)
 DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
 # 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
@@ -72,7 +87,7 @@ mpi() {
 
 python_ready() {
   command -v fpm >/dev/null 2>&1 &&
-    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf" >/dev/null 2>&1
+    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg" >/dev/null 2>&1
 }
 
 # Use the Python packages already installed if all are there; otherwise a project venv
@@ -104,13 +119,77 @@ setup() {
   export DAVIT_BIN="$PWD/$DAVIT_BIN"
 }
 
+# Single-quoted for a generated shell script (any character, quotes included).
+shell_quote() {
+  printf "'%s'" "${1//\'/\'\\\'\'}"
+}
+
+# Write a file through a temporary beside it, so a command running from it stays whole.
+install_script() {
+  local dest="$1" text="$2"
+  printf '%s\n' "$text" >"$dest.tmp"
+  chmod 755 "$dest.tmp"
+  mv -f "$dest.tmp" "$dest"
+}
+
+# The commands after setup (the binary in DAVIT_BIN): PREFIX/bin/davit is a wrapper that
+# puts the installed copy of input/ (the BEM databases that decks name, e.g. &ship model =
+# 'bem') after the caller's DAVIT_PATH, so a deck copied anywhere finds them, and runs a copy
+# of the binary (a rebuild or a clean checkout does not break it; install again to update);
+# PREFIX/bin/davit-post runs python -m postproc of this checkout with the Python that setup
+# found ready (.venv's where it made one), from any folder and whatever PATH says.
+install_files() {
+  local prefix="$1" py
+  case "$prefix" in /*) ;; *) prefix="$CALLER_DIR/$prefix" ;; esac
+  mkdir -p "$prefix/bin" "$prefix/libexec/davit" "$prefix/share/davit" || {
+    log "cannot write to $prefix: choose another PREFIX (bash make.sh install PREFIX) or run as root"
+    return 1
+  }
+  prefix="$(cd "$prefix" && pwd)"
+  cp -f "$DAVIT_BIN" "$prefix/libexec/davit/davit.tmp"
+  mv -f "$prefix/libexec/davit/davit.tmp" "$prefix/libexec/davit/davit"
+  rm -rf "$prefix/share/davit/input.tmp"
+  cp -R input "$prefix/share/davit/input.tmp"
+  rm -rf "$prefix/share/davit/input"
+  mv "$prefix/share/davit/input.tmp" "$prefix/share/davit/input"
+  install_script "$prefix/bin/davit" "#!/bin/sh
+# davit, installed by bash make.sh install from $PWD
+DAVIT_PATH=\"\${DAVIT_PATH:+\$DAVIT_PATH:}\"$(shell_quote "$prefix/share/davit/input")
+export DAVIT_PATH
+exec $(shell_quote "$prefix/libexec/davit/davit") \"\$@\""
+  py="$(python3 -c 'import sys; print(sys.executable)')"
+  install_script "$prefix/bin/davit-post" "#!/bin/sh
+# davit-post: python -m postproc of the davit checkout $PWD
+# (installed by bash make.sh install; the study and fender tools run \$DAVIT)
+PYTHONPATH=$(shell_quote "$PWD")\"\${PYTHONPATH:+:\$PYTHONPATH}\"
+[ -n \"\${DAVIT:-}\" ] || DAVIT=$(shell_quote "$prefix/bin/davit")
+export PYTHONPATH DAVIT
+py=$(shell_quote "$py")
+[ -x \"\$py\" ] || py=python3
+exec \"\$py\" -m postproc \"\$@\""
+  log "installed $prefix/bin/davit (binary in $prefix/libexec/davit, data in $prefix/share/davit/input)"
+  log "installed $prefix/bin/davit-post (python -m postproc with $py)"
+  case ":$PATH:" in
+    *":$prefix/bin:"*) log "$prefix/bin is on PATH: davit --help, davit-post --help" ;;
+    *) log "$prefix/bin is not on PATH; add it (then open a new shell):"
+       log "  echo 'export PATH=\"$prefix/bin:\$PATH\"' >> ~/.bashrc" ;;
+  esac
+}
+
+install_cmd() {
+  setup
+  install_files "${1:-$HOME/.local}"
+}
+
 demo() {
   setup
+  install_files "$HOME/.local"
   mkdir -p out
   local stem
   stem="$(basename "$DEFAULT_DECK" .nml)"
   "$DAVIT_BIN" run "$DEFAULT_DECK" -o "out/$stem.h5"
   python3 -m postproc run "out/$stem.h5" -o out
+  python3 -m postproc animate "out/$stem.h5" -o "out/$stem.mp4" --every 10
 }
 
 # The decks behind the paper's figures and facts: Section III.B regular runs with and
@@ -131,11 +210,13 @@ run_paper_deck() {
   out="out/$stem.h5"
   if [ "${FORCE:-0}" != 1 ] && [ "$out" -nt "$deck" ] && [ "$out" -nt "$DAVIT_BIN" ]; then
     log "up to date: $out"
+    echo "$deck" >>"$PAPER_FRESH"
     return 0
   fi
   grep -q '^ *&rao' "$deck" && mode=rao
   if OMP_NUM_THREADS=1 "$DAVIT_BIN" "$mode" "$deck" -o "$out" >"out/$stem.log" 2>&1; then
     log "$(tail -n 1 "out/$stem.log")"
+    echo "$deck" >>"$PAPER_RAN"
   else
     log "FAILED: $deck (see out/$stem.log)"
     echo "$deck" >>"$PAPER_FAILED"
@@ -143,22 +224,60 @@ run_paper_deck() {
   fi
 }
 
-# Every sweep deck (input/sweep*.nml) through `davit sweep`, if this build has it; the
-# irregular-sea sweeps (hours on 2 cores) only with PAPER_IRREGULAR=1.
+# Which sweeps `bash make.sh paper` runs: PAPER_SWEEPS, a comma-separated list of classes
+# (sweep_class), or all; none by default, for the decks and figures in minutes. The old
+# switch PAPER_IRREGULAR=1 means all. Prints the classes chosen, one a line; exits 2 on an
+# unknown one.
+PAPER_SWEEP_CLASSES="regular operability irregular"
+paper_sweeps() {
+  local choice="${PAPER_SWEEPS:-}" c
+  [ "${PAPER_IRREGULAR:-0}" = 1 ] && choice=all
+  for c in ${choice//,/ }; do
+    case "$c" in
+      all) printf '%s\n' $PAPER_SWEEP_CLASSES ;;
+      none) ;;
+      regular|operability|irregular) echo "$c" ;;
+      *) log "PAPER_SWEEPS: unknown '$c' (none, regular, operability, irregular, all)"
+         return 2 ;;
+    esac
+  done | sort -u
+}
+
+# A sweep deck's class: operability (input/sweep_operability*.nml, the launch assessment,
+# irregular seas, ~15 min), irregular (wave_types = 'irregular': Figs. 22-23, ~1 h), or
+# regular (Figs. 19-21 ~30 min, and the SOLAS list/trim/headway sweeps, ~1 min, which need
+# no class of their own).
+sweep_class() {
+  case "$(basename "$1")" in
+    sweep_operability*) echo operability ;;
+    *) if grep -q "^ *wave_types *= *'irregular'" "$1"; then echo irregular; else echo regular; fi ;;
+  esac
+}
+
+# The sweep decks (input/sweep*.nml) of the classes chosen (paper_sweeps) through
+# `davit sweep DECK -o out/DECK.h5`, if this build has it. Appends "ran|failed|skipped
+# DECK SECONDS CLASS" lines to $PAPER_SWEEP_LOG for the summary.
 run_sweeps() {
+  local chosen="$1" deck class start failed=0
   if ! "$DAVIT_BIN" --help 2>&1 | grep -qw sweep; then
     log "no 'davit sweep' in this build: sweeps skipped"
     return 0
   fi
-  local deck failed=0
   for deck in input/sweep*.nml; do
     [ -e "$deck" ] || continue
-    if [ "${PAPER_IRREGULAR:-0}" != 1 ] && grep -q "^ *wave_types *= *'irregular'" "$deck"; then
-      log "irregular sweep $deck skipped (PAPER_IRREGULAR=1 runs it)"
+    class="$(sweep_class "$deck")"
+    if ! grep -qx "$class" <<<"$chosen"; then
+      echo "skipped $deck 0 $class" >>"$PAPER_SWEEP_LOG"
       continue
     fi
-    log "sweep $deck"
-    "$DAVIT_BIN" sweep "$deck" -o "out/$(basename "$deck" .nml).h5" || failed=1
+    log "sweep $deck ($class)"
+    start=$SECONDS
+    if "$DAVIT_BIN" sweep "$deck" -o "out/$(basename "$deck" .nml).h5"; then
+      echo "ran $deck $((SECONDS - start)) $class" >>"$PAPER_SWEEP_LOG"
+    else
+      echo "failed $deck $((SECONDS - start)) $class" >>"$PAPER_SWEEP_LOG"
+      failed=1
+    fi
   done
   return $failed
 }
@@ -190,10 +309,15 @@ operability() {
 }
 
 paper() {
+  local sweeps
+  sweeps="$(paper_sweeps)" || exit 2
   setup
   mkdir -p out
-  local start=$SECONDS jobs="${JOBS:-2}" deck failed=0 t_runs t_sweeps
-  PAPER_FAILED="$(mktemp)"
+  local start=$SECONDS jobs="${JOBS:-2}" deck failed=0 t_runs t_sweeps t_figures tmp
+  tmp="$(mktemp -d)"
+  PAPER_FAILED="$tmp/failed" PAPER_RAN="$tmp/ran" PAPER_FRESH="$tmp/fresh"
+  PAPER_SWEEP_LOG="$tmp/sweeps"
+  touch "$PAPER_FAILED" "$PAPER_RAN" "$PAPER_FRESH" "$PAPER_SWEEP_LOG" "$tmp/stamp"
   log "paper decks ($jobs at a time)"
   for deck in $(paper_decks); do
     while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
@@ -201,16 +325,49 @@ paper() {
   done
   wait
   if [ -s "$PAPER_FAILED" ]; then failed=1; log "failed decks: $(tr '\n' ' ' <"$PAPER_FAILED")"; fi
-  rm -f "$PAPER_FAILED"
   t_runs=$((SECONDS - start))
-  run_sweeps || failed=1
+  run_sweeps "$sweeps" || failed=1
   t_sweeps=$((SECONDS - start - t_runs))
   python3 -m postproc all out -o out || failed=1
   operability_tables || failed=1
   python3 -m postproc regress out | tee out/regress.md
-  log "paper: runs ${t_runs} s, sweeps ${t_sweeps} s, figures and report" \
-      "$((SECONDS - start - t_runs - t_sweeps)) s, total $((SECONDS - start)) s"
+  t_figures=$((SECONDS - start - t_runs - t_sweeps))
+  paper_summary "$tmp" "$sweeps" "$t_runs" "$t_sweeps" "$t_figures" "$((SECONDS - start))"
+  rm -rf "$tmp"
   return $failed
+}
+
+# What paper ran and where it went: counts from the lists in folder $1 (ran, fresh, failed,
+# sweeps) and the PNGs newer than its stamp; $2 the sweep classes; $3-$6 the timings (s).
+paper_summary() {
+  local tmp="$1" sweeps="$2" n_ran n_fresh n_failed n_png n_new line what deck secs class
+  n_ran=$(wc -l <"$tmp/ran")
+  n_fresh=$(wc -l <"$tmp/fresh")
+  n_failed=$(wc -l <"$tmp/failed")
+  n_png=$(find out -name '*.png' | wc -l)
+  n_new=$(find out -name '*.png' -newer "$tmp/stamp" | wc -l)
+  echo "paper: summary"
+  echo "  decks: $n_ran run, $n_fresh up to date (FORCE=1 reruns them), $n_failed failed" \
+       "-> out/<deck>.h5, logs out/<deck>.log"
+  echo "  sweeps (PAPER_SWEEPS=${PAPER_SWEEPS:-none}${PAPER_IRREGULAR:+, PAPER_IRREGULAR=$PAPER_IRREGULAR}):" \
+       "${sweeps:-no class chosen}" | tr '\n' ' '
+  echo
+  while read -r what deck secs class; do
+    case "$what" in
+      skipped) ;;
+      *) echo "    $what $deck ($class) in ${secs} s -> out/$(basename "$deck" .nml).h5" ;;
+    esac
+  done <"$tmp/sweeps"
+  line="$(awk '$1 == "skipped" {print $4}' "$tmp/sweeps" | sort | uniq -c |
+          awk '{printf "%s%d %s", (NR > 1 ? ", " : ""), $1, $2}')"
+  if [ -n "$line" ]; then
+    echo "    not run: $line (PAPER_SWEEPS=regular,operability,irregular or all adds them)"
+  fi
+  echo "  figures: $n_new drawn now, $n_png in all -> out/*.png; regression report out/regress.md"
+  if [ -e out/sweep_operability_operability.md ]; then
+    echo "  operability tables: out/sweep_operability{,_lsa}_operability.{csv,md,png}"
+  fi
+  echo "  time: decks $3 s, sweeps $4 s, figures and report $5 s, total $6 s"
 }
 
 run_tests() {
@@ -244,12 +401,36 @@ run_tests() {
   return $status
 }
 
+usage() {
+  cat <<'EOF'
+usage: bash make.sh COMMAND
+  demo               install what is missing, build, install davit and davit-post into
+                     ~/.local/bin, run the default scenario into out/ (h5 and PNGs)
+  test               build and run every Fortran and Python test ("N passed, N failed")
+  install [PREFIX]   build and install PREFIX/bin/davit and PREFIX/bin/davit-post
+                     (default PREFIX ~/.local, as root too); says whether PREFIX/bin is on
+                     PATH and the line for ~/.bashrc if not
+  paper              the paper decks, every figure and the regression report (minutes);
+                     PAPER_SWEEPS=regular,operability,irregular (any of them) or all adds
+                     sweeps: regular = Figs. 19-21 and SOLAS (~30 min on 2 cores),
+                     operability = the launch assessment (~15 min), irregular = Figs. 22-23
+                     (~1 h); PAPER_IRREGULAR=1 is all; JOBS=n decks at a time, FORCE=1
+                     reruns decks whose outputs are up to date
+  operability        the operability sweeps, their tables and heat maps
+  mpi                build the MPI binary (installs Open MPI if missing)
+  setup              install what is missing and build
+  help               this text
+EOF
+}
+
 case "${1:-}" in
   demo) demo ;;
   test) run_tests ;;
   paper) paper ;;
+  install) install_cmd "${2:-}" ;;
+  help|-h|--help) usage ;;
   operability) operability ;;
   mpi) mpi ;;
   setup) setup ;;
-  *) echo "usage: bash make.sh demo|test|paper|operability|mpi|setup" >&2; exit 2 ;;
+  *) usage >&2; exit 2 ;;
 esac

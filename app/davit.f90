@@ -10,6 +10,7 @@ program davit
   use davit_io_namelist, only: int_to_str
   use davit_run_driver, only: run_simulation
   use davit_run_run_summary, only: run_summary
+  use davit_run_progress, only: progress_meter, new_progress_meter, stderr_is_terminal
   use davit_bench_suite, only: bench_options, run_bench
   use davit_run_rao, only: run_rao
   use davit_sweep_keys, only: sweep_config, read_sweep, document_sweep_keys
@@ -62,13 +63,15 @@ program davit
 
 contains
 
-  !> `run` and `rao` take the same arguments: one deck and an optional output file.
+  !> `run` and `rao` take the same arguments: one deck and an optional output file. A run
+  !> draws its progress on stderr when that is a terminal.
   subroutine cmd_run(rao)
     logical, intent(in) :: rao
     character(len=:), allocatable :: deck, out, arg
     type(config_type) :: cfg
     type(error_type), allocatable :: error
     type(run_summary) :: summary
+    type(progress_meter) :: progress
     integer :: i
     deck = ""
     out = ""
@@ -98,7 +101,8 @@ contains
     if (rao) then
       call run_rao(cfg, out, summary, error)
     else
-      call run_simulation(cfg, out, summary, error)
+      progress = new_progress_meter(stderr_is_terminal())
+      call run_simulation(cfg, out, summary, error, progress)
     end if
     if (allocated(error)) call fail(error)
     write (output_unit, "(a,i0,a,i0,a,f0.3,a)") "davit: wrote '"//out//"' (", summary%steps, &

@@ -19,6 +19,15 @@
                                                    verdict per cell (postproc.operability)
   python -m postproc regress [FOLDER] [--strict]  the paper's stated facts vs the outputs
                                                    in FOLDER, as a table
+  python -m postproc scene RUN.h5 [-o OUTDIR] [--every N]
+                                                   the launch as a ParaView time series:
+                                                   .vtu frames, .pvd index, state .py
+                                                   (postproc.scene)
+  python -m postproc animate RUN.h5 [-o OUT.mp4|OUT.gif|OUTDIR] [--fps 20] [--every N]
+                                  [--frame T -o OUT.png]
+                                                   the launch as a movie (end and side
+                                                   views, tension and acceleration), or
+                                                   one still at time T (postproc.animate)
 
 Exit status: 0 success, 1 an unreadable or incomplete input (the message names the file and
 the missing dataset); regress exits 1 on a FAIL only with --strict.
@@ -29,6 +38,8 @@ import sys
 
 from . import dispatch, figures, layout, operability, paper, regress, sweep_figures
 
+MOVIE_COMMANDS = ("scene", "animate")
+
 FOLDER_COMMANDS = ("all", "regress")
 
 
@@ -36,12 +47,21 @@ def _parser():
     parser = argparse.ArgumentParser(prog="python -m postproc", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     choices = (sorted(figures.RUN_FIGURES) + ["run"] + sorted(paper.FOLDER_FIGURES)
-               + list(FOLDER_COMMANDS) + ["sweep", "operability"])
+               + list(FOLDER_COMMANDS) + ["sweep", "operability"] + list(MOVIE_COMMANDS))
     parser.add_argument("figure", choices=choices, metavar="FIGURE",
                         help="one of: " + ", ".join(choices))
     parser.add_argument("input", nargs="?", default=None,
                         help="davit HDF5 file (single-run figures) or folder (default out)")
-    parser.add_argument("-o", "--outdir", default="out", help="folder for PNG files")
+    parser.add_argument("-o", "--outdir", default="out",
+                        help="folder for PNG files (animate: also the .mp4, .gif or, with "
+                             "--frame, .png file)")
+    parser.add_argument("--every", type=int, default=None,
+                        help="scene, animate: draw every N-th sample (default: scene 5, "
+                             "animate about 400 frames)")
+    parser.add_argument("--fps", type=float, default=20.0,
+                        help="animate: frames per second (default %(default)s)")
+    parser.add_argument("--frame", type=float, default=None, metavar="T",
+                        help="animate: write only the still at time T [s] (a PNG)")
     parser.add_argument("--strict", action="store_true",
                         help="regress: exit 1 if any fact fails")
     parser.add_argument("--risk", type=float, default=operability.RISK,
@@ -140,8 +160,29 @@ def _operability(args):
     return 0
 
 
+def _movie(args):
+    """The ParaView scene or the animation of one run."""
+    if args.input is None:
+        return _error(f"'{args.figure}' needs a davit run file")
+    from . import animate, scene
+    try:
+        if args.figure == "scene":
+            pvd, state, frames = scene.write(args.input, args.outdir, args.every or 5)
+            print(f"postproc: wrote {pvd} ({frames} frames) and {state}")
+        elif args.frame is not None:
+            print(f"postproc: wrote {animate.still(args.input, args.outdir, args.frame)}")
+        else:
+            path, frames = animate.movie(args.input, args.outdir, args.fps, args.every)
+            print(f"postproc: wrote {path} ({frames} frames)")
+    except (OSError, ValueError) as exc:
+        return _error(exc)
+    return 0
+
+
 def main(argv=None):
     args = _parser().parse_args(argv)
+    if args.figure in MOVIE_COMMANDS:
+        return _movie(args)
     if args.figure in figures.RUN_FIGURES or args.figure == "run":
         return _single_run(args)
     if args.figure == "sweep":

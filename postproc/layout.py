@@ -47,6 +47,7 @@ PEAK_SEGMENT_TENSION = "peaks/segment_tension"
 PEAK_SEGMENT_TENSION_TIME = "peaks/segment_tension_time"
 PEAK_CG_ACCELERATION = "peaks/cg_acceleration"
 PEAK_SEAT_ACCELERATION = "peaks/seat_acceleration"
+PEAK_TILT = "peaks/tilt"                          # [largest tilt of b3 from vertical (rad), t]
 SEAT_ACCELERATION = "seat/acceleration"
 SEAT_GROUP = "seat"
 LIMITS_GROUP = "limits"
@@ -58,6 +59,9 @@ RIGGING_SEGMENT_TENSION = "rigging/segment_tension"
 RIGGING_PAID_OUT = "rigging/paid_out"
 RIGGING_PULLEY_ANGLE = "rigging/pulley_angle"
 SLING_LUMPS = "slings/lump_position"
+# the movable blocks (nt, 2, 3): fore, aft, inertial N (the state's copy for quasi-static
+# blocks); files written before it was recorded have none (postproc.scene then draws none)
+RIGGING_BLOCKS = "rigging/block_position"
 SEA_ELEVATION = "sea/elevation"
 SEA_PROBES = "sea/probe_position"
 SEA_OMEGA = "sea/components/omega"

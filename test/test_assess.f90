@@ -248,6 +248,12 @@ contains
                     "released afloat: load < 1 % of the weight")
     call check(state, c(check_seat_dri)%value, 0.0_wp, "calm lowering: DRI ~ 0", &
                abs_tol=0.5_wp)
+    ! the calm lowering stays upright; a boat tilted past 90 deg is reported overturned
+    call check(state, log%tilt, 0.0_wp, "upright (rad)", abs_tol=1e-3_wp)
+    call check_true(state, index(log%outcome(sys), "released at t = ") == 1, "released")
+    log%tilt = 1.7_wp
+    call check_true(state, index(log%outcome(sys), "overturned on its falls (tilted 97 "// &
+                    "deg") == 1, "overturned: "//log%outcome(sys))
   end subroutine release_load
 
   !> SOLAS III/16 / LSA 6.1.1.1's launch envelope on the BEM ship: listed 20 deg to

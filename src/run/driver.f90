@@ -25,6 +25,7 @@ module davit_run_driver
   use davit_run_launch_log, only: launch_log, new_launch_log
   use davit_ship_ship_model, only: ship_system_type
   use davit_run_budget, only: check_run_budget
+  use davit_run_progress, only: progress_meter
   implicit none
   private
   public :: run_simulation, integrate
@@ -34,12 +35,14 @@ module davit_run_driver
 
 contains
 
-  !> Run the deck's scene and write `out_path`.
-  subroutine run_simulation(cfg, out_path, summary, error)
+  !> Run the deck's scene and write `out_path`; `progress` (davit run at a terminal) sees
+  !> the time loop of the integrated scenes.
+  subroutine run_simulation(cfg, out_path, summary, error, progress)
     type(config_type), intent(in) :: cfg
     character(len=*), intent(in) :: out_path
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
+    type(progress_meter), intent(inout), optional :: progress
     type(system_type) :: boat
     type(ship_system_type) :: ship
     type(boat_recorder) :: brec
@@ -55,20 +58,22 @@ contains
     case ("ship")
       call build_ship_scene(cfg, ship, y, error)
       if (allocated(error)) return
-      call integrate_scene(cfg, ship, y, srec, out_path, summary, error)
+      call integrate_scene(cfg, ship, y, srec, out_path, summary, error, &
+                           progress=progress)
     case default
       call new_system(boat, cfg, error)
       if (allocated(error)) return
       call initial_state(boat, cfg, y, error)
       if (allocated(error)) return
       log = new_launch_log(cfg, boat)
-      call integrate_scene(cfg, boat, y, brec, out_path, summary, error, log)
+      call integrate_scene(cfg, boat, y, brec, out_path, summary, error, log, progress)
       if (.not. allocated(error)) summary%report = log%report(boat)
     end select
   end subroutine run_simulation
 
   !> Integrate a scene into its recorder and write `out_path`.
-  subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error, monitor)
+  subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error, monitor, &
+                             progress)
     type(config_type), intent(in) :: cfg
     class(ode_problem), intent(inout) :: problem
     real(wp), intent(inout) :: y(:)
@@ -77,6 +82,7 @@ contains
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
     class(step_monitor), intent(inout), optional :: monitor
+    type(progress_meter), intent(inout), optional :: progress
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: run_error, io_error
     character(len=:), allocatable :: kept
@@ -84,7 +90,8 @@ contains
 
     call writer%create(out_path, error)
     if (allocated(error)) return
-    call integrate(cfg%simulation, problem, y, rec, summary, run_error, error, monitor)
+    call integrate(cfg%simulation, problem, y, rec, summary, run_error, error, monitor, &
+                   progress)
     if (allocated(error)) then
       call writer%discard()
       return
@@ -146,8 +153,9 @@ contains
   !> The time loop shared by all integrated scenes: from t = 0 to t_end, or until the
   !> monitor ends the run, sampling `rec` (in memory) at exact multiples of the output
   !> interval. A divergence or a failed step ends the loop with its message in run_error and
-  !> the record so far kept; `error` reports a set-up failure only.
-  subroutine integrate(sim, problem, y, rec, summary, run_error, error, monitor)
+  !> the record so far kept; `error` reports a set-up failure only. `progress`, if given,
+  !> is told the time after every step (it redraws on its own clock).
+  subroutine integrate(sim, problem, y, rec, summary, run_error, error, monitor, progress)
     type(simulation_config), intent(in) :: sim
     class(ode_problem), intent(inout) :: problem
     real(wp), intent(inout) :: y(:)
@@ -155,6 +163,7 @@ contains
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: run_error, error
     class(step_monitor), intent(inout), optional :: monitor
+    type(progress_meter), intent(inout), optional :: progress
     class(integrator_type), allocatable :: integ
     type(event_stepper_type) :: stepper
     real(wp) :: t, t_next, t_new, h
@@ -180,6 +189,7 @@ contains
     done = .false.
     if (present(monitor)) call monitor%watch(problem, t, y, done)
     call system_clock(clock0, rate)
+    if (present(progress)) call progress%start(sim%t_end)
     do while (t < sim%t_end .and. .not. done)
       t_next = min(real(k, wp)*sim%output_interval, sim%t_end)
       h = problem%max_step(t, y, sim%dt)
@@ -201,6 +211,7 @@ contains
       end if
       call problem%after_step(t, y)
       if (present(monitor)) call monitor%watch(problem, t, y, done)
+      if (present(progress)) call progress%update(t)
       if (t == t_next .and. k <= nsamples) then
         call rec%sample(problem, t, y)
         k = k + 1
@@ -210,6 +221,7 @@ contains
       end if
     end do
     call system_clock(clock1)
+    if (present(progress)) call progress%finish(t)
     summary%steps = integ%steps
     summary%rhs_evaluations = integ%rhs_evaluations
     summary%wall_time = real(clock1 - clock0, wp)/real(rate, wp)

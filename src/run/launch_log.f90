@@ -8,7 +8,7 @@
 !> averages): still lowering, pinned against the ship's side, or riding the waves in slack
 !> and snatching falls.
 module davit_run_launch_log
-  use davit_kinds, only: wp, gravity
+  use davit_kinds, only: wp, gravity, pi
   use davit_core_rotation, only: rotation_matrix
   use davit_core_body, only: body_point_velocity
   use davit_io_config, only: config_type
@@ -54,6 +54,8 @@ module davit_run_launch_log
     !> Outcome: shares of time in contact and with slack falls (averages over ~judge_time),
     !> snatches (slack to taut), lowest CG height above the still water [m], last time [s].
     real(wp) :: contact_share = 0.0_wp, slack_share = 0.0_wp, lowest = huge(1.0_wp)
+    !> Largest tilt of the boat (its b3 axis from the vertical) [rad] and when [s].
+    real(wp) :: tilt = 0.0_wp, tilt_time = -1.0_wp
     real(wp) :: t_last = 0.0_wp
     integer :: snatches = 0
     logical :: slack = .false.
@@ -122,6 +124,10 @@ contains
       c = rotation_matrix(q(1:3))
       v = matmul(c, u(4:6))
       self%lowest = min(self%lowest, -dot_product(c(3, :), q(4:6)))
+      if (acos(max(-1.0_wp, min(1.0_wp, c(3, 3)))) > self%tilt) then
+        self%tilt = acos(max(-1.0_wp, min(1.0_wp, c(3, 3))))
+        self%tilt_time = t
+      end if
       call self%seat%add(t, matmul(c, body_point_velocity(u, self%seat_point)), c)
     end associate
     a_cg = 0.0_wp
@@ -206,6 +212,9 @@ contains
                       dims="value_time")
       call w%write_1d("peaks/seat_acceleration", peak, "m/s^2, s", "Largest filtered "// &
                       "seat acceleration (/seat) and when", dims="value_time")
+      call w%write_1d("peaks/tilt", [self%tilt, self%tilt_time], "rad, s", "Largest tilt "// &
+                      "of the boat (its b3 axis from the vertical) and when; beyond pi/2 "// &
+                      "the boat overturned on its falls (outcome)", dims="value_time")
       call w%attr_str("/", "outcome", self%outcome(sys))
       block
         type(rule_check) :: c(n_checks)
@@ -315,14 +324,20 @@ contains
     character(len=:), allocatable :: text
     text = ""
     if (.not. sys%par%on_davit) return
+    if (self%tilt > 0.5_wp*pi) then
+      ! flung over on its falls: past the model's validity (falls wrapping the hull, no
+      ! capsize hydrostatics), a failed launch whatever else it reports
+      text = "overturned on its falls (tilted "//int_to_str(nint(self%tilt*180.0_wp/pi))// &
+             " deg at t = "//fmt_real(self%tilt_time)//" s); "
+    end if
     if (sys%hist%release_time >= 0.0_wp) then
-      text = "released at t = "//fmt_real(sys%hist%release_time)//" s (waterborne at "// &
+      text = text//"released at t = "//fmt_real(sys%hist%release_time)//" s (waterborne at "// &
              fmt_real(sys%hist%waterborne_time)//" s)"
     else if (sys%hist%waterborne_time >= 0.0_wp) then
-      text = "waterborne at t = "//fmt_real(sys%hist%waterborne_time)//" s; hooks not "// &
+      text = text//"waterborne at t = "//fmt_real(sys%hist%waterborne_time)//" s; hooks not "// &
              "released (&rigging release = .false. or its delay not over)"
     else
-      text = "not waterborne by t = "//fmt_real(self%t_last)//" s: "//stuck_cause(self)
+      text = text//"not waterborne by t = "//fmt_real(self%t_last)//" s: "//stuck_cause(self)
     end if
   end function log_outcome
 

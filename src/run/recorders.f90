@@ -68,9 +68,10 @@ module davit_run_recorders
     real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
     real(wp), allocatable :: angular_velocity(:, :), acceleration(:, :), tension(:, :)
     real(wp), allocatable :: energy(:), clearance(:), contact_force(:, :)
-    !> Full rigging only: cable segment tensions, paid-out length, sheave angles, lumps.
+    !> Full rigging only: cable segment tensions, paid-out length, sheave angles, lumps,
+    !> movable blocks.
     real(wp), allocatable :: segment_tension(:, :), paid_out(:), pulley_angle(:, :)
-    real(wp), allocatable :: lumps(:, :, :)
+    real(wp), allocatable :: lumps(:, :, :), blocks(:, :, :)
     !> Moving ship only: its CG position, Euler angles and heading error (yaw minus the
     !> heading it keeps).
     real(wp), allocatable :: ship_position(:, :), ship_euler(:, :), heading_error(:)
@@ -119,7 +120,8 @@ contains
                   self%clearance(nmax), self%contact_force(par%fenders%nf, nmax))
         if (par%on_davit) allocate (self%segment_tension(rig%nseg, nmax), &
                                     self%paid_out(nmax), self%pulley_angle(rig%nsheave, nmax), &
-                                    self%lumps(3, 2*rig%nlump, nmax))
+                                    self%lumps(3, 2*rig%nlump, nmax), &
+                                    self%blocks(3, 2, nmax))
         if (par%with_ship) allocate (self%ship_position(3, nmax), self%ship_euler(3, nmax), &
                                      self%heading_error(nmax))
       end associate
@@ -164,6 +166,7 @@ contains
     self%tension(:, k) = sling(1, :)
     self%pulley_angle(:, k) = sys%par%rig%sheave_angles(y(sys%par%rig_slice(1):sys%par%rig_slice(2)))
     self%lumps(:, :, k) = reshape(lumps, [3, 2*sys%par%rig%nlump])
+    self%blocks(:, :, k) = sys%par%rig%block_positions(y(sys%par%rig_slice(1):sys%par%rig_slice(2)))
   end subroutine sample_rigging
 
   subroutine boat_write(self, problem, w)
@@ -248,6 +251,10 @@ contains
       call w%write_2d("rigging/pulley_angle", self%pulley_angle(:, 1:n), "rad", &
                       "Rotation of each rotating sheave since t = 0", dims="sheave time")
     end if
+    call w%write_3d("rigging/block_position", self%blocks(:, :, 1:n), "m", &
+                    "Movable block positions (fore, aft), inertial; quasi-static blocks: "// &
+                    "the state's copy that follows the solved balance (0.1 s lag)", &
+                    dims="component block time")
     if (nlump > 0) then
       call w%write_3d("slings/lump_position", self%lumps(:, :, 1:n), "m", &
                       "Sling lump positions, inertial (fore sling lumps from the hook up, "// &
