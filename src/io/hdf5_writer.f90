@@ -20,9 +20,10 @@
 !> not a netCDF variable."), so datasets of a group that share a name share one dimension.
 !> A dimension has one length: a second dataset disagreeing with it fails the write.
 module davit_io_hdf5_writer
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc, c_ptr
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc, c_ptr, c_size_t, &
+                                         c_sizeof, c_int64_t
   use hdf5
-  use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
+  use h5ds, only: h5dsset_scale_f
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_reader, only: h5_start
@@ -36,6 +37,24 @@ module davit_io_hdf5_writer
     character(len=:), allocatable :: group, name
     integer(hsize_t) :: length = 0
   end type dim_scale_type
+
+  !> One axis of a dataset on a scale: an entry of the scale's REFERENCE_LIST.
+  type :: attachment_type
+    character(len=:), allocatable :: dataset
+    !> Index in the writer's scales; the axis in HDF5's (C) order, from 0.
+    integer :: scale = 0, axis = 0
+  end type attachment_type
+
+  !> HDF5's hvl_t (one DIMENSION_LIST element) and H5DS's ds_list_t (one REFERENCE_LIST
+  !> element), as the HDF5 C library lays them out.
+  type, bind(c) :: vlen_type
+    integer(c_size_t) :: len = 0
+    type(c_ptr) :: p
+  end type vlen_type
+  type, bind(c) :: reference_type
+    integer(c_int64_t) :: dataset = 0  ! hobj_ref_t: the object's address
+    integer(c_int) :: dimension = 0
+  end type reference_type
 
   !> netCDF-4's NAME of a dimension-only scale, which its readers hide as a variable.
   character(len=*), parameter :: not_a_variable = &
@@ -54,6 +73,8 @@ module davit_io_hdf5_writer
     character(len=:), allocatable :: failed_what
     !> The dimension scales of this file, in the order written.
     type(dim_scale_type), allocatable :: scales(:)
+    !> Every axis attached so far; the scales' REFERENCE_LISTs are written at close.
+    type(attachment_type), allocatable :: attached(:)
   contains
     procedure :: create => writer_create
     procedure :: group => writer_group
@@ -104,7 +125,8 @@ contains
     self%final_path = path
     self%failed = .false.
     if (allocated(self%scales)) deallocate (self%scales)
-    allocate (self%scales(0))
+    if (allocated(self%attached)) deallocate (self%attached)
+    allocate (self%scales(0), self%attached(0))
     call check_output_path(path, error)
     if (allocated(error)) return
     call acquire_lock(path, self%owns_lock, error)
@@ -454,6 +476,7 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr
     if (.not. self%is_open) return
+    if (.not. self%failed) call write_reference_lists(self)
     call h5fclose_f(self%file, hdferr)
     self%is_open = .false.
     if (self%failed .or. hdferr /= 0) then
@@ -525,15 +548,17 @@ contains
   end subroutine put_str
 
   !> Attach each axis of dataset `name` (open as `dset`, Fortran extents `extent`) to the
-  !> scale of its dimension in `dims`; see the module comment.
+  !> scale of its dimension in `dims`; see the module comment. The HDF5 dimension-scale
+  !> attributes are written as H5DS writes them, but each once: DIMENSION_LIST here and the
+  !> scales' REFERENCE_LIST at close (H5DSattach_scale rewrites both at every call, which
+  !> doubled the time to write a sweep summary).
   subroutine attach_dims(self, name, dset, dims, extent)
     type(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, dims
     integer(hid_t), intent(in) :: dset
     integer(hsize_t), intent(in) :: extent(:)
     character(len=:), allocatable :: group
-    integer :: k, rank, hdferr
-    integer(hid_t) :: scale
+    integer :: k, rank, hdferr, on(size(extent))
     group = parent_of(name)
     rank = size(extent)
     if (word_count(dims) /= rank) then
@@ -547,40 +572,118 @@ contains
       return
     end if
     do k = 1, rank
-      call open_scale(self, group, word(dims, k), extent(k), name, scale)
-      if (scale < 0) return
-      ! HDF5 1.10's Fortran H5DS numbers the axes in C order (1-based), reversed from
-      ! the Fortran array's (a Fortran (component, time) array is (time, component) there)
-      call h5dsattach_scale_f(dset, scale, rank - k + 1, hdferr)
-      call check(self, hdferr, "dimension "//word(dims, k)//" of "//name)
-      call h5dclose_f(scale, hdferr)
+      on(k) = scale_index(self, group, word(dims, k), extent(k), name)
+      if (on(k) == 0) return
+      ! HDF5 numbers the axes in C order from 0, reversed from the Fortran array's (a
+      ! Fortran (component, time) array is (time, component) there)
+      self%attached = [self%attached, attachment_type(name, on(k), rank - k)]
     end do
+    call write_dimension_list(self, name, dset, on(rank:1:-1))
   end subroutine attach_dims
 
-  !> Open the scale of dimension `dim` seen from `group` (its own, else the nearest
-  !> parent's), creating a dimension-only one in `group` if there is none; -1 on failure
+  !> DIMENSION_LIST of `dset`: for each axis (C order) a reference to its scale.
+  subroutine write_dimension_list(self, name, dset, on)
+    type(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(in) :: dset
+    integer, intent(in) :: on(:)
+    integer(c_int64_t), target :: refs(size(on))
+    type(vlen_type), target :: list(size(on))
+    integer(hid_t) :: vtype, space, attr
+    integer :: c, hdferr, status
+    status = 0
+    do c = 1, size(on)
+      refs(c) = object_ref(self, scale_path(self, on(c)), hdferr)
+      status = max(status, abs(hdferr))
+      list(c) = vlen_type(1, c_loc(refs(c)))
+    end do
+    call h5tvlen_create_f(H5T_STD_REF_OBJ, vtype, hdferr)
+    call h5screate_simple_f(1, [size(on, kind=hsize_t)], space, hdferr)
+    call h5acreate_f(dset, "DIMENSION_LIST", vtype, space, attr, hdferr)
+    status = max(status, abs(hdferr))
+    if (hdferr == 0) then
+      call h5awrite_f(attr, vtype, c_loc(list), hdferr)
+      status = max(status, abs(hdferr))
+      call h5aclose_f(attr, hdferr)
+    end if
+    call h5sclose_f(space, hdferr)
+    call h5tclose_f(vtype, hdferr)
+    call check(self, status, "dimensions of "//name)
+  end subroutine write_dimension_list
+
+  !> REFERENCE_LIST of every scale: (dataset, axis) of each axis attached to it.
+  subroutine write_reference_lists(self)
+    type(h5_writer_type), intent(inout) :: self
+    type(reference_type), allocatable, target :: list(:)
+    integer(hid_t) :: ctype, space, attr, scale
+    integer :: k, j, n, hdferr, status
+    do k = 1, size(self%scales)
+      list = [(reference_type(0, self%attached(j)%axis), j = 1, size(self%attached))]
+      list = pack(list, self%attached(:)%scale == k)
+      if (size(list) == 0) cycle
+      status = 0
+      n = 0
+      do j = 1, size(self%attached)
+        if (self%attached(j)%scale /= k) cycle
+        n = n + 1
+        list(n)%dataset = object_ref(self, self%attached(j)%dataset, hdferr)
+        status = max(status, abs(hdferr))
+      end do
+      call h5tcreate_f(H5T_COMPOUND_F, c_sizeof(list(1)), ctype, hdferr)
+      call h5tinsert_f(ctype, "dataset", 0_size_t, H5T_STD_REF_OBJ, hdferr)
+      call h5tinsert_f(ctype, "dimension", c_sizeof(list(1)%dataset), H5T_NATIVE_INTEGER, &
+                       hdferr)
+      call h5screate_simple_f(1, [size(list, kind=hsize_t)], space, hdferr)
+      call h5dopen_f(self%file, scale_path(self, k), scale, hdferr)
+      status = max(status, abs(hdferr))
+      if (hdferr == 0) then
+        call h5acreate_f(scale, "REFERENCE_LIST", ctype, space, attr, hdferr)
+        status = max(status, abs(hdferr))
+        if (hdferr == 0) call h5awrite_f(attr, ctype, c_loc(list), hdferr)
+        status = max(status, abs(hdferr))
+        call h5aclose_f(attr, hdferr)
+        call h5dclose_f(scale, hdferr)
+      end if
+      call h5sclose_f(space, hdferr)
+      call h5tclose_f(ctype, hdferr)
+      call check(self, status, "dimension "//scale_path(self, k))
+    end do
+  end subroutine write_reference_lists
+
+  !> An HDF5 object reference (hobj_ref_t) to `path`.
+  integer(c_int64_t) function object_ref(self, path, hdferr) result(ref)
+    type(h5_writer_type), intent(in) :: self
+    character(len=*), intent(in) :: path
+    integer, intent(out) :: hdferr
+    type(hobj_ref_t_f) :: r
+    call h5rcreate_f(self%file, path, r, hdferr)
+    ref = int(r%ref, c_int64_t)
+  end function object_ref
+
+  pure function scale_path(self, k) result(path)
+    type(h5_writer_type), intent(in) :: self
+    integer, intent(in) :: k
+    character(len=:), allocatable :: path
+    path = group_path(self%scales(k)%group, self%scales(k)%name)
+  end function scale_path
+
+  !> Index in self%scales of dimension `dim` seen from `group` (its own, else the nearest
+  !> parent's), creating a dimension-only one in `group` if there is none; 0 on failure
   !> (a length that disagrees with the dimension's fails the write).
-  subroutine open_scale(self, group, dim, length, user, scale)
+  integer function scale_index(self, group, dim, length, user) result(k)
     type(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: group, dim, user
     integer(hsize_t), intent(in) :: length
-    integer(hid_t), intent(out) :: scale
-    integer :: k, hdferr
-    scale = -1
     k = find_scale(self, group, dim)
     if (k == 0) then
-      call create_dimension(self, group, dim, length, scale)
-      return
-    end if
-    if (self%scales(k)%length /= length) then
+      call create_dimension(self, group, dim, length)
+      if (.not. self%failed) k = size(self%scales)
+    else if (self%scales(k)%length /= length) then
       call check(self, 1, user//" (length "//int_to_str(int(length))//" along dimension "// &
                  dim//" of length "//int_to_str(int(self%scales(k)%length))//")")
-      return
+      k = 0
     end if
-    call h5dopen_f(self%file, group_path(self%scales(k)%group, dim), scale, hdferr)
-    call check(self, hdferr, "dimension "//dim)
-    if (hdferr /= 0) scale = -1
-  end subroutine open_scale
+  end function scale_index
 
   !> Index in self%scales of dimension `dim` as seen from `group`; 0 if none.
   integer function find_scale(self, group, dim) result(found)
@@ -601,27 +704,23 @@ contains
 
   !> A netCDF-4 dimension-only scale `group/dim`: float, never written (no storage), with
   !> units and description like every dataset here.
-  subroutine create_dimension(self, group, dim, length, scale)
+  subroutine create_dimension(self, group, dim, length)
     type(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: group, dim
     integer(hsize_t), intent(in) :: length
-    integer(hid_t), intent(out) :: scale
-    integer(hid_t) :: space
+    integer(hid_t) :: space, scale
     integer :: hdferr
     character(len=10) :: digits
-    scale = -1
     call h5screate_simple_f(1, [length], space, hdferr)
     call h5dcreate_f(self%file, group_path(group, dim), H5T_NATIVE_REAL, space, scale, hdferr)
     call h5sclose_f(space, hdferr)
     call check(self, hdferr, "dimension "//group_path(group, dim))
-    if (hdferr /= 0) then
-      scale = -1
-      return
-    end if
+    if (hdferr /= 0) return
     write (digits, "(i10)") length
     call h5dsset_scale_f(scale, hdferr, not_a_variable//digits)
     call check(self, hdferr, "dimension "//group_path(group, dim))
     call describe(self, scale, "-", "Dimension "//dim//" (its length only; no data)")
+    call h5dclose_f(scale, hdferr)
     call remember(self, group, dim, length)
   end subroutine create_dimension
 
