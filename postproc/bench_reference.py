@@ -59,8 +59,10 @@ def main(argv=None):
                            if layout.FIRST_CONTACT_TIME in r else -1.0)
                 values = (r[layout.TIME][:], r[layout.BOAT_POSITION][:], np.array([contact]),
                           r[layout.PEAK_SLING_TENSION][:], r[layout.PEAK_SEGMENT_TENSION][:])
-                for dataset, value in zip(layout.BENCH_REFERENCE_DATASETS, values):
+                for dataset, value, dims in zip(layout.BENCH_REFERENCE_DATASETS, values,
+                                                layout.BENCH_REFERENCE_DIMS):
                     g[dataset] = value
+                    layout.name_dimensions(g[dataset], dims)
             print(f"postproc.bench_reference: {name}: {spec}, {wall:.1f} s", flush=True)
     os.replace(out + ".tmp", out)
     print(f"postproc.bench_reference: wrote {out}")

@@ -476,17 +476,25 @@ STUDY_LABEL = "label"
 STUDY_OK = "ok"
 
 
+# The study's one dimension (a dimension-only scale at the root, so that /study holds only
+# the columns load_study returns).
+STUDY_RUN = "run"
+
+
 def write_study(path, attrs, labels, ok, columns):
     """Write a study file: /study with `attrs` as its attributes, the run labels, the ok
-    flags and one float dataset per entry of `columns` ({name: values}, in that order)."""
+    flags and one float dataset per entry of `columns` ({name: values}, in that order),
+    each along the named dimension `run` (xarray.open_dataset(path, group="study"))."""
     with h5py.File(path, "w") as f:
         g = f.create_group(STUDY_GROUP)
         for key, value in attrs.items():
             g.attrs[key] = value
-        g.create_dataset(STUDY_LABEL, data=np.array(labels, dtype="S"))
-        g.create_dataset(STUDY_OK, data=np.array(ok))
+        written = [g.create_dataset(STUDY_LABEL, data=np.array(labels, dtype="S")),
+                   g.create_dataset(STUDY_OK, data=np.array(ok))]
         for key, values in columns.items():
-            g.create_dataset(key, data=np.array(values, dtype=float))
+            written.append(g.create_dataset(key, data=np.array(values, dtype=float)))
+        for dataset in written:
+            name_dimensions(dataset, (STUDY_RUN,), where=f)
 
 
 def load_study(path, kind=None):
@@ -522,12 +530,47 @@ def load_sweep_columns(path, fields):
         return {field: np.ravel(f[name][()]) for field, name in fields.items()}
 
 
+# --- Named dimensions (xarray, netCDF-4), as src/io/hdf5_writer.f90 writes them ---------
+# Each axis of a dataset is attached to an HDF5 dimension scale: a 1-D dataset named like
+# its dimension (/time) is that dimension's coordinate; any other dimension is a netCDF-4
+# dimension-only scale (a float dataset of the dimension's length, never written, whose
+# NAME starts with the sentence below: netCDF-4, h5netcdf and xarray hide it as a variable).
+DIMENSION_ONLY = "This is a netCDF dimension but not a netCDF variable."
+UNITS = "units"
+DESCRIPTION = "description"
+LONG_NAME = "long_name"
+
+
+def dimension_scale(where, name, length):
+    """The dimension-only scale `name` of h5py group `where`, created on first use."""
+    if name in where:
+        return where[name]
+    scale = where.create_dataset(name, shape=(length,), dtype="f4")
+    scale.make_scale(f"{DIMENSION_ONLY}{length:10d}")
+    return scale
+
+
+def name_dimensions(dataset, dims, where=None):
+    """Attach axis k of h5py `dataset` (in the order h5py shows it) to dimension dims[k]:
+    the dataset itself if it is 1-D and named like it (a coordinate), else the scale of
+    that name in group `where` (default: the dataset's group), created if missing."""
+    where = dataset.parent if where is None else where
+    for axis, name in enumerate(dims):
+        if dataset.ndim == 1 and dataset.name.rsplit("/", 1)[-1] == name:
+            dataset.make_scale(name)
+        else:
+            dataset.dims[axis].attach_scale(dimension_scale(where, name, dataset.shape[axis]))
+
+
 # The converged references of davit bench's scenes (postproc.bench_reference, read by
 # src/bench/accuracy.f90): one group per scene with these datasets and attributes.
 BENCH_REFERENCE_DATASETS = ("time", "position", "first_contact_time", "peak_sling_tension",
                             "peak_segment_tension")
 BENCH_REFERENCE_ATTRS = {"description": "description", "deck": "deck",
                          "settings": "settings", "wall_time": "wall_time"}
+# their dimensions (as h5py shows them; BENCH_REFERENCE_DATASETS' order)
+BENCH_REFERENCE_DIMS = (("time",), ("time", "component"), ("scalar",), ("sling",),
+                        ("segment",))
 
 
 # --- Rule checks and the operability table (issue 16; postproc.operability) ---------------

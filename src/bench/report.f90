@@ -146,15 +146,15 @@ contains
     call write_runs(w, rec%runs)
     call w%group("bench/sweep")
     call w%write_1d("bench/sweep/speed_up", [rec%speed_up], "-", &
-                    "Wall time of the sweep on 1 thread / on 2 threads")
+                    "Wall time of the sweep on 1 thread / on 2 threads", dims="scalar")
     call w%group("bench/paper_literal")
     call w%write_1d("bench/paper_literal/rate_max", [rec%rate_max], "1/s", &
-                    "Largest |eigenvalue| of df/dy at t = 0 (davit modes)")
+                    "Largest |eigenvalue| of df/dy at t = 0 (davit modes)", dims="scalar")
     call w%write_1d("bench/paper_literal/rk4_limit", [rec%rk4_limit], "s", &
-                    "RK4 stability limit 2.83/rate_max")
+                    "RK4 stability limit 2.83/rate_max", dims="scalar")
     call w%write_1d("bench/paper_literal/safety_factor", [rec%safety], "-", &
                     "Step = safety_factor x rk4_limit, rounded down to a whole fraction "// &
-                    "of the output interval")
+                    "of the output interval", dims="scalar")
     call write_sea(w, rec%sea)
     call write_attributes(w, rec)
   end subroutine write_report
@@ -174,38 +174,44 @@ contains
       decks(i) = runs(i)%deck
     end do
     call w%write_strings("bench/runs/name", names, "-", "Benchmark: a scene (regular, "// &
-                         "irregular, paper_literal) or the sweep")
-    call w%write_strings("bench/runs/deck", decks, "-", "Deck run (a sweep deck for sweep)")
+                         "irregular, paper_literal) or the sweep", dims="run")
+    call w%write_strings("bench/runs/deck", decks, "-", "Deck run (a sweep deck for sweep)", &
+                         dims="run")
     call w%write_1d_int("bench/runs/cases", int(runs%cases, i8), "-", &
-                        "Runs timed together: 1 for a scene, the sweep's cases")
-    call w%write_1d_int("bench/runs/threads", int(runs%threads, i8), "-", "OpenMP threads")
-    call w%write_1d("bench/runs/dt", runs%dt, "s", "Time step (near contact dt_contact)")
+                        "Runs timed together: 1 for a scene, the sweep's cases", dims="run")
+    call w%write_1d_int("bench/runs/threads", int(runs%threads, i8), "-", "OpenMP threads", &
+                        dims="run")
+    call w%write_1d("bench/runs/dt", runs%dt, "s", "Time step (near contact dt_contact)", &
+                    dims="run")
     call w%write_1d("bench/runs/simulated_time", runs%simulated, "s", &
-                    "Simulated time (summed over a sweep's cases)")
+                    "Simulated time (summed over a sweep's cases)", dims="run")
     call w%write_1d("bench/runs/wall_time", runs%wall, "s", "Wall time: a scene's time "// &
-                    "loop, or a sweep's whole parallel loop")
-    call w%write_1d_int("bench/runs/steps", runs%steps, "-", "Integrator steps (summed)")
+                    "loop, or a sweep's whole parallel loop", dims="run")
+    call w%write_1d_int("bench/runs/steps", runs%steps, "-", "Integrator steps (summed)", &
+                        dims="run")
     call w%write_1d_int("bench/runs/rhs_evaluations", runs%rhs_evaluations, "-", &
-                        "Right-hand-side evaluations (summed)")
+                        "Right-hand-side evaluations (summed)", dims="run")
     call w%write_1d("bench/runs/rhs_per_second", [(rhs_rate(runs(i)), i = 1, size(runs))], &
-                    "1/s", "rhs_evaluations / wall_time")
+                    "1/s", "rhs_evaluations / wall_time", dims="run")
     call w%write_1d("bench/runs/steps_per_second", [(step_rate(runs(i)), i = 1, size(runs))], &
-                    "1/s", "steps / wall_time")
+                    "1/s", "steps / wall_time", dims="run")
     call w%write_1d("bench/runs/real_time_factor", &
                     [(real_time_factor(runs(i)), i = 1, size(runs))], "-", &
-                    "simulated_time / wall_time")
+                    "simulated_time / wall_time", dims="run")
     call w%write_1d_int("bench/runs/accuracy_known", &
                         [(merge(1_i8, 0_i8, runs(i)%accuracy%known), i = 1, size(runs))], &
                         "-", "1 where the run was compared with a converged reference "// &
-                        "(the error columns are 0 otherwise)")
+                        "(the error columns are 0 otherwise)", dims="run")
     call w%write_1d("bench/runs/cg_error_before_contact", runs%accuracy%cg_before, "m", &
-                    "Largest boat CG distance from the reference before its first contact")
+                    "Largest boat CG distance from the reference before its first contact", &
+                    dims="run")
     call w%write_1d("bench/runs/cg_error_after_contact", runs%accuracy%cg_after, "m", &
-                    "Largest boat CG distance from the reference after its first contact")
+                    "Largest boat CG distance from the reference after its first contact", &
+                    dims="run")
     call w%write_1d("bench/runs/peak_sling_tension_error", runs%accuracy%sling, "-", &
-                    "Largest relative error of a sling's resolved peak tension")
+                    "Largest relative error of a sling's resolved peak tension", dims="run")
     call w%write_1d("bench/runs/peak_segment_tension_error", runs%accuracy%segment, "-", &
-                    "Largest relative error of a cable segment's resolved peak tension")
+                    "Largest relative error of a cable segment's resolved peak tension", dims="run")
   end subroutine write_runs
 
   subroutine write_sea(w, sea)
@@ -218,9 +224,9 @@ contains
       units(i) = sea(i)%unit
     end do
     call w%group("bench/sea")
-    call w%write_strings("bench/sea/name", names, "-", "Sea-module timing")
-    call w%write_1d("bench/sea/value", sea%value, "see bench/sea/unit", "Cost")
-    call w%write_strings("bench/sea/unit", units, "-", "Unit of each value")
+    call w%write_strings("bench/sea/name", names, "-", "Sea-module timing", dims="sea_timing")
+    call w%write_1d("bench/sea/value", sea%value, "see bench/sea/unit", "Cost", dims="sea_timing")
+    call w%write_strings("bench/sea/unit", units, "-", "Unit of each value", dims="sea_timing")
   end subroutine write_sea
 
   subroutine write_attributes(w, rec)

@@ -209,16 +209,29 @@ contains
     if (allocated(error)) return
     call h5dget_type_f(dset, ftype, hdferr)
     call h5tget_size_f(ftype, width, hdferr)
-    call h5tclose_f(ftype, hdferr)
     allocate (character(len=int(width)) :: x(n))
-    call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
-    call h5tset_size_f(mtype, width, hdferr)
+    call text_type(ftype, width, mtype)
+    call h5tclose_f(ftype, hdferr)
     buf = c_loc(x)
     if (n > 0) call h5dread_f(dset, mtype, buf, status)
     call h5tclose_f(mtype, hdferr)
     call h5dclose_f(dset, hdferr)
     if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
   end subroutine reader_read_strings
+
+  !> The memory type of `width` characters for reading text stored as `ftype`: its
+  !> character set too, since HDF5 converts no text between ASCII and UTF-8 (davit writes
+  !> UTF-8 since its files name their dimensions; older files are ASCII).
+  subroutine text_type(ftype, width, mtype)
+    integer(hid_t), intent(in) :: ftype
+    integer(size_t), intent(in) :: width
+    integer(hid_t), intent(out) :: mtype
+    integer :: cset, hdferr
+    call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
+    call h5tset_size_f(mtype, width, hdferr)
+    call h5tget_cset_f(ftype, cset, hdferr)
+    if (hdferr == 0) call h5tset_cset_f(mtype, cset, hdferr)
+  end subroutine text_type
 
   !> Scalar string attribute `name` of the root group.
   subroutine reader_attr_str(self, name, value, error)
@@ -238,11 +251,10 @@ contains
     end if
     call h5aget_type_f(attr, ftype, hdferr)
     call h5tget_size_f(ftype, width, hdferr)
-    call h5tclose_f(ftype, hdferr)
     deallocate (value)
     allocate (character(len=int(width)) :: value)
-    call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
-    call h5tset_size_f(mtype, width, hdferr)
+    call text_type(ftype, width, mtype)
+    call h5tclose_f(ftype, hdferr)
     dims = 1
     call h5aread_f(attr, mtype, value, dims, hdferr)
     call h5tclose_f(mtype, hdferr)

@@ -208,12 +208,13 @@ contains
       call write_seat(w, self%seat, a, self%seat_point)
       call w%write_1d("peaks/cg_acceleration", [self%peak_cg, self%peak_cg_time], &
                       "m/s^2, s", "Largest step-mean CG acceleration |Delta v/Delta t| "// &
-                      "over every step, and when (the sampled /boat/acceleration misses it)")
+                      "over every step, and when (the sampled /boat/acceleration misses it)", &
+                      dims="value_time")
       call w%write_1d("peaks/seat_acceleration", peak, "m/s^2, s", "Largest filtered "// &
-                      "seat acceleration (/seat) and when")
+                      "seat acceleration (/seat) and when", dims="value_time")
       call w%write_1d("peaks/tilt", [self%tilt, self%tilt_time], "rad, s", "Largest tilt "// &
                       "of the boat (its b3 axis from the vertical) and when; beyond pi/2 "// &
-                      "the boat overturned on its falls (outcome)")
+                      "the boat overturned on its falls (outcome)", dims="value_time")
       call w%attr_str("/", "outcome", self%outcome(sys))
       block
         type(rule_check) :: c(n_checks)

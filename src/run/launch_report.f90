@@ -26,22 +26,26 @@ contains
     call w%group("events/impacts")
     associate (e => tr%events(1:n))
       call w%write_1d("events/impacts/time", e%time, "s", "Onset of each impact (first "// &
-                      "step with a contact force; resolved at every step, not sampled)")
+                      "step with a contact force; resolved at every step, not sampled)", &
+                      dims="impact")
       call w%write_1d_int("events/impacts/fender", int(e%fender, i8), "-", &
-                          "Fender index (order of &contact fender_x)")
+                          "Fender index (order of &contact fender_x)", dims="impact")
       call w%write_1d("events/impacts/speed", e%speed, "m/s", "Normal impact speed: "// &
-                      "approach rate of the fender on the ship's side at onset (eq. 33)")
+                      "approach rate of the fender on the ship's side at onset (eq. 33)", &
+                      dims="impact")
       call w%write_1d("events/impacts/peak_force", e%peak_force, "N", &
-                      "Largest normal force of the fender during the impact")
+                      "Largest normal force of the fender during the impact", dims="impact")
       call w%write_1d("events/impacts/duration", e%duration, "s", "Contact duration "// &
-                      "(to the first step without force; up to the end of the run if open)")
+                      "(to the first step without force; up to the end of the run if open)", &
+                      dims="impact")
       call w%write_1d("events/impacts/peak_acceleration", e%peak_acceleration, "m/s^2", &
-                      "Largest CG acceleration |Delta v/Delta t| over a step during it")
+                      "Largest CG acceleration |Delta v/Delta t| over a step during it", &
+                      dims="impact")
       call w%write_1d("events/impacts/peak_seat_acceleration_raw", e%peak_seat_raw, &
-                      "m/s^2", "Largest step-mean seat acceleration during it")
+                      "m/s^2", "Largest step-mean seat acceleration during it", dims="impact")
       call w%write_1d("events/impacts/peak_seat_acceleration", e%peak_seat, "m/s^2", &
                       "Largest filtered seat acceleration from its onset to 0.2 s after "// &
-                      "its end (/seat)")
+                      "its end (/seat)", dims="impact")
     end associate
   end subroutine write_impacts
 
@@ -50,11 +54,11 @@ contains
     type(load_peaks), intent(in) :: p
     call w%group("peaks")
     call w%write_1d("peaks/sling_tension", p%sling, "N", "Largest tension of each sling "// &
-                    "(fore, aft) over every step until release")
-    call w%write_1d("peaks/sling_tension_time", p%sling_time, "s", "When")
+                    "(fore, aft) over every step until release", dims="sling")
+    call w%write_1d("peaks/sling_tension_time", p%sling_time, "s", "When", dims="sling")
     call w%write_1d("peaks/segment_tension", p%segment, "N", "Largest tension of each "// &
-                    "cable segment (the falls) over every step until release")
-    call w%write_1d("peaks/segment_tension_time", p%segment_time, "s", "When")
+                    "cable segment (the falls) over every step until release", dims="segment")
+    call w%write_1d("peaks/segment_tension_time", p%segment_time, "s", "When", dims="segment")
     call w%group("limits")
     call w%attr_real("limits", "minimum_breaking_load", p%mbl%value)
     call w%attr_real("limits", "safe_working_load", p%swl%value)
@@ -75,7 +79,7 @@ contains
     type(limit_watch), intent(in) :: lw
     call w%write_1d(name, [lw%first, lw%duration, real(lw%count, wp)], "s, s, -", &
                     text//": first time exceeded (-1 = never), time beyond (0 for "// &
-                    "impacts), number of excursions")
+                    "impacts), number of excursions", dims="first_beyond_count")
   end subroutine write_limit
 
   subroutine write_seat(w, s, a, point)
@@ -85,12 +89,14 @@ contains
     call w%group("seat")
     call w%attr_real("seat", "interval", s%dt)
     call w%attr_real("seat", "filter_hz", s%cutoff)
-    call w%write_1d("seat/point", point, "m", "Seat position in the boat frame (&limits seat)")
+    call w%write_1d("seat/point", point, "m", "Seat position in the boat frame (&limits seat)", &
+                    dims="component")
     call w%write_2d("seat/acceleration", a, "m/s^2", "Seat acceleration (inertial, "// &
                     "gravity not subtracted) at t = (k - 1/2) interval, phaseless 4-pole "// &
-                    "Butterworth low-pass, -3 dB at filter_hz (MSC/Circ.616 5.4, SAE J211)")
+                    "Butterworth low-pass, -3 dB at filter_hz (MSC/Circ.616 5.4, SAE J211)", &
+                    dims="component seat_sample")
     call w%write_1d("seat/raw_peak", [s%raw_peak, s%raw_time], "m/s^2, s", "Largest "// &
-                    "step-mean seat acceleration |Delta v/Delta t| and when")
+                    "step-mean seat acceleration |Delta v/Delta t| and when", dims="value_time")
   end subroutine write_seat
 
   !> /assessment: one dataset per rule check, [value, limit, margin] (NaN: does not apply),
@@ -110,13 +116,13 @@ contains
       call w%write_1d(name, [c(k)%value, c(k)%limit, c(k)%margin], &
                       trim(check_units(k))//", "//trim(check_units(k))//", -", &
                       trim(check_texts(k))//": value, limit, relative margin (>= 0 "// &
-                      "passes; NaN: does not apply to this run)")
+                      "passes; NaN: does not apply to this run)", dims="value_limit_margin")
       call w%attr_str(name, "source", trim(check_sources(k)))
       call w%attr_str(name, "verdict", verdict(c(k)))
     end do
     call w%write_1d("assessment/dynamic_response", dr, "-", "Peak dynamic response index "// &
                     "up the spine (seat pushed up) and down, the spine model on the "// &
-                    "filtered seat acceleration along the boat's vertical axis")
+                    "filtered seat acceleration along the boat's vertical axis", dims="up_down")
   end subroutine write_assessment
 
   elemental function verdict(c) result(text)

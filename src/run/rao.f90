@@ -121,16 +121,18 @@ contains
     summary%complete = failed == 0
     dofs = [1, 2, 3, 4, 5, 6]
     call writer%group("rao")
-    call writer%write_1d("rao/omega", cfg%rao%omegas, "rad/s", "Wave frequency")
+    call writer%write_1d("rao/omega", cfg%rao%omegas, "rad/s", "Wave frequency", dims="omega")
     call writer%write_1d("rao/heading", cfg%rao%headings, "rad", &
                          "Wave direction relative to the ship's heading (0 following, "// &
-                         "90 from port, 180 head sea)")
+                         "90 from port, 180 head sea)", dims="heading")
     call writer%write_1d("rao/dof", dofs, "-", &
-                         "1 surge, 2 sway, 3 heave (up), 4 roll, 5 pitch, 6 yaw")
+                         "1 surge, 2 sway, 3 heave (up), 4 roll, 5 pitch, 6 yaw", dims="dof")
     call writer%write_3d("rao/amplitude", amp, "m/m (DOF 1-3), rad/m (DOF 4-6)", &
-                         "Response amplitude per unit wave amplitude, (dof, omega, heading)")
+                         "Response amplitude per unit wave amplitude, (dof, omega, heading)", &
+                         dims="dof omega heading")
     call writer%write_3d("rao/phase", pha, "rad", &
-                         "Phase of the response relative to the wave elevation at the ship")
+                         "Phase of the response relative to the wave elevation at the ship", &
+                         dims="dof omega heading")
     call write_root_attributes(writer, cfg, summary, "rk4", none)
     call writer%close(error)
   end subroutine run_rao

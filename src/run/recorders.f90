@@ -177,55 +177,61 @@ contains
     select type (sys => problem)
     type is (system_type)
       n = self%n
-      call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample")
+      call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample", dims="time")
       call w%group("boat")
       call w%write_2d("boat/position", self%position(:, 1:n), "m", &
-                      "Lifeboat CG position, inertial frame N (x, y horizontal, z down)")
+                      "Lifeboat CG position, inertial frame N (x, y horizontal, z down)", &
+                      dims="component time")
       call w%write_2d("boat/euler", self%euler(:, 1:n), "rad", &
-                      "Lifeboat roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+                      "Lifeboat roll, pitch, yaw (ZYX Euler angles, eq. 2)", dims="angle time")
       call w%write_2d("boat/velocity", self%velocity(:, 1:n), "m/s", &
-                      "Lifeboat CG velocity, inertial frame N")
+                      "Lifeboat CG velocity, inertial frame N", dims="component time")
       call w%write_2d("boat/angular_velocity", self%angular_velocity(:, 1:n), "rad/s", &
-                      "Lifeboat angular velocity, boat-frame components (u1, u2, u3)")
+                      "Lifeboat angular velocity, boat-frame components (u1, u2, u3)", &
+                      dims="component time")
       call w%write_2d("boat/acceleration", self%acceleration(:, 1:n), "m/s^2", &
-                      "Lifeboat CG acceleration, inertial frame N (gravity not subtracted)")
+                      "Lifeboat CG acceleration, inertial frame N (gravity not subtracted)", &
+                      dims="component time")
       call w%group("slings")
       call w%write_2d("slings/tension", self%tension(:, 1:n), "N", &
-                      "Sling tension (fore, aft), spring plus dashpot, tension-only")
+                      "Sling tension (fore, aft), spring plus dashpot, tension-only", &
+                      dims="sling time")
       if (sys%par%on_davit) call write_rigging(self, sys%par%rig%nsheave, sys%par%rig%nlump, w)
       if (sys%par%with_ship) then
         call w%group("ship")
         call w%write_2d("ship/position", self%ship_position(:, 1:n), "m", &
-                        "Ship CG position, inertial frame N (z down)")
+                        "Ship CG position, inertial frame N (z down)", dims="component time")
         call w%write_2d("ship/euler", self%ship_euler(:, 1:n), "rad", &
-                        "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+                        "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)", dims="angle time")
         call w%write_1d("ship/heading_error", self%heading_error(1:n), "rad", &
                         "Ship yaw minus the heading it keeps (its initial heading; "// &
-                        "&ship heading_period)")
+                        "&ship heading_period)", dims="time")
       end if
       call w%group("contact")
       call w%write_1d("contact/clearance", self%clearance(1:n), "m", &
-                      "Smallest fender-to-ship-side distance; negative = penetration")
+                      "Smallest fender-to-ship-side distance; negative = penetration", dims="time")
       call w%write_2d("contact/force", self%contact_force(:, 1:n), "N", &
-                      "Normal contact force of each fender (one contact per fender)")
+                      "Normal contact force of each fender (one contact per fender)", &
+                      dims="fender time")
       call w%group("events")
       call w%write_1d("events/first_contact_time", [sys%hist%first_contact_time], "s", &
-                      "Time of the first fender contact; -1 = no contact")
+                      "Time of the first fender contact; -1 = no contact", dims="scalar")
       if (sys%par%on_davit) then
         call w%write_1d("events/lowering_start_time", [sys%par%rig%winch%t_start], "s", &
-                        "Time the drum starts paying out")
+                        "Time the drum starts paying out", dims="scalar")
         call w%write_1d("events/waterborne_time", [sys%hist%waterborne_time], "s", &
                         "Time the boat became waterborne (buoyancy >= weight or hooks < 1 % "// &
-                        "of it, held 1 s); -1 = never")
+                        "of it, held 1 s); -1 = never", dims="scalar")
         call w%write_1d("events/release_time", [sys%hist%release_time], "s", &
-                        "Time both hooks were released; -1 = never")
+                        "Time both hooks were released; -1 = never", dims="scalar")
       end if
       call w%write_1d("events/end_time", [self%time(max(n, 1))], "s", &
-                      "Time of the last sample (the end of the run, or where it stopped)")
+                      "Time of the last sample (the end of the run, or where it stopped)", &
+                      dims="scalar")
       call w%group("diagnostics")
       call w%write_1d("diagnostics/energy", self%energy(1:n), "J", &
                       "Mechanical energy of the conservative part in air: kinetic + "// &
-                      "gravity (-m g z) + elastic slings")
+                      "gravity (-m g z) + elastic slings", dims="time")
     end select
   end subroutine boat_write
 
@@ -238,20 +244,21 @@ contains
     call w%group("rigging")
     call w%write_2d("rigging/segment_tension", self%segment_tension(:, 1:n), "N", &
                     "Cable segment tensions from the drum (cable 1, then cable 2 for "// &
-                    "reeving B), tension-only")
+                    "reeving B), tension-only", dims="segment time")
     call w%write_1d("rigging/paid_out", self%paid_out(1:n), "m", &
-                    "Cable paid out by the drum since t = 0")
+                    "Cable paid out by the drum since t = 0", dims="time")
     if (nsheave > 0) then
       call w%write_2d("rigging/pulley_angle", self%pulley_angle(:, 1:n), "rad", &
-                      "Rotation of each rotating sheave since t = 0")
+                      "Rotation of each rotating sheave since t = 0", dims="sheave time")
     end if
     call w%write_3d("rigging/block_position", self%blocks(:, :, 1:n), "m", &
                     "Movable block positions (fore, aft), inertial; quasi-static blocks: "// &
-                    "the state's copy that follows the solved balance (0.1 s lag)")
+                    "the state's copy that follows the solved balance (0.1 s lag)", &
+                    dims="component block time")
     if (nlump > 0) then
       call w%write_3d("slings/lump_position", self%lumps(:, :, 1:n), "m", &
                       "Sling lump positions, inertial (fore sling lumps from the hook up, "// &
-                      "then aft)")
+                      "then aft)", dims="component lump time")
     end if
   end subroutine write_rigging
 
@@ -322,16 +329,16 @@ contains
     type(h5_writer_type), intent(inout) :: w
     integer :: n
     n = self%n
-    call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample")
+    call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample", dims="time")
     call w%group("ship")
     call w%write_2d("ship/position", self%position(:, 1:n), "m", &
-                    "Ship CG position, inertial frame N (z down)")
+                    "Ship CG position, inertial frame N (z down)", dims="component time")
     call w%write_2d("ship/euler", self%euler(:, 1:n), "rad", &
-                    "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)")
+                    "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)", dims="angle time")
     call w%write_2d("ship/velocity", self%velocity(:, 1:n), "m/s", &
-                    "Ship CG velocity, inertial frame N")
+                    "Ship CG velocity, inertial frame N", dims="component time")
     call w%write_2d("ship/angular_velocity", self%angular_velocity(:, 1:n), "rad/s", &
-                    "Ship angular velocity, ship-frame components")
+                    "Ship angular velocity, ship-frame components", dims="component time")
   end subroutine ship_write
 
   pure function ship_state_name(self, problem, k) result(name)

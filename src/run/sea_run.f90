@@ -62,12 +62,13 @@ contains
     probes(1, :) = cfg%sea%probes_x
     probes(2, :) = cfg%sea%probes_y
     probes(3, :) = 0.0_wp
-    call writer%write_1d("time", time, "s", "Simulation time of each sample")
+    call writer%write_1d("time", time, "s", "Simulation time of each sample", dims="time")
     call writer%group("sea")
     call writer%write_2d("sea/elevation", eta, "m", &
-                         "Surface elevation eta at each probe, positive up (eq. 43)")
+                         "Surface elevation eta at each probe, positive up (eq. 43)", &
+                         dims="probe time")
     call writer%write_2d("sea/probe_position", probes, "m", &
-                         "Probe positions (x, y, z) in the inertial frame")
+                         "Probe positions (x, y, z) in the inertial frame", dims="component probe")
     call write_components(writer, field)
     call write_root_attributes(writer, cfg, summary, "none", none)
     call writer%attr_str("/sea", "wave_type", cfg%sea%wave_type)
@@ -80,15 +81,16 @@ contains
     type(h5_writer_type), intent(inout) :: w
     type(wave_field_type), intent(in) :: field
     call w%group("sea/components")
-    call w%write_1d("sea/components/omega", field%omega, "rad/s", "Component frequency")
+    call w%write_1d("sea/components/omega", field%omega, "rad/s", "Component frequency", &
+                    dims="wave_component")
     call w%write_1d("sea/components/wavenumber", field%k, "rad/m", &
-                    "Component wave number, deep water k = omega^2/g")
+                    "Component wave number, deep water k = omega^2/g", dims="wave_component")
     call w%write_1d("sea/components/direction", field%direction, "rad", &
-                    "Propagation direction from N1 towards N2")
+                    "Propagation direction from N1 towards N2", dims="wave_component")
     call w%write_1d("sea/components/amplitude", field%amplitude, "m", &
-                    "Amplitude a = sqrt(2 S dw D_j) (regular: H/2)")
+                    "Amplitude a = sqrt(2 S dw D_j) (regular: H/2)", dims="wave_component")
     call w%write_1d("sea/components/phase", field%phase, "rad", &
-                    "Phase eps in cos(w t + eps - k (x cos g + y sin g))")
+                    "Phase eps in cos(w t + eps - k (x cos g + y sin g))", dims="wave_component")
   end subroutine write_components
 
 end module davit_run_sea_run

@@ -64,30 +64,34 @@ contains
     type(h5_writer_type), intent(inout) :: w
     type(sweep_case), intent(in) :: cases(:)
     call w%group("cases")
-    call w%write_1d_int("cases/index", int(cases%index, i8), "-", "Case number, 1-based")
+    call w%write_1d_int("cases/index", int(cases%index, i8), "-", "Case number, 1-based", &
+                        dims="case")
     call w%write_1d_int("cases/realisation", int(cases%realisation, i8), "-", &
-                        "Realisation of the combination of the other inputs, 1-based")
+                        "Realisation of the combination of the other inputs, 1-based", dims="case")
     call w%write_1d_int("cases/seed", int(cases%seed, i8), "-", "Random seed of the case "// &
-                        "(SplitMix64 of the base seed and the case index, top 31 bits)")
+                        "(SplitMix64 of the base seed and the case index, top 31 bits)", &
+                        dims="case")
     call w%write_1d_int("cases/level", int(cases%level, i8), "-", &
-                        "Sea-state level (review G19)")
+                        "Sea-state level (review G19)", dims="case")
     call w%write_1d_int("cases/wave_type", int(cases%wave_type, i8), "-", &
-                        "Wave type: "//wave_type_codes)
+                        "Wave type: "//wave_type_codes, dims="case")
     call w%attr_str("cases/wave_type", "codes", wave_type_codes)
     call w%write_1d_int("cases/wind", merge(1_i8, 0_i8, cases%wind), "-", &
-                        "1 = wind on (along the waves), 0 = no wind")
-    call w%write_1d("cases/wind_speed", cases%wind_speed, "m/s", "Wind speed")
+                        "1 = wind on (along the waves), 0 = no wind", dims="case")
+    call w%write_1d("cases/wind_speed", cases%wind_speed, "m/s", "Wind speed", dims="case")
     call w%write_1d("cases/wave_height", cases%wave_height, "m", &
-                    "Wave height (regular: 2a; irregular: H of eq. 44)")
+                    "Wave height (regular: 2a; irregular: H of eq. 44)", dims="case")
     call w%write_1d("cases/wave_period", cases%wave_period, "s", &
-                    "Regular-wave period (irregular: sets only the ramp)")
+                    "Regular-wave period (irregular: sets only the ramp)", dims="case")
     call w%write_1d("cases/angle_deg", cases%angle_deg, "deg", &
-                    "Encounter angle chi: wave direction from N1 towards N2, ship heading N1")
+                    "Encounter angle chi: wave direction from N1 towards N2, ship heading N1", &
+                    dims="case")
     call w%write_1d("cases/clearance_b", cases%clearance_b, "-", &
-                    "Initial fender-to-ship-side distance in boat widths")
-    call w%write_1d("cases/dt", cases%dt, "s", "Time step")
+                    "Initial fender-to-ship-side distance in boat widths", dims="case")
+    call w%write_1d("cases/dt", cases%dt, "s", "Time step", dims="case")
     call w%write_1d("cases/phase_deg", cases%phase_deg, "deg", "Regular-wave phase epsilon"// &
-                    " at the origin at t = 0 (irregular: unused, the seed sets the phases)")
+                    " at the origin at t = 0 (irregular: unused, the seed sets the phases)", &
+                    dims="case")
   end subroutine write_cases
 
   subroutine write_results(w, r)
@@ -96,37 +100,40 @@ contains
     call w%group("results")
     call w%write_1d_int("results/status", int(r%status, i8), "-", &
                         "0 not run, 1 ok, 2 failed (see message), 3 not needed "// &
-                        "(adaptive realisations: its cell converged; see message)")
+                        "(adaptive realisations: its cell converged; see message)", dims="case")
     call w%write_strings("results/message", text_column(r, "message"), "-", &
                          "'ok', the error of a failed case, why it was not needed, or "// &
-                         "empty when not run")
+                         "empty when not run", dims="case")
     call w%write_1d("results/min_clearance", r%min_clearance, "m", "Smallest fender-to-"// &
-                    "ship-side distance over the lowering; negative = indentation"//defined)
+                    "ship-side distance over the lowering; negative = indentation"//defined, &
+                    dims="case")
     call w%write_1d_int("results/collided", int(r%collided, i8), "-", &
                         "1 if min_clearance < 0 (a fender touched the ship), else 0; -1 "// &
-                        "if not status 1")
+                        "if not status 1", dims="case")
     call w%write_1d_int("results/impacts", int(r%impacts, i8), "-", "Separate contact "// &
-                        "episodes over the lowering; -1 if not status 1")
+                        "episodes over the lowering; -1 if not status 1", dims="case")
     call w%write_1d("results/peak_horizontal_acceleration", r%peak_horizontal_acceleration, &
                     "m/s^2", "Largest horizontal CG acceleration |(a_x, a_y)|, mean over "// &
-                    "each step"//defined)
+                    "each step"//defined, dims="case")
     call w%write_1d("results/peak_vertical_acceleration", r%peak_vertical_acceleration, &
                     "m/s^2", "Largest vertical CG acceleration |a_z| (gravity not "// &
-                    "subtracted: 0 hanging at rest), mean over each step"//defined)
+                    "subtracted: 0 hanging at rest), mean over each step"//defined, dims="case")
     call w%write_1d("results/peak_segment_tension", r%peak_segment_tension, "N", &
-                    "Largest tension of any cable or sling segment over the lowering"//defined)
+                    "Largest tension of any cable or sling segment over the lowering"//defined, &
+                    dims="case")
     call w%write_1d("results/first_contact_time", r%first_contact_time, "s", &
-                    "Time of the first fender contact over the lowering; -1 = none"//defined)
+                    "Time of the first fender contact over the lowering; -1 = none"//defined, &
+                    dims="case")
     call w%write_1d("results/waterborne_time", r%waterborne_time, "s", "Time the boat "// &
-                    "became waterborne (review G24); -1 = never"//defined)
+                    "became waterborne (review G24); -1 = never"//defined, dims="case")
     call w%write_1d("results/end_time", r%end_time, "s", "End of the lowering window: "// &
-                    "hook release, or the end of the run"//defined)
+                    "hook release, or the end of the run"//defined, dims="case")
     call write_log_columns(w, r)
     call w%write_1d("results/wall_time", r%wall_time, "s", &
-                    "Compute time of the case (one thread); NaN if not run")
-    call w%write_1d_int("results/steps", r%steps, "-", "Integrator steps")
+                    "Compute time of the case (one thread); NaN if not run", dims="case")
+    call w%write_1d_int("results/steps", r%steps, "-", "Integrator steps", dims="case")
     call w%write_1d_int("results/rhs_evaluations", r%rhs_evaluations, "-", &
-                        "Right-hand-side evaluations of the integrator")
+                        "Right-hand-side evaluations of the integrator", dims="case")
   end subroutine write_results
 
   !> The launch log's columns: peaks, limits and outcome over the run.
@@ -134,22 +141,27 @@ contains
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
     call w%write_1d("results/peak_sling_tension", r%peak_sling_tension, "N", "Largest "// &
-                    "sling tension over every step until release"//defined)
+                    "sling tension over every step until release"//defined, dims="case")
     call w%write_1d("results/peak_fall_tension", r%peak_fall_tension, "N", "Largest "// &
-                    "cable-segment (fall) tension over every step until release"//defined)
+                    "cable-segment (fall) tension over every step until release"//defined, &
+                    dims="case")
     call w%write_1d("results/max_impact_speed", r%max_impact_speed, "m/s", "Fastest "// &
-                    "normal impact on the ship's side (0 = none)"//defined)
+                    "normal impact on the ship's side (0 = none)"//defined, dims="case")
     call w%write_1d("results/peak_seat_acceleration", r%peak_seat_acceleration, "m/s^2", &
-                    "Largest filtered seat acceleration (&limits seat, seat_filter)"//defined)
+                    "Largest filtered seat acceleration (&limits seat, seat_filter)"//defined, &
+                    dims="case")
     call w%write_1d("results/swl_exceeded_time", r%swl_exceeded_time, "s", "First time "// &
-                    "a wire tension exceeded the safe working load; -1 = never"//defined)
+                    "a wire tension exceeded the safe working load; -1 = never"//defined, &
+                    dims="case")
     call w%write_1d("results/mbl_exceeded_time", r%mbl_exceeded_time, "s", "First time "// &
-                    "a wire tension exceeded the minimum breaking load; -1 = never"//defined)
+                    "a wire tension exceeded the minimum breaking load; -1 = never"//defined, &
+                    dims="case")
     call w%write_1d("results/impact_speed_exceeded_time", r%impact_speed_exceeded_time, &
-                    "s", "First impact faster than &limits impact_speed; -1 = never"//defined)
+                    "s", "First impact faster than &limits impact_speed; -1 = never"//defined, &
+                    dims="case")
     call w%write_strings("results/outcome", text_column(r, "outcome"), "-", "How the "// &
                          "launch ended: released, waterborne, or not waterborne and why; "// &
-                         "empty if not run")
+                         "empty if not run", dims="case")
     call write_check_columns(w, r)
   end subroutine write_log_columns
 
@@ -165,10 +177,10 @@ contains
       units = trim(check_units(k))
       call w%write_1d(stem//"_value", r%check_value(k), units, trim(check_texts(k))// &
                       " ("//trim(check_sources(k))//"): measured value; NaN = does not "// &
-                      "apply"//defined)
-      call w%write_1d(stem//"_limit", r%check_limit(k), units, "Its limit"//defined)
+                      "apply"//defined, dims="case")
+      call w%write_1d(stem//"_limit", r%check_limit(k), units, "Its limit"//defined, dims="case")
       call w%write_1d(stem//"_margin", r%check_margin(k), "-", "Relative margin, >= 0 "// &
-                      "passes"//defined)
+                      "passes"//defined, dims="case")
     end do
   end subroutine write_check_columns
 
