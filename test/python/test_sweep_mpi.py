@@ -164,7 +164,8 @@ def test_serial_binary_under_mpirun_runs_apart(davit, davit_bin, reference, tmp_
     """The serial binary knows no MPI: three copies are three OpenMP sweeps of the same
     summary. The lock lets one write, the others stop with a clear message (and mpirun
     then ends the job); the summary left is whole, its finished rows right, and --resume
-    completes it."""
+    completes it (or, where mpirun ended the writer before its first checkpoint, there is
+    none, and a plain run makes it)."""
     if shutil.which("mpirun") is None:
         pytest.skip("no mpirun")
     deck, ref = reference
@@ -172,6 +173,12 @@ def test_serial_binary_under_mpirun_runs_apart(davit, davit_bin, reference, tmp_
     result = _mpirun(davit_bin, 3, "sweep", deck, "-o", out, "--threads", "1")
     assert result.stderr.count("is writing") >= 1, result.stderr
     _wait_lock_owner(out)
+    if not out.exists():
+        # mpirun ended the job before the lock's owner wrote its first summary: nothing
+        # was written, so nothing is lost, and a plain run makes the whole summary
+        _ok(davit("sweep", deck, "-o", out, "--quiet"))
+        _assert_bitwise(ref, out)
+        return
     s, r = layout.load_sweep(out), layout.load_sweep(ref)
     finished = s.status == layout.SWEEP_OK
     assert set(np.unique(s.status)) <= {layout.SWEEP_NOT_RUN, layout.SWEEP_OK}
