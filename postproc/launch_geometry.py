@@ -240,7 +240,7 @@ def _assemble(columns, kinds, segments, tensions, slings):
 
 
 def has_sea(run):
-    """Whether the file records its waves (/sea/components); a launch run does not."""
+    """Whether the file records its waves (/sea/components: sea runs, and launches in waves)."""
     return run.has(layout.SEA_OMEGA, layout.SEA_K, layout.SEA_DIRECTION, layout.SEA_AMPLITUDE,
                    layout.SEA_PHASE)
 

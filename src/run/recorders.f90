@@ -9,6 +9,8 @@ module davit_run_recorders
   use davit_core_layout, only: state_part_type
   use davit_system_model, only: system_type
   use davit_ship_ship_model, only: ship_system_type
+  use davit_sea_wave_field, only: wave_field_type, wave_none
+  use davit_run_sea_run, only: write_components
   implicit none
   private
   public :: recorder_type, boat_recorder, ship_recorder
@@ -207,6 +209,7 @@ contains
                         "Ship yaw minus the heading it keeps (its initial heading; "// &
                         "&ship heading_period)", dims="time")
       end if
+      call write_sea(sys%par%sea, w)
       call w%group("contact")
       call w%write_1d("contact/clearance", self%clearance(1:n), "m", &
                       "Smallest fender-to-ship-side distance; negative = penetration", dims="time")
@@ -234,6 +237,20 @@ contains
                       "gravity (-m g z) + elastic slings", dims="time")
     end select
   end subroutine boat_write
+
+  !> The realised sea of a launch (its components, wave type and ramp), so that the surface
+  !> can be rebuilt anywhere afterwards (scene, animation); nothing for calm water.
+  subroutine write_sea(sea, w)
+    type(wave_field_type), intent(in) :: sea
+    type(h5_writer_type), intent(inout) :: w
+    character(len=*), parameter :: names(3) = [character(len=9) :: "airy", "stokes2", &
+                                                "irregular"]
+    if (sea%kind == wave_none) return
+    call w%group("sea")
+    call write_components(w, sea)
+    call w%attr_str("/sea", "wave_type", trim(names(sea%kind)))
+    call w%attr_real("/sea", "ramp_time", sea%ramp_time)
+  end subroutine write_sea
 
   subroutine write_rigging(self, nsheave, nlump, w)
     class(boat_recorder), intent(in) :: self

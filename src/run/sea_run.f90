@@ -13,7 +13,7 @@ module davit_run_sea_run
   use davit_run_run_summary, only: run_summary, write_root_attributes
   implicit none
   private
-  public :: run_sea
+  public :: run_sea, write_components
 
   integer, parameter :: resync = 256
 

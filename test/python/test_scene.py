@@ -16,9 +16,9 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 EVERY = 3
 # points per frame of each part: box + side plane; 15 sections of 4; reeving A's 8 cable
 # nodes + block and hook of each sling; the same as vertices; 2 fenders x 2 ends; the
-# still water's 2 x 2 (a launch file records no sea)
+# recorded sea's patch (a launch in waves writes its components)
 POINTS = {"ship": 12, "boat": 4 * geo.BOAT_STATIONS, "falls": 12, "nodes": 12,
-          "fenders": 4, "sea": 4}
+          "fenders": 4, "sea": scene.SEA_POINTS ** 2}
 
 
 @pytest.fixture(scope="module")
@@ -104,7 +104,11 @@ def test_z_is_up_and_the_blocks_are_the_recorded_ones(written):
     kind = falls.point_data["kind"]
     blocks = layout.to_plot_frame(run.get(layout.RIGGING_BLOCKS)[::EVERY][-1])
     assert np.allclose(falls.points[kind == geo.BLOCK][:2], blocks, atol=1e-5)
-    assert np.all(falls.points[:, 2] > 10.0) and np.all(sea.points[:, 2] == 0.0)
+    assert np.all(falls.points[:, 2] > 10.0)
+    # the sea patch is the recorded sea, rebuilt at the frame's time (z up = eta)
+    t = run.time[::EVERY][-1]
+    eta = layout.sea_elevation(run, t, sea.points[:, 0], -sea.points[:, 1])
+    assert np.allclose(sea.points[:, 2], eta, atol=1e-5) and np.ptp(eta) > 1e-3
 
 
 def test_state_file_opens_the_parts(written):
