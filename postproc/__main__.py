@@ -22,6 +22,10 @@
   python -m postproc readme-tables [FOLDER] [--run] [--write|--check]
                                                    the README's tables made from the runs
                                                    in FOLDER (postproc.readme_tables)
+  python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity ...
+                                                   the tool postproc.study, .bem, ...
+                                                   (their own --help)
+  (`davit-post ...` = `python -m postproc ...` in the project's environment, from any folder)
   python -m postproc scene RUN.h5 [-o OUTDIR] [--every N]
                                                    the launch as a ParaView time series:
                                                    .vtu frames, .pvd index, state .py
@@ -36,6 +40,7 @@ Exit status: 0 success, 1 an unreadable or incomplete input (the message names t
 the missing dataset); regress exits 1 on a FAIL only with --strict.
 """
 import argparse
+import importlib
 import os
 import sys
 
@@ -182,10 +187,19 @@ def _movie(args):
     return 0
 
 
+# The tools with a command line of their own: `davit-post TOOL ...` is
+# `python -m postproc.MODULE ...` (one name for every post-processing command).
+TOOLS = {"readme-tables": "readme_tables", "study": "study", "bem": "bem",
+         "bench-reference": "bench_reference", "boat-rao": "boat_rao",
+         "fender-test": "fender_test", "launch-table": "launch_table",
+         "sensitivity": "sensitivity"}
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["readme-tables"]:
-        return readme_tables.main(argv[1:])
+    if argv[:1] and argv[0] in TOOLS:
+        module = importlib.import_module(f"{__package__}.{TOOLS[argv[0]]}")
+        return module.main(argv[1:])
     args = _parser().parse_args(argv)
     if args.figure in MOVIE_COMMANDS:
         return _movie(args)

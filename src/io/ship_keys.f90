@@ -107,7 +107,7 @@ contains
                   "database ('bem': A(inf), radiation memory, diffraction, mesh "// &
                   "hydrostatics and mass; displacement and gm are then the database's).")
     call r%string(g, "database", s%database, "ship_bem.nc", &
-                  "BEM database of model = 'bem' (python -m postproc.bem build), relative "// &
+                  "BEM database of model = 'bem' (davit-post bem build), relative "// &
                   "to the deck's folder unless absolute.")
     call r%real(g, "roll_gyradius", s%roll_gyradius, 0.0_wp, 0.0_wp, 50.0_wp, "m", &
                 "BEM ship: roll radius of gyration about the CG in place of the "// &

@@ -70,3 +70,16 @@ def test_davit_post_help_without_venv(prefix, tmp_path):
                             timeout=120)
     assert result.returncode == 0, result.stderr
     assert "usage" in result.stdout.lower()
+
+
+@pytest.mark.parametrize("tool, module", [("study", "postproc.study"),
+                                          ("launch-table", "postproc.launch_table"),
+                                          ("readme-tables", "readme-tables")])
+def test_davit_post_runs_the_tools(prefix, tmp_path, tool, module):
+    """`davit-post TOOL` is `python -m postproc.MODULE`: one name for every command the
+    README shows, from any folder, without the venv on PATH."""
+    result = subprocess.run([str(prefix / "bin" / "davit-post"), tool, "--help"],
+                            cwd=tmp_path, env=bare_env(tmp_path), capture_output=True,
+                            text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert module in result.stdout
