@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from postproc import layout
+from test_hostile_files import SMALL_SWEEP as SWEEP
 
 xr = pytest.importorskip("xarray")
 pytest.importorskip("h5netcdf")
@@ -22,15 +23,6 @@ LAUNCH = (ROOT / "input" / "iiib_level5_090.nml").read_text().replace(
 RIGGED = LAUNCH.replace("lumps = 0", "lumps = 2").replace(
     "sheaves = 'quasi_static'", "sheaves = 'rotating'").replace(
     "dt = 1.0e-3 ", "dt = 5.0e-5 ").replace("t_end = 0.2 ", "t_end = 0.1 ")
-SWEEP = """&sweep
-  base_deck = 'base.nml'
-  levels = 4
-  angles_deg = 90.0
-  clearances_b = 0.5
-  realisations = 2
-  base_seed = 11
-/
-"""
 RAO = """&rao omegas = 0.6, headings_deg = 90.0, 180.0, settle_time = 20.0,
      measure_periods = 1 /
 """
