@@ -12,23 +12,21 @@ module davit_assess_occupant
   use davit_kinds, only: wp, gravity
   implicit none
   private
-  public :: dynamic_response, response_peaks
+  public :: response_peaks
 
 contains
 
-  !> DR(t_k) of the model (omega [rad/s], zeta [-]) for a(t) sampled every dt from rest,
-  !> a taken linear between samples; classical RK4 on half-interval input values. The
-  !> model's period is ~0.12 s against dt ~1e-3 s: RK4's error (omega dt)^4/120 ~ 1e-7.
-  pure function dynamic_response(a, dt, omega, zeta) result(dr)
+  !> Largest positive and largest negative DR (as a positive number) of the model (omega
+  !> [rad/s], zeta [-]) driven from rest by a(t) sampled every dt, a taken linear between
+  !> samples; classical RK4 on half-interval input values. The model's period is ~0.12 s
+  !> against dt ~1e-3 s: RK4's error (omega dt)^4/120 ~ 1e-7.
+  pure function response_peaks(a, dt, omega, zeta) result(peaks)
     real(wp), intent(in) :: a(:), dt, omega, zeta
-    ! on the heap: the signal is as long as the run (a 1 kHz seat trace)
-    real(wp), allocatable :: dr(:)
-    real(wp) :: x(2), k1(2), k2(2), k3(2), k4(2), amid
+    real(wp) :: peaks(2)
+    real(wp) :: x(2), k1(2), k2(2), k3(2), k4(2), amid, dr
     integer :: i
-    allocate (dr(size(a)))
+    peaks = 0.0_wp
     x = 0.0_wp
-    if (size(a) == 0) return
-    dr(1) = 0.0_wp
     do i = 2, size(a)
       amid = 0.5_wp*(a(i - 1) + a(i))
       k1 = rate(x, a(i - 1))
@@ -36,7 +34,8 @@ contains
       k3 = rate(x + 0.5_wp*dt*k2, amid)
       k4 = rate(x + dt*k3, a(i))
       x = x + dt/6.0_wp*(k1 + 2.0_wp*k2 + 2.0_wp*k3 + k4)
-      dr(i) = omega**2*x(1)/gravity
+      dr = omega**2*x(1)/gravity
+      peaks = [max(peaks(1), dr), max(peaks(2), -dr)]
     end do
   contains
     pure function rate(s, f) result(d)
@@ -44,17 +43,6 @@ contains
       real(wp) :: d(2)
       d = [s(2), f - 2.0_wp*zeta*omega*s(2) - omega**2*s(1)]
     end function rate
-  end function dynamic_response
-
-  !> Largest positive and largest negative DR (as a positive number) of a(t).
-  pure function response_peaks(a, dt, omega, zeta) result(peaks)
-    real(wp), intent(in) :: a(:), dt, omega, zeta
-    real(wp) :: peaks(2)
-    real(wp), allocatable :: dr(:)
-    peaks = 0.0_wp
-    if (size(a) == 0) return
-    dr = dynamic_response(a, dt, omega, zeta)
-    peaks = [max(0.0_wp, maxval(dr)), max(0.0_wp, -minval(dr))]
   end function response_peaks
 
 end module davit_assess_occupant

@@ -12,7 +12,7 @@ module davit_assess_rules
   implicit none
   private
   public :: n_checks, check_ids, check_units, check_sources, check_texts, check_lower
-  public :: rule_check, new_check, not_applicable, check_index, check_passes
+  public :: rule_check, new_check, not_applicable, check_passes
   public :: check_lowering_speed, check_impact_speed, check_fall_swl, check_fall_mbl
   public :: check_sling_swl, check_sling_mbl, check_brake_load, check_release_load
   public :: check_seat_srss, check_seat_dri
@@ -83,15 +83,5 @@ contains
     type(rule_check), intent(in) :: c
     check_passes = ieee_is_nan(c%margin) .or. c%margin >= 0.0_wp
   end function check_passes
-
-  !> Position of `id` in check_ids, 0 if unknown.
-  pure integer function check_index(id)
-    character(len=*), intent(in) :: id
-    integer :: k
-    check_index = 0
-    do k = 1, n_checks
-      if (trim(check_ids(k)) == id) check_index = k
-    end do
-  end function check_index
 
 end module davit_assess_rules

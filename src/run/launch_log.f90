@@ -117,15 +117,16 @@ contains
     type(launch_log), intent(inout) :: self
     type(system_type), intent(in) :: sys
     real(wp), intent(in) :: t, y(:)
-    real(wp) :: c(3, 3), v(3), a_cg
+    real(wp) :: c(3, 3), v(3), a_cg, tilt
     integer :: started
     associate (q => y(sys%par%boat_part%q(1):sys%par%boat_part%q(2)), &
                u => y(sys%par%boat_part%u(1):sys%par%boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       v = matmul(c, u(4:6))
       self%lowest = min(self%lowest, -dot_product(c(3, :), q(4:6)))
-      if (acos(max(-1.0_wp, min(1.0_wp, c(3, 3)))) > self%tilt) then
-        self%tilt = acos(max(-1.0_wp, min(1.0_wp, c(3, 3))))
+      tilt = acos(max(-1.0_wp, min(1.0_wp, c(3, 3))))
+      if (tilt > self%tilt) then
+        self%tilt = tilt
         self%tilt_time = t
       end if
       call self%seat%add(t, matmul(c, body_point_velocity(u, self%seat_point)), c)

@@ -16,7 +16,7 @@
 module davit_run_rule_watch
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use davit_kinds, only: wp, gravity
-  use davit_core_pose, only: pose_type
+  use davit_core_pose, only: pose_type, pose_point
   use davit_core_rotation, only: rotation_matrix
   use davit_io_config, only: config_type
   use davit_system_parameters, only: ship_pose, hook_kinematics
@@ -80,7 +80,7 @@ contains
     real(wp) :: hooks(3, 2), hook_vel(3, 2), head(3), d, cg_height, c(3, 3)
     if (.not. self%on_davit) return
     ship = ship_pose(sys%par, y)
-    head = ship%r + matmul(ship%c, self%head_mid)
+    head = pose_point(ship, self%head_mid)
     if (self%head_height < 0.0_wp) self%head_height = -head(3)
     call hook_kinematics(sys%par, y, hooks, hook_vel)
     d = 0.5_wp*(hooks(3, 1) + hooks(3, 2)) - head(3)

@@ -3,8 +3,8 @@
 module davit_system_build
   use davit_kinds, only: wp, gravity, rho_water
   use davit_error, only: error_type
-  use davit_core_rotation, only: rotation_matrix, cross
-  use davit_core_pose, only: pose_type
+  use davit_core_rotation, only: rotation_matrix
+  use davit_core_pose, only: pose_type, pose_point, pose_point_velocity
   use davit_io_config, only: config_type, contact_config
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
@@ -268,7 +268,6 @@ contains
     real(wp) :: c(3, 3), hook_pos(3, nslings), hook_vel(3, nslings), residual
     real(wp) :: heads(3, nslings), head_vel(3, nslings)
     type(pose_type) :: pose
-    integer :: a
     allocate (y(self%par%layout%n))
     associate (par => self%par, b => self%par%boat_part, s => self%par%ship_part)
       if (par%with_ship) y(par%ship_slice(1):par%ship_slice(2)) = &
@@ -283,11 +282,10 @@ contains
       if (.not. par%on_davit) return
       call hook_kinematics(par, y, hook_pos, hook_vel)
       pose = ship_pose(par, y)
-      heads(:, 1) = pose%r + matmul(pose%c, cfg%rigging%head_fore)
-      heads(:, 2) = pose%r + matmul(pose%c, cfg%rigging%head_aft)
-      do a = 1, nslings
-        head_vel(:, a) = pose%v + cross(pose%w, heads(:, a) - pose%r)
-      end do
+      heads(:, 1) = pose_point(pose, cfg%rigging%head_fore)
+      heads(:, 2) = pose_point(pose, cfg%rigging%head_aft)
+      head_vel(:, 1) = pose_point_velocity(pose, cfg%rigging%head_fore)
+      head_vel(:, 2) = pose_point_velocity(pose, cfg%rigging%head_aft)
       call par%rig%initial_state(hook_pos, hook_loads(heads, hook_pos, par%boat%mass), &
                                  pose, y(par%rig_slice(1):par%rig_slice(2)), &
                                  residual, error, hook_vel=hook_vel, heads=heads, &
