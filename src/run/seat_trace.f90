@@ -73,13 +73,10 @@ contains
   pure function trace_filtered(self) result(a)
     class(seat_trace), intent(in) :: self
     real(wp), allocatable :: a(:, :)
-    integer :: i
     allocate (a(3, max(self%n - 1, 0)))
     if (self%n < 2) return
     a = (self%v(:, 2:self%n) - self%v(:, 1:self%n - 1))/self%dt
-    do i = 1, 3
-      a(i, :) = phaseless_lowpass(a(i, :), self%dt, self%cutoff)
-    end do
+    call lowpass_components(self, a)
   end function trace_filtered
 
   !> The filtered acceleration in the boat's axes (x forward, y starboard, z down) at the
@@ -95,9 +92,17 @@ contains
       a(:, i) = matmul((self%v(:, i + 1) - self%v(:, i))/self%dt, &
                        reshape(self%axes(:, i + 1), [3, 3]))
     end do
-    do i = 1, 3
+    call lowpass_components(self, a)
+  end function trace_body_filtered
+
+  !> Each component of a (3, n) acceleration through the occupant filter.
+  pure subroutine lowpass_components(self, a)
+    class(seat_trace), intent(in) :: self
+    real(wp), intent(inout) :: a(:, :)
+    integer :: i
+    do i = 1, size(a, 1)
       a(i, :) = phaseless_lowpass(a(i, :), self%dt, self%cutoff)
     end do
-  end function trace_body_filtered
+  end subroutine lowpass_components
 
 end module davit_run_seat_trace
