@@ -37,11 +37,13 @@ DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
 # 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
 # (-fstack-arrays) instead of malloc in the RHS: 7 % less CPU on the default scene.
-FPM_FLAGS=(--profile release --flag "-march=native -fstack-arrays")
+# DAVIT_MARCH picks another target (bash make.sh portable uses x86-64-v2: no FMA, SSE4.2).
+DAVIT_MARCH="${DAVIT_MARCH:-native}"
+FPM_FLAGS=(--profile release --flag "-march=$DAVIT_MARCH -fstack-arrays")
 
 # Open MPI (Debian's): mpifort and mpirun, for the MPI build of `davit sweep`
 MPI_APT_PACKAGES=(libopenmpi-dev openmpi-bin)
-MPI_FLAGS=(--profile release --flag "-march=native -fstack-arrays -DDAVIT_MPI")
+MPI_FLAGS=(--profile release --flag "-march=$DAVIT_MARCH -fstack-arrays -DDAVIT_MPI")
 MPI_BIN=build/davit-mpi
 
 log() { printf '%s\n' "make.sh: $*" >&2; }
@@ -401,6 +403,28 @@ run_tests() {
   return $status
 }
 
+# The suite's numbers must not hang on this CPU's rounding (FMA, vector widths): the
+# Fortran tests and the README's generated tables again with a portable x86-64-v2 build
+# (CI runs it after the test command). The tables compare numbers at their printed
+# precision (postproc/readme_tables.py differences), never bitwise.
+portable() {
+  DAVIT_MARCH=x86-64-v2
+  FPM_FLAGS=(--profile release --flag "-march=$DAVIT_MARCH -fstack-arrays")
+  setup
+  local flog status=0 line
+  flog="$(mktemp)"
+  find build -path '*/davit/test_*' -delete 2>/dev/null || true
+  log "portable build (-march=$DAVIT_MARCH): Fortran tests"
+  fpm test "${FPM_FLAGS[@]}" 2>&1 | grep -v '^\[' | tee "$flog" || status=1
+  line="$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$flog" | tail -n 1 || true)"
+  rm -f "$flog"
+  [[ "$line" =~ ^[0-9]+\ passed,\ 0\ failed$ ]] || status=1
+  log "portable build (-march=$DAVIT_MARCH): the README's generated tables"
+  python3 -m pytest -q -p no:cacheprovider test/python/test_readme_tables.py || status=1
+  echo "portable (-march=$DAVIT_MARCH): fortran ${line:-no result}; README tables $([ $status -eq 0 ] && echo pass || echo FAIL)"
+  return $status
+}
+
 usage() {
   cat <<'EOF'
 usage: bash make.sh COMMAND
@@ -418,6 +442,8 @@ usage: bash make.sh COMMAND
                      reruns decks whose outputs are up to date
   operability        the operability sweeps, their tables and heat maps
   mpi                build the MPI binary (installs Open MPI if missing)
+  portable           the Fortran tests and the README tables with an x86-64-v2 build
+                     (CI: results must not hang on this CPU's FMA or vector width)
   setup              install what is missing and build
   help               this text
 EOF
@@ -426,6 +452,7 @@ EOF
 case "${1:-}" in
   demo) demo ;;
   test) run_tests ;;
+  portable) portable ;;
   paper) paper ;;
   install) install_cmd "${2:-}" ;;
   help|-h|--help) usage ;;

@@ -132,9 +132,8 @@ contains
     end do
   end function join_reals
 
-  !> Shortest readable form of a real (no trailing zeros).
   !> x with `decimals` digits after the point, a zero before it ("0.0812", "-0.5").
-  function fmt_fixed(x, decimals) result(s)
+  pure function fmt_fixed(x, decimals) result(s)
     real(wp), intent(in) :: x
     integer, intent(in) :: decimals
     character(len=:), allocatable :: s
@@ -147,6 +146,7 @@ contains
     if (s(1:min(2, len(s))) == "-.") s = "-0"//s(2:)
   end function fmt_fixed
 
+  !> Shortest readable form of a real (no trailing zeros).
   pure function fmt_real(x) result(s)
     real(wp), intent(in) :: x
     character(len=:), allocatable :: s

@@ -13,6 +13,7 @@ module davit_run_launch_log
   use davit_core_body, only: body_point_velocity
   use davit_io_config, only: config_type
   use davit_io_deck_reader, only: fmt_real
+  use davit_io_text, only: fmt_fixed
   use davit_io_limits_keys, only: minimum_breaking_load
   use davit_io_namelist, only: int_to_str
   use davit_solve_integrator, only: ode_problem
@@ -329,18 +330,27 @@ contains
       ! flung over on its falls: past the model's validity (falls wrapping the hull, no
       ! capsize hydrostatics), a failed launch whatever else it reports
       text = "overturned on its falls (tilted "//int_to_str(nint(self%tilt*180.0_wp/pi))// &
-             " deg at t = "//fmt_real(self%tilt_time)//" s); "
+             " deg at t = "//event_time(self%tilt_time)//" s); "
     end if
     if (sys%hist%release_time >= 0.0_wp) then
-      text = text//"released at t = "//fmt_real(sys%hist%release_time)//" s (waterborne at "// &
-             fmt_real(sys%hist%waterborne_time)//" s)"
+      text = text//"released at t = "//event_time(sys%hist%release_time)//" s (waterborne at "// &
+             event_time(sys%hist%waterborne_time)//" s)"
     else if (sys%hist%waterborne_time >= 0.0_wp) then
-      text = text//"waterborne at t = "//fmt_real(sys%hist%waterborne_time)//" s; hooks not "// &
+      text = text//"waterborne at t = "//event_time(sys%hist%waterborne_time)//" s; hooks not "// &
              "released (&rigging release = .false. or its delay not over)"
     else
-      text = text//"not waterborne by t = "//fmt_real(self%t_last)//" s: "//stuck_cause(self)
+      text = text//"not waterborne by t = "//event_time(self%t_last)//" s: "//stuck_cause(self)
     end if
   end function log_outcome
+
+  !> An event time in the outcome text, to the millisecond: what the located events mean
+  !> (the event stepper's tolerance is far finer, but digits beyond 1 ms change with the CPU's
+  !> rounding, e.g. FMA or not, and would make the same launch read differently).
+  pure function event_time(t) result(text)
+    real(wp), intent(in) :: t
+    character(len=:), allocatable :: text
+    text = fmt_fixed(t, 3)
+  end function event_time
 
   !> Why a launch is not waterborne at its end.
   function stuck_cause(self) result(text)

@@ -24,8 +24,9 @@ def test_readme_table_is_what_the_runs_give(fresh, name):
     copy = readme_tables.readme_copy(text, name)
     assert copy is not None, f"README.md has no table '{name}'"
     made = readme_tables.make(str(fresh), [name])[name]
-    assert copy == made, (f"README table '{name}' is stale: "
-                          "davit-post readme-tables out --run --write")
+    found = readme_tables.differences(copy, made)
+    assert not found, (f"README table '{name}' is stale "
+                       "(davit-post readme-tables out --run --write):\n" + "\n".join(found))
 
 
 def test_replace_and_check_round_trip():
@@ -36,3 +37,22 @@ def test_replace_and_check_round_trip():
     assert readme_tables.stale({"x": "| new |"}, new) == []
     assert readme_tables.stale({"x": "| other |"}, new) == ["x"]
     assert readme_tables.stale({"y": "| y |"}, new) == ["y"]
+
+
+def test_numbers_compare_at_their_printed_precision():
+    """Another CPU's last bits pass (a located event 3e-8 s later, a rounding that flips the
+    last printed digit); a changed count, a changed text or a number moved by 1 % do not."""
+    old = "| r | 3 | 0.42 | 21107 N | released at t = 82.780 s |"
+    same = ["| r | 3 | 0.42 | 21107 N | released at t = 82.780 s |",
+            "| r | 3 | 0.43 | 21110 N | released at t = 82.781 s |"]
+    changed = ["| r | 4 | 0.42 | 21107 N | released at t = 82.780 s |",
+               "| r | 3 | 0.45 | 21107 N | released at t = 82.780 s |",
+               "| r | 3 | 0.42 | 21318 N | released at t = 82.780 s |",
+               "| r | 3 | 0.42 | 21107 N | waterborne at t = 82.780 s |",
+               "| r | 3 | 0.42 | 21107 N | released at t = 83.611 s |",
+               "| r | 3 | 0.42 | 21107 N |"]
+    for line in same:
+        assert readme_tables.differences(old, line) == [], line
+    for line in changed:
+        assert readme_tables.differences(old, line), line
+    assert readme_tables.differences(old, old + "\n| extra |")
