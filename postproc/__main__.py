@@ -22,7 +22,7 @@
   python -m postproc readme-tables [FOLDER] [--run] [--write|--check]
                                                    the README's tables made from the runs
                                                    in FOLDER (postproc.readme_tables)
-  python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity ...
+  python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity|summation-compare ...
                                                    the tool postproc.study, .bem, ...
                                                    (their own --help)
   (`davit-post ...` = `python -m postproc ...` in the project's environment, from any folder)
@@ -192,7 +192,7 @@ def _movie(args):
 TOOLS = {"readme-tables": "readme_tables", "study": "study", "bem": "bem",
          "bench-reference": "bench_reference", "boat-rao": "boat_rao",
          "fender-test": "fender_test", "launch-table": "launch_table",
-         "sensitivity": "sensitivity"}
+         "sensitivity": "sensitivity", "summation-compare": "summation_compare"}
 
 
 def main(argv=None):

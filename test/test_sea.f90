@@ -8,8 +8,9 @@ module test_sea
   use davit_core_random, only: rng_type, new_rng, rng_uniform
   use davit_sea_spectrum, only: spectrum_density, spectrum_m0, spectrum_peak_omega, &
                                 spectrum_band_fraction, spectrum_u
-  use davit_sea_spreading, only: spreading_density, spreading_weights
+  use davit_sea_spreading, only: spreading_density, spreading_weights, spreading_quantiles
   use davit_sea_wave_field, only: wave_field_type, new_regular_wave, new_irregular_sea, &
+                                  new_single_sum_sea, single_random, single_equal_energy, &
                                   wave_elevation, wave_kinematics, wave_airy, wave_stokes2, &
                                   point_phasors, time_phasors, rotation_phasors, &
                                   advance_phasors, elevation_from_phasors, wave_ramp
@@ -30,6 +31,9 @@ contains
                    new_case("spectrum_moments_A1", spectrum_moments), &
                    new_case("discrete_m0", discrete_m0), &
                    new_case("spreading_normalisation_A2", spreading_normalisation), &
+                   new_case("single_summation_spectrum", single_sum_spectrum), &
+                   new_case("single_summation_equal_energy_sectors", single_sum_sectors), &
+                   new_case("single_summation_random_directions", single_sum_random), &
                    new_case("level_presets_and_periods_G18", level_presets), &
                    new_case("dispersion_phase_speed", dispersion), &
                    new_case("stokes2_profile", stokes_profile), &
@@ -212,6 +216,116 @@ contains
     end do
     call check(state, part*h/3, window_fraction_s1, "+-30 deg fraction, s = 1", abs_tol=1e-3_wp)
   end subroutine spreading_normalisation
+
+  !> The single-summation sea carries each bin's whole energy in one component: a_i^2/2 is
+  !> the integral of S over bin i (Simpson, 200 panels), so m0 = Hs^2/16 over the band.
+  subroutine single_sum_spectrum(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(rng_type) :: rng
+    real(wp) :: dw, worst, bin
+    integer :: i, mode
+    do mode = single_random, single_equal_energy
+      rng = new_rng(7)
+      call new_single_sum_sea(field, 4.0_wp, 0.5_wp, 1, pi/6, 100, 13, 0.3_wp, 3.0_wp, &
+                              .true., mode, rng, 0.0_wp)
+      call check_true(state, field%n == 100, "one component per frequency")
+      dw = 2.7_wp/100
+      worst = 0.0_wp
+      do i = 1, 100
+        bin = simpson_spectrum(0.3_wp + (i - 1)*dw, 0.3_wp + i*dw, 200, 4.0_wp)
+        worst = max(worst, abs(field%amplitude(i)**2/2/bin - 1.0_wp))
+        call check_true(state, field%omega(i) >= 0.3_wp + (i - 1)*dw .and. &
+                        field%omega(i) <= 0.3_wp + i*dw, "jittered frequency inside its bin")
+      end do
+      call check(state, worst, 0.0_wp, "bin energy vs Simpson integral of S", abs_tol=1e-8_wp)
+      call check(state, 4*sqrt(sum(field%amplitude**2)/2), &
+                 4*sqrt(simpson_spectrum(0.3_wp, 3.0_wp, 2000, 4.0_wp)), "Hs of the band", &
+                 rel_tol=1e-9_wp)
+    end do
+  end subroutine single_sum_spectrum
+
+  !> Closed-form CDF of the s = 1 spreading truncated to +-w: with c(g) = g + sin(2g)/2,
+  !> F(g) = (c(g) + c(w))/(2 c(w)).
+  pure real(wp) function cdf_s1(g, w) result(f)
+    real(wp), intent(in) :: g, w
+    f = (g + sin(2*g)/2 + w + sin(2*w)/2)/(2*(w + sin(2*w)/2))
+  end function cdf_s1
+
+  !> Equal energy: sector j's median direction has F = (j - 1/2)/nd (closed form for
+  !> s = 1), and every run of nd frequencies uses each sector exactly once.
+  subroutine single_sum_sectors(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(rng_type) :: rng
+    real(wp) :: gam(13), rel(130)
+    integer :: j, run, hits
+    call spreading_quantiles([((j - 0.5_wp)/13, j = 1, 13)], pi/6, 1, gam)
+    do j = 1, 13
+      call check(state, cdf_s1(gam(j), pi/6), (j - 0.5_wp)/13, "sector median CDF", &
+                 abs_tol=1e-7_wp)
+    end do
+    rng = new_rng(3)
+    call new_single_sum_sea(field, 4.0_wp, 0.5_wp, 1, pi/6, 130, 13, 0.3_wp, 3.0_wp, &
+                            .true., single_equal_energy, rng, 0.0_wp)
+    rel = field%direction - 0.5_wp
+    do run = 0, 9
+      do j = 1, 13
+        hits = count(abs(rel(run*13 + 1:run*13 + 13) - gam(j)) < 1e-12_wp)
+        call check_true(state, hits == 1, "each sector once per run of 13 frequencies")
+      end do
+    end do
+    ! not in sector order: the directions of consecutive frequencies are shuffled
+    call check_true(state, any(rel(2:13) < rel(1:12)) .and. any(rel(2:13) > rel(1:12)), &
+                    "sectors shuffled")
+  end subroutine single_sum_sectors
+
+  !> Random directions: over 20000 frequencies the share inside +-15 deg and the mean
+  !> direction match the truncated s = 1 and s = 4 spreadings within 4 binomial sigmas.
+  subroutine single_sum_random(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(rng_type) :: rng
+    integer, parameter :: n = 20000
+    real(wp) :: p, share, h, g
+    integer :: s, i
+    do s = 1, 4, 3
+      rng = new_rng(11)
+      call new_single_sum_sea(field, 4.0_wp, 0.0_wp, s, pi/6, n, 13, 0.3_wp, 3.0_wp, &
+                              .true., single_random, rng, 0.0_wp)
+      if (s == 1) then
+        p = cdf_s1(pi/12, pi/6) - cdf_s1(-pi/12, pi/6)
+      else
+        ! Simpson over +-15 deg and +-30 deg of D (s = 4)
+        p = 0.0_wp
+        h = (pi/6)/1000
+        do i = 0, 1000
+          g = -pi/12 + i*h
+          p = p + merge(1.0_wp, merge(4.0_wp, 2.0_wp, mod(i, 2) == 1), i == 0 .or. i == 1000)* &
+              spreading_density(g, s)
+        end do
+        p = p*h/3/window_integral(s)
+      end if
+      share = count(abs(field%direction) < pi/12)/real(n, wp)
+      call check(state, share, p, "share inside +-15 deg", abs_tol=4*sqrt(p*(1 - p)/n))
+      call check(state, sum(field%direction)/n, 0.0_wp, "mean direction", &
+                 abs_tol=4*(pi/6)/sqrt(3.0_wp*n))
+      call check_true(state, maxval(abs(field%direction)) <= pi/6 + 1e-12_wp, "inside window")
+    end do
+  contains
+    real(wp) function window_integral(s) result(total)
+      integer, intent(in) :: s
+      integer :: k
+      real(wp) :: hh
+      hh = (pi/3)/1000
+      total = 0.0_wp
+      do k = 0, 1000
+        total = total + merge(1.0_wp, merge(4.0_wp, 2.0_wp, mod(k, 2) == 1), &
+                              k == 0 .or. k == 1000)*spreading_density(-pi/6 + k*hh, s)
+      end do
+      total = total*hh/3
+    end function window_integral
+  end subroutine single_sum_random
 
   subroutine level_presets(state)
     type(case_state), intent(inout) :: state

@@ -89,16 +89,17 @@ contains
       rec%cpu//", "//rec%compiler//", load average "//sig(rec%load_start)//" -> "// &
       sig(rec%load_end), "", &
       "| benchmark | deck | threads | dt [s] | simulated [s] | wall [s] | steps | "// &
-      "RHS evaluations | RHS/s | steps/s | real-time factor | CG error before / after "// &
+      "RHS evaluations | RHS/s | steps/s | real-time factor | set-up [s] | worst step / "// &
+      "output interval [ms] | CG error before / after "// &
       "first contact [m] | peak sling / segment tension error |", &
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     do i = 1, size(rec%runs)
       associate (r => rec%runs(i))
         write (unit, "(a)") "| "//r%name//" | "//r%deck//" | "//int_text(int(r%threads, i8))// &
           " | "//sig(r%dt)//" | "//sig(r%simulated)//" | "//sig(r%wall)//" | "// &
           int_text(r%steps)//" | "//int_text(r%rhs_evaluations)//" | "//sig(rhs_rate(r))// &
           " | "//sig(step_rate(r))//" | "//sig(real_time_factor(r))//" | "// &
-          accuracy_text(r)//" |"
+          worst_text(r)//" | "//accuracy_text(r)//" |"
       end associate
     end do
     write (unit, "(a)") "", "Errors against each scene's converged reference ("// &
@@ -114,6 +115,18 @@ contains
         rec%sea(i)%unit//" |"
     end do
   end subroutine print_report
+
+  !> "0.031 | 0.85 / 2.1": set-up [s] and worst step / output interval [ms] of a scene;
+  !> n/a for a sweep (timed as a whole).
+  function worst_text(r) result(s)
+    type(timed_run), intent(in) :: r
+    character(len=:), allocatable :: s
+    if (r%cases > 1 .or. r%worst_step <= 0.0_wp) then
+      s = "n/a | n/a"
+      return
+    end if
+    s = sig(r%setup)//" | "//sig(1e3_wp*r%worst_step)//" / "//sig(1e3_wp*r%worst_interval)
+  end function worst_text
 
   !> "2.1e-05 / 3.4e-03 | 0.2 % / 12 %", or n/a.
   function accuracy_text(r) result(s)
@@ -193,6 +206,15 @@ contains
                         "Right-hand-side evaluations (summed)", dims="run")
     call w%write_1d("bench/runs/rhs_per_second", [(rhs_rate(runs(i)), i = 1, size(runs))], &
                     "1/s", "rhs_evaluations / wall_time", dims="run")
+    call w%write_1d("bench/runs/setup_time", runs%setup, "s", "A scene's set-up wall "// &
+                    "time: deck read, system built (BEM databases, sea, rigging); 0 for "// &
+                    "sweeps", dims="run")
+    call w%write_1d("bench/runs/worst_step_wall_time", runs%worst_step, "s", "Longest "// &
+                    "wall time of one step of a scene (what a real-time user meets); 0 "// &
+                    "for sweeps", dims="run")
+    call w%write_1d("bench/runs/worst_interval_wall_time", runs%worst_interval, "s", &
+                    "Longest wall time of one output interval of a scene (a frame of a "// &
+                    "live display); 0 for sweeps", dims="run")
     call w%write_1d("bench/runs/steps_per_second", [(step_rate(runs(i)), i = 1, size(runs))], &
                     "1/s", "steps / wall_time", dims="run")
     call w%write_1d("bench/runs/real_time_factor", &

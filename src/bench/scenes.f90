@@ -14,7 +14,7 @@ module davit_bench_scenes
   use davit_run_driver, only: integrate
   use davit_run_linear_modes, only: linear_modes
   use davit_run_launch_log, only: launch_log, new_launch_log
-  use davit_bench_timing, only: timed_run
+  use davit_bench_timing, only: timed_run, wall_seconds
   use davit_bench_accuracy, only: scene_accuracy
   implicit none
   private
@@ -96,6 +96,7 @@ contains
     type(launch_log) :: log
     type(error_type), allocatable :: run_error
     real(wp), allocatable :: y(:)
+    real(wp) :: start
     select case (cfg%simulation%scene)
     case ("hanging_boat", "lowering", "launch")
     case default
@@ -103,11 +104,13 @@ contains
                        cfg%simulation%scene//"'")
       return
     end select
+    start = wall_seconds()
     call new_system(sys, cfg, error)
     if (allocated(error)) return
     call initial_state(sys, cfg, y, error)
     if (allocated(error)) return
     log = new_launch_log(cfg, sys)
+    run%setup = wall_seconds() - start
     call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, log)
     if (allocated(error)) return
     if (allocated(run_error)) then
@@ -120,6 +123,8 @@ contains
     ! the last sample is the last state: t_end, or where the launch log ended the run
     run%simulated = rec%time(rec%n)
     run%wall = summary%wall_time
+    run%worst_step = summary%worst_step
+    run%worst_interval = summary%worst_interval
     run%steps = summary%steps
     run%rhs_evaluations = summary%rhs_evaluations
     run%accuracy = scene_accuracy(reference, group, rec%time(1:rec%n), &

@@ -19,6 +19,10 @@ module davit_bench_timing
     !> Simulated time, summed over a sweep's cases [s], and wall time of the timed section
     !> (a scene's time loop; a sweep's whole parallel loop) [s].
     real(wp) :: simulated = 0.0_wp, wall = 0.0_wp
+    !> A scene's set-up wall time (deck read, system built: BEM databases, sea, rigging)
+    !> [s], the longest single step and the longest output interval in wall time [s]
+    !> (what a real-time user meets; 0 for sweeps).
+    real(wp) :: setup = 0.0_wp, worst_step = 0.0_wp, worst_interval = 0.0_wp
     !> The run driver's counters (summed over a sweep's cases).
     integer(i8) :: steps = 0, rhs_evaluations = 0
     !> A scene's errors against its converged reference (unknown for sweeps).

@@ -32,7 +32,7 @@ module davit_io_config
   !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
   type :: sea_config
     integer :: level, spreading_s, n_frequencies, n_directions
-    character(len=:), allocatable :: wave_type
+    character(len=:), allocatable :: wave_type, summation
     real(wp) :: height, period, direction, phase, spread_window, omega_min, omega_max
     real(wp) :: ramp_time
     logical :: jitter, independent_frequencies
@@ -481,6 +481,13 @@ contains
                    "Each direction draws its own frequency in the bin (an ergodic sea); "// &
                    ".false. = the directions of a bin share one frequency, as eq. 43 is "// &
                    "printed (point variance then scatters ~3x more between seeds).")
+    call r%choice(g, "summation", s%summation, "double", &
+                  [character(len=19) :: "double", "single_equal_energy", "single_random"], &
+                  "Irregular: 'double' = eq. 43, n_frequencies x n_directions components; "// &
+                  "'single_equal_energy' = one direction per frequency (n_frequencies "// &
+                  "components, each of the n_directions equal-energy sectors of the "// &
+                  "spreading once per n_directions frequencies); 'single_random' = one "// &
+                  "direction per frequency drawn from the spreading. Same Hs and spectrum.")
     call r%real(g, "ramp_periods", s%ramp_time, 2.0_wp, 0.0_wp, 100.0_wp, "-", &
                 "Smooth start: forcing ramped by (1 - cos)/2 over this many (peak) periods.")
     s%ramp_time = s%ramp_time*s%period

@@ -130,8 +130,10 @@ contains
     samples = cfg%simulation%t_end/cfg%simulation%output_interval + 1.0_wp
     np = real(size(cfg%sea%probes_x), wp)
     n_comp = 1.0_wp
-    if (cfg%sea%wave_type == "irregular") &
-      n_comp = real(cfg%sea%n_frequencies, wp)*real(cfg%sea%n_directions, wp)
+    if (cfg%sea%wave_type == "irregular") then
+      n_comp = real(cfg%sea%n_frequencies, wp)
+      if (cfg%sea%summation == "double") n_comp = n_comp*real(cfg%sea%n_directions, wp)
+    end if
     parts = 0.0_wp
     select case (cfg%simulation%scene)
     case ("sea")

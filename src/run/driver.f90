@@ -167,7 +167,7 @@ contains
     class(integrator_type), allocatable :: integ
     type(event_stepper_type) :: stepper
     real(wp) :: t, t_next, t_new, h
-    integer(i8) :: k, nsamples, clock0, clock1, rate
+    integer(i8) :: k, nsamples, clock0, clock1, rate, tick, last_tick, sample_tick
     integer :: bad
     logical :: done, event
 
@@ -189,6 +189,8 @@ contains
     done = .false.
     if (present(monitor)) call monitor%watch(problem, t, y, done)
     call system_clock(clock0, rate)
+    last_tick = clock0
+    sample_tick = clock0
     if (present(progress)) call progress%start(sim%t_end)
     do while (t < sim%t_end .and. .not. done)
       t_next = min(real(k, wp)*sim%output_interval, sim%t_end)
@@ -218,6 +220,15 @@ contains
       else if (done) then
         ! a run the monitor ends between samples still records its last state
         call rec%sample(problem, t, y)
+      end if
+      ! what a real-time user meets: the slowest step, and the slowest output interval
+      ! (a frame), in wall time
+      call system_clock(tick)
+      call summary%note_step(real(tick - last_tick, wp)/real(rate, wp), t)
+      last_tick = tick
+      if (t == t_next) then
+        call summary%note_interval(real(tick - sample_tick, wp)/real(rate, wp), t)
+        sample_tick = tick
       end if
     end do
     call system_clock(clock1)

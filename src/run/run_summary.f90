@@ -12,13 +12,40 @@ module davit_run_run_summary
   type :: run_summary
     integer(i8) :: steps = 0, rhs_evaluations = 0
     real(wp) :: wall_time = 0.0_wp
+    !> The longest wall time of one step (step, events, history, monitors, sample) [s] and
+    !> the simulated time it ended at [s]; the longest wall time of one output interval (a
+    !> frame of a live display) [s] and the time it ended at [s]: what a real-time user
+    !> needs beside the totals.
+    real(wp) :: worst_step = 0.0_wp, worst_step_time = 0.0_wp
+    real(wp) :: worst_interval = 0.0_wp, worst_interval_time = 0.0_wp
     integer :: samples = 0
     logical :: complete = .false.
     !> The launch's outcome, peaks and rule checks in words (boat scenes; else empty).
     character(len=:), allocatable :: report
+  contains
+    procedure :: note_step
+    procedure :: note_interval
   end type run_summary
 
 contains
+
+  !> A step that took `wall` seconds and ended at simulated time t.
+  pure subroutine note_step(self, wall, t)
+    class(run_summary), intent(inout) :: self
+    real(wp), intent(in) :: wall, t
+    if (wall <= self%worst_step) return
+    self%worst_step = wall
+    self%worst_step_time = t
+  end subroutine note_step
+
+  !> An output interval that took `wall` seconds and ended at simulated time t.
+  pure subroutine note_interval(self, wall, t)
+    class(run_summary), intent(inout) :: self
+    real(wp), intent(in) :: wall, t
+    if (wall <= self%worst_interval) return
+    self%worst_interval = wall
+    self%worst_interval_time = t
+  end subroutine note_interval
 
   !> davit_version, input file and deck text, seed, integrator statistics, completion.
   subroutine write_root_attributes(w, cfg, summary, integrator, run_error)
@@ -37,6 +64,10 @@ contains
     call w%attr_int("/", "steps", summary%steps)
     call w%attr_int("/", "rhs_evaluations", summary%rhs_evaluations)
     call w%attr_real("/", "wall_time", summary%wall_time)
+    call w%attr_real("/", "worst_step_wall", summary%worst_step)
+    call w%attr_real("/", "worst_step_at", summary%worst_step_time)
+    call w%attr_real("/", "worst_interval_wall", summary%worst_interval)
+    call w%attr_real("/", "worst_interval_at", summary%worst_interval_time)
     call w%attr_int("/", "complete", merge(1_i8, 0_i8, summary%complete))
     if (allocated(run_error)) then
       call w%attr_str("/", "status", run_error%message)

@@ -5,7 +5,7 @@ module davit_sea_spreading
   use davit_kinds, only: wp, pi
   implicit none
   private
-  public :: spreading_density, spreading_weights
+  public :: spreading_density, spreading_weights, spreading_quantiles
 
 contains
 
@@ -42,5 +42,50 @@ contains
     weight = spreading_density(gamma, s)
     weight = weight/sum(weight)
   end subroutine spreading_weights
+
+  !> Directions gamma(p) with a fraction p of the spread's energy below them, for the
+  !> probabilities p(:) in [0, 1], of D(g) truncated to [-window, +window] and renormalised
+  !> (as spreading_weights truncates it): the single-summation sea draws its directions
+  !> from this inverse distribution. The CDF is integrated by the trapezoid rule on a
+  !> fine grid (nq intervals: error ~ 1e-7 rad for s <= 30) and inverted linearly.
+  pure subroutine spreading_quantiles(p, window, s, gamma)
+    real(wp), intent(in) :: p(:), window
+    integer, intent(in) :: s
+    real(wp), intent(out) :: gamma(:)
+    integer, parameter :: nq = 4000
+    real(wp) :: g(0:nq), cdf(0:nq), d(0:nq), f
+    integer :: i, j
+    do i = 0, nq
+      g(i) = -window + 2.0_wp*window*real(i, wp)/real(nq, wp)
+    end do
+    d = spreading_density(g, s)
+    cdf(0) = 0.0_wp
+    do i = 1, nq
+      cdf(i) = cdf(i - 1) + 0.5_wp*(d(i) + d(i - 1))*(g(i) - g(i - 1))
+    end do
+    cdf = cdf/cdf(nq)
+    do j = 1, size(p)
+      i = bracket(cdf, min(max(p(j), 0.0_wp), 1.0_wp))
+      f = (min(max(p(j), 0.0_wp), 1.0_wp) - cdf(i - 1))/max(cdf(i) - cdf(i - 1), tiny(1.0_wp))
+      gamma(j) = g(i - 1) + f*(g(i) - g(i - 1))
+    end do
+  end subroutine spreading_quantiles
+
+  !> The index i in 1..n with cdf(i - 1) <= x <= cdf(i) of a non-decreasing table cdf(0:n).
+  pure integer function bracket(cdf, x) result(i)
+    real(wp), intent(in) :: cdf(0:), x
+    integer :: lo, hi, mid
+    lo = 0
+    hi = ubound(cdf, 1)
+    do while (hi - lo > 1)
+      mid = (lo + hi)/2
+      if (cdf(mid) <= x) then
+        lo = mid
+      else
+        hi = mid
+      end if
+    end do
+    i = hi
+  end function bracket
 
 end module davit_sea_spreading

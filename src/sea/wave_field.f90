@@ -22,16 +22,20 @@ module davit_sea_wave_field
   use davit_core_fastmath, only: fast_sincos
   use davit_core_random, only: rng_type, rng_uniform
   use davit_sea_spectrum, only: spectrum_m0, spectrum_band_fraction
-  use davit_sea_spreading, only: spreading_weights
+  use davit_sea_spreading, only: spreading_weights, spreading_quantiles
   implicit none
   private
   public :: wave_field_type, wave_none, wave_airy, wave_stokes2, wave_irregular
-  public :: new_calm_sea, new_regular_wave, new_irregular_sea, wave_ramp
+  public :: new_calm_sea, new_regular_wave, new_irregular_sea, new_single_sum_sea, wave_ramp
+  public :: single_random, single_equal_energy
   public :: wave_elevation, wave_kinematics
   public :: point_phasors, time_phasors, rotation_phasors, advance_phasors
   public :: elevation_from_phasors, wave_chunk, component_phases
 
   integer, parameter :: wave_none = 0, wave_airy = 1, wave_stokes2 = 2, wave_irregular = 3
+  !> Directions of the single-summation sea: drawn at random from the spreading, or the
+  !> medians of nd equal-energy sectors, each used once per nd frequencies.
+  integer, parameter :: single_random = 1, single_equal_energy = 2
   !> Components processed per block (fits the stack and L1 cache). Every loop over the
   !> components works in blocks of this size: scratch arrays sized by the number of
   !> components would live on the stack (-fstack-arrays) and overflow it for large seas
@@ -113,6 +117,69 @@ contains
     end do
     call finish_components(field)
   end subroutine new_irregular_sea
+
+  !> Single-summation short-crested sea: nf frequency bins, ONE direction each (as in
+  !> OrcaFlex's and WAMIT's "single summation" or Jefferys' equal-energy method), so the
+  !> sea has nf components instead of nf x nd; each carries its whole bin's energy,
+  !> a_i = sqrt(2 S_i dw), so Hs and the frequency spectrum are exactly those of the double
+  !> summation (eq. 43). The directions follow the truncated cos-2s spreading of eq. 45:
+  !> `mode` single_random draws each from its inverse distribution; single_equal_energy
+  !> splits the spreading into nd sectors of equal energy and gives each consecutive run of
+  !> nd frequencies every sector's median once, in a random order (a monotone assignment
+  !> would make the crest pattern spiral with frequency). Unlike eq. 43 with shared
+  !> frequencies, no two components share a frequency, so the sea is ergodic at any point.
+  !> Random numbers, for each run of nd bins (equal energy): nd - 1 for the order; then
+  !> for each bin: its jitter (if jitter), its direction (random), its phase.
+  subroutine new_single_sum_sea(field, height, direction, s, window, nf, nd, w_min, w_max, &
+                                jitter, mode, rng, ramp_time)
+    type(wave_field_type), intent(out) :: field
+    real(wp), intent(in) :: height, direction, window, w_min, w_max, ramp_time
+    integer, intent(in) :: s, nf, nd, mode
+    logical, intent(in) :: jitter
+    type(rng_type), intent(inout) :: rng
+    real(wp) :: dw, u, w, sector(nd), gam(1)
+    integer :: i, order(nd)
+    call allocate_components(field, nf)
+    field%kind = wave_irregular
+    field%ramp_time = ramp_time
+    dw = (w_max - w_min)/real(nf, wp)
+    call spreading_quantiles([((real(i, wp) - 0.5_wp)/real(nd, wp), i = 1, nd)], window, s, &
+                             sector)
+    do i = 1, nf
+      if (mode == single_equal_energy .and. mod(i - 1, nd) == 0) call shuffle(rng, order)
+      w = w_min + (real(i, wp) - 0.5_wp)*dw
+      if (jitter) w = draw_in_bin(rng, w_min, dw, i)
+      field%omega(i) = w
+      if (mode == single_equal_energy) then
+        field%direction(i) = direction + sector(order(mod(i - 1, nd) + 1))
+      else
+        call rng_uniform(rng, u)
+        call spreading_quantiles([u], window, s, gam)
+        field%direction(i) = direction + gam(1)
+      end if
+      field%amplitude(i) = sqrt(2.0_wp*spectrum_m0(height)* &
+                                spectrum_band_fraction(w_min + (i - 1)*dw, w_min + i*dw, height))
+      call rng_uniform(rng, u)
+      field%phase(i) = 2.0_wp*pi*u
+    end do
+    call finish_components(field)
+  end subroutine new_single_sum_sea
+
+  !> A random permutation of 1..n (Fisher-Yates, n - 1 draws).
+  subroutine shuffle(rng, order)
+    type(rng_type), intent(inout) :: rng
+    integer, intent(out) :: order(:)
+    integer :: i, j, tmp
+    real(wp) :: u
+    order = [(i, i = 1, size(order))]
+    do i = size(order), 2, -1
+      call rng_uniform(rng, u)
+      j = min(int(u*real(i, wp)) + 1, i)
+      tmp = order(i)
+      order(i) = order(j)
+      order(j) = tmp
+    end do
+  end subroutine shuffle
 
   !> Uniform frequency inside bin i of width dw starting at w_min.
   real(wp) function draw_in_bin(rng, w_min, dw, i) result(w)

@@ -5,7 +5,8 @@ module davit_system_sea_builder
   use davit_core_random, only: rng_type, new_rng
   use davit_io_config, only: sea_config, wind_config
   use davit_sea_wave_field, only: wave_field_type, new_calm_sea, new_regular_wave, &
-                                  new_irregular_sea, wave_airy, wave_stokes2
+                                  new_irregular_sea, new_single_sum_sea, wave_airy, &
+                                  wave_stokes2, single_random, single_equal_energy
   use davit_sea_wind, only: wind_type, new_wind
   implicit none
   private
@@ -28,6 +29,14 @@ contains
                             sea%phase, sea%ramp_time)
     case ("irregular")
       rng = new_rng(seed, stream)
+      if (sea%summation /= "double") then
+        call new_single_sum_sea(field, sea%height, sea%direction, sea%spreading_s, &
+                                sea%spread_window, sea%n_frequencies, sea%n_directions, &
+                                sea%omega_min, sea%omega_max, sea%jitter, &
+                                merge(single_random, single_equal_energy, &
+                                      sea%summation == "single_random"), rng, sea%ramp_time)
+        return
+      end if
       call new_irregular_sea(field, sea%height, sea%direction, sea%spreading_s, &
                              sea%spread_window, sea%n_frequencies, sea%n_directions, &
                              sea%omega_min, sea%omega_max, sea%jitter, &

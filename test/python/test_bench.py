@@ -13,7 +13,8 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RUN_FIELDS = ("name", "deck", "cases", "threads", "dt", "simulated_time", "wall_time",
               "steps", "rhs_evaluations", "rhs_per_second", "steps_per_second",
-              "real_time_factor", "accuracy_known", "cg_error_before_contact",
+              "real_time_factor", "setup_time", "worst_step_wall_time",
+              "worst_interval_wall_time", "accuracy_known", "cg_error_before_contact",
               "cg_error_after_contact", "peak_sling_tension_error",
               "peak_segment_tension_error")
 DATASETS = ({f"bench/runs/{field}" for field in RUN_FIELDS}
@@ -25,12 +26,15 @@ ROWS = [("regular", "iiib_level5_090.nml", 1), ("regular_rosw", "iiib_level5_090
         ("irregular", "iiib_level5_090_irregular.nml", 1),
         ("irregular_rosw", "iiib_level5_090_irregular.nml", 1),
         ("irregular_fast", "iiib_level5_090_irregular_fast.nml", 1),
+        ("irregular_single", "iiib_level5_090_irregular_single.nml", 1),
+        ("irregular_single_rosw", "iiib_level5_090_irregular_single.nml", 1),
+        ("irregular_single_fast", "iiib_level5_090_irregular_single_fast.nml", 1),
         ("paper_literal", "iiib_level5_090_literal.nml", 1),
         ("paper_literal_rosw", "iiib_level5_090_literal.nml", 1),
         ("sweep", "bench_sweep.nml", 1), ("sweep", "bench_sweep.nml", 2)]
 SCENES = [name for name, _, _ in ROWS if name != "sweep"]
 RK4 = [SCENES.index(n) for n in ("regular", "regular_fast", "irregular", "irregular_fast",
-                                 "paper_literal")]
+                                 "irregular_single", "paper_literal")]
 S1, S2 = len(SCENES), len(SCENES) + 1
 EXACT = dict(rtol=1e-12, atol=0)
 
@@ -89,10 +93,26 @@ def test_rates_are_counts_over_wall_time(bench):
     rk4_rhs, rk4_steps = runs["rhs_evaluations"][RK4], runs["steps"][RK4]
     assert np.all(rk4_rhs >= 4 * rk4_steps) and np.all(rk4_rhs <= 4.1 * rk4_steps)
     # quick: the first 20 s of the launch scenes, 2 s of the paper-literal ones
-    np.testing.assert_allclose(runs["simulated_time"][:S1], [20.0] * 6 + [2.0] * 2, **EXACT)
+    np.testing.assert_allclose(runs["simulated_time"][:S1], [20.0] * 9 + [2.0] * 2, **EXACT)
     assert runs["steps"][0] >= 20000 and runs["steps"][3] >= 20000
     # quick scenes are not compared with the references (the full ones are)
     np.testing.assert_array_equal(runs["accuracy_known"], 0)
+
+
+def test_worst_step_and_frame_bound_the_totals(bench):
+    """A step's wall time is within the scene's; an output interval's is the sum of its
+    steps' (one clock), so the worst interval is at least the worst step (every step of a
+    quick scene ends inside a whole interval); the sweep rows carry none."""
+    _, data, _, _ = bench
+    step = data["bench/runs/worst_step_wall_time"]
+    frame = data["bench/runs/worst_interval_wall_time"]
+    setup = data["bench/runs/setup_time"]
+    wall = data["bench/runs/wall_time"]
+    assert np.all(step[:S1] > 0) and np.all(step[:S1] <= wall[:S1])
+    assert np.all(frame[:S1] >= step[:S1]) and np.all(frame[:S1] <= wall[:S1])
+    # the set-up (deck, BEM databases, sea) is timed apart from the time loop
+    assert np.all(setup[:S1] > 0) and np.all(setup[:S1] < 5.0)
+    np.testing.assert_array_equal(step[S1:], 0)
 
 
 def test_sweep_speed_up_is_the_wall_time_ratio(bench):
