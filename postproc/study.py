@@ -45,9 +45,10 @@ KEY_GROUPS = {"dt": "simulation", "dt_contact": "simulation", "rtol": "simulatio
               "lumps": "rigging", "sheaves": "rigging", "strips": "boat",
               "frozen": "ship", "n_frequencies": "sea", "n_directions": "sea",
               "wave_type": "sea", "seed": "simulation", "water_model": "boat",
-              "blocks": "rigging", "contact_approach": "simulation"}
+              "blocks": "rigging", "contact_approach": "simulation",
+              "summation": "sea"}
 STRING_KEYS = {"sheaves", "integrator", "wave_type", "water_model", "blocks",
-               "contact_approach"}
+               "contact_approach", "summation"}
 
 
 def parse_study(path):

@@ -11,6 +11,7 @@ module test_adaptive
   use davit_sweep_metrics, only: case_result, status_ok, status_not_run, status_not_needed
   use davit_sweep_adaptive, only: cell_converged, adaptive_plan, new_plan, round_cases, &
                                   close_round, mark_not_needed
+  use davit_bench_study, only: cell_verdicts
   use harness, only: suite_type, case_state, new_case, check, check_true
   implicit none
   private
@@ -29,7 +30,8 @@ contains
                    new_case("stopping_rule", stopping_rule), &
                    new_case("adaptive_keys_and_checks", adaptive_keys), &
                    new_case("cells_times_max_realisations_layout", layout), &
-                   new_case("rounds_replayed_from_results", rounds)]
+                   new_case("rounds_replayed_from_results", rounds), &
+                   new_case("bench_study_cell_verdicts", study_verdicts)]
   end function collect_adaptive
 
   !> Newcombe's Table I, method 3 (score interval without continuity correction), to the
@@ -185,5 +187,30 @@ contains
     call check_true(state, index(error%message, key) > 0 .and. index(error%message, why) > 0, &
                     "message names "//key//" and "//why//": "//error%message)
   end subroutine refused
+
+  !> The bench's study row judges cells as the operability table does (risk 5 %, Wilson
+  !> 95 %): 0 of 84 has the upper bound z^2/(n + z^2) = 0.0437 <= 0.05 (decided), 0 of 60
+  !> has 0.0602 (undecided), 20 of 40 a lower bound of 0.35 > 0.05 (decided), 2 of 40
+  !> straddles 0.05 (undecided); cases not finished do not count.
+  subroutine study_verdicts(state)
+    type(case_state), intent(inout) :: state
+    integer, parameter :: sizes(4) = [84, 60, 40, 40], hits(4) = [0, 0, 20, 2]
+    logical, allocatable :: done(:), hit(:)
+    real(wp), allocatable :: key(:)
+    integer :: c, i, cells, decided
+    allocate (done(0), hit(0), key(0))
+    do c = 1, 4
+      done = [done, [(.true., i = 1, sizes(c))], [(.false., i = 1, 7)]]
+      hit = [hit, [(i <= hits(c), i = 1, sizes(c))], [(.true., i = 1, 7)]]
+      key = [key, [(real(c, wp), i = 1, sizes(c) + 7)]]
+    end do
+    call cell_verdicts(done, hit, key, cells, decided)
+    call check_true(state, cells == 4, "four cells")
+    call check_true(state, decided == 2, "0/84 and 20/40 decided, 0/60 and 2/40 not")
+    call cell_verdicts(done(1:91), hit(1:91), key(1:91), cells, decided)
+    call check_true(state, cells == 1 .and. decided == 1, "0 of 84 decided")
+    call cell_verdicts(done(92:158), hit(92:158), key(92:158), cells, decided)
+    call check_true(state, cells == 1 .and. decided == 0, "0 of 60 undecided")
+  end subroutine study_verdicts
 
 end module test_adaptive

@@ -29,6 +29,8 @@ module davit_bench_report
     real(wp) :: rate_max = 0.0_wp, rk4_limit = 0.0_wp, safety = 0.0_wp
     !> The sea module alone.
     type(bench_result), allocatable :: sea(:)
+    !> The operability study: its cells and how many it decided (its row is in runs).
+    integer :: study_cells = 0, study_decided = 0
   end type bench_record
 
 contains
@@ -104,6 +106,9 @@ contains
     end do
     write (unit, "(a)") "", "Errors against each scene's converged reference ("// &
       "bench_reference.h5 in the decks folder; n/a without one or with --quick)."
+    write (unit, "(a)") "", "operability study: "//int_text(int(rec%study_decided, i8))// &
+      " of "//int_text(int(rec%study_cells, i8))//" cells decided (Wilson 95 %, risk 5 %) "// &
+      "in the 'operability' row's wall time"
     write (unit, "(a)") "", "sweep speed-up, 1 -> 2 threads: "//sig(rec%speed_up)//" ("// &
       int_text(int(rec%sweep_cases, i8))//" cases)", &
       "paper-literal step: "//sig(rec%safety)//" x RK4 limit 2.83/|lambda|max = "// &
@@ -160,6 +165,12 @@ contains
     call w%group("bench/sweep")
     call w%write_1d("bench/sweep/speed_up", [rec%speed_up], "-", &
                     "Wall time of the sweep on 1 thread / on 2 threads", dims="scalar")
+    call w%group("bench/study")
+    call w%write_1d_int("bench/study/cells", [int(rec%study_cells, i8)], "-", &
+                        "Cells of the operability study (the 'operability' run)", dims="scalar")
+    call w%write_1d_int("bench/study/decided", [int(rec%study_decided, i8)], "-", &
+                        "Cells decided at risk 5 % (Wilson 95 % bound on the collision "// &
+                        "probability <= 0.05 or lower bound > 0.05)", dims="scalar")
     call w%group("bench/paper_literal")
     call w%write_1d("bench/paper_literal/rate_max", [rec%rate_max], "1/s", &
                     "Largest |eigenvalue| of df/dy at t = 0 (davit modes)", dims="scalar")

@@ -14,6 +14,7 @@ module davit_bench_suite
   use davit_bench_sea, only: bench_sea
   use davit_bench_scenes, only: time_deck, rk4_bound, safety_factor
   use davit_bench_sweep, only: read_bench_sweep, time_sweep
+  use davit_bench_study, only: study_result, time_study
   use davit_bench_report, only: bench_record, new_bench_record, load_average, print_report, &
                                 print_progress, write_report
   implicit none
@@ -80,6 +81,11 @@ module davit_bench_suite
   !> The sweep deck; full: whole launches (each to its hook release), quick: 10 s each.
   character(len=*), parameter :: sweep_deck = "bench_sweep.nml"
   real(wp), parameter :: sweep_t_quick = 10.0_wp
+  !> The study-level row: an adaptive operability sweep run until its cells converge, on
+  !> 2 threads (quick: 5 s launches).
+  character(len=*), parameter :: study_deck = "bench_operability.nml"
+  real(wp), parameter :: study_t_quick = 5.0_wp
+  integer, parameter :: study_threads = 2
   integer, parameter :: sweep_threads(2) = [1, 2]
   !> Seconds each sea-module timing repeats its kernel.
   real(wp), parameter :: sea_budget_full = 0.5_wp, sea_budget_quick = 0.05_wp
@@ -99,6 +105,7 @@ contains
     rec = new_bench_record(opts%quick, opts%decks)
     call bench_scenes(opts, rec, error)
     if (.not. allocated(error)) call bench_sweep(opts, rec, error)
+    if (.not. allocated(error)) call bench_study(opts, out_path, rec, error)
     if (allocated(error)) then
       call w%discard()
       return
@@ -158,5 +165,25 @@ contains
     rec%sweep_cases = runs(1)%cases
     rec%speed_up = runs(1)%wall/max(runs(2)%wall, 1.0e-9_wp)
   end subroutine bench_sweep
+
+  !> The operability study: its wall time to converge and how many cells it decided.
+  subroutine bench_study(opts, out_path, rec, error)
+    type(bench_options), intent(in) :: opts
+    character(len=*), intent(in) :: out_path
+    type(bench_record), intent(inout) :: rec
+    type(error_type), allocatable, intent(out) :: error
+    type(sweep_config) :: s
+    type(timed_run) :: run
+    type(study_result) :: study
+    call read_bench_sweep(opts%decks//"/"//study_deck, merge(study_t_quick, 0.0_wp, &
+                          opts%quick), s, error)
+    if (allocated(error)) return
+    call time_study("operability", s, study_threads, out_path//".study.h5", run, study, error)
+    if (allocated(error)) return
+    call print_progress(error_unit, run)
+    rec%runs = [rec%runs, run]
+    rec%study_cells = study%cells
+    rec%study_decided = study%decided
+  end subroutine bench_study
 
 end module davit_bench_suite

@@ -20,7 +20,8 @@ RUN_FIELDS = ("name", "deck", "cases", "threads", "dt", "simulated_time", "wall_
 DATASETS = ({f"bench/runs/{field}" for field in RUN_FIELDS}
             | {"bench/sweep/speed_up", "bench/paper_literal/rate_max",
                "bench/paper_literal/rk4_limit", "bench/paper_literal/safety_factor",
-               "bench/sea/name", "bench/sea/value", "bench/sea/unit"})
+               "bench/sea/name", "bench/sea/value", "bench/sea/unit",
+               "bench/study/cells", "bench/study/decided"})
 ROWS = [("regular", "iiib_level5_090.nml", 1), ("regular_rosw", "iiib_level5_090.nml", 1),
         ("regular_fast", "iiib_level5_090_fast.nml", 1),
         ("irregular", "iiib_level5_090_irregular.nml", 1),
@@ -31,8 +32,9 @@ ROWS = [("regular", "iiib_level5_090.nml", 1), ("regular_rosw", "iiib_level5_090
         ("irregular_single_fast", "iiib_level5_090_irregular_single_fast.nml", 1),
         ("paper_literal", "iiib_level5_090_literal.nml", 1),
         ("paper_literal_rosw", "iiib_level5_090_literal.nml", 1),
-        ("sweep", "bench_sweep.nml", 1), ("sweep", "bench_sweep.nml", 2)]
-SCENES = [name for name, _, _ in ROWS if name != "sweep"]
+        ("sweep", "bench_sweep.nml", 1), ("sweep", "bench_sweep.nml", 2),
+        ("operability", "bench_operability.nml", 2)]
+SCENES = [name for name, _, _ in ROWS if name not in ("sweep", "operability")]
 RK4 = [SCENES.index(n) for n in ("regular", "regular_fast", "irregular", "irregular_fast",
                                  "irregular_single", "paper_literal")]
 S1, S2 = len(SCENES), len(SCENES) + 1
@@ -115,6 +117,21 @@ def test_worst_step_and_frame_bound_the_totals(bench):
     np.testing.assert_array_equal(step[S1:], 0)
 
 
+def test_operability_study_row(bench):
+    """The study row: two cells, rounds of 8 launches up to 32 each (cases = launches run),
+    every launch 5 s long in the quick bench; the decided count is printed as stored."""
+    stdout, data, _, _ = bench
+    row = len(ROWS) - 1
+    assert data["bench/study/cells"][0] == 2
+    assert 0 <= data["bench/study/decided"][0] <= 2
+    launches = data["bench/runs/cases"][row]
+    assert launches % 8 == 0 and 16 <= launches <= 64
+    np.testing.assert_allclose(data["bench/runs/simulated_time"][row], 5.0 * launches,
+                               rtol=1e-9)
+    assert (f"operability study: {data['bench/study/decided'][0]} of 2 cells decided"
+            in stdout)
+
+
 def test_sweep_speed_up_is_the_wall_time_ratio(bench):
     _, data, _, _ = bench
     wall = data["bench/runs/wall_time"]
@@ -142,7 +159,8 @@ def test_paper_literal_step_is_the_rk4_limit_with_margin(bench):
 def test_printed_table_is_the_file(bench):
     stdout, data, _, _ = bench
     lines = [line for line in stdout.splitlines() if line.startswith("| ")]
-    rows = [line for line in lines if line.split("|")[1].strip() in SCENES + ["sweep"]]
+    rows = [line for line in lines
+            if line.split("|")[1].strip() in SCENES + ["sweep", "operability"]]
     assert len(rows) == len(ROWS)
     for i, row in enumerate(rows):
         cells = [c.strip() for c in row.strip("|").split("|")]
