@@ -1,9 +1,12 @@
 !> The rubber fender law (README "### Fenders"): its curve against the source's table, the
 !> energy of an impact, its restitution and the sign of its hysteresis.
 module test_fenders
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
+                                           ieee_negative_inf, ieee_is_nan, ieee_is_finite
   use davit_kinds, only: wp
   use davit_boat_contact, only: contact_law_type, fender_state_type, new_rubber_fender_law, &
                                 contact_force, fender_update, phase_restitution
+  use davit_boat_rubber_fender, only: rubber_loading, rubber_unloading
   use davit_solve_integrator, only: ode_problem
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -47,7 +50,8 @@ contains
     suite%cases = [new_case("rubber_curve_vs_iso17357_table", curve_table), &
                    new_case("rubber_compression_work_is_kinetic_energy", energy_balance), &
                    new_case("rubber_rebound_is_restitution", restitution), &
-                   new_case("rubber_hysteresis_sign_and_loop_area", hysteresis)]
+                   new_case("rubber_hysteresis_sign_and_loop_area", hysteresis), &
+                   new_case("rubber_any_trial_deflection_is_safe", trial_deflections)]
   end function collect_fenders
 
   subroutine fender_rhs(self, t, y, dydt)
@@ -227,5 +231,48 @@ contains
     call check(state, loop, (1.0_wp - 0.8_wp**2)*ke, "loop area = (1 - e^2) KE", &
                rel_tol=1e-3_wp)
   end subroutine hysteresis
+
+  !> A diverging trial stage (dopri5 at rtol = atol = 1, issue 35) hands the law NaN,
+  !> huge, infinite or negative deflections: each gives NaN for NaN, else a finite force
+  !> >= 0 (0 off the fender), on the loading and the unloading path, and no crash (the
+  !> table index was int() of the deflection: out of bounds).
+  subroutine trial_deflections(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: nan, trials(7), f(3)
+    type(contact_law_type) :: law
+    type(fender_state_type) :: unloading
+    integer :: k
+    character(len=24) :: label
+    nan = ieee_value(nan, ieee_quiet_nan)
+    trials = [nan, huge(1.0_wp), -huge(1.0_wp), ieee_value(nan, ieee_positive_inf), &
+              ieee_value(nan, ieee_negative_inf), -1.0_wp, 1.0e30_wp]
+    law = new_rubber_fender_law(diameter, rated_reaction, 0.7_wp)
+    unloading%phase = phase_restitution
+    unloading%f_max = 0.5_wp*rated_reaction
+    unloading%delta_max = 0.5_wp*diameter
+    unloading%exponent = 2.0_wp
+    do k = 1, size(trials)
+      write (label, "(es24.16)") trials(k)
+      f = [rubber_loading(diameter, rated_reaction, trials(k)), &
+           contact_force(law, fender_state_type(), trials(k), 1.0_wp), &
+           rubber_unloading(diameter, rated_reaction, unloading%f_max, unloading%exponent, &
+                            trials(k))]
+      if (ieee_is_nan(trials(k))) then
+        call check_true(state, ieee_is_nan(f(1)) .and. ieee_is_nan(f(2)), &
+                        "NaN deflection gives a NaN loading force")
+        call check_true(state, .not. ieee_is_finite(f(3)) .or. f(3) >= 0.0_wp, &
+                        "NaN deflection: unloading force NaN or >= 0")
+      else
+        call check_true(state, all(ieee_is_finite(f)) .and. all(f >= 0.0_wp), &
+                        "deflection "//trim(adjustl(label))//" gives finite forces >= 0")
+        if (trials(k) <= 0.0_wp) call check_true(state, all(f == 0.0_wp), &
+                                                 "deflection "//trim(adjustl(label))// &
+                                                 " (off the fender) gives no force")
+      end if
+    end do
+    ! the table's last segment goes on past 60 %: at 1.0 D, 0.82 + 9 x 0.18 = 2.44 rated
+    call check(state, rubber_loading(diameter, rated_reaction, diameter), &
+               2.44_wp*rated_reaction, "last segment continued to 1.0 D", rel_tol=1.0e-12_wp)
+  end subroutine trial_deflections
 
 end module test_fenders

@@ -16,6 +16,7 @@
 !> e_r^2 times the work of compression: a mass rebounds at e_r times its approach speed
 !> and absorbs (1 - e_r^2) of its kinetic energy.
 module davit_boat_rubber_fender
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use davit_kinds, only: wp
   implicit none
   private
@@ -30,6 +31,9 @@ module davit_boat_rubber_fender
   real(wp), parameter :: curve_reaction(13) = [0.0_wp, 0.03_wp, 0.06_wp, 0.10_wp, 0.14_wp, &
                                                0.19_wp, 0.25_wp, 0.32_wp, 0.40_wp, 0.51_wp, &
                                                0.66_wp, 0.82_wp, 1.0_wp]
+  !> Largest deflection / diameter the last segment's slope is continued to: 10^6 diameters
+  !> (a fender squeezed 60 % is bottomed out; only a diverging trial stage goes further).
+  real(wp), parameter :: max_deflection = 1.0e6_wp
   !> Midpoint points of the work integrals (error ~1e-6 of the work).
   integer, parameter :: nquad = 512
 
@@ -37,15 +41,24 @@ contains
 
   !> Loading reaction [N] of a fender of diameter d [m] and rated reaction r_rated [N] at
   !> deflection delta [m] (0 for delta <= 0).
+  !> Any trial state is safe (an integrator's trial stage is not the solution): NaN gives
+  !> NaN, for the run's divergence check to report; the deflection is capped at
+  !> max_deflection diameters, so a huge or infinite one gives a finite force, and the
+  !> table index is formed from the deflection clamped to the table, never from int() of a
+  !> value out of the integer range.
   pure real(wp) function rubber_loading(d, r_rated, delta) result(f)
     real(wp), intent(in) :: d, r_rated, delta
     real(wp) :: x, w
     integer :: i, n
     f = 0.0_wp
+    if (ieee_is_nan(delta)) then
+      f = delta
+      return
+    end if
     if (delta <= 0.0_wp) return
     n = size(curve_deflection)
-    x = delta/d
-    i = min(int(x/curve_deflection(2)) + 1, n - 1)
+    x = min(delta/d, max_deflection)
+    i = min(int(min(x, curve_deflection(n))/curve_deflection(2)) + 1, n - 1)
     w = (x - curve_deflection(i))/(curve_deflection(i + 1) - curve_deflection(i))
     f = r_rated*(curve_reaction(i) + w*(curve_reaction(i + 1) - curve_reaction(i)))
   end function rubber_loading

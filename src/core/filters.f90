@@ -7,7 +7,7 @@ module davit_core_filters
   use davit_kinds, only: wp, pi
   implicit none
   private
-  public :: phaseless_lowpass
+  public :: phaseless_lowpass, lowpass_in_place
 
 contains
 
@@ -17,12 +17,20 @@ contains
     real(wp), intent(in) :: x(:), dt, fc
     ! on the heap: the signal is as long as the run (a 1 kHz seat trace of t_end)
     real(wp), allocatable :: y(:)
+    y = x
+    call lowpass_in_place(y, dt, fc)
+  end function phaseless_lowpass
+
+  !> phaseless_lowpass of y in place: no copy of a signal as long as the run (y may be a
+  !> strided row of a component table).
+  pure subroutine lowpass_in_place(y, dt, fc)
+    real(wp), intent(inout) :: y(:)
+    real(wp), intent(in) :: dt, fc
     real(wp) :: a(3), b(2)
     call butterworth2(dt, fc/(sqrt(2.0_wp) - 1.0_wp)**0.25_wp, a, b)
-    y = x
     call one_pass(y, a, b, .true.)
     call one_pass(y, a, b, .false.)
-  end function phaseless_lowpass
+  end subroutine lowpass_in_place
 
   !> Coefficients of the 2-pole Butterworth low-pass with corner f0 (prewarped bilinear
   !> transform): y_n = a1 x_n + a2 x_n-1 + a3 x_n-2 + b1 y_n-1 + b2 y_n-2.

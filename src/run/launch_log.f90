@@ -267,18 +267,20 @@ contains
     type(launch_log), intent(in) :: self
     type(rule_check), intent(inout) :: c(n_checks)
     real(wp), intent(out) :: drs(2)
-    real(wp), allocatable :: a(:, :)
+    ! the trace is as long as the run (1 kHz): every array of it is allocatable (heap), as
+    ! an expression's temporary would go on the stack under -fstack-arrays (issue 35)
+    real(wp), allocatable :: a(:, :), mag(:), up(:)
     drs = 0.0_wp
     a = self%seat%body_filtered()
     if (size(a, 2) == 0) return
+    mag = norm2(a, dim=1)
     if (self%limits%srss_limit > 0.0_wp) then
-      c(check_seat_srss) = new_check(check_seat_srss, maxval(norm2(a, dim=1)), &
-                                     self%limits%srss_limit)
+      c(check_seat_srss) = new_check(check_seat_srss, maxval(mag), self%limits%srss_limit)
     else
-      c(check_seat_srss)%value = maxval(norm2(a, dim=1))
+      c(check_seat_srss)%value = maxval(mag)
     end if
-    drs = response_peaks(-a(3, :), self%seat%dt, self%limits%dr_frequency, &
-                         self%limits%dr_damping)
+    up = -a(3, :)
+    drs = response_peaks(up, self%seat%dt, self%limits%dr_frequency, self%limits%dr_damping)
     c(check_seat_dri) = new_check(check_seat_dri, drs(1), self%limits%dri_limit)
   end subroutine occupant_checks
 
@@ -307,6 +309,7 @@ contains
     real(wp), allocatable :: mag(:)
     integer :: k, i1, i2
     a = self%seat%filtered()
+    ! onto the allocatable mag (heap), never into an expression's temporary (stack)
     mag = norm2(a, dim=1)
     peak = [0.0_wp, -1.0_wp]
     if (size(mag) > 0) peak = [maxval(mag), (real(maxloc(mag, 1), wp) - 0.5_wp)*self%seat%dt]

@@ -5,7 +5,7 @@
 !> step.
 module davit_run_seat_trace
   use davit_kinds, only: wp
-  use davit_core_filters, only: phaseless_lowpass
+  use davit_core_filters, only: lowpass_in_place
   implicit none
   private
   public :: seat_trace
@@ -101,7 +101,7 @@ contains
     real(wp), intent(inout) :: a(:, :)
     integer :: i
     do i = 1, size(a, 1)
-      a(i, :) = phaseless_lowpass(a(i, :), self%dt, self%cutoff)
+      call lowpass_in_place(a(i, :), self%dt, self%cutoff)
     end do
   end subroutine lowpass_components
 

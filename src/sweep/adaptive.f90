@@ -80,15 +80,23 @@ contains
     type(adaptive_plan), intent(in) :: plan
     type(case_result), intent(in) :: results(:)
     integer, allocatable :: pending(:)
-    logical :: due(size(results))
-    integer :: j, c
+    ! as long as the sweep: allocatable (heap), not automatic (the stack)
+    logical, allocatable :: due(:)
+    integer :: j, c, n
+    allocate (due(size(results)))
     due = .false.
     do j = 1, size(plan%open)
       if (plan%open(j)) due((j - 1)*plan%slots + 1:(j - 1)*plan%slots + plan%scheduled(j)) = &
         .true.
     end do
     due = due .and. (results%status == status_not_run .or. results%status == status_not_needed)
-    pending = pack([(c, c = 1, size(results))], due)
+    allocate (pending(count(due)))
+    n = 0
+    do c = 1, size(results)
+      if (.not. due(c)) cycle
+      n = n + 1
+      pending(n) = c
+    end do
   end function round_cases
 
   !> After a round whose cases all ran: close the cells the rule stops, give the others

@@ -20,7 +20,7 @@ module davit_sweep_cases
   use davit_sea_spectrum, only: spectrum_peak_omega
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
-  use davit_sweep_keys, only: sweep_config, wave_type_names
+  use davit_sweep_keys, only: sweep_config, wave_type_names, case_count
   implicit none
   private
   public :: sweep_case, build_cases, case_config, initial_clearance, splitmix64, case_seed
@@ -53,7 +53,8 @@ contains
     sizes = [size(s%wave_types), size(s%levels), size(s%heights), size(s%periods), &
              size(s%winds), size(s%angles_deg), size(s%clearances_b), size(s%dts), &
              s%max_realisations]
-    allocate (cases(product(sizes)))
+    ! counted in 64 bits: read_sweep refused a list beyond max_cases (a default integer)
+    allocate (cases(case_count(s)))
     do k = 1, size(cases)
       rest = k - 1
       do d = size(sizes), 1, -1

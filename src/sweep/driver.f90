@@ -223,7 +223,7 @@ contains
     type(sweep_run), intent(inout) :: run
     type(error_type), allocatable, intent(out) :: error
     logical :: exists
-    integer :: k
+    integer :: k, n
     if (len(series(opts)) > 0) call make_folder(series(opts), error)
     if (allocated(error)) return
     allocate (run%state%results(size(run%cases)))
@@ -234,8 +234,15 @@ contains
       if (allocated(error)) return
     end if
     run%mine = shard_mask(s, run%cases, opts%shard)
-    run%pending = pack([(k, k = 1, size(run%cases))], &
-                       run%state%results%status == status_not_run .and. run%mine)
+    ! the unrun cases of this shard, built on the heap (an index array as long as the
+    ! sweep would otherwise be a temporary on the stack)
+    allocate (run%pending(count(run%state%results%status == status_not_run .and. run%mine)))
+    n = 0
+    do k = 1, size(run%cases)
+      if (run%state%results(k)%status /= status_not_run .or. .not. run%mine(k)) cycle
+      n = n + 1
+      run%pending(n) = k
+    end do
     call longest_first(s, run%cases, run%pending)
     run%state%threads = nthreads
     run%state%todo = size(run%pending)

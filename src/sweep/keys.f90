@@ -13,20 +13,30 @@
 !> `realisation_batch` more until the 95 % Wilson half-width of its collision probability
 !> is at most the target or it has max_realisations (davit_sweep_adaptive).
 module davit_sweep_keys
-  use davit_kinds, only: wp
+  use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at, int_to_str
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_config, only: config_type, read_config
+  use davit_io_text, only: int_text, fmt_fixed
+  use davit_run_budget, only: memory_limit
   implicit none
   private
   public :: sweep_config, read_sweep, parse_sweep, document_sweep_keys, wave_type_names
+  public :: case_count, max_cases
 
   !> Wave types a sweep may list; their position minus one is the summary's code
   !> (0 calm, 1 airy, 2 stokes2, 3 irregular).
   character(len=9), parameter :: wave_type_names(0:3) = [character(len=9) :: "calm", &
     "airy", "stokes2", "irregular"]
   integer, parameter :: max_values = 1000
+  !> Most cases a sweep may list. Each case is a launch (~0.1 s to minutes of CPU), so 10^6
+  !> cases are days to years of computing and a summary of ~0.5 GB; the lists' product
+  !> reaches 8e21, far past what any run could hold (case indices are default integers).
+  integer(i8), parameter :: max_cases = 1000000_i8
+  !> Memory a case holds while the sweep runs [bytes]: its inputs and row, the rows' texts
+  !> and the summary's column buffers (~530 B measured for 1e5 and 1e6 cases), with margin.
+  real(wp), parameter :: bytes_per_case = 1000.0_wp
 
   type :: sweep_config
     !> The sweep deck and its text (stored in the summary; a resume checks it).
@@ -221,6 +231,8 @@ contains
     end do
     call check_adaptive(s, deck, error)
     if (allocated(error)) return
+    call check_case_count(s, deck, error)
+    if (allocated(error)) return
     if (s%has_clearances .and. s%base%simulation%scene == "hanging_boat" .and. &
         .not. s%base%slings%attached) then
       call fatal_error(error, key_at(deck, "sweep", ["clearances_b"])// &
@@ -249,6 +261,81 @@ contains
                        " must be >= realisations = "//int_to_str(s%realisations))
     end if
   end subroutine check_adaptive
+
+  !> The number of cases: the product of the lists' lengths (realisations: the cap per
+  !> cell), in 64 bits and saturating at huge(1_i8) (the product reaches 8e21).
+  pure integer(i8) function case_count(s) result(n)
+    type(sweep_config), intent(in) :: s
+    integer(i8) :: sizes(9)
+    integer :: k
+    sizes = list_sizes(s)
+    n = 1
+    do k = 1, size(sizes)
+      if (n > huge(n)/max(sizes(k), 1_i8)) then
+        n = huge(n)
+        return
+      end if
+      n = n*sizes(k)
+    end do
+  end function case_count
+
+  !> The lengths of the swept lists, in the mixed radix of the case order (davit_sweep_cases).
+  pure function list_sizes(s) result(sizes)
+    type(sweep_config), intent(in) :: s
+    integer(i8) :: sizes(9)
+    sizes = int([size(s%wave_types), size(s%levels), size(s%heights), size(s%periods), &
+                 size(s%winds), size(s%angles_deg), size(s%clearances_b), size(s%dts), &
+                 s%max_realisations], i8)
+  end function list_sizes
+
+  !> Refuse a case list beyond max_cases or the memory limit (the base deck's
+  !> &simulation max_memory), before anything of its size is made.
+  subroutine check_case_count(s, deck, error)
+    type(sweep_config), intent(in) :: s
+    type(nml_deck), intent(in) :: deck
+    type(error_type), allocatable, intent(out) :: error
+    character(len=*), parameter :: keys(9) = [character(len=16) :: "wave_types", "levels", &
+      "heights", "periods", "wind", "angles_deg", "clearances_b", "dts", "max_realisations"]
+    integer(i8) :: n
+    real(wp) :: bytes, limit
+    n = case_count(s)
+    bytes = real(n, wp)*bytes_per_case
+    limit = memory_limit(s%base)
+    if (n <= max_cases .and. bytes <= limit) return
+    if (n > max_cases) then
+      call fatal_error(error, key_at(deck, "sweep", [keys, "realisations    "])// &
+                       "&sweep: "//count_text(s, n)//" exceed the cap of "// &
+                       int_text(max_cases)//" cases; sweep fewer values or split the "// &
+                       "sweep into several decks")
+    else
+      call fatal_error(error, key_at(deck, "sweep", [keys, "realisations    "])// &
+                       "&sweep: "//count_text(s, n)//" would hold about "// &
+                       fmt_fixed(bytes/1024.0_wp**3, 2)//" GiB, more than the memory "// &
+                       "limit of "//fmt_fixed(limit/1024.0_wp**3, 2)//" GiB (the base "// &
+                       "deck's &simulation max_memory, 0: 80 % of physical memory)")
+    end if
+  end subroutine check_case_count
+
+  !> "N cases (a x b x ...)": the count and the lengths of the lists longer than one.
+  function count_text(s, n) result(text)
+    type(sweep_config), intent(in) :: s
+    integer(i8), intent(in) :: n
+    character(len=:), allocatable :: text, factors
+    character(len=*), parameter :: names(9) = [character(len=12) :: "wave types", "levels", &
+      "heights", "periods", "wind values", "angles", "clearances", "dts", "realisations"]
+    integer(i8) :: sizes(9)
+    integer :: k
+    sizes = list_sizes(s)
+    text = int_text(n)//" cases"
+    if (n == huge(n)) text = "more than "//int_text(n)//" cases"
+    factors = ""
+    do k = 1, size(sizes)
+      if (sizes(k) <= 1) cycle
+      if (len(factors) > 0) factors = factors//" x "
+      factors = factors//int_text(sizes(k))//" "//trim(names(k))
+    end do
+    if (len(factors) > 0) text = text//" ("//factors//")"
+  end function count_text
 
   !> `path` relative to the folder of `deck` (unchanged if absolute).
   pure function relative_to(deck, path) result(full)

@@ -63,33 +63,50 @@ contains
   subroutine write_cases(w, cases)
     type(h5_writer_type), intent(inout) :: w
     type(sweep_case), intent(in) :: cases(:)
+    ! each column through an allocatable (heap): an expression or a component of the rows
+    ! passed as the argument would be a temporary on the stack, as long as the sweep
+    real(wp), allocatable :: col(:)
+    integer(i8), allocatable :: icol(:)
     call w%group("cases")
-    call w%write_1d_int("cases/index", int(cases%index, i8), "-", "Case number, 1-based", &
+    icol = int(cases%index, i8)
+    call w%write_1d_int("cases/index", icol, "-", "Case number, 1-based", &
                         dims="case")
-    call w%write_1d_int("cases/realisation", int(cases%realisation, i8), "-", &
+    icol = int(cases%realisation, i8)
+    call w%write_1d_int("cases/realisation", icol, "-", &
                         "Realisation of the combination of the other inputs, 1-based", dims="case")
-    call w%write_1d_int("cases/seed", int(cases%seed, i8), "-", "Random seed of the case "// &
+    icol = int(cases%seed, i8)
+    call w%write_1d_int("cases/seed", icol, "-", "Random seed of the case "// &
                         "(SplitMix64 of the base seed and the case index, top 31 bits)", &
                         dims="case")
-    call w%write_1d_int("cases/level", int(cases%level, i8), "-", &
+    icol = int(cases%level, i8)
+    call w%write_1d_int("cases/level", icol, "-", &
                         "Sea-state level (review G19)", dims="case")
-    call w%write_1d_int("cases/wave_type", int(cases%wave_type, i8), "-", &
+    icol = int(cases%wave_type, i8)
+    call w%write_1d_int("cases/wave_type", icol, "-", &
                         "Wave type: "//wave_type_codes, dims="case")
     call w%attr_str("cases/wave_type", "codes", wave_type_codes)
-    call w%write_1d_int("cases/wind", merge(1_i8, 0_i8, cases%wind), "-", &
+    icol = merge(1_i8, 0_i8, cases%wind)
+    call w%write_1d_int("cases/wind", icol, "-", &
                         "1 = wind on (along the waves), 0 = no wind", dims="case")
-    call w%write_1d("cases/wind_speed", cases%wind_speed, "m/s", "Wind speed", dims="case")
-    call w%write_1d("cases/wave_height", cases%wave_height, "m", &
+    col = cases%wind_speed
+    call w%write_1d("cases/wind_speed", col, "m/s", "Wind speed", dims="case")
+    col = cases%wave_height
+    call w%write_1d("cases/wave_height", col, "m", &
                     "Wave height (regular: 2a; irregular: H of eq. 44)", dims="case")
-    call w%write_1d("cases/wave_period", cases%wave_period, "s", &
+    col = cases%wave_period
+    call w%write_1d("cases/wave_period", col, "s", &
                     "Regular-wave period (irregular: sets only the ramp)", dims="case")
-    call w%write_1d("cases/angle_deg", cases%angle_deg, "deg", &
+    col = cases%angle_deg
+    call w%write_1d("cases/angle_deg", col, "deg", &
                     "Encounter angle chi: wave direction from N1 towards N2, ship heading N1", &
                     dims="case")
-    call w%write_1d("cases/clearance_b", cases%clearance_b, "-", &
+    col = cases%clearance_b
+    call w%write_1d("cases/clearance_b", col, "-", &
                     "Initial fender-to-ship-side distance in boat widths", dims="case")
-    call w%write_1d("cases/dt", cases%dt, "s", "Time step", dims="case")
-    call w%write_1d("cases/phase_deg", cases%phase_deg, "deg", "Regular-wave phase epsilon"// &
+    col = cases%dt
+    call w%write_1d("cases/dt", col, "s", "Time step", dims="case")
+    col = cases%phase_deg
+    call w%write_1d("cases/phase_deg", col, "deg", "Regular-wave phase epsilon"// &
                     " at the origin at t = 0 (irregular: unused, the seed sets the phases)", &
                     dims="case")
   end subroutine write_cases
@@ -97,42 +114,61 @@ contains
   subroutine write_results(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
+    ! each column through an allocatable (heap): an expression or a component of the rows
+    ! passed as the argument would be a temporary on the stack, as long as the sweep
+    real(wp), allocatable :: col(:)
+    integer(i8), allocatable :: icol(:)
+    character(len=:), allocatable :: texts(:)
     call w%group("results")
-    call w%write_1d_int("results/status", int(r%status, i8), "-", &
+    icol = int(r%status, i8)
+    call w%write_1d_int("results/status", icol, "-", &
                         "0 not run, 1 ok, 2 failed (see message), 3 not needed "// &
                         "(adaptive realisations: its cell converged; see message)", dims="case")
-    call w%write_strings("results/message", text_column(r, "message"), "-", &
+    texts = text_column(r, "message")
+    call w%write_strings("results/message", texts, "-", &
                          "'ok', the error of a failed case, why it was not needed, or "// &
                          "empty when not run", dims="case")
-    call w%write_1d("results/min_clearance", r%min_clearance, "m", "Smallest fender-to-"// &
+    col = r%min_clearance
+    call w%write_1d("results/min_clearance", col, "m", "Smallest fender-to-"// &
                     "ship-side distance over the lowering; negative = indentation"//defined, &
                     dims="case")
-    call w%write_1d_int("results/collided", int(r%collided, i8), "-", &
+    icol = int(r%collided, i8)
+    call w%write_1d_int("results/collided", icol, "-", &
                         "1 if min_clearance < 0 (a fender touched the ship), else 0; -1 "// &
                         "if not status 1", dims="case")
-    call w%write_1d_int("results/impacts", int(r%impacts, i8), "-", "Separate contact "// &
+    icol = int(r%impacts, i8)
+    call w%write_1d_int("results/impacts", icol, "-", "Separate contact "// &
                         "episodes over the lowering; -1 if not status 1", dims="case")
-    call w%write_1d("results/peak_horizontal_acceleration", r%peak_horizontal_acceleration, &
+    col = r%peak_horizontal_acceleration
+    call w%write_1d("results/peak_horizontal_acceleration", col, &
                     "m/s^2", "Largest horizontal CG acceleration |(a_x, a_y)|, mean over "// &
                     "each step"//defined, dims="case")
-    call w%write_1d("results/peak_vertical_acceleration", r%peak_vertical_acceleration, &
+    col = r%peak_vertical_acceleration
+    call w%write_1d("results/peak_vertical_acceleration", col, &
                     "m/s^2", "Largest vertical CG acceleration |a_z| (gravity not "// &
                     "subtracted: 0 hanging at rest), mean over each step"//defined, dims="case")
-    call w%write_1d("results/peak_segment_tension", r%peak_segment_tension, "N", &
+    col = r%peak_segment_tension
+    call w%write_1d("results/peak_segment_tension", col, "N", &
                     "Largest tension of any cable or sling segment over the lowering"//defined, &
                     dims="case")
-    call w%write_1d("results/first_contact_time", r%first_contact_time, "s", &
+    col = r%first_contact_time
+    call w%write_1d("results/first_contact_time", col, "s", &
                     "Time of the first fender contact over the lowering; -1 = none"//defined, &
                     dims="case")
-    call w%write_1d("results/waterborne_time", r%waterborne_time, "s", "Time the boat "// &
+    col = r%waterborne_time
+    call w%write_1d("results/waterborne_time", col, "s", "Time the boat "// &
                     "became waterborne (review G24); -1 = never"//defined, dims="case")
-    call w%write_1d("results/end_time", r%end_time, "s", "End of the lowering window: "// &
+    col = r%end_time
+    call w%write_1d("results/end_time", col, "s", "End of the lowering window: "// &
                     "hook release, or the end of the run"//defined, dims="case")
     call write_log_columns(w, r)
-    call w%write_1d("results/wall_time", r%wall_time, "s", &
+    col = r%wall_time
+    call w%write_1d("results/wall_time", col, "s", &
                     "Compute time of the case (one thread); NaN if not run", dims="case")
-    call w%write_1d_int("results/steps", r%steps, "-", "Integrator steps", dims="case")
-    call w%write_1d_int("results/rhs_evaluations", r%rhs_evaluations, "-", &
+    icol = r%steps
+    call w%write_1d_int("results/steps", icol, "-", "Integrator steps", dims="case")
+    icol = r%rhs_evaluations
+    call w%write_1d_int("results/rhs_evaluations", icol, "-", &
                         "Right-hand-side evaluations of the integrator", dims="case")
   end subroutine write_results
 
@@ -140,26 +176,36 @@ contains
   subroutine write_log_columns(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
-    call w%write_1d("results/peak_sling_tension", r%peak_sling_tension, "N", "Largest "// &
+    real(wp), allocatable :: col(:)
+    character(len=:), allocatable :: texts(:)
+    col = r%peak_sling_tension
+    call w%write_1d("results/peak_sling_tension", col, "N", "Largest "// &
                     "sling tension over every step until release"//defined, dims="case")
-    call w%write_1d("results/peak_fall_tension", r%peak_fall_tension, "N", "Largest "// &
+    col = r%peak_fall_tension
+    call w%write_1d("results/peak_fall_tension", col, "N", "Largest "// &
                     "cable-segment (fall) tension over every step until release"//defined, &
                     dims="case")
-    call w%write_1d("results/max_impact_speed", r%max_impact_speed, "m/s", "Fastest "// &
+    col = r%max_impact_speed
+    call w%write_1d("results/max_impact_speed", col, "m/s", "Fastest "// &
                     "normal impact on the ship's side (0 = none)"//defined, dims="case")
-    call w%write_1d("results/peak_seat_acceleration", r%peak_seat_acceleration, "m/s^2", &
+    col = r%peak_seat_acceleration
+    call w%write_1d("results/peak_seat_acceleration", col, "m/s^2", &
                     "Largest filtered seat acceleration (&limits seat, seat_filter)"//defined, &
                     dims="case")
-    call w%write_1d("results/swl_exceeded_time", r%swl_exceeded_time, "s", "First time "// &
+    col = r%swl_exceeded_time
+    call w%write_1d("results/swl_exceeded_time", col, "s", "First time "// &
                     "a wire tension exceeded the safe working load; -1 = never"//defined, &
                     dims="case")
-    call w%write_1d("results/mbl_exceeded_time", r%mbl_exceeded_time, "s", "First time "// &
+    col = r%mbl_exceeded_time
+    call w%write_1d("results/mbl_exceeded_time", col, "s", "First time "// &
                     "a wire tension exceeded the minimum breaking load; -1 = never"//defined, &
                     dims="case")
-    call w%write_1d("results/impact_speed_exceeded_time", r%impact_speed_exceeded_time, &
+    col = r%impact_speed_exceeded_time
+    call w%write_1d("results/impact_speed_exceeded_time", col, &
                     "s", "First impact faster than &limits impact_speed; -1 = never"//defined, &
                     dims="case")
-    call w%write_strings("results/outcome", text_column(r, "outcome"), "-", "How the "// &
+    texts = text_column(r, "outcome")
+    call w%write_strings("results/outcome", texts, "-", "How the "// &
                          "launch ended: released, waterborne, or not waterborne and why; "// &
                          "empty if not run", dims="case")
     call write_check_columns(w, r)
@@ -172,14 +218,18 @@ contains
     type(case_result), intent(in) :: r(:)
     character(len=:), allocatable :: stem, units
     integer :: k
+    real(wp), allocatable :: col(:)
     do k = 1, n_checks
       stem = "results/check_"//trim(check_ids(k))
       units = trim(check_units(k))
-      call w%write_1d(stem//"_value", r%check_value(k), units, trim(check_texts(k))// &
+      col = r%check_value(k)
+      call w%write_1d(stem//"_value", col, units, trim(check_texts(k))// &
                       " ("//trim(check_sources(k))//"): measured value; NaN = does not "// &
                       "apply"//defined, dims="case")
-      call w%write_1d(stem//"_limit", r%check_limit(k), units, "Its limit"//defined, dims="case")
-      call w%write_1d(stem//"_margin", r%check_margin(k), "-", "Relative margin, >= 0 "// &
+      col = r%check_limit(k)
+      call w%write_1d(stem//"_limit", col, units, "Its limit"//defined, dims="case")
+      col = r%check_margin(k)
+      call w%write_1d(stem//"_margin", col, "-", "Relative margin, >= 0 "// &
                       "passes"//defined, dims="case")
     end do
   end subroutine write_check_columns
@@ -316,6 +366,7 @@ contains
     integer, intent(in) :: n
     type(sweep_case), allocatable, intent(out) :: cases(:)
     type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: col(:)
     integer(i8), allocatable :: iv(:)
     integer(i8), parameter :: top = huge(1)
     ! the index column first: its length checks ncase before anything of that size is made
@@ -338,16 +389,20 @@ contains
     call int_column(f, "cases/wind", n, 0_i8, 1_i8, iv, error)
     if (allocated(error)) return
     cases%wind = iv == 1
-    call real_column(f, "cases/wind_speed", cases%wind_speed, error)
-    if (.not. allocated(error)) call real_column(f, "cases/wave_height", cases%wave_height, &
-                                                 error)
-    if (.not. allocated(error)) call real_column(f, "cases/wave_period", cases%wave_period, &
-                                                 error)
-    if (.not. allocated(error)) call real_column(f, "cases/angle_deg", cases%angle_deg, error)
-    if (.not. allocated(error)) call real_column(f, "cases/clearance_b", cases%clearance_b, &
-                                                 error)
-    if (.not. allocated(error)) call real_column(f, "cases/dt", cases%dt, error)
-    if (.not. allocated(error)) call real_column(f, "cases/phase_deg", cases%phase_deg, error)
+    call real_column(f, "cases/wind_speed", size(cases), col, error)
+    if (.not. allocated(error)) cases%wind_speed = col
+    if (.not. allocated(error)) call real_column(f, "cases/wave_height", size(cases), col, error)
+    if (.not. allocated(error)) cases%wave_height = col
+    if (.not. allocated(error)) call real_column(f, "cases/wave_period", size(cases), col, error)
+    if (.not. allocated(error)) cases%wave_period = col
+    if (.not. allocated(error)) call real_column(f, "cases/angle_deg", size(cases), col, error)
+    if (.not. allocated(error)) cases%angle_deg = col
+    if (.not. allocated(error)) call real_column(f, "cases/clearance_b", size(cases), col, error)
+    if (.not. allocated(error)) cases%clearance_b = col
+    if (.not. allocated(error)) call real_column(f, "cases/dt", size(cases), col, error)
+    if (.not. allocated(error)) cases%dt = col
+    if (.not. allocated(error)) call real_column(f, "cases/phase_deg", size(cases), col, error)
+    if (.not. allocated(error)) cases%phase_deg = col
   end subroutine read_cases
 
   subroutine check_same_sweep(f, s, ncase, error)
@@ -387,6 +442,8 @@ contains
     type(h5_reader_type), intent(inout) :: f
     type(case_result), intent(inout) :: r(:)
     type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: col(:)
+    character(len=:), allocatable :: stem
     integer(i8), allocatable :: iv(:)
     character(len=:), allocatable :: sv(:)
     integer :: i
@@ -415,43 +472,55 @@ contains
     do i = 1, size(r)
       r(i)%outcome = trim(sv(i))
     end do
-    call real_column(f, "results/min_clearance", r%min_clearance, error)
+    call real_column(f, "results/min_clearance", size(r), col, error)
+    if (.not. allocated(error)) r%min_clearance = col
     if (.not. allocated(error)) call real_column(f, "results/peak_horizontal_acceleration", &
-                                                 r%peak_horizontal_acceleration, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%peak_horizontal_acceleration = col
     if (.not. allocated(error)) call real_column(f, "results/peak_vertical_acceleration", &
-                                                 r%peak_vertical_acceleration, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%peak_vertical_acceleration = col
     if (.not. allocated(error)) call real_column(f, "results/peak_segment_tension", &
-                                                 r%peak_segment_tension, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%peak_segment_tension = col
     if (.not. allocated(error)) call real_column(f, "results/first_contact_time", &
-                                                 r%first_contact_time, error)
-    if (.not. allocated(error)) call real_column(f, "results/waterborne_time", &
-                                                 r%waterborne_time, error)
-    if (.not. allocated(error)) call real_column(f, "results/end_time", r%end_time, error)
-    if (.not. allocated(error)) call real_column(f, "results/wall_time", r%wall_time, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%first_contact_time = col
+    if (.not. allocated(error)) call real_column(f, "results/waterborne_time", size(r), col, error)
+    if (.not. allocated(error)) r%waterborne_time = col
+    if (.not. allocated(error)) call real_column(f, "results/end_time", size(r), col, error)
+    if (.not. allocated(error)) r%end_time = col
+    if (.not. allocated(error)) call real_column(f, "results/wall_time", size(r), col, error)
+    if (.not. allocated(error)) r%wall_time = col
     if (.not. allocated(error)) call real_column(f, "results/peak_sling_tension", &
-                                                 r%peak_sling_tension, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%peak_sling_tension = col
     if (.not. allocated(error)) call real_column(f, "results/peak_fall_tension", &
-                                                 r%peak_fall_tension, error)
-    if (.not. allocated(error)) call real_column(f, "results/max_impact_speed", &
-                                                 r%max_impact_speed, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%peak_fall_tension = col
+    if (.not. allocated(error)) call real_column(f, "results/max_impact_speed", size(r), col, error)
+    if (.not. allocated(error)) r%max_impact_speed = col
     if (.not. allocated(error)) call real_column(f, "results/peak_seat_acceleration", &
-                                                 r%peak_seat_acceleration, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%peak_seat_acceleration = col
     if (.not. allocated(error)) call real_column(f, "results/swl_exceeded_time", &
-                                                 r%swl_exceeded_time, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%swl_exceeded_time = col
     if (.not. allocated(error)) call real_column(f, "results/mbl_exceeded_time", &
-                                                 r%mbl_exceeded_time, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%mbl_exceeded_time = col
     if (.not. allocated(error)) call real_column(f, "results/impact_speed_exceeded_time", &
-                                                 r%impact_speed_exceeded_time, error)
+                                                 size(r), col, error)
+    if (.not. allocated(error)) r%impact_speed_exceeded_time = col
     do i = 1, n_checks
       if (allocated(error)) return
-      call real_column(f, "results/check_"//trim(check_ids(i))//"_value", &
-                       r%check_value(i), error)
-      if (.not. allocated(error)) call real_column(f, "results/check_"// &
-                                                   trim(check_ids(i))//"_limit", &
-                                                   r%check_limit(i), error)
-      if (.not. allocated(error)) call real_column(f, "results/check_"// &
-                                                   trim(check_ids(i))//"_margin", &
-                                                   r%check_margin(i), error)
+      stem = "results/check_"//trim(check_ids(i))
+      call real_column(f, stem//"_value", size(r), col, error)
+      if (.not. allocated(error)) r%check_value(i) = col
+      if (.not. allocated(error)) call real_column(f, stem//"_limit", size(r), col, error)
+      if (.not. allocated(error)) r%check_limit(i) = col
+      if (.not. allocated(error)) call real_column(f, stem//"_margin", size(r), col, error)
+      if (.not. allocated(error)) r%check_margin(i) = col
     end do
     if (allocated(error)) return
     do i = 1, size(r)
@@ -487,18 +556,17 @@ contains
     end do
   end subroutine int_column
 
-  !> Real column `name` of length size(v), read into v.
-  subroutine real_column(f, name, v, error)
+  !> Real column `name` of length n, into v (allocatable: a column is as long as the sweep,
+  !> and the caller's component array would be passed through a temporary on the stack).
+  subroutine real_column(f, name, n, v, error)
     type(h5_reader_type), intent(inout) :: f
     character(len=*), intent(in) :: name
-    real(wp), intent(inout) :: v(:)
+    integer, intent(in) :: n
+    real(wp), allocatable, intent(out) :: v(:)
     type(error_type), allocatable, intent(out) :: error
-    real(wp), allocatable :: rv(:)
-    call f%read_1d(name, rv, error)
+    call f%read_1d(name, v, error)
     if (allocated(error)) return
-    call check_length(f, name, size(rv), size(v), error)
-    if (allocated(error)) return
-    v = rv
+    call check_length(f, name, size(v), n, error)
   end subroutine real_column
 
   subroutine string_column(f, name, n, sv, error)
