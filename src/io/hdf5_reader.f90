@@ -367,19 +367,19 @@ contains
     width = 0
     call h5tget_class_f(ftype, tclass, hdferr)
     if (hdferr /= 0 .or. tclass /= H5T_STRING_F) then
-      call fatal_error(error, "'"//self%path//"': "//what//" is not text")
+      call fatal_error(error, "'"//self%path//"': cannot read "//what//": it is not text")
       return
     end if
     call h5tis_variable_str_f(ftype, variable, hdferr)
     if (hdferr /= 0 .or. variable) then
-      call fatal_error(error, "'"//self%path//"': "//what//" is variable-length text; "// &
-                       "davit reads fixed-length text (as it writes it)")
+      call fatal_error(error, "'"//self%path//"': cannot read "//what//": it is "// &
+                       "variable-length text; davit reads fixed-length text (as it writes it)")
       return
     end if
     call h5tget_size_f(ftype, width, hdferr)
     if (hdferr /= 0 .or. width < 1 .or. int(width, i8) > max_values/max(n, 1_i8)) &
-      call fatal_error(error, "'"//self%path//"': "//what//" has an unreadable or "// &
-                       "oversized text width")
+      call fatal_error(error, "'"//self%path//"': cannot read "//what//": its text "// &
+                       "width is unreadable or oversized")
   end subroutine text_width
 
   !> The memory type of `width` characters for reading text stored as `ftype`: its

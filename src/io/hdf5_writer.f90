@@ -264,8 +264,8 @@ contains
       ! a lock there decides before a failure to write ours (a full disk, read-only folder)
       if (file_kind(lock) /= kind_none) status = exists_already
       if (status /= exists_already) then
-        call fatal_error(error, "cannot create the lock '"//lock//"' of output '"//path// &
-                         "': "//errno_text(status)//"; any earlier '"//path// &
+        call fatal_error(error, "cannot create output file '"//path//"' (its lock '"// &
+                         lock//"'): "//errno_text(status)//"; any earlier '"//path// &
                          "' is left as it was")
         return
       end if
