@@ -1,9 +1,11 @@
 !> HDF5 output, one file per run. The file is written under a name of its own,
 !> `path.tmp.<pid>.<n>`, and renamed to `path` only when closed, so an interrupted run never
 !> leaves a file that looks whole. While it is written, davit holds the advisory lock
-!> `path.lock` (created exclusively, holding the writer's process id): a second davit on the
-!> same output stops with a message instead of both claiming success. A lock left by a
-!> killed process (its id no longer runs) is taken over. An existing `path` is replaced only
+!> `path.lock` (created exclusively and whole, holding the writer's process id: a full disk
+!> leaves no empty lock): a second davit on the same output stops with a message instead of
+!> both claiming success. A lock left by a killed process (its id no longer runs) or naming
+!> no process is taken over. An output that is a FIFO or device, or whose name leaves no
+!> room for the temporary's suffix, is refused up front. An existing `path` is replaced only
 !> if it is a davit output (an HDF5 file with the root attribute davit_version): an input
 !> deck, a database or a folder given as the output is refused before any work.
 !> Every dataset carries `units`, `description` and `long_name` (the same text, the name
