@@ -9,6 +9,7 @@ program davit
   use davit_io_deck_reader, only: key_doc
   use davit_io_namelist, only: int_to_str
   use davit_run_driver, only: run_simulation
+  use davit_run_scenario, only: scenario_text
   use davit_run_run_summary, only: run_summary
   use davit_run_progress, only: progress_meter, new_progress_meter, stderr_is_terminal
   use davit_bench_suite, only: bench_options, run_bench
@@ -101,6 +102,9 @@ contains
     if (rao) then
       call run_rao(cfg, out, summary, error)
     else
+      ! what this run simulates, before it starts (stored as /scenario too)
+      write (output_unit, "(a)") scenario_text(cfg)
+      flush (output_unit)
       progress = new_progress_meter(stderr_is_terminal())
       call run_simulation(cfg, out, summary, error, progress)
     end if
