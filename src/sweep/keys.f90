@@ -18,6 +18,7 @@ module davit_sweep_keys
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at, int_to_str
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_config, only: config_type, read_config
+  use davit_io_search_path, only: find_file, folder_of
   implicit none
   private
   public :: sweep_config, read_sweep, parse_sweep, document_sweep_keys, wave_type_names
@@ -105,7 +106,8 @@ contains
                        "deck every case starts from)")
       return
     end if
-    sweep%base_path = relative_to(deck%filename, sweep%base_deck)
+    call find_base_deck(deck, sweep, error)
+    if (allocated(error)) return
     call read_config(sweep%base_path, sweep%base, error)
     if (allocated(error)) return
     call complete_defaults(reader, sweep)
@@ -117,7 +119,8 @@ contains
     type(sweep_config), intent(inout) :: s
     character(len=*), parameter :: g = "sweep"
     call r%string(g, "base_deck", s%base_deck, "", "Run deck every case starts from "// &
-                  "(relative to the sweep deck's folder); required. Sweep decks only hold "// &
+                  "(in the sweep deck's folder, else a DAVIT_PATH folder); required. Sweep "// &
+                  "decks only hold "// &
                   "&sweep.")
     call r%int_list(g, "levels", s%levels, [5], 3, 5, "-", "Sea-state levels; each sets "// &
                     "the level's preset wave height and wind speed (review G19) and the "// &
@@ -250,17 +253,19 @@ contains
     end if
   end subroutine check_adaptive
 
-  !> `path` relative to the folder of `deck` (unchanged if absolute).
-  pure function relative_to(deck, path) result(full)
-    character(len=*), intent(in) :: deck, path
-    character(len=:), allocatable :: full
-    integer :: slash
-    slash = index(deck, "/", back=.true.)
-    if (path(1:1) == "/" .or. slash == 0) then
-      full = path
-    else
-      full = deck(1:slash)//path
-    end if
-  end function relative_to
+  !> The base deck: in the sweep deck's folder, else in a DAVIT_PATH folder
+  !> (davit_io_search_path); a miss names the sweep deck's line and every folder searched.
+  subroutine find_base_deck(deck, sweep, error)
+    type(nml_deck), intent(in) :: deck
+    type(sweep_config), intent(inout) :: sweep
+    type(error_type), allocatable, intent(out) :: error
+    character(len=:), allocatable :: searched
+    logical :: found
+    call find_file(folder_of(deck%filename), sweep%base_deck, sweep%base_path, found, &
+                   searched)
+    if (.not. found) call fatal_error(error, key_at(deck, "sweep", ["base_deck"])// &
+      "&sweep: base_deck = '"//sweep%base_deck//"': no such file in "//searched// &
+      " (the sweep deck's folder, then DAVIT_PATH)")
+  end subroutine find_base_deck
 
 end module davit_sweep_keys
