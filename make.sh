@@ -34,6 +34,8 @@ APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config pyth
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg
              hypothesis)
+# netCDF's own tools (ncdump, nccopy): the tests read every kind of davit output with them
+TEST_APT_PACKAGES=(netcdf-bin)
 DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
 # 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
@@ -54,8 +56,13 @@ as_root() {
 }
 
 setup_apt() {
+  apt_install "${APT_PACKAGES[@]}"
+}
+
+# Install the Debian packages named that are missing.
+apt_install() {
   local missing=()
-  for p in "${APT_PACKAGES[@]}"; do
+  for p in "$@"; do
     dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
   done
   if [ ${#missing[@]} -gt 0 ]; then
@@ -375,6 +382,7 @@ paper_summary() {
 
 run_tests() {
   setup
+  apt_install "${TEST_APT_PACKAGES[@]}"
   setup_mpi
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"

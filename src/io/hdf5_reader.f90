@@ -1,10 +1,12 @@
-!> Reading back what davit_io_hdf5_writer wrote: 1-D real, integer and fixed-length string
+!> Reading back what davit_io_hdf5_writer wrote: 1-D real, integer and string (variable-
+!> length, as davit writes them, or fixed-length, as older files and h5py's bytes do)
 !> datasets and root string and integer attributes (a sweep resumes from its summary); and
 !> numeric datasets of any rank as reals (a BEM database, netCDF4 = HDF5).
 !> Every failure names the file and the dataset or attribute. Not thread-safe (Debian's
 !> HDF5 is built without locking): call it from one thread at a time.
 module davit_io_hdf5_reader
-  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr, c_int
+  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr, c_int, c_char, c_size_t, &
+                                         c_null_ptr, c_associated, c_f_pointer
   use hdf5
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
@@ -21,6 +23,11 @@ module davit_io_hdf5_reader
       import :: c_int
       integer(c_int) :: status
     end function c_h5dont_atexit
+    function c_strlen(s) bind(C, name="strlen") result(n)
+      import :: c_ptr, c_size_t
+      type(c_ptr), value :: s
+      integer(c_size_t) :: n
+    end function c_strlen
   end interface
 
   !> The most values davit reads from one dataset or text: 2^28 (2 GiB as reals, far
@@ -319,7 +326,8 @@ contains
     if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
   end subroutine reader_read_array
 
-  !> A fixed-length string dataset, returned blank-padded to its stored width.
+  !> A string dataset, returned blank-padded to its longest entry (variable-length) or to
+  !> its stored width (fixed-length).
   subroutine reader_read_strings(self, name, x, error)
     class(h5_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: name
@@ -329,10 +337,19 @@ contains
     integer(size_t) :: width
     type(c_ptr) :: buf
     integer :: n, hdferr, status
+    logical :: variable
     status = 0
     call open_1d(self, name, dset, n, error)
     if (allocated(error)) return
     call h5dget_type_f(dset, ftype, hdferr)
+    variable = .false.
+    if (hdferr == 0) call h5tis_variable_str_f(ftype, variable, hdferr)
+    if (variable .and. hdferr == 0) then
+      call read_vlen_strings(self, name, dset, ftype, n, x, error)
+      call h5tclose_f(ftype, hdferr)
+      call h5dclose_f(dset, hdferr)
+      return
+    end if
     call text_width(self, "dataset /"//name, ftype, int(n, i8), width, error)
     if (.not. allocated(error)) then
       allocate (character(len=int(width)) :: x(n), stat=status)
@@ -373,7 +390,7 @@ contains
     call h5tis_variable_str_f(ftype, variable, hdferr)
     if (hdferr /= 0 .or. variable) then
       call fatal_error(error, "'"//self%path//"': cannot read "//what//": it is "// &
-                       "variable-length text; davit reads fixed-length text (as it writes it)")
+                       "variable-length text where davit writes fixed-length text (attributes)")
       return
     end if
     call h5tget_size_f(ftype, width, hdferr)
@@ -381,6 +398,69 @@ contains
       call fatal_error(error, "'"//self%path//"': cannot read "//what//": its text "// &
                        "width is unreadable or oversized")
   end subroutine text_width
+  !> The `n` variable-length strings of dataset `dset` (type `ftype`), copied out of the
+  !> C strings HDF5 allocates (freed here), blank-padded to the longest.
+  subroutine read_vlen_strings(self, name, dset, ftype, n, x, error)
+    type(h5_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(in) :: dset, ftype
+    integer, intent(in) :: n
+    character(len=:), allocatable, intent(out) :: x(:)
+    type(error_type), allocatable, intent(out) :: error
+    type(c_ptr), allocatable, target :: ptr(:)
+    type(c_ptr) :: buf
+    integer(hid_t) :: mtype, space
+    integer :: i, width, cset, hdferr, status
+    allocate (ptr(n))
+    ptr = c_null_ptr
+    ! the file's character set: HDF5 converts no text between ASCII and UTF-8
+    call h5tcopy_f(H5T_STRING, mtype, hdferr)
+    call h5tget_cset_f(ftype, cset, hdferr)
+    if (hdferr == 0) call h5tset_cset_f(mtype, cset, hdferr)
+    status = 0
+    buf = c_loc(ptr)
+    if (n > 0) call h5dread_f(dset, mtype, buf, status)
+    if (status /= 0) then
+      call h5tclose_f(mtype, hdferr)
+      call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+      return
+    end if
+    width = 1
+    do i = 1, n
+      width = max(width, c_length(ptr(i)))
+    end do
+    allocate (character(len=width) :: x(n))
+    do i = 1, n
+      x(i) = c_text(ptr(i))
+    end do
+    call h5dget_space_f(dset, space, hdferr)
+    if (n > 0) call h5dvlen_reclaim_f(mtype, space, H5P_DEFAULT_F, buf, hdferr)
+    call h5sclose_f(space, hdferr)
+    call h5tclose_f(mtype, hdferr)
+  end subroutine read_vlen_strings
+
+  !> Length of the C string at `p` (0 for a null pointer: HDF5's empty string).
+  integer function c_length(p) result(n)
+    type(c_ptr), intent(in) :: p
+    n = 0
+    if (.not. c_associated(p)) return
+    n = int(c_strlen(p))
+  end function c_length
+
+  !> The C string at `p` as Fortran text ("" for a null pointer).
+  function c_text(p) result(text)
+    type(c_ptr), intent(in) :: p
+    character(len=:), allocatable :: text
+    character(kind=c_char), pointer :: chars(:)
+    integer :: i, n
+    n = c_length(p)
+    allocate (character(len=n) :: text)
+    if (n == 0) return
+    call c_f_pointer(p, chars, [n])
+    do i = 1, n
+      text(i:i) = chars(i)
+    end do
+  end function c_text
 
   !> The memory type of `width` characters for reading text stored as `ftype`: its
   !> character set too, since HDF5 converts no text between ASCII and UTF-8 (davit writes

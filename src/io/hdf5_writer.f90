@@ -10,7 +10,8 @@
 !> deck, a database or a folder given as the output is refused before any work.
 !> Every dataset carries `units`, `description` and `long_name` (the same text, the name
 !> netCDF/CF tools show) as UTF-8 strings. Time series are (components, time) in Fortran
-!> order, which h5py shows as (time, components).
+!> order, which h5py shows as (time, components). Text datasets (a sweep's messages and
+!> outcomes, a benchmark's names) are variable-length UTF-8 strings.
 !>
 !> Named dimensions (xarray/netCDF-4 readable): a dataset written with `dims` (one name per
 !> axis, blank-separated, in the order of the Fortran array's extents) has each axis
@@ -467,32 +468,32 @@ contains
     call h5sclose_f(space, hdferr)
   end subroutine writer_write_1d_int
 
-  !> Fixed-length string dataset (blank-padded to the longest entry, at least 1 character).
+  !> Variable-length UTF-8 string dataset, one string per entry with its trailing blanks
+  !> removed. Variable-length, not fixed-length: netCDF-C 4.9 (ncdump, nccopy) crashes on
+  !> a fixed-length string array and shows its entries after the first as NIL, while it
+  !> reads variable-length UTF-8 as its own `string` type (as h5py, h5netcdf and xarray do).
   subroutine writer_write_strings(self, name, data, units, description, dims)
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, data(:), units, description
     character(len=*), intent(in), optional :: dims
-    character(len=:), allocatable, target :: buf(:)
+    ! each entry NUL-terminated (a C string), pointed at by one element of ptr
+    character(len=len(data) + 1), allocatable, target :: buf(:)
+    type(c_ptr), allocatable, target :: ptr(:)
     integer(hid_t) :: atype, space, dset
     integer(hsize_t) :: extent(1)
-    integer :: hdferr, width, i
-    width = 1
+    integer :: hdferr, i
+    allocate (buf(size(data)), ptr(size(data)))
     do i = 1, size(data)
-      width = max(width, len_trim(data(i)))
-    end do
-    allocate (character(len=width) :: buf(size(data)))
-    do i = 1, size(data)
-      buf(i) = data(i)
+      buf(i) = trim(data(i))//c_null_char
+      ptr(i) = c_loc(buf(i)(1:1))
     end do
     extent = size(data, kind=hsize_t)
-    call h5tcopy_f(H5T_FORTRAN_S1, atype, hdferr)
-    call h5tset_size_f(atype, int(width, size_t), hdferr)
-    call h5tset_cset_f(atype, H5T_CSET_UTF8_F, hdferr)
+    call vlen_text_type(atype, hdferr)
     call h5screate_simple_f(1, extent, space, hdferr)
     call h5dcreate_f(self%file, name, atype, space, dset, hdferr)
     call check(self, hdferr, name)
     if (hdferr == 0) then
-      if (size(data) > 0) call h5dwrite_f(dset, atype, c_loc(buf), hdferr)
+      if (size(data) > 0) call h5dwrite_f(dset, atype, c_loc(ptr), hdferr)
       call check(self, hdferr, name)
       call describe(self, dset, units, description)
       if (present(dims)) call attach_dims(self, name, dset, dims, extent)
@@ -501,6 +502,14 @@ contains
     call h5sclose_f(space, hdferr)
     call h5tclose_f(atype, hdferr)
   end subroutine writer_write_strings
+
+  !> The variable-length UTF-8 string type (C strings: NUL-terminated), in file and memory.
+  subroutine vlen_text_type(atype, hdferr)
+    integer(hid_t), intent(out) :: atype
+    integer, intent(out) :: hdferr
+    call h5tcopy_f(H5T_STRING, atype, hdferr)
+    if (hdferr == 0) call h5tset_cset_f(atype, H5T_CSET_UTF8_F, hdferr)
+  end subroutine vlen_text_type
 
   !> One double-precision dataset of any rank from a contiguous buffer, with its
   !> units and description.

@@ -128,8 +128,35 @@ contains
     cfg%sea%phase = c%phase_deg*pi/180.0_wp
     cfg%wind%speed = c%wind_speed
     if (s%has_angles) cfg%wind%direction = cfg%sea%direction
+    call case_sources(s, c, cfg)
     if (s%has_clearances) call move_outboard(cfg, c%clearance_b*cfg%boat%beam - clearance0)
   end subroutine case_config
+
+  !> Where case c's height, period and wind came from (stored with each series file's
+  !> scenario): the sweep's lists and presets, or the base deck's sources.
+  subroutine case_sources(s, c, cfg)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: c
+    type(config_type), intent(inout) :: cfg
+    character(len=:), allocatable :: preset
+    preset = "sweep: level "//achar(iachar("0") + modulo(c%level, 10))//" preset"
+    if (s%has_heights) then
+      cfg%sea%height_source = "sweep: heights"
+    else if (s%has_levels) then
+      cfg%sea%height_source = preset
+    end if
+    if (s%has_periods) then
+      cfg%sea%period_source = "sweep: periods"
+    else if (s%has_levels .or. s%has_heights) then
+      cfg%sea%period_source = "sweep: peak period of eq. 44 for the height"
+    end if
+    if (.not. c%wind) then
+      cfg%wind%speed_source = "sweep: wind off"
+    else if (s%has_levels .or. s%base%wind%speed <= 0.0_wp) then
+      cfg%wind%speed_source = preset
+    end if
+    if (s%has_angles) cfg%wind%direction_source = "sweep: along the waves"
+  end subroutine case_sources
 
   !> Move the boat and the points it hangs from by d [m] along the ship's s2 axis (the
   !> side plane's normal), which changes the initial clearance by exactly d.
