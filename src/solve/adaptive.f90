@@ -11,7 +11,7 @@
 !> rejection the next accepted step may not grow (HNW I, sec. II.4, "facmax = 1 right
 !> after a rejection").
 module davit_solve_adaptive
-  use davit_kinds, only: wp
+  use davit_kinds, only: wp, i8
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_step_control, only: error_norm, initial_step, record_failure, stretch_to, &
                                       is_finite_real, substep_allowed
@@ -35,6 +35,8 @@ module davit_solve_adaptive
     real(wp) :: fac_max = 6.0_wp
     !> Proposed internal step (0: choose by the starting heuristic on the next call).
     real(wp) :: h = 0.0_wp
+    !> Rejected trial steps (error above tolerance, non-finite, or a singular matrix).
+    integer(i8) :: rejections = 0
     !> f(t, y) at the start of the trial step; a trial's result and its error vector;
     !> work arrays for stage states and RHS values.
     real(wp), allocatable :: f0(:), ynew(:), yerr(:), ytmp(:), fcn(:)
@@ -90,6 +92,7 @@ contains
     allocate (self%f0(n), self%ynew(n), self%yerr(n), self%ytmp(n), self%fcn(n))
     self%steps = 0
     self%rhs_evaluations = 0
+    self%rejections = 0
     self%failed = .false.
     if (allocated(self%failure)) deallocate (self%failure)
     self%h = 0.0_wp
@@ -105,9 +108,9 @@ contains
     real(wp), intent(inout) :: t
     real(wp), intent(inout) :: y(:)
     real(wp), intent(in) :: dt
-    real(wp) :: t_end, tc, h, err, h_new
+    real(wp) :: t_end, tc, h, h_new
     integer :: tries
-    logical :: last, rejected, ok
+    logical :: last, rejected
 
     if (self%failed) return
     t_end = t + dt
@@ -130,34 +133,10 @@ contains
       h = merge(t_end - tc, self%h, last)
       tries = tries + 1
       if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
-      call self%prepare(problem, tc, y, h, ok)
-      if (.not. ok) then
-        ! a singular iteration matrix: prepare has proposed a smaller step
-        rejected = .true.
-        cycle
-      end if
-      call self%attempt(problem, tc, y, h, .true.)
-      err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
-      if (.not. is_finite_real(err)) then
-        ! A non-finite trial (overflow in a stage) is a rejection with the strongest
-        ! shrink; a persistent one ends in the h_min failure above.
-        self%h = h*self%fac_min
-        call self%on_rejection()
-        rejected = .true.
-        cycle
-      end if
-      if (err > 1.0_wp) then
-        self%h = self%next_step(h, err, .false.)
-        call self%on_rejection()
-        rejected = .true.
-        cycle
-      end if
-      h_new = self%next_step(h, err, .true.)
-      if (rejected) h_new = min(h_new, h)
+      call trial(self, problem, tc, y, h, rejected, h_new)
+      if (rejected) cycle
       y = self%ynew
       self%steps = self%steps + 1
-      call self%on_acceptance(err)
-      rejected = .false.
       if (last) then
         ! A clipped final step says little about growth; only let it shrink h.
         self%h = min(self%h, h_new)
@@ -173,6 +152,54 @@ contains
     end do
     t = merge(t_end, tc, .not. self%failed)
   end subroutine adaptive_step
+
+  !> One trial step of size h from (t, y), judged by its error norm (HNW I, eq. 4.11).
+  !> `rejected` comes in as whether the previous trial was rejected and goes out as
+  !> whether this one is: then self%h is the step to retry with; else ynew is the new
+  !> state and h_new the next step, not above h right after a rejection.
+  subroutine trial(self, problem, t, y, h, rejected, h_new)
+    class(adaptive_integrator), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:), h
+    logical, intent(inout) :: rejected
+    real(wp), intent(out) :: h_new
+    real(wp) :: err
+    logical :: ok
+    h_new = h
+    call self%prepare(problem, t, y, h, ok)
+    if (.not. ok) then
+      ! a singular iteration matrix: prepare has proposed a smaller step
+      call reject(self, rejected)
+      return
+    end if
+    call self%attempt(problem, t, y, h, .true.)
+    err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
+    if (.not. is_finite_real(err)) then
+      ! A non-finite trial (overflow in a stage) is a rejection with the strongest
+      ! shrink; a persistent one ends in the h_min failure of substep_allowed.
+      self%h = h*self%fac_min
+      call reject(self, rejected)
+      return
+    end if
+    if (err > 1.0_wp) then
+      self%h = self%next_step(h, err, .false.)
+      call reject(self, rejected)
+      return
+    end if
+    h_new = self%next_step(h, err, .true.)
+    if (rejected) h_new = min(h_new, h)
+    call self%on_acceptance(err)
+    rejected = .false.
+  end subroutine trial
+
+  !> Book a rejected trial (self%h already set to the retry step) and tell the method.
+  subroutine reject(self, rejected)
+    class(adaptive_integrator), intent(inout) :: self
+    logical, intent(out) :: rejected
+    self%rejections = self%rejections + 1
+    call self%on_rejection()
+    rejected = .true.
+  end subroutine reject
 
   !> One step of dt without error control (fixed_step).
   subroutine fixed(self, problem, t, y, dt)
@@ -221,7 +248,7 @@ contains
     real(wp), intent(in) :: err
   end subroutine no_acceptance
 
-  !> After a rejected trial step (the new self%h already set).
+  !> After a rejected trial step (the new self%h already set), whatever the reason.
   subroutine no_rejection(self)
     class(adaptive_integrator), intent(inout) :: self
   end subroutine no_rejection
