@@ -156,7 +156,7 @@ contains
 
   !> The step-size rules at known points. I controller (HNW I, eq. 4.13), order 3:
   !> err = 1 -> safety; err = 8 -> safety/2; err -> 0 -> fac_max; err = 1e6 -> fac_min.
-  !> dopri5's PI controller (HNW I, sec. IV.2, eq. 4.13'; err_old = 1e-4 after init):
+  !> dopri5's PI controller (HNW II, sec. IV.2, as in DOPRI5; err_old = 1e-4 after init):
   !> accepted err = 1 -> safety err_old^beta, rejected err = 10 -> safety 10^-(1/5 - 0.75
   !> beta), bounded by 1/fac_max and 1/fac_min.
   subroutine step_size_rules(state)

@@ -8,8 +8,8 @@
 !> of the embedded pair in the RMS norm (eq. 4.11), accepted when <= 1, and a new step
 !> h min(fac_max, max(fac_min, safety err^(-1/p))) for a method of order p whose embedded
 !> solution has order p - 1 (eq. 4.13; dopri5 overrides it with its PI controller). After a
-!> rejection the next accepted step may not grow (HNW I, sec. II.4, "facmax = 1 right
-!> after a rejection").
+!> rejection the next accepted step may not grow (HNW I, sec. II.4: facmax = 1 right after
+!> a rejection, after Shampine & Watts 1979).
 module davit_solve_adaptive
   use davit_kinds, only: wp, i8
   use davit_solve_integrator, only: ode_problem, integrator_type

@@ -33,7 +33,7 @@ module davit_solve_dopri5
                          e5 = -17253.0_wp/339200, e6 = 22.0_wp/525, e7 = -1.0_wp/40
 
   type, extends(adaptive_integrator) :: dopri5_type
-    !> PI controller's exponent beta on the previous error (HNW I, sec. IV.2 as in DOPRI5).
+    !> PI controller's exponent beta on the previous error (HNW II, sec. IV.2; DOPRI5).
     real(wp) :: beta = 0.04_wp
     !> Previous accepted error (the PI controller's memory).
     real(wp) :: err_old = 1.0e-4_wp
@@ -105,7 +105,7 @@ contains
                    e7*self%k7)
   end subroutine dopri5_attempt
 
-  !> PI step control (HNW I, eq. 4.13' of sec. IV.2, as in their DOPRI5): on acceptance
+  !> PI step control (Gustafsson's, HNW II, sec. IV.2, as in HNW's DOPRI5): on acceptance
   !> err^(1/5 - 0.75 beta) / err_old^beta; a rejection uses err alone and only shrinks.
   pure function pi_controller(self, h, err, accepted) result(h_new)
     class(dopri5_type), intent(in) :: self
