@@ -33,7 +33,7 @@ APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config pyth
 # capytaine (with xarray, scipy, pandas) and h5netcdf: the ship's BEM database
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg
-             hypothesis)
+             hypothesis fortitude-lint)
 # netCDF's own tools (ncdump, nccopy): the tests read every kind of davit output with them
 TEST_APT_PACKAGES=(netcdf-bin)
 DEFAULT_DECK=input/iiib_level5_090.nml
@@ -96,7 +96,7 @@ mpi() {
 }
 
 python_ready() {
-  command -v fpm >/dev/null 2>&1 &&
+  command -v fpm >/dev/null 2>&1 && command -v fortitude >/dev/null 2>&1 &&
     python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg, hypothesis" >/dev/null 2>&1
 }
 
@@ -396,6 +396,12 @@ run_tests() {
   if [ -n "$line" ]; then
     fpass="${line%% passed*}"
     ffail="${line#*passed, }"; ffail="${ffail%% failed*}"
+  fi
+  # the Fortran linter, with the rules fortitude.toml keeps (a finding fails the suite)
+  log "lint (fortitude check src app test)"
+  if ! fortitude check src app test; then
+    status=1
+    ffail=$((ffail + 1))
   fi
   log "Python tests (pytest test/python)"
   python3 -m pytest -q -p no:cacheprovider test/python 2>&1 | tee "$plog" || status=1

@@ -257,8 +257,9 @@ contains
         dev = max(dev, abs(y(1) - switch_exact(p, t)))
         ! the accepted step is t - t_old up to the rounding of t; RODAS3 runs each call to
         ! its end (several accepted steps): not observable there
-        if (m /= 2 .and. integ%rejections > r_old) &
+        if (m /= 2 .and. integ%rejections > r_old) then
           no_growth = no_growth .and. integ%h <= (t - t_old) + 2.0_wp*spacing(t)
+        end if
       end do
       steps(m) = integ%steps
       rejections(m) = integ%rejections

@@ -44,6 +44,9 @@ module davit_io_files
     function c_read(fd, buf, n, err) bind(C, name="davit_read") result(got)
       import :: c_int, c_long, c_char
       integer(c_int), value :: fd
+      ! an array of single characters that read(2) fills, not assumed length (C072 is for
+      ! assumed-length text)
+      ! allow(C072)
       character(kind=c_char), intent(inout) :: buf(*)
       integer(c_long), value :: n
       integer(c_int), intent(out) :: err
@@ -80,6 +83,8 @@ module davit_io_files
     subroutine c_errno_text(err, buf, n) bind(C, name="davit_errno_text")
       import :: c_int, c_char
       integer(c_int), value :: err, n
+      ! an array of single characters that strerror_r fills (as above)
+      ! allow(C072)
       character(kind=c_char), intent(out) :: buf(*)
     end subroutine c_errno_text
   end interface

@@ -394,9 +394,10 @@ contains
       return
     end if
     call h5tget_size_f(ftype, width, hdferr)
-    if (hdferr /= 0 .or. width < 1 .or. int(width, i8) > max_values/max(n, 1_i8)) &
+    if (hdferr /= 0 .or. width < 1 .or. int(width, i8) > max_values/max(n, 1_i8)) then
       call fatal_error(error, "'"//self%path//"': cannot read "//what//": its text "// &
                        "width is unreadable or oversized")
+    end if
   end subroutine text_width
   !> The `n` variable-length strings of dataset `dset` (type `ftype`), copied out of the
   !> C strings HDF5 allocates (freed here), blank-padded to the longest.

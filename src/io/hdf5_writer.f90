@@ -570,7 +570,7 @@ contains
     character(len=*), intent(in) :: obj, name
     real(wp), intent(in) :: value
     integer(hid_t) :: oid, space, attr
-    integer(hsize_t) :: dims(1) = [1]
+    integer(hsize_t), parameter :: dims(1) = [1]
     integer :: hdferr
     call h5oopen_f(self%file, obj, oid, hdferr)
     call h5screate_f(H5S_SCALAR_F, space, hdferr)
@@ -640,7 +640,7 @@ contains
     integer(hid_t), intent(in) :: oid
     character(len=*), intent(in) :: name, value
     integer(hid_t) :: atype, space, attr
-    integer(hsize_t) :: dims(1) = [1]
+    integer(hsize_t), parameter :: dims(1) = [1]
     integer :: hdferr
     call h5tcopy_f(H5T_FORTRAN_S1, atype, hdferr)
     call h5tset_size_f(atype, int(max(1, len(value)), size_t), hdferr)

@@ -477,17 +477,17 @@ contains
   !> FNV-1a hash of group, a separator and key, as a non-negative integer.
   pure integer function str_hash(group, key) result(h)
     character(len=*), intent(in) :: group, key
-    integer(kind=8) :: x
+    integer(i8) :: x
     integer :: i
-    x = 2166136261_8
+    x = 2166136261_i8
     do i = 1, len_trim(group)
-      x = iand(ieor(x, int(iachar(group(i:i)), 8))*16777619_8, 4294967295_8)
+      x = iand(ieor(x, int(iachar(group(i:i)), i8))*16777619_i8, 4294967295_i8)
     end do
-    x = iand(ieor(x, 0_8)*16777619_8, 4294967295_8)
+    x = iand(ieor(x, 0_i8)*16777619_i8, 4294967295_i8)
     do i = 1, len(key)
-      x = iand(ieor(x, int(iachar(key(i:i)), 8))*16777619_8, 4294967295_8)
+      x = iand(ieor(x, int(iachar(key(i:i)), i8))*16777619_i8, 4294967295_i8)
     end do
-    h = int(iand(x, 2147483647_8))
+    h = int(iand(x, 2147483647_i8))
   end function str_hash
 
   !> Text quoted in a message: control and non-ASCII bytes as '?', cut to 80 characters.

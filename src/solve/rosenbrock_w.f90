@@ -7,7 +7,8 @@
 !> (`coupled_states`: the boat and ship, whose hooks and heads pull on the blocks with
 !> the wire's stiffness), formed by forward differences (one RHS per column) and kept for
 !> many steps; every other row is explicit, so I/(h gamma) - W is block lower triangular:
-!> the explicit rows first, then one small solve for the stiff ones. The stiff springs (the 50 kg block on its 1 m sling,
+!> the explicit rows first, then one small solve for the stiff ones. The stiff springs
+!> (the 50 kg block on its 1 m sling,
 !> |lambda| ~ 1260 1/s) are then damped where they are not excited instead of capping the
 !> step, while the error control still resolves them where they are (a snatch).
 !>
@@ -140,8 +141,9 @@ contains
     real(wp), intent(in) :: t, y(:), h
     logical, intent(out) :: ok
     ok = .true.
-    if (self%fixed_step .or. self%age < 0 .or. self%age >= self%max_age) &
+    if (self%fixed_step .or. self%age < 0 .or. self%age >= self%max_age) then
       call self%form_w(problem, t, y)
+    end if
     if (h /= self%h_lu) call self%factor(h, ok)
     if (ok) return
     self%h = h*self%fac_min

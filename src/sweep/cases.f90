@@ -43,7 +43,8 @@ contains
   !> Every combination of the swept values: case k's position in each list is the digit of
   !> k - 1 in the mixed radix (wave types, levels, heights, periods, wind, angles,
   !> clearances, dts, realisations up to max_realisations), so realisations vary fastest
-  !> and cell j holds cases (j - 1) max_realisations + 1 .. j max_realisations. `clearance0` is the base
+  !> and cell j holds cases (j - 1) max_realisations + 1 .. j max_realisations.
+  !> `clearance0` is the base
   !> deck's initial clearance [m] (recorded when clearances are not swept).
   subroutine build_cases(s, clearance0, cases)
     type(sweep_config), intent(in) :: s
@@ -79,8 +80,9 @@ contains
     c%wave_height = s%heights(digit(3))
     if (s%has_levels .and. .not. s%has_heights) c%wave_height = level_wave_height(c%level)
     c%wave_period = s%periods(digit(4))
-    if ((s%has_levels .or. s%has_heights) .and. .not. s%has_periods) &
+    if ((s%has_levels .or. s%has_heights) .and. .not. s%has_periods) then
       c%wave_period = 2.0_wp*pi/spectrum_peak_omega(c%wave_height)
+    end if
     c%wind = s%winds(digit(5))
     c%wind_speed = 0.0_wp
     if (c%wind) c%wind_speed = wind_on_speed(s, c%level)

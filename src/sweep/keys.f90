@@ -144,7 +144,8 @@ contains
                      max_values, default_text="peak period or base deck")
     call r%real_list(g, "angles_deg", s%angles_deg, [90.0_wp], -360.0_wp, 360.0_wp, "deg", &
                      "Encounter angles chi (&sea direction_deg: travelled towards, 90 = "// &
-                     "from port); the wind blows along the waves.", 1, max_values, default_text="base deck")
+                     "from port); the wind blows along the waves.", 1, max_values, &
+                     default_text="base deck")
     call r%logical_list(g, "wind", s%winds, [.true.], "Wind on (the level preset speed, "// &
                         "or the base deck's) or off (speed 0).", 1, 2, &
                         default_text="base deck (on if its speed > 0)")

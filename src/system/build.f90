@@ -82,10 +82,11 @@ contains
     type(bem_database_type) :: db
     associate (b => cfg%boat)
       call read_bem_database(beside(cfg%filename, b%database), db, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error)) then
         call new_boat_bem(db, par%sea, body_mass_diagonal(par%boat), b%roll_damping, &
                           b%mass*gravity*par%water%metacentric_height, b%full_immersion, &
                           b%mass/rho_water, par%bem, error)
+      end if
       if (allocated(error)) then
         error%message = cfg%filename//": &boat: database = '"//b%database//"': "// &
                         error%message
