@@ -298,7 +298,7 @@ if FORCE > 0.0:
 else:
     fenders.ColorArrayName = ["POINTS", ""]
     fenders.AmbientColor = fenders.DiffuseColor = [0.1, 0.1, 0.1]
-_, sea = part("sea", opacity=0.8)
+_, sea = part("sea", opacity=0.9)
 SEA = {sea_high!r}       # the largest |elevation| drawn [m]
 if SEA > 0.0:            # the waves: elevation in blues, crests light
     colour_map(sea, "POINTS", "elevation", "Sea surface elevation [m]", -SEA, SEA,

@@ -309,3 +309,29 @@ def test_pvpython_renders_the_state(written, pvpython, tmp_path):
     middle = rgb[:, :int(0.75 * PNG_SIZE[0])]      # the tension bar is in the upper right
     near = np.linalg.norm(middle - cable, axis=-1) < 40
     assert np.count_nonzero(near) > 100, f"no falls in {cable} in {png}"
+
+
+def _bem_run(tmp_path, **attrs):
+    """A run (no data) whose deck names a BEM database with these root attributes."""
+    import h5py
+    database = tmp_path / "hull.nc"
+    with h5py.File(database, "w") as f:
+        for key, value in attrs.items():
+            f.attrs[key] = value
+    deck = f"&ship model = 'bem', database = '{database}' /\n"
+    return layout.Run(str(tmp_path / "run.h5"), {"input_namelist": deck}, {}, {})
+
+
+def test_hull_lines_follow_a_ship_form_database(tmp_path):
+    """A database solved on the ship form gives its own dimensions; the equivalent box
+    (input/ship_bem.nc's kind) gives Table 1's ship (the deck's &ship keys)."""
+    run = _bem_run(tmp_path, hull_kind="ship", length=100.0, beam=16.0, draught=5.0,
+                   block_coefficient=0.7, section_exponent=4)
+    lines = geo.hull_lines(run)
+    assert (lines.length, lines.beam, lines.draught) == (100.0, 16.0, 5.0)
+    assert (lines.block_coefficient, lines.exponent) == (0.7, 4.0)
+    rings, _ = geo.ship_hull_lines(run, lines)
+    assert math.isclose(np.ptp(rings[..., 1]), 16.0, rel_tol=2e-3)
+    box = geo.hull_lines(_bem_run(tmp_path, hull_kind="box", length=107.65, beam=20.8,
+                                  draught=4.4))
+    assert (box.length, box.beam, box.draught) == (SHIP_LWL, SHIP_BEAM, SHIP_DRAUGHT)
