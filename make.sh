@@ -44,6 +44,11 @@ DEFAULT_DECK=input/iiib_level5_090.nml
 DAVIT_MARCH="${DAVIT_MARCH:-native}"
 FPM_FLAGS=(--profile release --flag "-march=$DAVIT_MARCH -fstack-arrays")
 
+# ParaView (Debian's, 5.11) and a virtual X server: test_scene renders the scene's state
+# file with pvpython under xvfb-run (bash make.sh test installs them; the test skips, saying
+# why, only where they cannot be installed; DAVIT_NO_PARAVIEW=1 leaves them out)
+PARAVIEW_APT_PACKAGES=(paraview xvfb)
+
 # Open MPI (Debian's): mpifort and mpirun, for the MPI build of `davit sweep`
 MPI_APT_PACKAGES=(libopenmpi-dev openmpi-bin)
 MPI_FLAGS=(--profile release --flag "-march=$DAVIT_MARCH -fstack-arrays -DDAVIT_MPI")
@@ -86,6 +91,17 @@ setup_mpi() {
   bin="$(FPM_FC=mpifort fpm run "${MPI_FLAGS[@]}" --runner echo 2>/dev/null | tail -n 1)"
   cp -f "$bin" "$MPI_BIN.tmp" && mv -f "$MPI_BIN.tmp" "$MPI_BIN"
   export DAVIT_MPI_BIN="$PWD/$MPI_BIN"
+}
+
+# Optional: a failed install leaves the scene's rendering test to skip with its reason.
+setup_paraview() {
+  [ "${DAVIT_NO_PARAVIEW:-0}" = 1 ] && return 0
+  command -v pvpython >/dev/null 2>&1 && command -v xvfb-run >/dev/null 2>&1 && return 0
+  log "installing ${PARAVIEW_APT_PACKAGES[*]} (the scene's rendering test)"
+  { as_root apt-get update -qq &&
+      as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+        "${PARAVIEW_APT_PACKAGES[@]}" >/dev/null; } ||
+    log "could not install ParaView: the scene's rendering test will skip"
 }
 
 mpi() {
@@ -384,6 +400,7 @@ run_tests() {
   setup
   apt_install "${TEST_APT_PACKAGES[@]}"
   setup_mpi
+  setup_paraview
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"
   plog="$(mktemp)"
