@@ -122,7 +122,7 @@ def bem_database(run):
     name = str(run.deck("ship", "database", DEFAULTS[("ship", "database")]))
     if os.path.isabs(name):
         return name if os.path.isfile(name) else None
-    deck_file = str(run.attrs.get("input_file", ""))
+    deck_file = str(run.attrs.get(layout.INPUT_FILE, ""))
     folders = [os.path.dirname(deck_file) if os.path.isabs(deck_file) else None,
                os.path.dirname(os.path.abspath(run.path))]
     folders += os.environ.get("DAVIT_PATH", "").split(os.pathsep)
