@@ -148,25 +148,25 @@ contains
     load(4:6) = matmul(m, f(4:6))
   end function turn_to_body
 
-  !> The mass matrix of the ship's speeds (Kane order) with Cummins' added-mass force
-  !> -A(inf) xi'' in the seakeeping frame: M_rb + m6 A(inf) m6^T, m6 = diag(m, m). The
-  !> absolute accelerations in h are m^T (v' + omega x v) and m^T omega', so in ship axes
-  !> the force is -m6 A m6^T (u' + (0, omega x v)): a full block that turns with the roll
-  !> and pitch. At m = 1 it is the layout's M + A(inf).
-  pure function seakeeping_mass(ship, m) result(mh)
-    type(bem_ship_type), intent(in) :: ship
-    real(wp), intent(in) :: m(3, 3)
+  !> The mass matrix of a ship's speeds (Kane order) with Cummins' added-mass force
+  !> -A xi'' in the seakeeping frame: M_rb + m6 A m6^T, m6 = diag(m, m), for the added mass
+  !> a_kane (Kane order) and the rigid body's principal inertia and mass. The absolute
+  !> accelerations in h are m^T (v' + omega x v) and m^T omega', so in ship axes the force
+  !> is -m6 A m6^T (u' + (0, omega x v)): a full block that turns with the roll and pitch.
+  !> At m = 1 it is M + A, the layout's block.
+  pure function seakeeping_mass(a_kane, inertia, mass, m) result(mh)
+    real(wp), intent(in) :: a_kane(6, 6), inertia(3), mass, m(3, 3)
     real(wp) :: mh(6, 6)
     integer :: i, j, k
     do j = 0, 3, 3
       do i = 0, 3, 3
-        mh(i + 1:i + 3, j + 1:j + 3) = matmul(m, matmul(ship%a_kane(i + 1:i + 3, j + 1:j + 3), &
+        mh(i + 1:i + 3, j + 1:j + 3) = matmul(m, matmul(a_kane(i + 1:i + 3, j + 1:j + 3), &
                                                         transpose(m)))
       end do
     end do
     do k = 1, 3
-      mh(k, k) = mh(k, k) + ship%inertia(k)
-      mh(k + 3, k + 3) = mh(k + 3, k + 3) + ship%mass
+      mh(k, k) = mh(k, k) + inertia(k)
+      mh(k + 3, k + 3) = mh(k + 3, k + 3) + mass
     end do
   end function seakeeping_mass
 
