@@ -32,7 +32,10 @@ cd "$(dirname "$0")"
 APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config python3)
 # capytaine (with xarray, scipy, pandas) and h5netcdf: the ship's BEM database
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
-PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg)
+PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg
+             hypothesis fortitude-lint)
+# netCDF's own tools (ncdump, nccopy): the tests read every kind of davit output with them
+TEST_APT_PACKAGES=(netcdf-bin)
 DEFAULT_DECK=input/iiib_level5_090.nml
 # Release build tuned for this CPU (AVX2/FMA where present): the wave kernels vectorise
 # 3x better than with the x86-64 baseline (davit bench); automatic arrays on the stack
@@ -40,6 +43,11 @@ DEFAULT_DECK=input/iiib_level5_090.nml
 # DAVIT_MARCH picks another target (bash make.sh portable uses x86-64-v2: no FMA, SSE4.2).
 DAVIT_MARCH="${DAVIT_MARCH:-native}"
 FPM_FLAGS=(--profile release --flag "-march=$DAVIT_MARCH -fstack-arrays")
+
+# ParaView (Debian's, 5.11) and a virtual X server: test_scene renders the scene's state
+# file with pvpython under xvfb-run (bash make.sh test installs them; the test skips, saying
+# why, only where they cannot be installed; DAVIT_NO_PARAVIEW=1 leaves them out)
+PARAVIEW_APT_PACKAGES=(paraview xvfb)
 
 # Open MPI (Debian's): mpifort and mpirun, for the MPI build of `davit sweep`
 MPI_APT_PACKAGES=(libopenmpi-dev openmpi-bin)
@@ -53,8 +61,13 @@ as_root() {
 }
 
 setup_apt() {
+  apt_install "${APT_PACKAGES[@]}"
+}
+
+# Install the Debian packages named that are missing.
+apt_install() {
   local missing=()
-  for p in "${APT_PACKAGES[@]}"; do
+  for p in "$@"; do
     dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
   done
   if [ ${#missing[@]} -gt 0 ]; then
@@ -80,6 +93,17 @@ setup_mpi() {
   export DAVIT_MPI_BIN="$PWD/$MPI_BIN"
 }
 
+# Optional: a failed install leaves the scene's rendering test to skip with its reason.
+setup_paraview() {
+  [ "${DAVIT_NO_PARAVIEW:-0}" = 1 ] && return 0
+  command -v pvpython >/dev/null 2>&1 && command -v xvfb-run >/dev/null 2>&1 && return 0
+  log "installing ${PARAVIEW_APT_PACKAGES[*]} (the scene's rendering test)"
+  { as_root apt-get update -qq &&
+      as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+        "${PARAVIEW_APT_PACKAGES[@]}" >/dev/null; } ||
+    log "could not install ParaView: the scene's rendering test will skip"
+}
+
 mpi() {
   setup_apt
   setup_python
@@ -88,8 +112,8 @@ mpi() {
 }
 
 python_ready() {
-  command -v fpm >/dev/null 2>&1 &&
-    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg" >/dev/null 2>&1
+  command -v fpm >/dev/null 2>&1 && command -v fortitude >/dev/null 2>&1 &&
+    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg, hypothesis" >/dev/null 2>&1
 }
 
 # Use the Python packages already installed if all are there; otherwise a project venv
@@ -374,7 +398,9 @@ paper_summary() {
 
 run_tests() {
   setup
+  apt_install "${TEST_APT_PACKAGES[@]}"
   setup_mpi
+  setup_paraview
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"
   plog="$(mktemp)"
@@ -387,6 +413,12 @@ run_tests() {
   if [ -n "$line" ]; then
     fpass="${line%% passed*}"
     ffail="${line#*passed, }"; ffail="${ffail%% failed*}"
+  fi
+  # the Fortran linter, with the rules fortitude.toml keeps (a finding fails the suite)
+  log "lint (fortitude check src app test)"
+  if ! fortitude check src app test; then
+    status=1
+    ffail=$((ffail + 1))
   fi
   log "Python tests (pytest test/python)"
   python3 -m pytest -q -p no:cacheprovider test/python 2>&1 | tee "$plog" || status=1

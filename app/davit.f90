@@ -4,11 +4,13 @@ program davit
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use davit_kinds, only: wp, davit_version
-  use davit_error, only: error_type
+  use davit_error, only: error_type, fatal_error
+  use davit_io_search_path, only: find_file, folder_of
   use davit_io_config, only: config_type, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
   use davit_io_namelist, only: int_to_str
   use davit_run_driver, only: run_simulation
+  use davit_run_scenario, only: scenario_text
   use davit_run_run_summary, only: run_summary
   use davit_run_progress, only: progress_meter, new_progress_meter, stderr_is_terminal
   use davit_bench_suite, only: bench_options, run_bench
@@ -33,6 +35,8 @@ program davit
     end function c_mkdir
   end interface
 
+  !> A file of the bench decks' folder (davit bench finds the folder by it).
+  character(len=*), parameter :: bench_marker = "bench_sweep.nml"
   character(len=:), allocatable :: command
   integer :: nargs
 
@@ -101,6 +105,9 @@ contains
     if (rao) then
       call run_rao(cfg, out, summary, error)
     else
+      ! what this run simulates, before it starts (stored as /scenario too)
+      write (output_unit, "(a)") scenario_text(cfg)
+      flush (output_unit)
       progress = new_progress_meter(stderr_is_terminal())
       call run_simulation(cfg, out, summary, error, progress)
     end if
@@ -336,7 +343,7 @@ contains
     type(error_type), allocatable :: error
     character(len=:), allocatable :: out, arg
     integer :: i
-    opts%decks = "input"
+    opts%decks = ""
     out = ""
     i = 2
     do while (i <= nargs)
@@ -353,11 +360,31 @@ contains
         call usage_error("unknown option '"//arg//"' for 'bench'")
       end select
     end do
+    if (len(opts%decks) == 0) call find_bench_decks(opts%decks)
     if (len(out) == 0) out = default_output("bench")
     call run_bench(opts, out, error)
     if (allocated(error)) call fail(error)
     write (output_unit, "(a)") "davit: wrote '"//out//"'"
   end subroutine cmd_bench
+
+  !> The bench decks' folder without --decks: input/ of the current folder (a checkout),
+  !> else the DAVIT_PATH folder that holds them (the installed share/davit/input), as
+  !> `davit run` finds its data files.
+  subroutine find_bench_decks(decks)
+    character(len=:), allocatable, intent(inout) :: decks
+    character(len=:), allocatable :: full, searched
+    type(error_type), allocatable :: error
+    logical :: found
+    call find_file("input", bench_marker, full, found, searched)
+    if (.not. found) then
+      call fatal_error(error, "bench: no bench decks ('"//bench_marker//"') in "// &
+                       searched//" (input/ here, then DAVIT_PATH); name their folder "// &
+                       "with --decks DIR")
+      call fail(error)
+    end if
+    decks = folder_of(full)
+    decks = decks(1:len(decks) - 1)
+  end subroutine find_bench_decks
 
   !> Print every deck key as a Markdown table per group (the README tables).
   subroutine cmd_keys()
@@ -417,7 +444,7 @@ contains
       "  davit bench [--quick] [-o OUT.h5] [--decks DIR]", &
       "                                   time fixed scenes, the sea module and a small", &
       "                                   sweep on 1 and 2 threads (decks from DIR,", &
-      "                                   default input/); default output out/bench.h5", &
+      "                                   default input/ or DAVIT_PATH); default out/bench.h5", &
       "  davit --help | -h                this help", &
       "  davit --version | -V             print the version", &
       "", &

@@ -31,7 +31,7 @@
                                                    .vtu frames, .pvd index, state .py
                                                    (postproc.scene)
   python -m postproc animate RUN.h5 [-o OUT.mp4|OUT.gif|OUTDIR] [--fps 20] [--every N]
-                                  [--frame T -o OUT.png]
+                                  [--frame T -o OUT.png|.jpg|...]
                                                    the launch as a movie (end and side
                                                    views, tension and acceleration), or
                                                    one still at time T (postproc.animate)
@@ -69,7 +69,8 @@ def _parser():
     parser.add_argument("--fps", type=float, default=20.0,
                         help="animate: frames per second (default %(default)s)")
     parser.add_argument("--frame", type=float, default=None, metavar="T",
-                        help="animate: write only the still at time T [s] (a PNG)")
+                        help="animate: write only the still at time T [s] (PNG, or the "
+                             "image format of the -o name: .jpg, .webp, .tif, ...)")
     parser.add_argument("--strict", action="store_true",
                         help="regress: exit 1 if any fact fails")
     parser.add_argument("--risk", type=float, default=operability.RISK,
@@ -150,7 +151,8 @@ def _sweep(args):
 
 
 def _operability(args):
-    """The operability table of a `davit sweep` summary, then the paper's conclusion."""
+    """The operability table of a `davit sweep` summary, then (the paper's own sweeps only)
+    the paper's conclusion."""
     if args.input is None:
         return _error("'operability' needs a davit sweep summary file")
     by = [d.strip() for d in args.by.split(",") if d.strip()]

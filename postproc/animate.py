@@ -235,9 +235,15 @@ def _load(path):
     return run
 
 
-def _target(path, out, suffix):
-    """`out` itself when it names a file of that kind, else <out>/<run stem><suffix>."""
-    if os.path.splitext(out)[1].lower() in (".mp4", ".gif", ".png"):
+# What `out` may name as a file: a movie, or a still in any image format Pillow writes.
+MOVIE_SUFFIXES = (".mp4", ".gif")
+STILL_SUFFIXES = (".png", ".jpg", ".jpeg", ".webp", ".tif", ".tiff", ".bmp", ".gif")
+
+
+def _target(path, out, suffix, kinds=MOVIE_SUFFIXES + (".png",)):
+    """`out` itself when it names a file of one of `kinds`, else <out>/<run stem><suffix>
+    (a folder)."""
+    if os.path.splitext(out)[1].lower() in kinds:
         folder = os.path.dirname(out)
         target = out
     else:
@@ -253,9 +259,11 @@ def still(path, out, when):
     run = _load(path)
     index = int(np.argmin(np.abs(run.time - when)))
     drawing = Drawing(run, np.array([index]))
-    target = _target(path, out, "_frame.png")
+    target = _target(path, out, "_frame.png", STILL_SUFFIXES)
     from PIL import Image
-    Image.fromarray(drawing.draw(0)).save(target, optimize=True)
+    image = Image.fromarray(drawing.draw(0))
+    # JPEG and BMP hold no alpha channel
+    image.convert("RGB").save(target, optimize=True)
     plt.close(drawing.fig)
     return target
 

@@ -184,6 +184,15 @@ def _ship_halfbreadth(x, z, length, beam, draught, xi_p, exponent):
     return 0.5 * beam * np.clip(fx, 0.0, 1.0) * fz
 
 
+def ship_halfbreadth(x, z, length=L_PP, beam=BEAM, draught=DRAUGHT,
+                     block_coefficient=BLOCK_COEFFICIENT, exponent=SHIP_SECTION_EXPONENT):
+    """Half-breadth of the ship hull (ship_hull's lines) at x from midship and z up from
+    the waterline (z <= 0 below it; above it, the waterline's)."""
+    return _ship_halfbreadth(np.asarray(x, float), np.minimum(np.asarray(z, float), 0.0),
+                             length, beam, draught, ship_form(block_coefficient, exponent),
+                             exponent)
+
+
 def ship_resolution(length, beam, draught, panels):
     """(nx, nz) per side of the ship mesh: panels = 2 nx nz, aspect ~ length / girth."""
     girth = draught + beam / 2

@@ -1,5 +1,6 @@
 """Figures of a single run."""
 import os
+import textwrap
 
 import matplotlib
 
@@ -12,12 +13,46 @@ from . import layout  # noqa: E402
 
 def _save(fig, outdir, name, dpi=110):
     """Write `fig` to outdir/name (the folder made if missing) at `dpi`, close it and
-    return the path. The one figure writer of postproc (study charts use dpi=120)."""
+    return the path. The one figure writer of postproc (study charts use dpi=120). Titles
+    wider than the figure are wrapped first (_fit_titles)."""
     os.makedirs(outdir, exist_ok=True)
     path = os.path.join(outdir, name)
+    _fit_titles(fig)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
+
+
+def _titles(fig):
+    """The figure's title and every axes' titles that hold text."""
+    texts = [fig._suptitle] + [t for ax in fig.axes if ax.get_visible()
+                               for t in (ax.title, ax._left_title, ax._right_title)]
+    return [t for t in texts if t is not None and t.get_text()]
+
+
+def _fit_titles(fig, margin=4.0):
+    """Wrap every title that reaches past the figure's edges (a long outcome, a one-panel
+    figure's suptitle) so that it fits, `margin` pixels inside; then lay the figure out
+    again (titles grew taller). Centred titles are wrapped to twice the room on their
+    narrower side."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    width = fig.bbox.width
+    wrapped = False
+    for text in _titles(fig):
+        for _ in range(4):
+            box = text.get_window_extent(renderer)
+            if box.x0 >= margin and box.x1 <= width - margin:
+                break
+            centre = 0.5 * (box.x0 + box.x1)
+            room = 2 * min(centre - margin, width - margin - centre)
+            lines = text.get_text().split("\n")
+            longest = max(len(line) for line in lines)
+            chars = max(16, int(longest * room / box.width * 0.95))
+            text.set_text("\n".join(textwrap.fill(line, chars) for line in lines))
+            wrapped = True
+    if wrapped and fig.get_layout_engine() is None:
+        fig.tight_layout()
 
 
 def trajectory(run, outdir, stem):
@@ -105,13 +140,14 @@ def acceleration(run, outdir, stem):
         ax.plot(run.seat_time(), np.linalg.norm(seat, axis=1), lw=0.8,
                 label=f"seat |a|, {hz:g} Hz phaseless Butterworth")
     _mark_impacts(ax, run, run.get(layout.IMPACT_PEAK_ACCELERATION),
-                  "impact: CG peak (every step)")
+                  "impact: CG peak (every step)", fmt="{:.3g}")
     peak = run.get(layout.PEAK_CG_ACCELERATION)
     title = "Boat acceleration"
     if peak is not None:
         sampled = float(np.max(np.linalg.norm(a, axis=1))) if len(a) else 0.0
-        title += (f": resolved CG peak {peak[0]:.0f} m/s^2 at {peak[1]:.2f} s "
-                  f"(samples show {sampled:.0f})")
+        # three significant digits: a calm launch's 1.44 m/s^2 is not "1"
+        title += (f": resolved CG peak {peak[0]:.3g} m/s^2 at {peak[1]:.2f} s "
+                  f"(samples show {sampled:.3g})")
     ax.set(xlabel="t [s]", ylabel="acceleration [m/s^2]", title=title + _title_outcome(run))
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
@@ -223,7 +259,7 @@ def rao(run, outdir, stem):
 
 
 def segment_tension(run, outdir, stem):
-    """Paper Fig. 13: cable segment tensions against time, with the static shares W/4 and
+    """Cable segment tensions against time (the paper's Fig. 13 for its deck), with the static shares W/4 and
     (W + blocks + slings)/4 (weights from the run's deck, else the paper's III.B values).
     Drawn up to the hook release: after it the falls no longer carry the boat."""
     run.require([layout.RIGGING_SEGMENT_TENSION], "cable segment tensions")
@@ -248,12 +284,24 @@ def segment_tension(run, outdir, stem):
     ax.axhline((mass + rigging) * layout.GRAVITY / 4e3, color="k", ls=":", lw=0.8,
                label="(W + blocks + slings)/4")
     until = "" if t_release is None else f", until the hook release at {t_release:.1f} s"
+    # the paper's figure number only on the paper's own deck's run
+    head = "Fig. 13: c" if _deck_stem(run) == FIG13_DECK else "C"
     ax.set(xlabel="t [s]", ylabel="tension [kN]",
-           title=f"Fig. 13: cable segment tension, drum to dead end{until}")
+           title=f"{head}able segment tension, drum to dead end{until}")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
     return _save(fig, outdir, f"{stem}_segment_tension.png")
+
+
+# The paper deck whose run is the paper's Fig. 13 (input/fig13_tension.nml).
+FIG13_DECK = "fig13_tension"
+
+
+def _deck_stem(run):
+    """The name of the deck a run came from, without folder and .nml ("" if unknown)."""
+    name = os.path.basename(str(run.attrs.get(layout.INPUT_FILE, "")))
+    return name[:-4] if name.endswith(".nml") else name
 
 
 def contact(run, outdir, stem):

@@ -55,6 +55,8 @@ LIMIT_SWL = "limits/safe_working_load"
 LIMIT_MBL = "limits/minimum_breaking_load"
 LIMIT_IMPACT = "limits/impact_speed"
 OUTCOME = "outcome"
+INPUT_FILE = "input_file"          # root attribute of a run: the deck it ran
+SWEEP_NAMELIST = "sweep_namelist"  # root attribute of a summary: the sweep deck's text
 RIGGING_SEGMENT_TENSION = "rigging/segment_tension"
 RIGGING_PAID_OUT = "rigging/paid_out"
 RIGGING_PULLEY_ANGLE = "rigging/pulley_angle"
@@ -470,7 +472,7 @@ def load_sweep(path):
 
 # --- Study charts (`python -m postproc.study`) ----------------------------------------------
 # /study (STUDY_GROUP) holds one 1-D dataset per column, one entry per run: the run labels
-# (bytes), ok (1 where the run completed) and the numeric metrics; the study's settings
+# (variable-length UTF-8 text), ok (1 where the run completed) and the numeric metrics; the study's settings
 # (kind, base, t_end, ...) are attributes of /study.
 STUDY_LABEL = "label"
 STUDY_OK = "ok"
@@ -489,7 +491,9 @@ def write_study(path, attrs, labels, ok, columns):
         g = f.create_group(STUDY_GROUP)
         for key, value in attrs.items():
             g.attrs[key] = value
-        written = [g.create_dataset(STUDY_LABEL, data=np.array(labels, dtype="S")),
+        # variable-length UTF-8: netCDF-C (ncdump) misreads a fixed-length string array
+        written = [g.create_dataset(STUDY_LABEL, data=[str(s) for s in labels],
+                                    dtype=h5py.string_dtype()),
                    g.create_dataset(STUDY_OK, data=np.array(ok))]
         for key, values in columns.items():
             written.append(g.create_dataset(key, data=np.array(values, dtype=float)))
@@ -508,7 +512,7 @@ def load_study(path, kind=None):
         if kind is not None and g.attrs.get("kind") != kind:
             return None
         data = {k: g[k][:] for k in g}
-        data[STUDY_LABEL] = [s.decode() for s in data[STUDY_LABEL]]
+        data[STUDY_LABEL] = [_text(s) for s in data[STUDY_LABEL]]
         data["attrs"] = dict(g.attrs)
     return data
 

@@ -16,17 +16,22 @@ launches)'; and the limiting criterion, the one with the largest estimated failu
 probability (ties: the larger upper bound; 'none' when nothing failed). Failed runs
 (status 2) and cases not run are counted per cell, never dropped silently.
 
-Writes OUTDIR/<stem>_operability.csv, .md (with the paper's conclusion as a tested
-statement: conclusion()) and .png (heat map of P(collision)) and _limiting.png.
+Writes OUTDIR/<stem>_operability.csv, .md and .png (heat map of P(collision)) and
+_limiting.png. The .md of the paper's own operability sweeps (input/sweep_operability*.nml,
+PAPER_SWEEPS) ends with the paper's conclusion as a tested statement (conclusion()); a
+user's sweep tests no claim of the paper's.
 """
 import csv
 import math
 import os
+import pathlib
+import re
 from dataclasses import dataclass, field
 
 import matplotlib
 
 matplotlib.use("Agg")
+import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
@@ -51,6 +56,9 @@ MAXIMA_SCALE = {"peak_horizontal_acceleration": 1.0, "peak_fall_tension": 1e-3,
                 "peak_sling_tension": 1e-3}
 # the height of the paper's Level 5 sea: the threshold where a summary gives no level
 LEVEL5_HEIGHT = 4.0
+# The paper's own operability sweeps: only their tables test the paper's conclusion.
+PAPER_SWEEPS = ("sweep_operability.nml", "sweep_operability_lsa.nml")
+INPUT = pathlib.Path(__file__).resolve().parents[1] / "input"
 
 
 @dataclass
@@ -382,10 +390,13 @@ def markdown(cells, summary, risk, conclusions=()):
 # --- figures -------------------------------------------------------------------------------
 
 def _panels(cells):
-    """{(sea, period): cells} in key order."""
+    """{(sea, period): cells} in key order. A pooled key is NaN, and NaN equals nothing,
+    not even itself: keyed by None instead, so one period (a pooled key) makes one panel per
+    sea, not one per cell."""
     out = {}
     for c in cells:
-        out.setdefault((c.sea, c.period), []).append(c)
+        key = tuple(None if math.isnan(v) else v for v in (c.sea, c.period))
+        out.setdefault(key, []).append(c)
     return out
 
 
@@ -407,7 +418,8 @@ def _grid(cells, sea_name, draw):
     for ax in axes.ravel()[len(panels):]:
         ax.set_visible(False)
     label = "Level" if sea_name == "level" else "H"
-    for ax, ((sea, period), group) in zip(axes.ravel(), panels.items()):
+    for ax, group in zip(axes.ravel(), panels.values()):
+        sea, period = group[0].sea, group[0].period
         ax.set_xlim(-0.5, len(angles) - 0.5)
         ax.set_ylim(-0.5, len(clearances) - 0.5)
         for c in group:
@@ -471,13 +483,31 @@ def limiting_map(cells, summary, outdir, stem):
     return _save(fig, outdir, f"{stem}_operability_limiting.png")
 
 
+def _deck_values(text):
+    """A deck's text without its comments and blanks: what it sets, whatever its notes."""
+    return "".join(re.sub(r"!.*", "", text).split())
+
+
+def is_paper_sweep(path):
+    """Whether summary `path` is of one of the paper's operability sweeps: its sweep deck
+    (root attribute sweep_namelist) sets what input/sweep_operability*.nml sets."""
+    with h5py.File(path, "r") as f:
+        text = layout._text(f.attrs.get(layout.SWEEP_NAMELIST, ""))
+    values = _deck_values(str(text))
+    return bool(values) and any(
+        (INPUT / name).is_file() and _deck_values((INPUT / name).read_text()) == values
+        for name in PAPER_SWEEPS)
+
+
 def write(path, outdir="out", risk=RISK, by=DIMENSIONS, confidence=CONFIDENCE):
     """Write the CSV, the Markdown and the two figures of the summary `path`; returns
-    (paths, conclusion)."""
+    (paths, conclusions, Markdown text): the paper's conclusion only for its own sweeps."""
     summary = load(path)
     cells = table(summary, risk, by, confidence)
-    found = [conclusion(summary, risk=risk, confidence=confidence)]
-    if "impact_speed" in summary.checks:
+    found = []
+    if is_paper_sweep(path):
+        found.append(conclusion(summary, risk=risk, confidence=confidence))
+    if found and "impact_speed" in summary.checks:
         found.append(conclusion(summary, risk=risk, confidence=confidence,
                                 criterion="impact_speed"))
     stem = os.path.splitext(os.path.basename(str(path)))[0]

@@ -25,7 +25,7 @@ SEED = 20211
 FIELDS = {"level": layout.SWEEP_CASE_LEVEL, "angle_deg": layout.SWEEP_CASE_ANGLE,
           "clearance_b": layout.SWEEP_CASE_CLEARANCE, "status": layout.SWEEP_STATUS,
           "collided": layout.SWEEP_COLLIDED}
-MAXIMA = {"sling": "results/peak_sling_tension",
+MAXIMA = {"sling": layout.OPERABILITY_MAXIMA["peak_sling_tension"],
           "impact": layout.check_columns("impact_speed")["value"]}
 
 

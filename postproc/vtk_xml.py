@@ -12,7 +12,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 # VTK cell type ids (vtkCellType.h) and how many points each has
-VERTEX, LINE, QUAD = 1, 3, 9
+VERTEX, LINE, POLYGON, QUAD = 1, 3, 7, 9
 _TYPES = {np.dtype("float64"): "Float64", np.dtype("float32"): "Float32",
           np.dtype("int64"): "Int64", np.dtype("int32"): "Int32", np.dtype("uint8"): "UInt8"}
 

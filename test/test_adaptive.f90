@@ -160,9 +160,10 @@ contains
                     "half colliding: stops at the cap 12")
     call mark_not_needed(s, plan, r)
     call check_true(state, all(r(8:12)%status == status_not_needed), "cell 1: 8..12 not needed")
-    if (allocated(r(8)%message)) &
+    if (allocated(r(8)%message)) then
       call check_true(state, index(r(8)%message, "not needed: cell's 95 % half-width "// &
                       "0.1772 <= 0.2000 after 7 realisations") == 1, "the reason: "//r(8)%message)
+    end if
     call check_true(state, all(r(13:36)%status /= status_not_needed), &
                     "capped and undecided cells: none")
     call check_true(state, all(r(25:36)%status == status_not_run), "cell 3 still unrun")

@@ -50,7 +50,8 @@ contains
       bad("&simulation"//nl//nl//" dt = -1.0 /", &
           "t.nml:3: &simulation: dt = -1.0: out of range; allowed: 0 < dt <= 1 [s]"), &
       bad("&simulaton t_end = 1 /", &
-          "t.nml:1: unknown namelist group &simulaton; allowed groups: &simulation, &boat, &slings"), &
+          "t.nml:1: unknown namelist group &simulaton; allowed groups: &simulation, "// &
+          "&boat, &slings"), &
       bad("&boat mass = 1.0"//nl//"! no slash", "t.nml:1: group &boat is not closed"), &
       bad("&boat position = 1.0, 2.0 /", &
           "&boat: position = 1.0, 2.0: expects 3 real value(s), got 2"), &

@@ -221,8 +221,9 @@ contains
     ke = 0.5_wp*mass*2.0_wp**2
     excess = -huge(1.0_wp)
     do i = 1, rec%n
-      if (rec%unloading(i) .and. rec%delta(i) > 0.0_wp) &
+      if (rec%unloading(i) .and. rec%delta(i) > 0.0_wp) then
         excess = max(excess, rec%force(i) - table_reaction(rec%delta(i)))
+      end if
     end do
     call check_true(state, count(rec%unloading(1:rec%n)) > 100, "an unloading phase")
     call check_true(state, excess <= 1e-9_wp*rated_reaction, "unloading <= loading")

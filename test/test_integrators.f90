@@ -13,6 +13,7 @@ module test_integrators
   use davit_solve_rosenbrock_w, only: rosenbrock_w_type
   use davit_solve_factory, only: new_integrator
   use test_problems, only: oscillator
+  use test_step_driver, only: step_driver_cases
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -78,7 +79,8 @@ contains
                    new_case("exact_macro_step", exact_macro_step), &
                    new_case("bouncing_ball_contact", bouncing_ball_contact), &
                    new_case("blowup_sets_failed", blowup_sets_failed), &
-                   new_case("factory_names_and_tolerances", factory_names)]
+                   new_case("factory_names_and_tolerances", factory_names), &
+                   step_driver_cases()]
   end function collect_integrators
 
   ! ---------------------------------------------------------------- problems

@@ -930,7 +930,8 @@ contains
     call check(state, speed, 0.7_wp/4.0_wp, "boat comes down at drum/4", rel_tol=0.01_wp)
     call check(state, sys_q%hist%waterborne_time, sys_m%hist%waterborne_time, "waterborne", &
                abs_tol=1.0e-2_wp)
-    call check(state, sys_q%hist%release_time, sys_m%hist%release_time, "release", abs_tol=1.0e-2_wp)
+    call check(state, sys_q%hist%release_time, sys_m%hist%release_time, "release", &
+               abs_tol=1.0e-2_wp)
     call note(state, "max CG difference over 100 s [m]", diff)
     call note(state, "waterborne massive [s]", sys_m%hist%waterborne_time)
     call note(state, "waterborne quasi-static [s]", sys_q%hist%waterborne_time)

@@ -175,7 +175,8 @@ contains
   !> stays within 0.1 rad, with the hull's GM and with the paper's h_m (its conservative
   !> roll-heave coupling). Heave stays within 2 (KG + h_m - GM_T)(1 - cos 0.1) (+5 %):
   !> heeled about G the wall-sided hull sits KG (1 - cos phi) = 5.5 mm higher (the paper's
-  !> coupling adds (h_m - GM_T)(1 - cos phi)), a bounded oscillation about that. (The paper level's metacentric moment grew the roll
+  !> coupling adds (h_m - GM_T)(1 - cos phi)), a bounded oscillation about that. (The paper
+  !> level's metacentric moment grew the roll
   !> to 0.17 rad and heave to 77 mm, issue 18.)
   subroutine energy(state)
     type(case_state), intent(inout) :: state

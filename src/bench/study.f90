@@ -45,8 +45,9 @@ contains
     opts%quiet = .true.
     call remove(scratch)
     call run_sweep(s, opts, scratch, outcome, error)
-    if (.not. allocated(error) .and. outcome%failed > 0) &
+    if (.not. allocated(error) .and. outcome%failed > 0) then
       call fatal_error(error, s%filename//": a launch of the bench's operability study failed")
+    end if
     if (.not. allocated(error)) call read_verdicts(scratch, study, run, error)
     call remove(scratch)
     if (allocated(error)) return

@@ -22,7 +22,8 @@ module davit_boat_contact
   implicit none
   private
   public :: contact_law_type, fender_state_type, new_contact_law, contact_force
-  public :: fender_update, fender_next_phase, hertz_peak, law_hertz_elastoplastic, law_lankarani_nikravesh
+  public :: fender_update, fender_next_phase, hertz_peak, law_hertz_elastoplastic
+  public :: law_lankarani_nikravesh
   public :: law_rubber_fender, new_rubber_fender_law
   public :: phase_free, phase_compression, phase_restitution, phase_separated
 
@@ -149,6 +150,9 @@ contains
       else if (delta_dot > 0.0_wp .and. delta > s%offset) then
         call start_compression(c, s, s%offset, delta, delta_dot)
       end if
+    case default
+      ! no other phase exists (phase_free .. phase_separated): a corrupt one is free
+      s = fender_state_type()
     end select
   end subroutine fender_update
 
@@ -194,6 +198,9 @@ contains
       else if (delta_dot > 0.0_wp .and. delta > s%offset) then
         phase = phase_compression
       end if
+    case default
+      ! no other phase exists (phase_free .. phase_separated): a corrupt one is free
+      phase = phase_free
     end select
   end function fender_next_phase
 
@@ -222,6 +229,10 @@ contains
       end if
     case (phase_restitution)
       if (delta > s%delta_max) s%phase = phase_compression
+    case default
+      ! phase_separated: the rubber law never enters it; left as it is, as
+      ! fender_next_phase says (the two are held together by a test)
+      continue
     end select
   end subroutine rubber_update
 

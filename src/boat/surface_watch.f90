@@ -62,7 +62,8 @@ contains
     w%slope_bound = sum(abs(field%amplitude)*field%k) + 2.0_wp*stokes*maxval(field%k)
     w%slope_rate_bound = sum(abs(field%amplitude)*field%k*field%omega) + &
                          w%slope_bound*ramp_rate + &
-                         2.0_wp*stokes*maxval(field%k)*(2.0_wp*ramp_rate + 2.0_wp*maxval(field%omega))
+                         2.0_wp*stokes*maxval(field%k)* &
+                         (2.0_wp*ramp_rate + 2.0_wp*maxval(field%omega))
     w%curvature_bound = sum(abs(field%amplitude)*field%k**2) + 4.0_wp*stokes*maxval(field%k)**2
   end function new_surface_watch
 

@@ -35,6 +35,9 @@ module davit_io_config
     character(len=:), allocatable :: wave_type, summation
     real(wp) :: height, period, direction, phase, spread_window, omega_min, omega_max
     real(wp) :: ramp_time
+    !> Where height and period came from ("deck", "level 4 preset", ...): printed and
+    !> stored with the run's scenario (davit_run_scenario).
+    character(len=:), allocatable :: height_source, period_source
     logical :: jitter, independent_frequencies
     real(wp), allocatable :: probes_x(:), probes_y(:)
   end type sea_config
@@ -49,6 +52,9 @@ module davit_io_config
   !> Steady wind for the force models (eq. 15, 46); direction it blows towards [rad].
   type :: wind_config
     real(wp) :: speed, direction
+    !> Where speed and direction came from ("deck", "level 5 preset", ...): a deck copied
+    !> with another level keeps a pinned speed, so the run says which it used.
+    character(len=:), allocatable :: speed_source, direction_source
   end type wind_config
 
   !> Lifeboat of Section III.B (review F5) and its initial state.
@@ -337,10 +343,11 @@ contains
                     "Principal moments of inertia about b1, b2, b3 (paper III.B).", &
                     lo_open=.true.)
     call r%real_vec(g, "position", b%position, [0.0_wp, 13.3_wp, -15.0_wp], -1.0e4_wp, &
-                    1.0e4_wp, "m", "Initial CG position in the inertial frame (z down; "// &
-                    "15 m above the still water, review G3).")
+                    1.0e4_wp, "m", "Initial CG position in the inertial frame (x along "// &
+                    "N1, y starboard, z down; 15 m above the still water, review G3).")
     call r%real_vec(g, "euler", b%euler, [0.0_wp, 0.0_wp, 0.0_wp], -1.5_wp, 1.5_wp, "rad", &
-                    "Initial roll, pitch, yaw (ZYX, eq. 2).")
+                    "Initial roll, pitch, yaw (ZYX, eq. 2; x forward, y starboard, "// &
+                    "z down: roll starboard down, pitch bow up, yaw bow to starboard).")
     call r%real_vec(g, "velocity", b%velocity, [0.0_wp, 0.0_wp, 0.0_wp], -100.0_wp, &
                     100.0_wp, "m/s", "Initial CG velocity in the inertial frame.")
     call r%real_vec(g, "angular_velocity", b%angular_velocity, [0.0_wp, 0.0_wp, 0.0_wp], &
@@ -442,6 +449,8 @@ contains
                "Sea-state preset (review G19): 3 = H 1.25 m, wind 5.5 m/s (issue 16); 4 = "// &
                "H 2.5 m, wind 8 m/s; 5 = H 4 m, wind 10 m/s.")
     preset_height = level_wave_height(s%level)
+    s%height_source = source(r%has(g, "height"), "level "//digit(s%level)//" preset")
+    s%period_source = source(r%has(g, "period"), "peak period of eq. 44 for the height")
     call r%choice(g, "wave_type", s%wave_type, "calm", &
                   [character(len=10) :: "calm", "airy", "stokes2", "irregular"], &
                   "'calm', regular 'airy' (linear) or 'stokes2' (second order), or "// &
@@ -454,8 +463,11 @@ contains
                 "for the height (10.06 s at 2.5 m, 12.72 s at 4 m, review G18).", &
                 default_text="peak period (12.72)")
     call r%real(g, "direction_deg", s%direction, 90.0_wp, -360.0_wp, 360.0_wp, "deg", &
-                "Propagation direction (mean direction if irregular), from N1 towards N2; "// &
-                "with the ship heading along N1 this is the encounter angle chi (review §0).")
+                "Direction the waves travel towards (mean direction if irregular), from "// &
+                "N1 towards N2 (N1 the ship's heading at heading_deg = 0, N2 starboard, N3 "// &
+                "down); the encounter angle chi (review §0): 0 = following seas, 90 = from "// &
+                "port (travelling towards the starboard side, where the boat hangs), 180 = "// &
+                "head seas, 270 = from starboard.")
     s%direction = s%direction*deg
     call r%real(g, "phase_deg", s%phase, 0.0_wp, -360.0_wp, 360.0_wp, "deg", &
                 "Phase epsilon of a regular wave at the origin at t = 0.")
@@ -502,14 +514,40 @@ contains
     type(wind_config), intent(inout) :: w
     type(sea_config), intent(in) :: sea
     character(len=*), parameter :: g = "wind"
+    w%speed_source = source(r%has(g, "speed"), "level "//digit(sea%level)//" preset")
+    w%direction_source = source(r%has(g, "direction_deg"), &
+                                "&sea direction_deg: along the waves")
     call r%real(g, "speed", w%speed, level_wind_speed(sea%level), 0.0_wp, &
                 80.0_wp, "m/s", "Steady wind speed for the force models (not the "// &
-                "spectrum's U = 6.28 sqrt(H)).", default_text="level preset (10)")
+                "spectrum's U = 6.28 sqrt(H)); without it the &sea level's preset "// &
+                "(3: 5.5, 4: 8, 5: 10 m/s) and every run prints which it used.", &
+                default_text="level preset (10)")
     call r%real(g, "direction_deg", w%direction, sea%direction*180.0_wp/pi, -360.0_wp, &
-                360.0_wp, "deg", "Direction the wind blows towards, from N1 towards N2.", &
+                360.0_wp, "deg", "Direction the wind blows towards (not from), from N1 "// &
+                "towards N2 as &sea direction_deg: 0 = from astern, 90 = from port, 180 = "// &
+                "from ahead.", &
                 default_text="&sea direction_deg")
     w%direction = w%direction*pi/180.0_wp
   end subroutine read_wind
+
+  !> "deck" where the deck sets the key, else `default` (the preset it falls back on).
+  pure function source(in_deck, default) result(text)
+    logical, intent(in) :: in_deck
+    character(len=*), intent(in) :: default
+    character(len=:), allocatable :: text
+    if (in_deck) then
+      text = "deck"
+    else
+      text = default
+    end if
+  end function source
+
+  !> The digit of a sea-state level (3-5).
+  pure function digit(level) result(text)
+    integer, intent(in) :: level
+    character(len=1) :: text
+    text = achar(iachar("0") + modulo(level, 10))
+  end function digit
 
   !> Wave height H of a sea-state level's preset [m] (review G19: upper bounds of the level;
   !> Level 3, added for the operability tables, likewise: sea state 3 is 0.5-1.25 m).

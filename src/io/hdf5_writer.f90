@@ -1,14 +1,17 @@
 !> HDF5 output, one file per run. The file is written under a name of its own,
 !> `path.tmp.<pid>.<n>`, and renamed to `path` only when closed, so an interrupted run never
 !> leaves a file that looks whole. While it is written, davit holds the advisory lock
-!> `path.lock` (created exclusively, holding the writer's process id): a second davit on the
-!> same output stops with a message instead of both claiming success. A lock left by a
-!> killed process (its id no longer runs) is taken over. An existing `path` is replaced only
+!> `path.lock` (created exclusively and whole, holding the writer's process id: a full disk
+!> leaves no empty lock): a second davit on the same output stops with a message instead of
+!> both claiming success. A lock left by a killed process (its id no longer runs) or naming
+!> no process is taken over. An output that is a FIFO or device, or whose name leaves no
+!> room for the temporary's suffix, is refused up front. An existing `path` is replaced only
 !> if it is a davit output (an HDF5 file with the root attribute davit_version): an input
 !> deck, a database or a folder given as the output is refused before any work.
 !> Every dataset carries `units`, `description` and `long_name` (the same text, the name
 !> netCDF/CF tools show) as UTF-8 strings. Time series are (components, time) in Fortran
-!> order, which h5py shows as (time, components).
+!> order, which h5py shows as (time, components). Text datasets (a sweep's messages and
+!> outcomes, a benchmark's names) are variable-length UTF-8 strings.
 !>
 !> Named dimensions (xarray/netCDF-4 readable): a dataset written with `dims` (one name per
 !> axis, blank-separated, in the order of the Fortran array's extents) has each axis
@@ -20,6 +23,7 @@
 !> not a netCDF variable."), so datasets of a group that share a name share one dimension.
 !> A dimension has one length: a second dataset disagreeing with it fails the write.
 module davit_io_hdf5_writer
+  use, intrinsic :: iso_fortran_env, only: error_unit
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc, c_ptr, c_size_t, &
                                          c_sizeof, c_int64_t
   use hdf5
@@ -28,6 +32,9 @@ module davit_io_hdf5_writer
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_reader, only: h5_start
   use davit_io_namelist, only: int_to_str
+  use davit_io_files, only: file_kind, kind_name, kind_none, kind_regular, kind_folder, &
+                            read_stream, write_whole, create_empty, exists_already, &
+                            name_max, errno_text, remove_file
   implicit none
   private
   public :: h5_writer_type, check_output_path, acquire_lock, release_lock
@@ -57,6 +64,10 @@ module davit_io_hdf5_writer
   end type reference_type
 
   !> netCDF-4's NAME of a dimension-only scale, which its readers hide as a variable.
+  !> The longest suffix of a temporary file: ".tmp.", a process id (up to 7 digits on
+  !> Linux, pid_max 4194304), "." and a counter of up to 6 digits.
+  integer, parameter :: tmp_suffix_max = 19
+
   character(len=*), parameter :: not_a_variable = &
     "This is a netCDF dimension but not a netCDF variable."
 
@@ -117,10 +128,8 @@ contains
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: path
     type(error_type), allocatable, intent(out) :: error
-    integer :: hdferr, perr
+    integer :: hdferr, perr, status
     integer(hid_t) :: fapl
-    integer(i8) :: count
-    character(len=40) :: suffix
     self%path = path
     self%final_path = path
     self%failed = .false.
@@ -131,47 +140,75 @@ contains
     if (allocated(error)) return
     call acquire_lock(path, self%owns_lock, error)
     if (allocated(error)) return
-    call system_clock(count)
-    write (suffix, "(a,i0,a,i0)") ".tmp.", c_getpid(), ".", modulo(count, 1000000_i8)
-    self%tmp_path = path//trim(suffix)
+    self%tmp_path = path//tmp_suffix()
     call note_tmp(path, self%tmp_path)
-    call h5_start()
-    ! The 1.8 file format stores attributes over 64 KiB (a long deck's text) densely.
-    call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, perr)
-    call h5pset_libver_bounds_f(fapl, H5F_LIBVER_V18_F, H5F_LIBVER_LATEST_F, perr)
-    call h5fcreate_f(self%tmp_path, H5F_ACC_EXCL_F, self%file, hdferr, access_prp=fapl)
-    call h5pclose_f(fapl, perr)
+    ! created here first, so that a failure names its cause (HDF5's does not)
+    status = create_empty(self%tmp_path)
+    hdferr = status
+    if (status == 0) then
+      call h5_start()
+      ! The 1.8 file format stores attributes over 64 KiB (a long deck's text) densely.
+      call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, perr)
+      call h5pset_libver_bounds_f(fapl, H5F_LIBVER_V18_F, H5F_LIBVER_LATEST_F, perr)
+      call h5fcreate_f(self%tmp_path, H5F_ACC_TRUNC_F, self%file, hdferr, access_prp=fapl)
+      call h5pclose_f(fapl, perr)
+    end if
     if (hdferr /= 0) then
-      call delete_file(self%tmp_path)
+      if (status == 0) call delete_file(self%tmp_path)
       if (self%owns_lock) call release_lock(path)
       self%owns_lock = .false.
-      call fatal_error(error, "cannot create output file '"//path// &
-                       "': directory missing or not writable")
+      call fatal_error(error, "cannot create output file '"//path//"' (as '"// &
+                       self%tmp_path//"' until it is whole): "//create_cause(status))
       return
     end if
     self%is_open = .true.
   end subroutine writer_create
 
-  !> Refuse an output that is a folder or an existing file that is not a davit output
-  !> (an input deck, a database, anything else): davit never replaces those.
+  !> ".tmp.<pid>.<n>": the temporary file's suffix (at most tmp_suffix_max characters).
+  function tmp_suffix() result(suffix)
+    character(len=:), allocatable :: suffix
+    integer(i8) :: count
+    call system_clock(count)
+    suffix = ".tmp."//int_to_str(int(c_getpid()))//"."// &
+             int_to_str(int(modulo(count, 1000000_i8)))
+  end function tmp_suffix
+
+  !> Why a file could not be created: the C library's words, or HDF5's failure.
+  function create_cause(status) result(cause)
+    integer, intent(in) :: status
+    character(len=:), allocatable :: cause
+    if (status /= 0) then
+      cause = errno_text(status)
+    else
+      cause = "HDF5 cannot create it (disk full or not writable?)"
+    end if
+  end function create_cause
+
+  !> Refuse an output that is a folder, a FIFO or device, an existing file that is not a
+  !> davit output (an input deck, a database, anything else), or a name too long for the
+  !> temporary file beside it: davit never replaces those, and never opens a FIFO (the
+  !> open would wait for a reader forever).
   subroutine check_output_path(path, error)
     character(len=*), intent(in) :: path
     type(error_type), allocatable, intent(out) :: error
-    logical :: exists, is_dir
     integer(hid_t) :: file
-    integer :: hdferr
+    integer :: hdferr, kind
     logical :: has_version
     if (len(path) == 0) then
       call fatal_error(error, "the output file name is empty")
       return
     end if
-    inquire (file=path//"/.", exist=is_dir)
-    if (is_dir .or. path(len(path):) == "/") then
+    kind = file_kind(path)
+    if (kind == kind_folder .or. path(len(path):) == "/") then
       call fatal_error(error, "the output '"//path//"' is a folder; name a file in it")
       return
+    else if (kind /= kind_none .and. kind /= kind_regular) then
+      call fatal_error(error, "the output '"//path//"' is "//kind_name(kind)// &
+                       ", not a regular file; davit writes HDF5 files: name a regular file")
+      return
     end if
-    inquire (file=path, exist=exists)
-    if (.not. exists) return
+    call check_name_length(path, error)
+    if (allocated(error) .or. kind == kind_none) return
     call h5_start()
     has_version = .false.
     call h5fopen_f(path, H5F_ACC_RDONLY_F, file, hdferr)
@@ -185,48 +222,117 @@ contains
       "choose another output name")
   end subroutine check_output_path
 
-  !> Take the advisory lock `path.lock` (created exclusively, holding this process id).
-  !> `owned` is false when this process already holds it (the caller then keeps it).
-  !> A lock whose process no longer runs is stale and taken over.
+  !> The output's name plus the suffix of its temporary file must fit the file system's
+  !> limit on one name (NAME_MAX, 255 bytes on most), or the run would fail only when it
+  !> creates that file, for a reason nobody could guess.
+  subroutine check_name_length(path, error)
+    character(len=*), intent(in) :: path
+    type(error_type), allocatable, intent(out) :: error
+    integer :: slash, limit, longest
+    slash = index(path, "/", back=.true.)
+    limit = 255
+    if (slash > 1) limit = name_max(path(1:slash - 1))
+    if (slash <= 1) limit = name_max(merge("/", ".", slash == 1))
+    if (limit <= 0) limit = 255
+    longest = len(path) - slash + tmp_suffix_max
+    if (longest <= limit) return
+    call fatal_error(error, "the output name '"//path(slash + 1:)//"' is "// &
+                     int_to_str(len(path) - slash)//" bytes long; with the suffix of its "// &
+                     "temporary file ('.tmp.<process>.<n>', up to "// &
+                     int_to_str(tmp_suffix_max)//" bytes) it passes the file system's "// &
+                     "limit of "//int_to_str(limit)//" bytes per name: use a name of at "// &
+                     "most "//int_to_str(limit - tmp_suffix_max)//" bytes")
+  end subroutine check_name_length
+
+  !> Take the advisory lock `path.lock` (created whole, holding this process id: a full
+  !> disk leaves none). `owned` is false when this process already holds it (the caller
+  !> then keeps it). A stale lock (its process no longer runs, or empty or unreadable: an
+  !> older davit's on a full disk) is taken over with a note on stderr.
   subroutine acquire_lock(path, owned, error)
     character(len=*), intent(in) :: path
     logical, intent(out) :: owned
     type(error_type), allocatable, intent(out) :: error
-    integer :: unit, ios, attempt, pid
-    character(len=:), allocatable :: lock
+    integer :: attempt, pid, status
+    character(len=:), allocatable :: lock, text
     lock = path//".lock"
     owned = .false.
+    pid = 0
     do attempt = 1, 3
-      open (newunit=unit, file=lock, status="new", action="write", iostat=ios)
-      if (ios == 0) then
-        write (unit, "(i0)", iostat=ios) c_getpid()
-        close (unit, iostat=ios)
+      status = write_whole(lock, lock//"."//int_to_str(int(c_getpid())), &
+                           int_to_str(int(c_getpid()))//new_line("a"), replace=.false.)
+      if (status == 0) then
         owned = .true.
         return
       end if
-      pid = lock_owner(lock)
+      ! a lock there decides before a failure to write ours (a full disk, read-only folder)
+      if (file_kind(lock) /= kind_none) status = exists_already
+      if (status /= exists_already) then
+        call fatal_error(error, "cannot create output file '"//path//"' (its lock '"// &
+                         lock//"'): "//errno_text(status)//"; any earlier '"//path// &
+                         "' is left as it was")
+        return
+      end if
+      call read_lock(lock, text, pid, error)
+      if (allocated(error)) return
       if (pid == c_getpid()) return
       if (pid > 0) then
         if (process_runs(pid)) exit
-      else
-        inquire (file=lock, exist=owned)
-        if (.not. owned) then
-          call fatal_error(error, "cannot create output file '"//path// &
-                           "' (nor its lock '"//lock//"'): directory missing or not writable")
-          return
-        end if
-        owned = .false.
-        exit  ! a lock being written by another davit this instant
       end if
-      ! stale: its process is gone (killed); remove it and the temporary file it noted
-      if (lock_owner(lock) /= pid) cycle  ! another process took it over meanwhile
-      call delete_file(lock_tmp(lock))
-      call delete_file(lock)
+      call take_over(lock, text, pid)
     end do
     call fatal_error(error, "another davit run (process "//int_to_str(pid)// &
                      ") is writing '"//path//"' (lock '"//lock//"'); wait for it, "// &
                      "choose another output name, or remove the lock if no davit runs")
   end subroutine acquire_lock
+
+  !> Remove the stale lock `lock` (read as `text`, of process `pid`, 0 if none) and the
+  !> temporary file it notes, unless another davit took it over meanwhile.
+  subroutine take_over(lock, text, pid)
+    character(len=*), intent(in) :: lock, text
+    integer, intent(in) :: pid
+    character(len=:), allocatable :: now
+    type(error_type), allocatable :: error
+    integer :: owner
+    call read_lock(lock, now, owner, error)
+    if (allocated(error) .or. now /= text) return  ! changed: the next attempt decides
+    if (pid > 0) then
+      write (error_unit, "(a)") "davit: note: taking over the stale lock '"//lock// &
+        "' of process "//int_to_str(pid)//", which no longer runs"
+    else
+      write (error_unit, "(a)") "davit: note: taking over the stale lock '"//lock// &
+        "', which names no process (left by a run that could not write it, e.g. on a "// &
+        "full disk)"
+    end if
+    call delete_file(lock_tmp(lock, text))
+    call delete_file(lock)
+  end subroutine take_over
+
+  !> The text of lock file `lock` and the process id on its first line (0 if none). A
+  !> lock that is not a regular file (a FIFO, a folder) is refused: davit made none such.
+  subroutine read_lock(lock, text, pid, error)
+    character(len=*), intent(in) :: lock
+    character(len=:), allocatable, intent(out) :: text
+    integer, intent(out) :: pid
+    type(error_type), allocatable, intent(out) :: error
+    type(error_type), allocatable :: unread
+    integer :: kind, ios, eol
+    pid = 0
+    text = ""
+    kind = file_kind(lock)
+    if (kind == kind_none) return  ! released meanwhile
+    if (kind /= kind_regular) then
+      call fatal_error(error, "the lock '"//lock//"' is "//kind_name(kind)// &
+                       ", not a davit lock; remove it")
+      return
+    end if
+    call read_stream(lock, "lock", 65536_i8, text, unread)
+    if (allocated(unread)) text = ""
+    eol = index(text//new_line("a"), new_line("a"))
+    if (eol < 2 .or. eol > 10) return
+    if (verify(text(1:eol - 1), "0123456789") /= 0) return
+    read (text(1:eol - 1), *, iostat=ios) pid
+    if (ios /= 0) pid = 0
+  end subroutine read_lock
 
   !> Whether process `pid` runs (kill 0 succeeds, or it runs under another user: /proc).
   logical function process_runs(pid)
@@ -243,45 +349,46 @@ contains
   end subroutine release_lock
 
   !> Note the temporary file in the lock (line 2) so that whoever takes over a stale
-  !> lock can remove what a killed run left.
+  !> lock can remove what a killed run left. The lock is replaced whole (a full disk
+  !> keeps the one-line lock rather than emptying it).
   subroutine note_tmp(path, tmp)
     character(len=*), intent(in) :: path, tmp
-    integer :: unit, ios
-    if (lock_owner(path//".lock") /= c_getpid()) return
-    open (newunit=unit, file=path//".lock", status="replace", action="write", iostat=ios)
-    if (ios /= 0) return
-    write (unit, "(i0)", iostat=ios) c_getpid()
-    write (unit, "(a)", iostat=ios) tmp
-    close (unit, iostat=ios)
+    character(len=:), allocatable :: lock
+    integer :: status
+    lock = path//".lock"
+    if (lock_owner(lock) /= c_getpid()) return
+    status = write_whole(lock, lock//"."//int_to_str(int(c_getpid())), &
+                         int_to_str(int(c_getpid()))//new_line("a")//tmp//new_line("a"), &
+                         replace=.true.)
   end subroutine note_tmp
 
-  !> The temporary file noted in lock file `lock` (empty if none).
-  function lock_tmp(lock) result(tmp)
-    character(len=*), intent(in) :: lock
-    character(len=:), allocatable :: tmp
-    character(len=4096) :: line
-    integer :: unit, ios
+  !> The temporary file noted in lock `lock` (text `text`; empty if none), in the lock's
+  !> folder however either was spelled (`out.h5`, `./out.h5`, `$PWD/out.h5`): only a
+  !> temporary file of this lock's output, never anything else.
+  function lock_tmp(lock, text) result(tmp)
+    character(len=*), intent(in) :: lock, text
+    character(len=:), allocatable :: tmp, noted, output
+    integer :: eol, slash
     tmp = ""
-    open (newunit=unit, file=lock, status="old", action="read", iostat=ios)
-    if (ios /= 0) return
-    read (unit, "(a)", iostat=ios) line
-    if (ios == 0) read (unit, "(a)", iostat=ios) line
-    if (ios == 0) tmp = trim(line)
-    close (unit)
-    ! only a temporary file of this lock's output, never anything else
-    if (index(tmp, lock(1:len(lock) - 5)//".tmp.") /= 1) tmp = ""
+    eol = index(text, new_line("a"))
+    if (eol == 0) return
+    noted = text(eol + 1:)
+    eol = index(noted, new_line("a"))
+    if (eol > 0) noted = noted(1:eol - 1)
+    noted = noted(index(noted, "/", back=.true.) + 1:)
+    slash = index(lock, "/", back=.true.)
+    output = lock(slash + 1:len(lock) - 5)
+    if (index(noted, output//".tmp.") /= 1 .or. len(noted) == len(output) + 5) return
+    if (verify(noted(len(output) + 6:), "0123456789.") /= 0) return
+    tmp = lock(1:slash)//noted
   end function lock_tmp
 
   !> Process id written in lock file `lock`; 0 if none can be read.
   integer function lock_owner(lock) result(pid)
     character(len=*), intent(in) :: lock
-    integer :: unit, ios
-    pid = 0
-    open (newunit=unit, file=lock, status="old", action="read", iostat=ios)
-    if (ios /= 0) return
-    read (unit, *, iostat=ios) pid
-    if (ios /= 0) pid = 0
-    close (unit)
+    character(len=:), allocatable :: text
+    type(error_type), allocatable :: error
+    call read_lock(lock, text, pid, error)
   end function lock_owner
 
   !> Put the file under `path` when closed instead of the name given to create().
@@ -361,32 +468,32 @@ contains
     call h5sclose_f(space, hdferr)
   end subroutine writer_write_1d_int
 
-  !> Fixed-length string dataset (blank-padded to the longest entry, at least 1 character).
+  !> Variable-length UTF-8 string dataset, one string per entry with its trailing blanks
+  !> removed. Variable-length, not fixed-length: netCDF-C 4.9 (ncdump, nccopy) crashes on
+  !> a fixed-length string array and shows its entries after the first as NIL, while it
+  !> reads variable-length UTF-8 as its own `string` type (as h5py, h5netcdf and xarray do).
   subroutine writer_write_strings(self, name, data, units, description, dims)
     class(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, data(:), units, description
     character(len=*), intent(in), optional :: dims
-    character(len=:), allocatable, target :: buf(:)
+    ! each entry NUL-terminated (a C string), pointed at by one element of ptr
+    character(len=len(data) + 1), allocatable, target :: buf(:)
+    type(c_ptr), allocatable, target :: ptr(:)
     integer(hid_t) :: atype, space, dset
     integer(hsize_t) :: extent(1)
-    integer :: hdferr, width, i
-    width = 1
+    integer :: hdferr, i
+    allocate (buf(size(data)), ptr(size(data)))
     do i = 1, size(data)
-      width = max(width, len_trim(data(i)))
-    end do
-    allocate (character(len=width) :: buf(size(data)))
-    do i = 1, size(data)
-      buf(i) = data(i)
+      buf(i) = trim(data(i))//c_null_char
+      ptr(i) = c_loc(buf(i)(1:1))
     end do
     extent = size(data, kind=hsize_t)
-    call h5tcopy_f(H5T_FORTRAN_S1, atype, hdferr)
-    call h5tset_size_f(atype, int(width, size_t), hdferr)
-    call h5tset_cset_f(atype, H5T_CSET_UTF8_F, hdferr)
+    call vlen_text_type(atype, hdferr)
     call h5screate_simple_f(1, extent, space, hdferr)
     call h5dcreate_f(self%file, name, atype, space, dset, hdferr)
     call check(self, hdferr, name)
     if (hdferr == 0) then
-      if (size(data) > 0) call h5dwrite_f(dset, atype, c_loc(buf), hdferr)
+      if (size(data) > 0) call h5dwrite_f(dset, atype, c_loc(ptr), hdferr)
       call check(self, hdferr, name)
       call describe(self, dset, units, description)
       if (present(dims)) call attach_dims(self, name, dset, dims, extent)
@@ -395,6 +502,14 @@ contains
     call h5sclose_f(space, hdferr)
     call h5tclose_f(atype, hdferr)
   end subroutine writer_write_strings
+
+  !> The variable-length UTF-8 string type (C strings: NUL-terminated), in file and memory.
+  subroutine vlen_text_type(atype, hdferr)
+    integer(hid_t), intent(out) :: atype
+    integer, intent(out) :: hdferr
+    call h5tcopy_f(H5T_STRING, atype, hdferr)
+    if (hdferr == 0) call h5tset_cset_f(atype, H5T_CSET_UTF8_F, hdferr)
+  end subroutine vlen_text_type
 
   !> One double-precision dataset of any rank from a contiguous buffer, with its
   !> units and description.
@@ -455,7 +570,7 @@ contains
     character(len=*), intent(in) :: obj, name
     real(wp), intent(in) :: value
     integer(hid_t) :: oid, space, attr
-    integer(hsize_t) :: dims(1) = [1]
+    integer(hsize_t), parameter :: dims(1) = [1]
     integer :: hdferr
     call h5oopen_f(self%file, obj, oid, hdferr)
     call h5screate_f(H5S_SCALAR_F, space, hdferr)
@@ -525,7 +640,7 @@ contains
     integer(hid_t), intent(in) :: oid
     character(len=*), intent(in) :: name, value
     integer(hid_t) :: atype, space, attr
-    integer(hsize_t) :: dims(1) = [1]
+    integer(hsize_t), parameter :: dims(1) = [1]
     integer :: hdferr
     call h5tcopy_f(H5T_FORTRAN_S1, atype, hdferr)
     call h5tset_size_f(atype, int(max(1, len(value)), size_t), hdferr)
@@ -797,12 +912,10 @@ contains
     end if
   end subroutine check
 
+  !> Remove `path` if it exists (never opened: a FIFO put under that name cannot block).
   subroutine delete_file(path)
     character(len=*), intent(in) :: path
-    integer :: unit, ios
-    if (len(path) == 0) return
-    open (newunit=unit, file=path, status="old", iostat=ios)
-    if (ios == 0) close (unit, status="delete")
+    if (len(path) > 0) call remove_file(path)
   end subroutine delete_file
 
 end module davit_io_hdf5_writer

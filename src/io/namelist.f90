@@ -5,7 +5,9 @@
 !> starts a comment outside quotes; a group ends with `/` or `&end`. Values are kept as
 !> text; typed parsing and range checks live in davit_io_deck_reader.
 module davit_io_namelist
+  use davit_kinds, only: i8
   use davit_error, only: error_type, fatal_error
+  use davit_io_files, only: file_kind, read_stream, kind_none, kind_folder, kind_pipe
   implicit none
   private
   public :: nml_entry, nml_deck, read_deck, parse_deck, to_lower, int_to_str, find_entry, key_at, &
@@ -29,41 +31,48 @@ module davit_io_namelist
     integer, allocatable :: slot(:)
   end type nml_deck
 
+  !> The largest deck read (decks are kilobytes; the parser's own tests reach 8 MiB): a
+  !> device such as /dev/zero is refused at this size instead of filling the memory.
+  integer(i8), parameter :: max_deck_bytes = 64_i8*1048576_i8
+
   character(len=*), parameter :: ident_chars = "abcdefghijklmnopqrstuvwxyz0123456789_"
 
 contains
 
-  !> Read and parse the deck file `filename`.
+  !> Read and parse the deck file `filename`: a regular file, or a pipe, FIFO or device
+  !> read to its end (`davit run <(...)`, `... | davit run /dev/stdin`). A deck with no
+  !> namelist group is refused: an empty read (a pipe that gave nothing, a FIFO nobody
+  !> writes to) must not run the all-defaults scenario silently.
   subroutine read_deck(filename, deck, error)
     character(len=*), intent(in) :: filename
     type(nml_deck), intent(out) :: deck
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: text
-    integer :: unit, ios, nbytes
-    character(len=256) :: msg
-    logical :: exists
-
-    inquire (file=filename, exist=exists)
-    if (.not. exists) then
+    integer :: kind
+    kind = file_kind(filename)
+    if (kind == kind_none) then
       call fatal_error(error, "cannot open input deck '"//filename//"': no such file")
       return
-    end if
-    open (newunit=unit, file=filename, access="stream", form="unformatted", &
-          action="read", status="old", iostat=ios, iomsg=msg)
-    if (ios /= 0) then
-      call fatal_error(error, "cannot open input deck '"//filename//"': "//trim(msg))
+    else if (kind == kind_folder) then
+      call fatal_error(error, "cannot read input deck '"//filename//"': it is a folder")
       return
     end if
-    inquire (unit=unit, size=nbytes)
-    allocate (character(len=max(nbytes, 0)) :: text)
-    if (nbytes > 0) read (unit, iostat=ios, iomsg=msg) text
-    close (unit)
-    if (ios /= 0) then
-      call fatal_error(error, "cannot read input deck '"//filename//"': "//trim(msg))
-      return
-    end if
+    call read_stream(filename, "input deck", max_deck_bytes, text, error)
+    if (allocated(error)) return
     call parse_deck(filename, text, deck, error)
+    if (allocated(error)) return
+    if (size(deck%groups) == 0) call fatal_error(error, "input deck '"//filename// &
+      "' is empty (no namelist group in its "//int_to_str(len(text))//" bytes"// &
+      pipe_note(kind)//"); a deck of defaults needs one group, e.g. &simulation /")
   end subroutine read_deck
+
+  !> Why a pipe's deck may be empty (its writer failed or never came).
+  function pipe_note(kind) result(note)
+    integer, intent(in) :: kind
+    character(len=:), allocatable :: note
+    note = ""
+    if (kind == kind_pipe) note = "; nothing came through the pipe or FIFO"
+  end function pipe_note
 
   !> Parse deck text; `filename` is only used in messages.
   subroutine parse_deck(filename, text, deck, error)
@@ -468,17 +477,17 @@ contains
   !> FNV-1a hash of group, a separator and key, as a non-negative integer.
   pure integer function str_hash(group, key) result(h)
     character(len=*), intent(in) :: group, key
-    integer(kind=8) :: x
+    integer(i8) :: x
     integer :: i
-    x = 2166136261_8
+    x = 2166136261_i8
     do i = 1, len_trim(group)
-      x = iand(ieor(x, int(iachar(group(i:i)), 8))*16777619_8, 4294967295_8)
+      x = iand(ieor(x, int(iachar(group(i:i)), i8))*16777619_i8, 4294967295_i8)
     end do
-    x = iand(ieor(x, 0_8)*16777619_8, 4294967295_8)
+    x = iand(ieor(x, 0_i8)*16777619_i8, 4294967295_i8)
     do i = 1, len(key)
-      x = iand(ieor(x, int(iachar(key(i:i)), 8))*16777619_8, 4294967295_8)
+      x = iand(ieor(x, int(iachar(key(i:i)), i8))*16777619_i8, 4294967295_i8)
     end do
-    h = int(iand(x, 2147483647_8))
+    h = int(iand(x, 2147483647_i8))
   end function str_hash
 
   !> Text quoted in a message: control and non-ASCII bytes as '?', cut to 80 characters.

@@ -82,7 +82,9 @@ contains
     call r%real_vec(g, "position", s%position, [0.0_wp, 0.0_wp, 0.0_wp], -1.0e5_wp, &
                     1.0e5_wp, "m", "Initial CG position in the inertial frame (paper: origin).")
     call r%real(g, "heading_deg", s%heading, 0.0_wp, -360.0_wp, 360.0_wp, "deg", &
-                "Initial heading psi (s1 from N1 towards N2).")
+                "Initial heading psi: the bow's direction (s1), from N1 "// &
+                "towards N2 (90 = bow towards N2); wave and wind directions are not relative "// &
+                "to it.")
     s%heading = s%heading*deg
     call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 2.6_wp, "m/s", &
                 "Initial forward speed, held by a constant thrust equal to the resistance "// &

@@ -116,8 +116,9 @@ contains
     r = trim(adjustl(s))
     n = len(r)
     if (n >= 2) then
-      if ((r(1:1) == "'" .and. r(n:n) == "'") .or. (r(1:1) == '"' .and. r(n:n) == '"')) &
+      if ((r(1:1) == "'" .and. r(n:n) == "'") .or. (r(1:1) == '"' .and. r(n:n) == '"')) then
         r = r(2:n - 1)
+      end if
     end if
   end function unquote
 

@@ -469,8 +469,9 @@ contains
     do a = 1, 2
       call place_sling(self, a, hook_pos(:, a), hook_force(:, a), unstretched, y, q(:, a))
     end do
-    if (present(hook_vel) .and. present(heads) .and. present(head_vel)) &
+    if (present(hook_vel) .and. present(heads) .and. present(head_vel)) then
       call move_with_hooks(self, hook_pos, hook_vel, heads, head_vel, y)
+    end if
     br = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
     call set_cable_lengths(self%falls_type, br, q, ship, unstretched, residual)
     if (residual > residual_max) then

@@ -63,8 +63,9 @@ contains
     integer :: i
     shortest = huge(1.0_wp)
     do i = 1, cab%nnode - 1
-      if (cab%kind(i) == node_block .or. cab%kind(i + 1) == node_block) &
+      if (cab%kind(i) == node_block .or. cab%kind(i + 1) == node_block) then
         shortest = min(shortest, l0(i))
+      end if
     end do
     c = 0.0_wp
     if (shortest < huge(1.0_wp)) c = wire_dashpot(zeta, cab%ea/shortest, m_b)

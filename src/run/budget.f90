@@ -274,7 +274,9 @@ contains
       character(len=*), intent(in) :: s
       integer, intent(in) :: j
       is_start = j == 1
-      if (.not. is_start) is_start = index("abcdefghijklmnopqrstuvwxyz0123456789_%", s(j - 1:j - 1)) == 0
+      if (.not. is_start) then
+        is_start = index("abcdefghijklmnopqrstuvwxyz0123456789_%", s(j - 1:j - 1)) == 0
+      end if
     end function is_start
     pure logical function next_is_equals(s, j)
       character(len=*), intent(in) :: s

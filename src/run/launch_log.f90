@@ -253,9 +253,10 @@ contains
     call self%rules%stop_loads(before, peak)
     if (before == before) c(check_brake_load) = new_check(check_brake_load, peak, &
                                                           1.1_wp*before)
-    if (self%rules%release_load >= 0.0_wp) &
+    if (self%rules%release_load >= 0.0_wp) then
       c(check_release_load) = new_check(check_release_load, self%rules%release_load, &
                                         1.1_wp*self%weight)
+    end if
     call occupant_checks(self, c, drs)
     if (present(dr)) dr = drs
   end function log_checks

@@ -133,7 +133,7 @@ contains
     call writer%write_3d("rao/phase", pha, "rad", &
                          "Phase of the response relative to the wave elevation at the ship", &
                          dims="dof omega heading")
-    call write_root_attributes(writer, cfg, summary, "rk4", none)
+    call write_root_attributes(writer, cfg, summary, "rk4", none, scenario=.false.)
     call writer%close(error)
   end subroutine run_rao
 

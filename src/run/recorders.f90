@@ -166,7 +166,9 @@ contains
     real(wp) :: sling(sys%par%rig%nlump + 1, 2), lumps(3, sys%par%rig%nlump, 2)
     call sys%rigging_state(t, y, self%segment_tension(:, k), sling, self%paid_out(k), lumps)
     self%tension(:, k) = sling(1, :)
-    self%pulley_angle(:, k) = sys%par%rig%sheave_angles(y(sys%par%rig_slice(1):sys%par%rig_slice(2)))
+    associate (rig => sys%par%rig_slice)
+      self%pulley_angle(:, k) = sys%par%rig%sheave_angles(y(rig(1):rig(2)))
+    end associate
     self%lumps(:, :, k) = reshape(lumps, [3, 2*sys%par%rig%nlump])
     self%blocks(:, :, k) = sys%par%rig%block_positions(y(sys%par%rig_slice(1):sys%par%rig_slice(2)))
   end subroutine sample_rigging

@@ -5,6 +5,7 @@ module davit_run_run_summary
   use davit_error, only: error_type
   use davit_io_config, only: config_type
   use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_run_scenario, only: write_scenario
   implicit none
   private
   public :: run_summary, write_root_attributes
@@ -47,13 +48,16 @@ contains
     self%worst_interval_time = t
   end subroutine note_interval
 
-  !> davit_version, input file and deck text, seed, integrator statistics, completion.
-  subroutine write_root_attributes(w, cfg, summary, integrator, run_error)
+  !> davit_version, input file and deck text, seed, integrator statistics, completion;
+  !> and /scenario (what the run simulated, davit_run_scenario) unless `scenario` is false
+  !> (the RAO runs, which sweep their own waves).
+  subroutine write_root_attributes(w, cfg, summary, integrator, run_error, scenario)
     type(h5_writer_type), intent(inout) :: w
     type(config_type), intent(in) :: cfg
     type(run_summary), intent(in) :: summary
     character(len=*), intent(in) :: integrator
     type(error_type), allocatable, intent(in) :: run_error
+    logical, intent(in), optional :: scenario
     call w%attr_str("/", "davit_version", davit_version)
     call w%attr_str("/", "input_file", cfg%filename)
     call w%attr_str("/", "input_namelist", cfg%deck_text)
@@ -73,6 +77,11 @@ contains
       call w%attr_str("/", "status", run_error%message)
     else
       call w%attr_str("/", "status", "ok")
+    end if
+    if (.not. present(scenario)) then
+      call write_scenario(w, cfg)
+    else if (scenario) then
+      call write_scenario(w, cfg)
     end if
   end subroutine write_root_attributes
 

@@ -77,8 +77,9 @@ contains
     if (allocated(error)) return
     nw = size(db%omega)
     nb = size(db%heading)
-    if (nw < 2 .or. nb < 2 .or. any(db%omega(2:) <= db%omega(:nw - 1)) .or. &
-        any(db%heading(2:) <= db%heading(:nb - 1))) then
+    ! written as "all ascending" so that a NaN fails the check too
+    if (nw < 2 .or. nb < 2 .or. .not. all(db%omega(2:) > db%omega(:nw - 1)) .or. &
+        .not. all(db%heading(2:) > db%heading(:nb - 1))) then
       call fatal_error(error, "'"//db%path//"': davit_omega and davit_heading must hold "// &
                        "at least 2 ascending values each")
       return
@@ -123,6 +124,10 @@ contains
     db%mass = transpose(reshape(x, [6, 6]))
     call h5%read_array("davit_displaced_volume", x, dims, error)
     if (allocated(error)) return
+    if (size(x) /= 1) then
+      call fatal_error(error, "'"//h5%path//"': davit_displaced_volume must hold one value")
+      return
+    end if
     db%volume = x(1)
   end subroutine read_matrices
 
@@ -141,10 +146,12 @@ contains
     if (allocated(error)) return
     nmax = 0
     if (size(dims) == 4) nmax = dims(1)
+    ! orders are whole numbers 0 .. n (written so that a NaN fails too)
     if (size(dims) /= 4 .or. any(dims /= [nmax, nmax, 6, 6]) .or. &
-        maxval(order) > real(nmax, wp) .or. minval(order) < 0.0_wp) then
+        .not. all(order >= 0.0_wp .and. order <= real(nmax, wp) .and. &
+                  order == aint(order))) then
       call fatal_error(error, "'"//db%path//"': davit_ss_a must be (6, 6, n, n) with "// &
-                       "n >= every davit_ss_order")
+                       "n >= every davit_ss_order (whole numbers >= 0)")
       return
     end if
     call read_shaped(h5, "davit_ss_b", [nmax, 6, 6], b, dims, error)

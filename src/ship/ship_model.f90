@@ -302,9 +302,10 @@ contains
         load = ship_loads(self, t, q, u, c)
         dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
         dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
-        if (self%control%q(2) >= self%control%q(1)) &
+        if (self%control%q(2) >= self%control%q(1)) then
           call integral_control(self, q, c, y(self%control%q(1):self%control%q(2)), load, &
                                 dydt(self%control%q(1):self%control%q(2)))
+        end if
         if (self%bem) then
           ! the memory of Cummins' equation in the seakeeping frame (bem_loads): fed the
           ! speeds resolved there, its load turned into ship axes

@@ -5,14 +5,14 @@
 !>
 !> Contract: step(problem, t, y, dt) advances exactly from t to t + dt (the driver's macro
 !> step, after which after_step may change the problem, e.g. a contact phase), using as
-!> many adaptive internal steps as the error control needs. FSAL is used only inside one
-!> macro step: after_step may change the RHS, so the first stage is recomputed on entry.
-!> The proposed internal step size persists between calls.
+!> many adaptive internal steps as the error control needs (the shared driver,
+!> davit_solve_adaptive). FSAL is used only inside one macro step: after_step may change
+!> the RHS, so the first stage is recomputed on entry. The proposed internal step size
+!> persists between calls.
 module davit_solve_dopri5
   use davit_kinds, only: wp
-  use davit_solve_integrator, only: ode_problem, integrator_type
-  use davit_solve_step_control, only: error_norm, initial_step, stretch_to, &
-                                      is_finite_real, substep_allowed
+  use davit_solve_integrator, only: ode_problem
+  use davit_solve_adaptive, only: adaptive_integrator
   implicit none
   private
   public :: dopri5_type
@@ -32,31 +32,20 @@ module davit_solve_dopri5
   real(wp), parameter :: e1 = 71.0_wp/57600, e3 = -71.0_wp/16695, e4 = 71.0_wp/1920, &
                          e5 = -17253.0_wp/339200, e6 = 22.0_wp/525, e7 = -1.0_wp/40
 
-  type, extends(integrator_type) :: dopri5_type
-    !> Mixed error tolerance: |e_i| <= atol + rtol |y_i| in the RMS sense.
-    real(wp) :: rtol = 1.0e-6_wp
-    real(wp) :: atol = 1.0e-9_wp
-    !> Relative step floor: h < h_min max(1, |t|) is a step-size collapse (failure).
-    real(wp) :: h_min = 1.0e-12_wp
-    !> Most internal steps (accepted or rejected) in one macro step before failing.
-    integer :: max_substeps = 100000
-    !> No error control: exactly one internal step of size dt per call (order studies).
-    logical :: fixed_step = .false.
-    !> Controller: safety factor, shrink/growth limits of h_new/h, PI exponent beta.
-    real(wp) :: safety = 0.9_wp
-    real(wp) :: fac_min = 0.2_wp
-    real(wp) :: fac_max = 10.0_wp
+  type, extends(adaptive_integrator) :: dopri5_type
+    !> PI controller's exponent beta on the previous error (HNW II, sec. IV.2; DOPRI5).
     real(wp) :: beta = 0.04_wp
-    !> Proposed internal step (0: choose by the starting heuristic on the next call).
-    real(wp) :: h = 0.0_wp
+    !> Previous accepted error (the PI controller's memory).
     real(wp) :: err_old = 1.0e-4_wp
-    real(wp), allocatable :: k1(:), k2(:), k3(:), k4(:), k5(:), k6(:), k7(:)
-    real(wp), allocatable :: ytmp(:), ynew(:), yerr(:)
+    real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:)
   contains
     procedure :: init => dopri5_init
-    procedure :: step => dopri5_step
     procedure :: name => dopri5_name
-    procedure, private :: attempt
+    procedure :: order => dopri5_order
+    procedure :: start => dopri5_start
+    procedure :: attempt => dopri5_attempt
+    procedure :: next_step => pi_controller
+    procedure :: on_acceptance => dopri5_accepted
   end type dopri5_type
 
 contains
@@ -64,120 +53,83 @@ contains
   subroutine dopri5_init(self, n)
     class(dopri5_type), intent(inout) :: self
     integer, intent(in) :: n
-    if (allocated(self%k1)) then
-      deallocate (self%k1, self%k2, self%k3, self%k4, self%k5, self%k6, self%k7)
-      deallocate (self%ytmp, self%ynew, self%yerr)
-    end if
-    allocate (self%k1(n), self%k2(n), self%k3(n), self%k4(n), self%k5(n), self%k6(n), &
-              self%k7(n), self%ytmp(n), self%ynew(n), self%yerr(n))
-    self%steps = 0
-    self%rhs_evaluations = 0
-    self%failed = .false.
-    if (allocated(self%failure)) deallocate (self%failure)
-    self%h = 0.0_wp
+    call self%init_work(n)
+    if (allocated(self%k2)) deallocate (self%k2, self%k3, self%k4, self%k5, self%k6, self%k7)
+    allocate (self%k2(n), self%k3(n), self%k4(n), self%k5(n), self%k6(n), self%k7(n))
+    ! DOPRI5's growth limit (HNW's fac2 = 10): an explicit step may grow faster than a
+    ! Rosenbrock one
+    self%fac_max = 10.0_wp
     self%err_old = 1.0e-4_wp
   end subroutine dopri5_init
 
-  !> One trial step of size h from (t, y) with k1 = f(t, y) given: ynew, and (when
+  pure integer function dopri5_order(self)
+    class(dopri5_type), intent(in) :: self
+    dopri5_order = 5
+  end function dopri5_order
+
+  !> k1 = f0 = f(t, y); inside a macro step the last stage of the accepted step (FSAL,
+  !> copied by dopri5_accepted) already is.
+  subroutine dopri5_start(self, problem, t, y, first)
+    class(dopri5_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:)
+    logical, intent(in) :: first
+    if (.not. first) return
+    call problem%rhs(t, y, self%f0)
+    self%rhs_evaluations = self%rhs_evaluations + 1
+  end subroutine dopri5_start
+
+  !> One trial step of size h from (t, y) with k1 = f0 = f(t, y): ynew, and (when
   !> `with_error`) k7 = f(t + h, ynew) and the error vector yerr.
-  subroutine attempt(self, problem, t, y, h, with_error)
+  subroutine dopri5_attempt(self, problem, t, y, h, with_error)
     class(dopri5_type), intent(inout) :: self
     class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:), h
     logical, intent(in) :: with_error
-    self%ytmp = y + h*a21*self%k1
+    self%ytmp = y + h*a21*self%f0
     call problem%rhs(t + c2*h, self%ytmp, self%k2)
-    self%ytmp = y + h*(a31*self%k1 + a32*self%k2)
+    self%ytmp = y + h*(a31*self%f0 + a32*self%k2)
     call problem%rhs(t + c3*h, self%ytmp, self%k3)
-    self%ytmp = y + h*(a41*self%k1 + a42*self%k2 + a43*self%k3)
+    self%ytmp = y + h*(a41*self%f0 + a42*self%k2 + a43*self%k3)
     call problem%rhs(t + c4*h, self%ytmp, self%k4)
-    self%ytmp = y + h*(a51*self%k1 + a52*self%k2 + a53*self%k3 + a54*self%k4)
+    self%ytmp = y + h*(a51*self%f0 + a52*self%k2 + a53*self%k3 + a54*self%k4)
     call problem%rhs(t + c5*h, self%ytmp, self%k5)
-    self%ytmp = y + h*(a61*self%k1 + a62*self%k2 + a63*self%k3 + a64*self%k4 + a65*self%k5)
+    self%ytmp = y + h*(a61*self%f0 + a62*self%k2 + a63*self%k3 + a64*self%k4 + a65*self%k5)
     call problem%rhs(t + h, self%ytmp, self%k6)
-    self%ynew = y + h*(b1*self%k1 + b3*self%k3 + b4*self%k4 + b5*self%k5 + b6*self%k6)
+    self%ynew = y + h*(b1*self%f0 + b3*self%k3 + b4*self%k4 + b5*self%k5 + b6*self%k6)
     self%rhs_evaluations = self%rhs_evaluations + 5
     if (.not. with_error) return
     call problem%rhs(t + h, self%ynew, self%k7)
     self%rhs_evaluations = self%rhs_evaluations + 1
-    self%yerr = h*(e1*self%k1 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + &
+    self%yerr = h*(e1*self%f0 + e3*self%k3 + e4*self%k4 + e5*self%k5 + e6*self%k6 + &
                    e7*self%k7)
-  end subroutine attempt
+  end subroutine dopri5_attempt
 
-  subroutine dopri5_step(self, problem, t, y, dt)
+  !> PI step control (Gustafsson's, HNW II, sec. IV.2, as in HNW's DOPRI5): on acceptance
+  !> err^(1/5 - 0.75 beta) / err_old^beta; a rejection uses err alone and only shrinks.
+  pure function pi_controller(self, h, err, accepted) result(h_new)
+    class(dopri5_type), intent(in) :: self
+    real(wp), intent(in) :: h, err
+    logical, intent(in) :: accepted
+    real(wp) :: h_new, fac
+    fac = err**(0.2_wp - 0.75_wp*self%beta)
+    if (accepted) then
+      fac = fac/self%err_old**self%beta
+      fac = max(1.0_wp/self%fac_max, min(1.0_wp/self%fac_min, fac/self%safety))
+      h_new = h/fac
+    else
+      h_new = h/min(1.0_wp/self%fac_min, fac/self%safety)
+    end if
+  end function pi_controller
+
+  !> The PI controller's memory, and FSAL: the accepted step's k7 = f(t + h, ynew) is the
+  !> next step's k1.
+  subroutine dopri5_accepted(self, err)
     class(dopri5_type), intent(inout) :: self
-    class(ode_problem), intent(in) :: problem
-    real(wp), intent(inout) :: t
-    real(wp), intent(inout) :: y(:)
-    real(wp), intent(in) :: dt
-    real(wp) :: t_end, tc, h, err, fac, h_new
-    integer :: tries
-    logical :: last, rejected
-
-    if (self%failed) return
-    t_end = t + dt
-    call problem%rhs(t, y, self%k1)
-    self%rhs_evaluations = self%rhs_evaluations + 1
-    if (self%fixed_step) then
-      call self%attempt(problem, t, y, dt, .false.)
-      y = self%ynew
-      t = t_end
-      self%steps = self%steps + 1
-      return
-    end if
-    if (self%h <= 0.0_wp) then
-      self%h = initial_step(problem, t, y, self%k1, 5, self%atol, self%rtol, abs(dt), &
-                            self%ytmp, self%k2)
-      self%rhs_evaluations = self%rhs_evaluations + 1
-    end if
-
-    tc = t
-    rejected = .false.
-    tries = 0
-    do
-      last = stretch_to(self%h, t_end - tc)
-      h = merge(t_end - tc, self%h, last)
-      tries = tries + 1
-      if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
-      call self%attempt(problem, tc, y, h, .true.)
-      err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
-      if (.not. is_finite_real(err)) then
-        ! A non-finite trial (overflow in a stage) is a rejection with the strongest
-        ! shrink; a persistent one ends in the h_min failure above.
-        self%h = h*self%fac_min
-        rejected = .true.
-        cycle
-      end if
-      fac = err**(0.2_wp - 0.75_wp*self%beta)
-      if (err <= 1.0_wp) then
-        ! PI controller (HNW I, eq. 4.13' of sec. IV.2 as in DOPRI5).
-        fac = fac/self%err_old**self%beta
-        fac = max(1.0_wp/self%fac_max, min(1.0_wp/self%fac_min, fac/self%safety))
-        h_new = h/fac
-        if (rejected) h_new = min(h_new, h)
-        self%err_old = max(err, 1.0e-4_wp)
-        y = self%ynew
-        self%k1 = self%k7
-        self%steps = self%steps + 1
-        rejected = .false.
-        if (last) then
-          ! A clipped final step says little about growth; only let it shrink h.
-          self%h = min(self%h, h_new)
-          exit
-        end if
-        tc = tc + h
-        self%h = h_new
-        if (self%single_step) then
-          t = tc
-          return
-        end if
-      else
-        self%h = h/min(1.0_wp/self%fac_min, fac/self%safety)
-        rejected = .true.
-      end if
-    end do
-    t = merge(t_end, tc, .not. self%failed)
-  end subroutine dopri5_step
+    real(wp), intent(in) :: err
+    self%err_old = max(err, 1.0e-4_wp)
+    self%f0 = self%k7
+  end subroutine dopri5_accepted
 
   pure function dopri5_name(self) result(name)
     class(dopri5_type), intent(in) :: self

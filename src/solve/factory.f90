@@ -4,6 +4,7 @@ module davit_solve_factory
   use davit_error, only: error_type, fatal_error
   use davit_solve_integrator, only: integrator_type
   use davit_solve_rk4, only: rk4_type
+  use davit_solve_adaptive, only: adaptive_integrator
   use davit_solve_dopri5, only: dopri5_type
   use davit_solve_rosenbrock, only: rosenbrock_type
   use davit_solve_rosenbrock_w, only: rosenbrock_w_type
@@ -53,15 +54,7 @@ contains
     end select
     call integrator%init(n)
     select type (integrator)
-    type is (dopri5_type)
-      if (present(rtol)) integrator%rtol = rtol
-      if (present(atol)) integrator%atol = atol
-      if (present(fixed_step)) integrator%fixed_step = fixed_step
-    type is (rosenbrock_w_type)
-      if (present(rtol)) integrator%rtol = rtol
-      if (present(atol)) integrator%atol = atol
-      if (present(fixed_step)) integrator%fixed_step = fixed_step
-    type is (rosenbrock_type)
+    class is (adaptive_integrator)
       if (present(rtol)) integrator%rtol = rtol
       if (present(atol)) integrator%atol = atol
       if (present(fixed_step)) integrator%fixed_step = fixed_step

@@ -12,14 +12,15 @@
 !> R(z) ~ 8/(3z) -> 0 as z -> -inf (|R(-1e8)| = 2.7e-8), local error ~ z^4 (order 3).
 !>
 !> Contract as for dopri5: step(problem, t, y, dt) advances exactly from t to t + dt with
-!> adaptive internal steps; the proposed step persists between calls. J is recomputed at
-!> every accepted point and reused (exactly) after a rejection. Reusing it across steps
-!> would need a W-method (RODAS3 loses order with an inexact J), so that is not offered.
+!> adaptive internal steps (the shared driver, davit_solve_adaptive); the proposed step
+!> persists between calls. J is recomputed at every accepted point and reused (exactly)
+!> after a rejection. Reusing it across steps would need a W-method (RODAS3 loses order
+!> with an inexact J), so that is not offered. Unlike dopri5 and rosw, RODAS3 runs every
+!> call to t + dt even with single_step (it always has: its results are kept).
 module davit_solve_rosenbrock
   use davit_kinds, only: wp
-  use davit_solve_integrator, only: ode_problem, integrator_type
-  use davit_solve_step_control, only: error_norm, initial_step, record_failure, stretch_to, &
-                                      is_finite_real, substep_allowed
+  use davit_solve_integrator, only: ode_problem
+  use davit_solve_adaptive, only: adaptive_integrator, adaptive_step
   implicit none
   private
   public :: rosenbrock_type
@@ -42,8 +43,6 @@ module davit_solve_rosenbrock
   real(wp), parameter :: rgamma(ns) = [0.5_wp, 1.5_wp, 0.0_wp, 0.0_wp]
   !> Stage 2 reuses f of stage 1 (alpha_2 = 0, a_21 = 0).
   logical, parameter :: new_f(ns) = [.true., .false., .true., .true.]
-  !> Order of the error estimate's leading term (h_new ~ err^(-1/3)).
-  real(wp), parameter :: err_order = 3.0_wp
 
   interface
     subroutine dgetrf(m, n, a, lda, ipiv, info)
@@ -64,34 +63,22 @@ module davit_solve_rosenbrock
     end subroutine dgetrs
   end interface
 
-  type, extends(integrator_type) :: rosenbrock_type
-    !> Mixed error tolerance: |e_i| <= atol + rtol |y_i| in the RMS sense.
-    real(wp) :: rtol = 1.0e-6_wp
-    real(wp) :: atol = 1.0e-9_wp
-    !> Relative step floor: h < h_min max(1, |t|) is a step-size collapse (failure).
-    real(wp) :: h_min = 1.0e-12_wp
-    !> Most internal steps (accepted or rejected) in one macro step before failing.
-    integer :: max_substeps = 100000
-    !> No error control: exactly one internal step of size dt per call (order studies).
-    logical :: fixed_step = .false.
+  type, extends(adaptive_integrator) :: rosenbrock_type
     !> f does not depend on t explicitly: skip the df/dt difference (one RHS per step).
     logical :: autonomous = .false.
-    !> Controller: safety factor and shrink/growth limits of h_new/h.
-    real(wp) :: safety = 0.9_wp
-    real(wp) :: fac_min = 0.2_wp
-    real(wp) :: fac_max = 6.0_wp
-    !> Proposed internal step (0: choose by the starting heuristic on the next call).
-    real(wp) :: h = 0.0_wp
     !> Accepted-point Jacobians formed and LU factorisations done (statistics).
     integer :: jacobians = 0, decompositions = 0
-    real(wp), allocatable :: k(:, :), f0(:), fcn(:), dfdt(:), ytmp(:), ynew(:), yerr(:)
+    real(wp), allocatable :: k(:, :), dfdt(:)
     real(wp), allocatable :: jac(:, :), lu(:, :)
     integer, allocatable :: ipiv(:)
   contains
     procedure :: init => rosenbrock_init
     procedure :: step => rosenbrock_step
     procedure :: name => rosenbrock_name
-    procedure, private :: linearise, factor, stages
+    procedure :: order => rosenbrock_order
+    procedure :: start => linearise
+    procedure :: prepare => factor
+    procedure :: attempt => stages
   end type rosenbrock_type
 
 contains
@@ -99,26 +86,39 @@ contains
   subroutine rosenbrock_init(self, n)
     class(rosenbrock_type), intent(inout) :: self
     integer, intent(in) :: n
-    if (allocated(self%k)) then
-      deallocate (self%k, self%f0, self%fcn, self%dfdt, self%ytmp, self%ynew, self%yerr)
-      deallocate (self%jac, self%lu, self%ipiv)
-    end if
-    allocate (self%k(n, ns), self%f0(n), self%fcn(n), self%dfdt(n), self%ytmp(n), &
-              self%ynew(n), self%yerr(n), self%jac(n, n), self%lu(n, n), self%ipiv(n))
-    self%steps = 0
-    self%rhs_evaluations = 0
+    call self%init_work(n)
+    if (allocated(self%k)) deallocate (self%k, self%dfdt, self%jac, self%lu, self%ipiv)
+    allocate (self%k(n, ns), self%dfdt(n), self%jac(n, n), self%lu(n, n), self%ipiv(n))
     self%jacobians = 0
     self%decompositions = 0
-    self%failed = .false.
-    if (allocated(self%failure)) deallocate (self%failure)
-    self%h = 0.0_wp
   end subroutine rosenbrock_init
 
-  !> f0 = f(t, y), J = df/dy by one forward difference per column, and df/dt.
-  subroutine linearise(self, problem, t, y)
+  pure integer function rosenbrock_order(self)
+    class(rosenbrock_type), intent(in) :: self
+    rosenbrock_order = 3
+  end function rosenbrock_order
+
+  !> The shared driver, but each call runs to t + dt: single_step is not honoured.
+  subroutine rosenbrock_step(self, problem, t, y, dt)
+    class(rosenbrock_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(inout) :: t
+    real(wp), intent(inout) :: y(:)
+    real(wp), intent(in) :: dt
+    logical :: single
+    single = self%single_step
+    self%single_step = .false.
+    call adaptive_step(self, problem, t, y, dt)
+    self%single_step = single
+  end subroutine rosenbrock_step
+
+  !> f0 = f(t, y), J = df/dy by one forward difference per column, and df/dt: at every
+  !> accepted point (`first` or not).
+  subroutine linearise(self, problem, t, y, first)
     class(rosenbrock_type), intent(inout) :: self
     class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:)
+    logical, intent(in) :: first
     real(wp), parameter :: sqrt_eps = sqrt(epsilon(1.0_wp))
     real(wp) :: del
     integer :: j
@@ -146,12 +146,15 @@ contains
     self%rhs_evaluations = self%rhs_evaluations + 1
   end subroutine linearise
 
-  !> LU of I/(h gamma) - J; info /= 0 when singular.
-  subroutine factor(self, h, info)
+  !> LU of I/(h gamma) - J before every trial step (J, df/dt and f0 stay valid after a
+  !> rejection at the same point); ok = .false. when singular, with half the step to
+  !> retry.
+  subroutine factor(self, problem, t, y, h, ok)
     class(rosenbrock_type), intent(inout) :: self
-    real(wp), intent(in) :: h
-    integer, intent(out) :: info
-    integer :: i, n
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:), h
+    logical, intent(out) :: ok
+    integer :: i, n, info
     n = size(self%jac, 1)
     self%lu = -self%jac
     do i = 1, n
@@ -159,13 +162,17 @@ contains
     end do
     call dgetrf(n, n, self%lu, n, self%ipiv, info)
     self%decompositions = self%decompositions + 1
+    ok = info == 0
+    if (.not. ok) self%h = 0.5_wp*h
   end subroutine factor
 
-  !> The four stages from (t, y) with step h (LU ready): ynew and the error vector yerr.
-  subroutine stages(self, problem, t, y, h)
+  !> The four stages from (t, y) with step h (LU ready): ynew and the error vector yerr
+  !> (formed with_error or not: it costs no RHS).
+  subroutine stages(self, problem, t, y, h, with_error)
     class(rosenbrock_type), intent(inout) :: self
     class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:), h
+    logical, intent(in) :: with_error
     integer :: i, j, n, info
     n = size(y)
     self%fcn = self%f0
@@ -192,84 +199,6 @@ contains
       if (re(i) /= 0.0_wp) self%yerr = self%yerr + re(i)*self%k(:, i)
     end do
   end subroutine stages
-
-  subroutine rosenbrock_step(self, problem, t, y, dt)
-    class(rosenbrock_type), intent(inout) :: self
-    class(ode_problem), intent(in) :: problem
-    real(wp), intent(inout) :: t
-    real(wp), intent(inout) :: y(:)
-    real(wp), intent(in) :: dt
-    real(wp) :: t_end, tc, h, err, h_new
-    integer :: tries, info
-    logical :: last, rejected
-
-    if (self%failed) return
-    t_end = t + dt
-    call self%linearise(problem, t, y)
-    if (self%fixed_step) then
-      call self%factor(dt, info)
-      if (info /= 0) then
-        call record_failure(self, t, dt, "singular iteration matrix")
-        return
-      end if
-      call self%stages(problem, t, y, dt)
-      y = self%ynew
-      t = t_end
-      self%steps = self%steps + 1
-      return
-    end if
-    if (self%h <= 0.0_wp) then
-      self%h = initial_step(problem, t, y, self%f0, 3, self%atol, self%rtol, abs(dt), &
-                            self%ytmp, self%fcn)
-      self%rhs_evaluations = self%rhs_evaluations + 1
-    end if
-
-    tc = t
-    rejected = .false.
-    tries = 0
-    do
-      last = stretch_to(self%h, t_end - tc)
-      h = merge(t_end - tc, self%h, last)
-      tries = tries + 1
-      if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
-      call self%factor(h, info)
-      if (info /= 0) then
-        self%h = 0.5_wp*h
-        rejected = .true.
-        cycle
-      end if
-      call self%stages(problem, tc, y, h)
-      err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
-      if (.not. is_finite_real(err)) then
-        ! Overflow in a stage: reject with the strongest shrink; if it persists the step
-        ! collapses and the h_min failure above reports it.
-        self%h = h*self%fac_min
-        rejected = .true.
-        cycle
-      end if
-      h_new = h*min(self%fac_max, max(self%fac_min, &
-                                      self%safety/max(err, 1.0e-10_wp)**(1.0_wp/err_order)))
-      if (err > 1.0_wp) then
-        ! Same point: J, df/dt and f0 stay valid, only the matrix is refactored.
-        self%h = h_new
-        rejected = .true.
-        cycle
-      end if
-      if (rejected) h_new = min(h_new, h)
-      y = self%ynew
-      self%steps = self%steps + 1
-      rejected = .false.
-      if (last) then
-        ! A clipped final step says little about growth; only let it shrink h.
-        self%h = min(self%h, h_new)
-        exit
-      end if
-      tc = tc + h
-      self%h = h_new
-      call self%linearise(problem, tc, y)
-    end do
-    t = merge(t_end, tc, .not. self%failed)
-  end subroutine rosenbrock_step
 
   pure function rosenbrock_name(self) result(name)
     class(rosenbrock_type), intent(in) :: self

@@ -7,7 +7,8 @@
 !> (`coupled_states`: the boat and ship, whose hooks and heads pull on the blocks with
 !> the wire's stiffness), formed by forward differences (one RHS per column) and kept for
 !> many steps; every other row is explicit, so I/(h gamma) - W is block lower triangular:
-!> the explicit rows first, then one small solve for the stiff ones. The stiff springs (the 50 kg block on its 1 m sling,
+!> the explicit rows first, then one small solve for the stiff ones. The stiff springs
+!> (the 50 kg block on its 1 m sling,
 !> |lambda| ~ 1260 1/s) are then damped where they are not excited instead of capping the
 !> step, while the error control still resolves them where they are (a snatch).
 !>
@@ -22,15 +23,15 @@
 !> of W is zero).
 !>
 !> Contract as for dopri5: step(problem, t, y, dt) advances exactly from t to t + dt with
-!> adaptive internal steps; the proposed step and W persist between calls. W is formed
+!> adaptive internal steps (the shared driver, davit_solve_adaptive); the proposed step and
+!> W persist between calls. W is formed
 !> afresh after a rejection once more than 10 steps old, and after `max_age` accepted steps
 !> (measured: 50 and every rejection, 200 and 10, 400 and 20 gave 0.58, 0.56, 0.60 s on the
 !> regular launch and 4.8, 4.2, 5.0 s on the irregular one at rtol 1e-4 and 1e-5).
 module davit_solve_rosenbrock_w
   use davit_kinds, only: wp
-  use davit_solve_integrator, only: ode_problem, integrator_type
-  use davit_solve_step_control, only: error_norm, initial_step, record_failure, stretch_to, &
-                                      is_finite_real, substep_allowed
+  use davit_solve_integrator, only: ode_problem
+  use davit_solve_adaptive, only: adaptive_integrator
   implicit none
   private
   public :: rosenbrock_w_type
@@ -54,33 +55,30 @@ module davit_solve_rosenbrock_w
                                         -9.6042292212423178e-2_wp, 0.5_wp, &
                                         2.1793326075422950e-1_wp]
 
-  type, extends(integrator_type) :: rosenbrock_w_type
-    real(wp) :: rtol = 1.0e-6_wp
-    real(wp) :: atol = 1.0e-9_wp
-    real(wp) :: h_min = 1.0e-12_wp
-    integer :: max_substeps = 100000
-    logical :: fixed_step = .false.
-    real(wp) :: safety = 0.9_wp
-    real(wp) :: fac_min = 0.2_wp
-    real(wp) :: fac_max = 6.0_wp
+  type, extends(adaptive_integrator) :: rosenbrock_w_type
     !> Accepted steps a W is kept for.
     integer :: max_age = 200
-    real(wp) :: h = 0.0_wp
     !> Ws formed and factorisations (statistics).
     integer :: jacobians = 0, decompositions = 0
     real(wp) :: a(ns, ns) = 0.0_wp, c(ns, ns) = 0.0_wp, m(ns) = 0.0_wp, e(ns) = 0.0_wp
     real(wp) :: alpha(ns) = 0.0_wp
     integer, allocatable :: stiff(:), coupled(:), piv(:)
-    real(wp), allocatable :: w(:, :), wc(:, :), lu(:, :), u(:, :), f0(:), fcn(:), ytmp(:)
-    real(wp), allocatable :: ynew(:)
-    real(wp), allocatable :: yerr(:)
+    real(wp), allocatable :: w(:, :), wc(:, :), lu(:, :), u(:, :)
+    !> Accepted steps since W was formed (-1: form one before the next trial step), and
+    !> the step its LU is for (-1: none).
     integer :: age = -1
     real(wp) :: h_lu = -1.0_wp
   contains
     procedure :: init => rosw_init
-    procedure :: step => rosw_step
     procedure :: name => rosw_name
-    procedure, private :: form_w, factor, stages
+    procedure :: order => rosw_order
+    procedure :: start => rosw_start
+    procedure :: prepare => rosw_prepare
+    procedure :: attempt => stages
+    procedure :: next_step => rosw_controller
+    procedure :: on_acceptance => rosw_accepted
+    procedure :: on_rejection => rosw_rejected
+    procedure, private :: form_w, factor
   end type rosenbrock_w_type
 
 contains
@@ -90,13 +88,12 @@ contains
     integer, intent(in) :: n
     real(wp) :: ginv(ns, ns)
     integer :: i
-    if (allocated(self%u)) deallocate (self%u, self%f0, self%fcn, self%ytmp, self%ynew, &
-                                       self%yerr)
+    call self%init_work(n)
+    if (allocated(self%u)) deallocate (self%u)
     ! the stiff set and W are the problem's: taken on the first step
     if (allocated(self%stiff)) deallocate (self%stiff, self%coupled, self%w, self%wc, &
                                            self%lu, self%piv)
-    allocate (self%u(n, ns), self%f0(n), self%fcn(n), self%ytmp(n), self%ynew(n), &
-              self%yerr(n))
+    allocate (self%u(n, ns))
     ginv = lower_inverse(gamma_rw)
     self%a = matmul(alpha_rw, ginv)
     self%c = -ginv
@@ -106,16 +103,78 @@ contains
     self%m = matmul(b_rw, ginv)
     self%e = self%m - matmul(bhat_rw, ginv)
     self%alpha = sum(alpha_rw, dim=2)
-    self%steps = 0
-    self%rhs_evaluations = 0
     self%jacobians = 0
     self%decompositions = 0
-    self%failed = .false.
-    if (allocated(self%failure)) deallocate (self%failure)
-    self%h = 0.0_wp
     self%age = -1
     self%h_lu = -1.0_wp
   end subroutine rosw_init
+
+  pure integer function rosw_order(self)
+    class(rosenbrock_w_type), intent(in) :: self
+    rosw_order = 3
+  end function rosw_order
+
+  !> f0 = f(t, y) at every new point; on the first call, the problem's stiff and coupled
+  !> states (W's rows and columns) are taken.
+  subroutine rosw_start(self, problem, t, y, first)
+    class(rosenbrock_w_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:)
+    logical, intent(in) :: first
+    if (.not. allocated(self%stiff)) then
+      self%stiff = problem%stiff_states()
+      self%coupled = problem%coupled_states()
+      allocate (self%w(size(self%stiff), size(self%stiff)), &
+                self%wc(size(self%stiff), size(self%coupled)), &
+                self%lu(size(self%stiff), size(self%stiff)), self%piv(size(self%stiff)))
+    end if
+    call problem%rhs(t, y, self%f0)
+    self%rhs_evaluations = self%rhs_evaluations + 1
+  end subroutine rosw_start
+
+  !> W formed afresh when none is valid, after max_age accepted steps, and for every fixed
+  !> step; refactored only when h changes. A singular I/(h gamma) - W: retry with a fresh
+  !> W at a fac_min times smaller step.
+  subroutine rosw_prepare(self, problem, t, y, h, ok)
+    class(rosenbrock_w_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t, y(:), h
+    logical, intent(out) :: ok
+    ok = .true.
+    if (self%fixed_step .or. self%age < 0 .or. self%age >= self%max_age) then
+      call self%form_w(problem, t, y)
+    end if
+    if (h /= self%h_lu) call self%factor(h, ok)
+    if (ok) return
+    self%h = h*self%fac_min
+    self%age = -1
+    self%h_lu = -1.0_wp
+  end subroutine rosw_prepare
+
+  !> HNW I, eq. 4.13 as written for rosw (safety err^(-1/3), the same value as the
+  !> default's safety / err^(1/3) but for rounding: kept so that results do not change).
+  !> A rejection (err > 1) gives a factor below safety, so fac_max does not bind there.
+  pure function rosw_controller(self, h, err, accepted) result(h_new)
+    class(rosenbrock_w_type), intent(in) :: self
+    real(wp), intent(in) :: h, err
+    logical, intent(in) :: accepted
+    real(wp) :: h_new
+    h_new = h*min(self%fac_max, max(self%fac_min, &
+                                    self%safety*max(err, 1.0e-10_wp)** &
+                                    (-1.0_wp/real(self%order(), wp))))
+  end function rosw_controller
+
+  subroutine rosw_accepted(self, err)
+    class(rosenbrock_w_type), intent(inout) :: self
+    real(wp), intent(in) :: err
+    self%age = self%age + 1
+  end subroutine rosw_accepted
+
+  !> After a rejection a fresh W, unless this one is young (<= 10 accepted steps).
+  subroutine rosw_rejected(self)
+    class(rosenbrock_w_type), intent(inout) :: self
+    if (self%age > 10) self%age = -1
+  end subroutine rosw_rejected
 
   !> Inverse of a lower-triangular matrix with nonzero diagonal (forward substitution).
   pure function lower_inverse(l) result(x)
@@ -228,11 +287,13 @@ contains
     r(stiff) = x
   end subroutine solve_stage
 
-  !> The four stages from (t, y) with step h (f0 = f(t, y), LU ready): ynew and yerr.
-  subroutine stages(self, problem, t, y, h)
+  !> The four stages from (t, y) with step h (f0 = f(t, y), LU ready): ynew and yerr
+  !> (formed with_error or not: it costs no RHS).
+  subroutine stages(self, problem, t, y, h, with_error)
     class(rosenbrock_w_type), intent(inout) :: self
     class(ode_problem), intent(in) :: problem
     real(wp), intent(in) :: t, y(:), h
+    logical, intent(in) :: with_error
     integer :: i, j
     do i = 1, ns
       if (i == 1) then
@@ -259,99 +320,6 @@ contains
       self%yerr = self%yerr + self%e(i)*self%u(:, i)
     end do
   end subroutine stages
-
-  subroutine rosw_step(self, problem, t, y, dt)
-    class(rosenbrock_w_type), intent(inout) :: self
-    class(ode_problem), intent(in) :: problem
-    real(wp), intent(inout) :: t
-    real(wp), intent(inout) :: y(:)
-    real(wp), intent(in) :: dt
-    real(wp) :: t_end, tc, h, err, h_new
-    integer :: tries
-    logical :: last, rejected, ok
-    if (self%failed) return
-    if (.not. allocated(self%stiff)) then
-      self%stiff = problem%stiff_states()
-      self%coupled = problem%coupled_states()
-      allocate (self%w(size(self%stiff), size(self%stiff)), &
-                self%wc(size(self%stiff), size(self%coupled)), &
-                self%lu(size(self%stiff), size(self%stiff)), self%piv(size(self%stiff)))
-    end if
-    t_end = t + dt
-    tc = t
-    call problem%rhs(tc, y, self%f0)
-    self%rhs_evaluations = self%rhs_evaluations + 1
-    if (self%fixed_step) then
-      call self%form_w(problem, tc, y)
-      call self%factor(dt, ok)
-      if (.not. ok) then
-        call record_failure(self, t, dt, "singular iteration matrix")
-        return
-      end if
-      call self%stages(problem, tc, y, dt)
-      y = self%ynew
-      t = t_end
-      self%steps = self%steps + 1
-      return
-    end if
-    if (self%h <= 0.0_wp) then
-      self%h = initial_step(problem, tc, y, self%f0, 3, self%atol, self%rtol, abs(dt), &
-                            self%ytmp, self%fcn)
-      self%rhs_evaluations = self%rhs_evaluations + 1
-    end if
-    rejected = .false.
-    tries = 0
-    ok = .true.
-    do
-      last = stretch_to(self%h, t_end - tc)
-      h = merge(t_end - tc, self%h, last)
-      tries = tries + 1
-      if (.not. substep_allowed(self, tries, self%max_substeps, tc, h, self%h_min)) exit
-      if (self%age < 0 .or. self%age >= self%max_age) call self%form_w(problem, tc, y)
-      if (h /= self%h_lu) call self%factor(h, ok)
-      if (.not. ok) then
-        ! a singular I/(h gamma) - W: take a fresh W at a smaller step
-        self%h = h*self%fac_min
-        self%age = -1
-        self%h_lu = -1.0_wp
-        rejected = .true.
-        cycle
-      end if
-      call self%stages(problem, tc, y, h)
-      err = error_norm(self%yerr, y, self%ynew, self%atol, self%rtol)
-      if (.not. is_finite_real(err) .or. err > 1.0_wp) then
-        ! a rejection: shrink, and take a fresh W unless this one already is
-        if (is_finite_real(err)) then
-          self%h = h*max(self%fac_min, self%safety*err**(-1.0_wp/3.0_wp))
-        else
-          self%h = h*self%fac_min
-        end if
-        if (self%age > 10) self%age = -1
-        rejected = .true.
-        cycle
-      end if
-      h_new = h*min(self%fac_max, max(self%fac_min, &
-                                       self%safety*max(err, 1.0e-10_wp)**(-1.0_wp/3.0_wp)))
-      if (rejected) h_new = min(h_new, h)
-      y = self%ynew
-      self%steps = self%steps + 1
-      self%age = self%age + 1
-      rejected = .false.
-      if (last) then
-        self%h = min(self%h, h_new)
-        exit
-      end if
-      tc = tc + h
-      self%h = h_new
-      if (self%single_step) then
-        t = tc
-        return
-      end if
-      call problem%rhs(tc, y, self%f0)
-      self%rhs_evaluations = self%rhs_evaluations + 1
-    end do
-    t = merge(t_end, tc, .not. self%failed)
-  end subroutine rosw_step
 
   pure function rosw_name(self) result(name)
     class(rosenbrock_w_type), intent(in) :: self

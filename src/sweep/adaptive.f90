@@ -147,8 +147,9 @@ contains
             " <= "//fmt_width(s%target_halfwidth)//" after "//int_to_str(runs)// &
             " realisations ("//int_to_str(k)//" of "//int_to_str(n)//" ok cases collided)"
       do c = (j - 1)*plan%slots + plan%scheduled(j) + 1, j*plan%slots
-        if (results(c)%status /= status_not_run .and. results(c)%status /= status_not_needed) &
+        if (results(c)%status /= status_not_run .and. results(c)%status /= status_not_needed) then
           cycle
+        end if
         results(c)%status = status_not_needed
         results(c)%message = why
       end do

@@ -43,7 +43,8 @@ contains
   !> Every combination of the swept values: case k's position in each list is the digit of
   !> k - 1 in the mixed radix (wave types, levels, heights, periods, wind, angles,
   !> clearances, dts, realisations up to max_realisations), so realisations vary fastest
-  !> and cell j holds cases (j - 1) max_realisations + 1 .. j max_realisations. `clearance0` is the base
+  !> and cell j holds cases (j - 1) max_realisations + 1 .. j max_realisations.
+  !> `clearance0` is the base
   !> deck's initial clearance [m] (recorded when clearances are not swept).
   subroutine build_cases(s, clearance0, cases)
     type(sweep_config), intent(in) :: s
@@ -79,8 +80,9 @@ contains
     c%wave_height = s%heights(digit(3))
     if (s%has_levels .and. .not. s%has_heights) c%wave_height = level_wave_height(c%level)
     c%wave_period = s%periods(digit(4))
-    if ((s%has_levels .or. s%has_heights) .and. .not. s%has_periods) &
+    if ((s%has_levels .or. s%has_heights) .and. .not. s%has_periods) then
       c%wave_period = 2.0_wp*pi/spectrum_peak_omega(c%wave_height)
+    end if
     c%wind = s%winds(digit(5))
     c%wind_speed = 0.0_wp
     if (c%wind) c%wind_speed = wind_on_speed(s, c%level)
@@ -128,8 +130,35 @@ contains
     cfg%sea%phase = c%phase_deg*pi/180.0_wp
     cfg%wind%speed = c%wind_speed
     if (s%has_angles) cfg%wind%direction = cfg%sea%direction
+    call case_sources(s, c, cfg)
     if (s%has_clearances) call move_outboard(cfg, c%clearance_b*cfg%boat%beam - clearance0)
   end subroutine case_config
+
+  !> Where case c's height, period and wind came from (stored with each series file's
+  !> scenario): the sweep's lists and presets, or the base deck's sources.
+  subroutine case_sources(s, c, cfg)
+    type(sweep_config), intent(in) :: s
+    type(sweep_case), intent(in) :: c
+    type(config_type), intent(inout) :: cfg
+    character(len=:), allocatable :: preset
+    preset = "sweep: level "//achar(iachar("0") + modulo(c%level, 10))//" preset"
+    if (s%has_heights) then
+      cfg%sea%height_source = "sweep: heights"
+    else if (s%has_levels) then
+      cfg%sea%height_source = preset
+    end if
+    if (s%has_periods) then
+      cfg%sea%period_source = "sweep: periods"
+    else if (s%has_levels .or. s%has_heights) then
+      cfg%sea%period_source = "sweep: peak period of eq. 44 for the height"
+    end if
+    if (.not. c%wind) then
+      cfg%wind%speed_source = "sweep: wind off"
+    else if (s%has_levels .or. s%base%wind%speed <= 0.0_wp) then
+      cfg%wind%speed_source = preset
+    end if
+    if (s%has_angles) cfg%wind%direction_source = "sweep: along the waves"
+  end subroutine case_sources
 
   !> Move the boat and the points it hangs from by d [m] along the ship's s2 axis (the
   !> side plane's normal), which changes the initial clearance by exactly d.

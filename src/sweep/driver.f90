@@ -279,8 +279,9 @@ contains
     type(error_type), allocatable, intent(out) :: error
     call write_summary(out_path, s, run%cases, run%state%results, run%state%threads, &
                        series(opts), opts%shard, error)
-    if (.not. allocated(error) .and. allocated(run%state%io_error)) &
+    if (.not. allocated(error) .and. allocated(run%state%io_error)) then
       call move_alloc(run%state%io_error, error)
+    end if
     outcome%ncase = size(run%cases)
     outcome%ok = count(run%state%results%status == status_ok)
     outcome%failed = count(run%state%results%status == status_failed)
@@ -322,8 +323,9 @@ contains
     call run_case(cfg, s%stop_at_release, sys, rec, row, run_error)
     !$omp critical (davit_sweep_io)
     call store_case(s, cases, c, row, opts, state, out_path)
-    if (len(series(opts)) > 0 .and. allocated(rec%time)) &
+    if (len(series(opts)) > 0 .and. allocated(rec%time)) then
       call write_series(series_path(opts, c), cfg, sys, rec, row, run_error, state)
+    end if
     !$omp end critical (davit_sweep_io)
   end subroutine run_and_store
 
@@ -354,8 +356,9 @@ contains
       metrics%log = new_launch_log(cfg, sys)
     end if
     !$omp end critical (davit_sweep_io)
-    if (.not. allocated(error)) &
+    if (.not. allocated(error)) then
       call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
+    end if
     if (allocated(error)) call move_alloc(error, run_error)
     ! The row's texts (outcome, message) are built one thread at a time: gfortran keeps the
     ! length of a deferred-length function result in a static variable, so two threads
@@ -403,8 +406,9 @@ contains
         seconds_since(state, state%last_checkpoint) >= opts%checkpoint_interval) then
       call write_summary(out_path, s, cases, state%results, state%threads, series(opts), &
                          opts%shard, error)
-      if (allocated(error) .and. .not. allocated(state%io_error)) &
+      if (allocated(error) .and. .not. allocated(state%io_error)) then
         call move_alloc(error, state%io_error)
+      end if
       state%last_checkpoint = now
     end if
   end subroutine store_case
@@ -451,8 +455,9 @@ contains
       call write_root_attributes(w, cfg, summary, cfg%simulation%integrator, run_error)
       call w%close(error)
     end if
-    if (allocated(error) .and. .not. allocated(state%io_error)) &
+    if (allocated(error) .and. .not. allocated(state%io_error)) then
       call move_alloc(error, state%io_error)
+    end if
   end subroutine write_series
 
   !> " (shard K/N: M cases)" for a shard, else nothing.

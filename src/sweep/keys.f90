@@ -20,6 +20,7 @@ module davit_sweep_keys
   use davit_io_config, only: config_type, read_config
   use davit_io_text, only: int_text, fmt_fixed
   use davit_run_budget, only: memory_limit
+  use davit_io_search_path, only: find_file, folder_of
   implicit none
   private
   public :: sweep_config, read_sweep, parse_sweep, document_sweep_keys, wave_type_names
@@ -115,7 +116,8 @@ contains
                        "deck every case starts from)")
       return
     end if
-    sweep%base_path = relative_to(deck%filename, sweep%base_deck)
+    call find_base_deck(deck, sweep, error)
+    if (allocated(error)) return
     call read_config(sweep%base_path, sweep%base, error)
     if (allocated(error)) return
     call complete_defaults(reader, sweep)
@@ -127,7 +129,8 @@ contains
     type(sweep_config), intent(inout) :: s
     character(len=*), parameter :: g = "sweep"
     call r%string(g, "base_deck", s%base_deck, "", "Run deck every case starts from "// &
-                  "(relative to the sweep deck's folder); required. Sweep decks only hold "// &
+                  "(in the sweep deck's folder, else a DAVIT_PATH folder); required. Sweep "// &
+                  "decks only hold "// &
                   "&sweep.")
     call r%int_list(g, "levels", s%levels, [5], 3, 5, "-", "Sea-state levels; each sets "// &
                     "the level's preset wave height and wind speed (review G19) and the "// &
@@ -140,8 +143,9 @@ contains
                      "Regular-wave periods, instead of the peak period of the height.", 1, &
                      max_values, default_text="peak period or base deck")
     call r%real_list(g, "angles_deg", s%angles_deg, [90.0_wp], -360.0_wp, 360.0_wp, "deg", &
-                     "Encounter angles chi (&sea direction_deg); the wind blows along the "// &
-                     "waves.", 1, max_values, default_text="base deck")
+                     "Encounter angles chi (&sea direction_deg: travelled towards, 90 = "// &
+                     "from port); the wind blows along the waves.", 1, max_values, &
+                     default_text="base deck")
     call r%logical_list(g, "wind", s%winds, [.true.], "Wind on (the level preset speed, "// &
                         "or the base deck's) or off (speed 0).", 1, 2, &
                         default_text="base deck (on if its speed > 0)")
@@ -337,17 +341,19 @@ contains
     if (len(factors) > 0) text = text//" ("//factors//")"
   end function count_text
 
-  !> `path` relative to the folder of `deck` (unchanged if absolute).
-  pure function relative_to(deck, path) result(full)
-    character(len=*), intent(in) :: deck, path
-    character(len=:), allocatable :: full
-    integer :: slash
-    slash = index(deck, "/", back=.true.)
-    if (path(1:1) == "/" .or. slash == 0) then
-      full = path
-    else
-      full = deck(1:slash)//path
-    end if
-  end function relative_to
+  !> The base deck: in the sweep deck's folder, else in a DAVIT_PATH folder
+  !> (davit_io_search_path); a miss names the sweep deck's line and every folder searched.
+  subroutine find_base_deck(deck, sweep, error)
+    type(nml_deck), intent(in) :: deck
+    type(sweep_config), intent(inout) :: sweep
+    type(error_type), allocatable, intent(out) :: error
+    character(len=:), allocatable :: searched
+    logical :: found
+    call find_file(folder_of(deck%filename), sweep%base_deck, sweep%base_path, found, &
+                   searched)
+    if (.not. found) call fatal_error(error, key_at(deck, "sweep", ["base_deck"])// &
+      "&sweep: base_deck = '"//sweep%base_deck//"': no such file in "//searched// &
+      " (the sweep deck's folder, then DAVIT_PATH)")
+  end subroutine find_base_deck
 
 end module davit_sweep_keys

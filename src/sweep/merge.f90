@@ -8,6 +8,7 @@
 module davit_sweep_merge
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_writer, only: check_output_path, acquire_lock, release_lock
+  use davit_io_files, only: same_file
   use davit_io_namelist, only: int_to_str
   use davit_sweep_keys, only: sweep_config
   use davit_sweep_cases, only: sweep_case
@@ -51,7 +52,7 @@ contains
     logical :: own_lock
     call check_output_path(out_path, error)
     if (allocated(error)) return
-    if (any(inputs == out_path)) then
+    if (is_an_input(out_path, inputs)) then
       call fatal_error(error, "cannot merge: the output '"//out_path//"' is also an input; "// &
                        "name a new file")
       return
@@ -86,6 +87,18 @@ contains
     outcome%sweep_file = first%s%filename
     outcome%missing = pack([(i, i = 1, size(given))], .not. given)
   end subroutine merge_shards
+
+  !> Whether `out_path` names one of `inputs`: by text, or as the same file (device and
+  !> inode: `./a1.h5` and `a1.h5`, `$PWD/a1.h5`, links), which the merge would overwrite.
+  logical function is_an_input(out_path, inputs)
+    character(len=*), intent(in) :: out_path, inputs(:)
+    integer :: i
+    is_an_input = .true.
+    do i = 1, size(inputs)
+      if (inputs(i) == out_path .or. same_file(out_path, trim(inputs(i)))) return
+    end do
+    is_an_input = .false.
+  end function is_an_input
 
   !> A shard summary; a whole-sweep summary is refused (it has no slice to merge).
   subroutine read_shard_file(path, f, error)

@@ -154,8 +154,9 @@ contains
         active = active - 1
         cycle
       end if
-      if (c > 0 .and. c <= size(run%state%results)) &
+      if (c > 0 .and. c <= size(run%state%results)) then
         call store_case(s, run%cases, c, row, opts, run%state, out_path)
+      end if
       reply = 0
       if (next <= run%state%todo) then
         reply = run%pending(next)

@@ -341,8 +341,9 @@ contains
     if (.not. allocated(error)) call f%attr_int("threads", n, error)
     threads = int(min(max(n, 0_i8), int(huge(1), i8)))
     if (.not. allocated(error)) call f%attr_int("ncase", n, error)
-    if (.not. allocated(error) .and. (n < 0 .or. n > huge(1))) &
+    if (.not. allocated(error) .and. (n < 0 .or. n > huge(1))) then
       call fatal_error(error, "'"//path//"': ncase = "//int_text(n)//" is out of range")
+    end if
     if (.not. allocated(error)) call read_shard(f, shard, error)
     if (.not. allocated(error)) call read_cases(f, int(n), cases, error)
     ! shards are never adaptive (davit_sweep_adaptive refuses them): every cell ran all

@@ -6,6 +6,7 @@ module davit_system_build
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type, pose_point, pose_point_velocity
   use davit_io_config, only: config_type, contact_config
+  use davit_io_search_path, only: find_file, folder_of
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
@@ -81,10 +82,11 @@ contains
     type(bem_database_type) :: db
     associate (b => cfg%boat)
       call read_bem_database(beside(cfg%filename, b%database), db, error)
-      if (.not. allocated(error)) &
+      if (.not. allocated(error)) then
         call new_boat_bem(db, par%sea, body_mass_diagonal(par%boat), b%roll_damping, &
                           b%mass*gravity*par%water%metacentric_height, b%full_immersion, &
                           b%mass/rho_water, par%bem, error)
+      end if
       if (allocated(error)) then
         error%message = cfg%filename//": &boat: database = '"//b%database//"': "// &
                         error%message
@@ -164,37 +166,13 @@ contains
   end subroutine new_ship
 
   !> A data file named in deck `deck`: `path` as given if absolute; else the first that
-  !> exists of the deck's folder and each folder of the environment variable DAVIT_PATH
-  !> (':'-separated; e.g. the project's input/ for decks copied elsewhere); else the
-  !> deck's folder (whose open then fails naming it).
+  !> exists of the deck's folder and each folder of DAVIT_PATH (davit_io_search_path);
+  !> else the deck's folder (whose open then fails naming it).
   function beside(deck, path) result(full)
     character(len=*), intent(in) :: deck, path
-    character(len=:), allocatable :: full, dirs
-    character(len=4096) :: env
-    integer :: slash, n, status, colon
+    character(len=:), allocatable :: full
     logical :: found
-    full = path
-    if (len(path) == 0) return
-    if (path(1:1) == "/") return
-    slash = index(deck, "/", back=.true.)
-    if (slash > 0) full = deck(1:slash)//path
-    inquire (file=full, exist=found)
-    if (found) return
-    call get_environment_variable("DAVIT_PATH", env, n, status)
-    if (status /= 0) return
-    dirs = trim(env)
-    do while (len(dirs) > 0)
-      colon = index(dirs, ":")
-      if (colon == 0) colon = len(dirs) + 1
-      if (colon > 1) then
-        inquire (file=dirs(1:colon - 1)//"/"//path, exist=found)
-        if (found) then
-          full = dirs(1:colon - 1)//"/"//path
-          return
-        end if
-      end if
-      dirs = dirs(min(colon + 1, len(dirs) + 1):)
-    end do
+    call find_file(folder_of(deck), path, full, found)
   end function beside
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.

@@ -51,8 +51,9 @@ contains
       ! half the predicted time to contact -delta/delta_dot of each approaching fender:
       ! the gap is halved each step, down to dt_contact
       do j = 1, par%fenders%nf
-        if (delta_dot(j) > 0.0_wp .and. delta(j) + 2.0_wp*dt*delta_dot(j) > 0.0_wp) &
+        if (delta_dot(j) > 0.0_wp .and. delta(j) + 2.0_wp*dt*delta_dot(j) > 0.0_wp) then
           h = min(h, max(policy%dt_contact, -0.5_wp*delta(j)/delta_dot(j)))
+        end if
       end do
     else if (any(delta + 2.0_wp*dt*max(delta_dot, 0.0_wp) > 0.0_wp)) then
       h = policy%dt_contact

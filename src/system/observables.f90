@@ -109,7 +109,8 @@ contains
   end subroutine contact_state
 
   !> Mechanical energy of the conservative part in air: kinetic (with the BEM water model,
-  !> of M + s A(inf)) + gravity (N3 down, so -m g z) + elastic slings [J]. Once the hooks are released the falls' energy is that of
+  !> of M + s A(inf)) + gravity (N3 down, so -m g z) + elastic slings [J]. Once the hooks
+  !> are released the falls' energy is that of
   !> their frozen states at the released hooks (the boat has left them), not the stretch
   !> to wherever the boat drifts.
   pure function energy(par, hist, y) result(e)

@@ -308,6 +308,9 @@ def test_conclusion_falls_back_to_wave_height_without_levels(tmp_path):
 # --- the command -----------------------------------------------------------------------------
 
 def test_command_writes_table_figures_and_conclusion(known, tmp_path, capsys):
+    """The made-up summary as the paper's own sweep (its deck text): the conclusion too."""
+    with h5py.File(known, "r+") as f:
+        f.attrs[layout.SWEEP_NAMELIST] = (operability.INPUT / "sweep_operability.nml").read_text()
     out = tmp_path / "out"
     assert cli.main(["operability", str(known), "-o", str(out), "--risk", "0.05"]) == 0
     printed = capsys.readouterr().out

@@ -245,7 +245,7 @@ def test_sweep_usage_errors_exit_2(davit, args):
      "sweep.nml:1: &sweep: levels = 4, 6: out of range; allowed: 3 <= levels <= 5"),
     ("&sweep base_deck = 'base.nml', wave_types = 'stokes3' /",
      "item 1 ('stokes3') is an unknown choice"),
-    ("&sweep base_deck = 'missing.nml' /", "cannot open input deck"),
+    ("&sweep base_deck = 'missing.nml' /", "base_deck = 'missing.nml': no such file in"),
     ("&sweep levels = 4 /", "base_deck is required"),
     ("&sweep base_deck = 'base.nml', dts = 0.05 /", "must be <= the base deck's"),
     ("&sweep base_deck = 'base.nml' /\n&boat mass = 1.0 /", "unknown namelist group &boat"),

@@ -19,13 +19,16 @@ def _ok(result):
 
 
 def _contents(path):
-    """{dataset name: raw bytes, dtype, shape} of every dataset but results/wall_time."""
+    """{dataset name: (dtype, shape, raw bytes or text)} of every dataset but
+    results/wall_time."""
     data = {}
 
     def visit(name, obj):
         if isinstance(obj, h5py.Dataset) and name != "results/wall_time":
             value = obj[()]
-            data[name] = (value.dtype.str, value.shape, value.tobytes())
+            # text (variable-length strings) by value, not by its pointers
+            raw = tuple(value.tolist()) if value.dtype.kind == "O" else value.tobytes()
+            data[name] = (value.dtype.str, value.shape, raw)
     with h5py.File(path, "r") as f:
         f.visititems(visit)
     return data
