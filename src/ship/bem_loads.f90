@@ -10,6 +10,14 @@
 !>
 !> Speeds here in DOF order (surge, sway, heave, roll, pitch, yaw) = (v, omega); the Kane
 !> speeds of a rigid body are (omega, v) (eq. 4), hence the permutations.
+!>
+!> Cummins' equation is linear in the seakeeping frame h (level, yawed with the ship), not
+!> in the rolling and pitching ship axes: its loads are computed there from the speeds and
+!> absolute accelerations resolved in h, and turned into ship axes with m = C^T Rz(psi)
+!> (a rotation, so ship axes <- h is m and h <- ship axes is m^T). Written in ship axes
+!> instead, a first-order load turned with the first-order roll has a second-order mean:
+!> the heave memory force B33 w along the rolled z axis gave a mean sway force
+!> -<phi B33 w> ~ 2.7e5 N up-wave in Level 5 beam seas (issue 20, item 1).
 module davit_ship_bem_loads
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
@@ -18,7 +26,8 @@ module davit_ship_bem_loads
   implicit none
   private
   public :: bem_ship_type, new_bem_ship, bem_wave_coefficients, bem_restoring, &
-            bem_memory, to_kane_order, bem_roll_damping, invert
+            bem_memory, to_kane_order, bem_roll_damping, invert, seakeeping_mass, &
+            turn_to_body, solve_small
 
   type :: bem_ship_type
     type(bem_database_type) :: db
@@ -26,6 +35,8 @@ module davit_ship_bem_loads
     real(wp) :: mass = 0.0_wp, inertia(3) = 0.0_wp
     !> (M + A(inf))^-1 in Kane order (omega, v).
     real(wp) :: v_inv(6, 6) = 0.0_wp
+    !> A(inf) and M + A(inf) in Kane order.
+    real(wp) :: a_kane(6, 6) = 0.0_wp, m_kane(6, 6) = 0.0_wp
     !> Linear viscous roll damping [N m s].
     real(wp) :: b44 = 0.0_wp
   end type bem_ship_type
@@ -57,6 +68,8 @@ contains
     ship%mass = db%mass(1, 1)
     ship%inertia = [db%mass(4, 4), db%mass(5, 5), db%mass(6, 6)]
     m = to_kane_order(db%mass + db%added_mass_inf)
+    ship%m_kane = m
+    ship%a_kane = to_kane_order(db%added_mass_inf)
     call invert(m, ship%v_inv, info)
     if (info /= 0 .or. ship%mass <= 0.0_wp .or. any(ship%inertia <= 0.0_wp)) then
       call fatal_error(error, "BEM database '"//db%path//"': the mass matrix plus A(inf) "// &
@@ -115,17 +128,75 @@ contains
     end do
   end subroutine bem_wave_coefficients
 
-  !> Hydrostatic restoring -C delta (load order X, Y, Z, K, M, N, ship axes) for the heave
-  !> z - z_eq and the roll and pitch from the static list and trim; the vertical force acts
-  !> along the inertial vertical (row 3 of c in ship axes), as the weight and buoyancy do.
-  pure function bem_restoring(ship, dz, droll, dpitch, c) result(load)
+  !> Hydrostatic restoring -C delta (load order X, Y, Z, K, M, N) for the heave z - z_eq and
+  !> the roll and pitch from the static list and trim, in the seakeeping frame and turned
+  !> into ship axes by m: the vertical force acts along the inertial vertical (m e_z = row 3
+  !> of C), as the weight and buoyancy do, the moments about the level axes.
+  pure function bem_restoring(ship, dz, droll, dpitch, m) result(load)
     type(bem_ship_type), intent(in) :: ship
-    real(wp), intent(in) :: dz, droll, dpitch, c(3, 3)
-    real(wp) :: load(6), f(6)
-    f = -matmul(ship%db%stiffness, [0.0_wp, 0.0_wp, dz, droll, dpitch, 0.0_wp])
-    load(1:3) = f(3)*c(3, :)
-    load(4:6) = f(4:6)
+    real(wp), intent(in) :: dz, droll, dpitch, m(3, 3)
+    real(wp) :: load(6)
+    load = turn_to_body(m, -matmul(ship%db%stiffness, [0.0_wp, 0.0_wp, dz, droll, dpitch, &
+                                                        0.0_wp]))
   end function bem_restoring
+
+  !> A DOF-order load (forces, moments) of the seakeeping frame in ship axes: m f.
+  pure function turn_to_body(m, f) result(load)
+    real(wp), intent(in) :: m(3, 3), f(6)
+    real(wp) :: load(6)
+    load(1:3) = matmul(m, f(1:3))
+    load(4:6) = matmul(m, f(4:6))
+  end function turn_to_body
+
+  !> The mass matrix of a ship's speeds (Kane order) with Cummins' added-mass force
+  !> -A xi'' in the seakeeping frame: M_rb + m6 A m6^T, m6 = diag(m, m), for the added mass
+  !> a_kane (Kane order) and the rigid body's principal inertia and mass. The absolute
+  !> accelerations in h are m^T (v' + omega x v) and m^T omega', so in ship axes the force
+  !> is -m6 A m6^T (u' + (0, omega x v)): a full block that turns with the roll and pitch.
+  !> At m = 1 it is M + A, the layout's block.
+  pure function seakeeping_mass(a_kane, inertia, mass, m) result(mh)
+    real(wp), intent(in) :: a_kane(6, 6), inertia(3), mass, m(3, 3)
+    real(wp) :: mh(6, 6)
+    integer :: i, j, k
+    do j = 0, 3, 3
+      do i = 0, 3, 3
+        mh(i + 1:i + 3, j + 1:j + 3) = matmul(m, matmul(a_kane(i + 1:i + 3, j + 1:j + 3), &
+                                                        transpose(m)))
+      end do
+    end do
+    do k = 1, 3
+      mh(k, k) = mh(k, k) + inertia(k)
+      mh(k + 3, k + 3) = mh(k + 3, k + 3) + mass
+    end do
+  end function seakeeping_mass
+
+  !> Solve a x = b for a small matrix a (Gaussian elimination with partial pivoting; the
+  !> database's A(inf) need not be exactly symmetric), x in place of b.
+  pure subroutine solve_small(a, b)
+    real(wp), intent(in) :: a(:, :)
+    real(wp), intent(inout) :: b(:)
+    real(wp) :: lu(size(b), size(b)), row(size(b)), s
+    integer :: i, j, p, n
+    n = size(b)
+    lu = a
+    do j = 1, n
+      p = j - 1 + maxloc(abs(lu(j:, j)), 1)
+      row = lu(j, :)
+      lu(j, :) = lu(p, :)
+      lu(p, :) = row
+      s = b(j)
+      b(j) = b(p)
+      b(p) = s
+      do i = j + 1, n
+        s = lu(i, j)/lu(j, j)
+        lu(i, j:) = lu(i, j:) - s*lu(j, j:)
+        b(i) = b(i) - s*b(j)
+      end do
+    end do
+    do i = n, 1, -1
+      b(i) = (b(i) - sum(lu(i, i + 1:)*b(i + 1:)))/lu(i, i)
+    end do
+  end subroutine solve_small
 
   !> The radiation memory of database db: rates of the states x and the memory load mu
   !> (DOF order) for the speeds u_dof (DOF order).
