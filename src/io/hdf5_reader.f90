@@ -11,6 +11,7 @@ module davit_io_hdf5_reader
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_files, only: file_kind, kind_name, kind_none, kind_regular
+  use davit_io_text, only: int_text
   implicit none
   private
   public :: h5_reader_type, h5_start
@@ -157,12 +158,12 @@ contains
     do k = 1, size(d)
       if (d(k) > int(huge(1), hsize_t)) then
         call fatal_error(error, "'"//self%path//"': "//what//" declares an extent of "// &
-                         i8_text(int(d(k), i8))//", beyond 2^31 - 1")
+                         int_text(int(d(k), i8))//", beyond 2^31 - 1")
         return
       end if
       if (d(k) > 0 .and. total > max_values/max(int(d(k), i8), 1_i8)) then
         call fatal_error(error, "'"//self%path//"': "//what//" declares more than "// &
-                         i8_text(max_values)//" values (extents "//extents_text(d)// &
+                         int_text(max_values)//" values (extents "//extents_text(d)// &
                          "); davit reads no input that large")
         return
       end if
@@ -178,17 +179,9 @@ contains
     text = ""
     do k = 1, size(d)
       if (k > 1) text = text//" x "
-      text = text//i8_text(int(d(k), i8))
+      text = text//int_text(int(d(k), i8))
     end do
   end function extents_text
-
-  pure function i8_text(i) result(text)
-    integer(i8), intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=24) :: buf
-    write (buf, "(i0)") i
-    text = trim(buf)
-  end function i8_text
 
   !> `what` could not be allocated (the memory): a message instead of a crash.
   subroutine no_memory(self, what, n, error)
@@ -197,7 +190,7 @@ contains
     integer(i8), intent(in) :: n
     type(error_type), allocatable, intent(out) :: error
     call fatal_error(error, "'"//self%path//"': not enough memory for the "// &
-                     i8_text(n)//" values of "//what)
+                     int_text(n)//" values of "//what)
   end subroutine no_memory
 
   !> Open 1-D dataset `name` and return its length.
@@ -562,7 +555,7 @@ contains
     if (npoints == 1 .and. class /= H5S_NULL_F) return
     call h5aclose_f(attr, hdferr)
     call fatal_error(error, "'"//self%path//"': attribute "//name//" holds "// &
-                     i8_text(int(npoints, i8))//" values, not one")
+                     int_text(int(npoints, i8))//" values, not one")
   end subroutine open_scalar_attr
 
   !> Whether the root group has attribute `name` (optional attributes: a sweep shard's).

@@ -34,19 +34,24 @@ contains
   pure subroutine note_step(self, wall, t)
     class(run_summary), intent(inout) :: self
     real(wp), intent(in) :: wall, t
-    if (wall <= self%worst_step) return
-    self%worst_step = wall
-    self%worst_step_time = t
+    call keep_worst(self%worst_step, self%worst_step_time, wall, t)
   end subroutine note_step
 
   !> An output interval that took `wall` seconds and ended at simulated time t.
   pure subroutine note_interval(self, wall, t)
     class(run_summary), intent(inout) :: self
     real(wp), intent(in) :: wall, t
-    if (wall <= self%worst_interval) return
-    self%worst_interval = wall
-    self%worst_interval_time = t
+    call keep_worst(self%worst_interval, self%worst_interval_time, wall, t)
   end subroutine note_interval
+
+  !> (worst, at) = (wall, t) where wall exceeds worst.
+  pure subroutine keep_worst(worst, at, wall, t)
+    real(wp), intent(inout) :: worst, at
+    real(wp), intent(in) :: wall, t
+    if (wall <= worst) return
+    worst = wall
+    at = t
+  end subroutine keep_worst
 
   !> davit_version, input file and deck text, seed, integrator statistics, completion;
   !> and /scenario (what the run simulated, davit_run_scenario) unless `scenario` is false
