@@ -5,6 +5,7 @@ Each block sits in its page of doc/ between `<!-- NAME:start -->` and `<!-- NAME
   keys        doc/reference/deck_keys.md  `davit keys` (every deck key, Markdown tables)
   davit_help  doc/reference/cli.md        `davit --help`
   post_help   doc/reference/cli.md        `davit-post --help` (its command list)
+  modules     doc/reference/modules.md    every folder of src/ and its source files
 
   python -m postproc.doc_blocks [--write | --check] [--davit PATH]
       print the blocks made from the code; --write puts them into their pages, --check exits
@@ -30,7 +31,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 KEYS_PAGE = os.path.join("doc", "reference", "deck_keys.md")
 CLI_PAGE = os.path.join("doc", "reference", "cli.md")
 # name -> page of doc/ that holds it
-PAGES = {"keys": KEYS_PAGE, "davit_help": CLI_PAGE, "post_help": CLI_PAGE}
+MODULES_PAGE = os.path.join("doc", "reference", "modules.md")
+PAGES = {"keys": KEYS_PAGE, "davit_help": CLI_PAGE, "post_help": CLI_PAGE,
+         "modules": MODULES_PAGE}
 SITE = os.path.join(ROOT, "build", "doc")
 
 
@@ -61,11 +64,25 @@ def post_help():
     return body.replace("python -m postproc", "davit-post")
 
 
+def modules():
+    """A table of every folder of src/ and its Fortran (and C) sources."""
+    src = os.path.join(ROOT, "src")
+    rows = ["| folder | sources |", "|---|---|"]
+    top = sorted(f for f in os.listdir(src) if os.path.isfile(os.path.join(src, f)))
+    rows.append("| `src/` | " + ", ".join(f"`{f}`" for f in top) + " |")
+    for folder in sorted(f for f in os.listdir(src) if os.path.isdir(os.path.join(src, f))):
+        files = sorted(f for f in os.listdir(os.path.join(src, folder))
+                       if f.endswith((".f90", ".F90", ".c")))
+        rows.append(f"| `src/{folder}/` | " + ", ".join(f"`{f}`" for f in files) + " |")
+    return "\n".join(rows) + "\n"
+
+
 def make(binary):
     """{name: block text} from the code."""
     return {"keys": _run([binary, "keys"]),
             "davit_help": "```text\n" + _run([binary, "--help"]).rstrip() + "\n```\n",
-            "post_help": "```text\n" + post_help() + "```\n"}
+            "post_help": "```text\n" + post_help() + "```\n",
+            "modules": modules()}
 
 
 def _markers(name):
