@@ -20,6 +20,9 @@
 #                         all          all three (PAPER_IRREGULAR=1, the old switch, too)
 #                       and closes with a summary: what ran, where it went, how long it took
 #   bash make.sh operability  the operability sweeps, their tables and heat maps
+#   bash make.sh docs   build, write the documentation's blocks made from the code (deck keys,
+#                       command line) into doc/, build the site with FORD into build/doc/
+#                       (open build/doc/index.html)
 #   bash make.sh help   this text
 #   bash make.sh mpi    install Open MPI if mpifort is missing, build the MPI binary (the
 #                       sweep across MPI ranks: mpirun -np N build/davit-mpi sweep ...),
@@ -32,8 +35,9 @@ cd "$(dirname "$0")"
 APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config python3)
 # capytaine (with xarray, scipy, pandas) and h5netcdf: the ship's BEM database
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
+# ford: the documentation site (bash make.sh docs; test_docs builds it)
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg
-             hypothesis fortitude-lint)
+             hypothesis fortitude-lint ford)
 # netCDF's own tools (ncdump, nccopy): the tests read every kind of davit output with them
 TEST_APT_PACKAGES=(netcdf-bin)
 DEFAULT_DECK=input/iiib_level5_090.nml
@@ -113,7 +117,8 @@ mpi() {
 
 python_ready() {
   command -v fpm >/dev/null 2>&1 && command -v fortitude >/dev/null 2>&1 &&
-    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg, hypothesis" >/dev/null 2>&1
+    command -v ford >/dev/null 2>&1 &&
+    python3 -c "import numpy, h5py, matplotlib, pytest, capytaine, h5netcdf, meshio, imageio, imageio_ffmpeg, hypothesis, ford" >/dev/null 2>&1
 }
 
 # Use the Python packages already installed if all are there; otherwise a project venv
@@ -436,7 +441,7 @@ run_tests() {
 }
 
 # The suite's numbers must not hang on this CPU's rounding (FMA, vector widths): the
-# Fortran tests and the README's generated tables again with a portable x86-64-v2 build
+# Fortran tests and the documentation's generated tables again with a portable x86-64-v2 build
 # (CI runs it after the test command). The tables compare numbers at their printed
 # precision (postproc/readme_tables.py differences), never bitwise.
 portable() {
@@ -451,10 +456,19 @@ portable() {
   line="$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$flog" | tail -n 1 || true)"
   rm -f "$flog"
   [[ "$line" =~ ^[0-9]+\ passed,\ 0\ failed$ ]] || status=1
-  log "portable build (-march=$DAVIT_MARCH): the README's generated tables"
+  log "portable build (-march=$DAVIT_MARCH): the documentation's generated tables"
   python3 -m pytest -q -p no:cacheprovider test/python/test_readme_tables.py || status=1
-  echo "portable (-march=$DAVIT_MARCH): fortran ${line:-no result}; README tables $([ $status -eq 0 ] && echo pass || echo FAIL)"
+  echo "portable (-march=$DAVIT_MARCH): fortran ${line:-no result}; doc tables $([ $status -eq 0 ] && echo pass || echo FAIL)"
   return $status
+}
+
+# The documentation site: the blocks of doc/ made from the code (postproc/doc_blocks.py:
+# `davit keys`, `davit --help`, `davit-post --help`), then FORD (fpm.toml [extra.ford]:
+# README.md the front page, doc/ the user pages, src/ and app/ the API) into build/doc/.
+docs() {
+  setup
+  python3 -m postproc.doc_blocks --write --davit "$DAVIT_BIN"
+  python3 -m postproc.doc_blocks --site build/doc
 }
 
 usage() {
@@ -474,8 +488,10 @@ usage: bash make.sh COMMAND
                      reruns decks whose outputs are up to date
   operability        the operability sweeps, their tables and heat maps
   mpi                build the MPI binary (installs Open MPI if missing)
-  portable           the Fortran tests and the README tables with an x86-64-v2 build
+  portable           the Fortran tests and the documentation tables with an x86-64-v2 build
                      (CI: results must not hang on this CPU's FMA or vector width)
+  docs               the documentation site (FORD) -> build/doc/index.html; the deck-key
+                     and command-line pages regenerated from the code first
   setup              install what is missing and build
   help               this text
 EOF
@@ -491,5 +507,6 @@ case "${1:-}" in
   operability) operability ;;
   mpi) mpi ;;
   setup) setup ;;
+  docs) docs ;;
   *) usage >&2; exit 2 ;;
 esac

@@ -20,8 +20,12 @@
   python -m postproc regress [FOLDER] [--strict]  the paper's stated facts vs the outputs
                                                    in FOLDER, as a table
   python -m postproc readme-tables [FOLDER] [--run] [--write|--check]
-                                                   the README's tables made from the runs
-                                                   in FOLDER (postproc.readme_tables)
+                                                   the documentation's tables made from the
+                                                   runs in FOLDER (postproc.readme_tables)
+  python -m postproc doc-blocks [--write|--check] [--site [OUTDIR]]
+                                                   the documentation's blocks made from the
+                                                   code (deck keys, command line) and the
+                                                   FORD site (postproc.doc_blocks)
   python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity|summation-compare ...
                                                    the tool postproc.study, .bem, ...
                                                    (their own --help)
@@ -191,7 +195,7 @@ def _movie(args):
 
 # The tools with a command line of their own: `davit-post TOOL ...` is
 # `python -m postproc.MODULE ...` (one name for every post-processing command).
-TOOLS = {"readme-tables": "readme_tables", "study": "study", "bem": "bem",
+TOOLS = {"readme-tables": "readme_tables", "doc-blocks": "doc_blocks", "study": "study", "bem": "bem",
          "bench-reference": "bench_reference", "boat-rao": "boat_rao",
          "fender-test": "fender_test", "launch-table": "launch_table",
          "sensitivity": "sensitivity", "summation-compare": "summation_compare"}

@@ -1,14 +1,15 @@
-"""The README's deterministic tables, made from runs: `davit-post readme-tables [FOLDER]`.
+"""The documentation's deterministic tables, made from runs: `davit-post readme-tables [FOLDER]`.
 
-Each table sits in README.md between `<!-- table:NAME -->` and `<!-- /table:NAME -->` and
-is made here from the run files in FOLDER (default out/): the launch loads of every III.A
-and III.B deck, the regression report's rows that the decks decide (the sweeps' rows need
-hours of sweeps and stay by hand, with the command and the machine beside them), and the
-SOLAS decks in calm water. `--run` first runs the decks each table needs into FOLDER (the
-davit of DAVIT_BIN, else `davit` on PATH), `--write` puts the tables into the README,
-`--check` compares (exit 1 naming each stale table). test/python/test_readme_tables.py
-runs the decks afresh and checks the README's copies, so its numbers cannot go stale
-silently.
+Each table sits in its page of doc/ (PAGES) between `<!-- table:NAME -->` and
+`<!-- /table:NAME -->` and is made here from the run files in FOLDER (default out/): the
+launch loads of every III.A and III.B deck (doc/validation/launch.md), the regression
+report's rows that the decks decide (doc/validation/index.md; the sweeps' rows need hours of
+sweeps and stay by hand, with the command and the machine beside them), and the SOLAS decks
+in calm water (doc/howto/operability.md). `--run` first runs the decks each table needs into
+FOLDER (the davit of DAVIT_BIN, else `davit` on PATH), `--write` puts the tables into their
+pages (or all into `--readme FILE`), `--check` compares (exit 1 naming each stale table).
+test/python/test_readme_tables.py runs the decks afresh and checks the pages' copies, so
+their numbers cannot go stale silently.
 """
 import argparse
 import concurrent.futures
@@ -27,7 +28,7 @@ ANGLES = ("000", "045", "090", "135", "180")
 III_A = ("iiia_model_scale_1", "iiia_model_scale_2")
 III_B = tuple(f"iiib_level{level}_{angle}{kind}" for level in (4, 5) for angle in ANGLES
               for kind in ("", "_irregular", "_nowind"))
-# the launch table's rows: every III.A and III.B deck (README "Loads, impacts and limits")
+# the launch table's rows: every III.A and III.B deck (doc/validation/launch.md)
 LAUNCH_DECKS = tuple(sorted(III_A + III_B + ("iiib_level5_090_frozen",
                                              "iiib_level5_090_literal")))
 # the regression report's deck facts (F2, F7 and F8 on the paper decks, F9)
@@ -37,7 +38,7 @@ SOLAS_DECKS = ("iiib_level5_090", "solas_list_p20", "solas_list_m20", "solas_tri
 
 
 def launch_loads(folder):
-    """README "Loads, impacts and limits": one row per III.A/III.B run."""
+    """doc/validation/launch.md: one row per III.A/III.B run."""
     return launch_table.table([os.path.join(folder, f"{d}.h5") for d in LAUNCH_DECKS])
 
 
@@ -51,7 +52,7 @@ def regress_decks(folder):
 
 
 def solas_calm(folder):
-    """README "SOLAS launch conditions": the calm-water decks' rule checks and peaks."""
+    """doc/howto/operability.md "SOLAS launch conditions": the calm-water decks' rule checks and peaks."""
     rows = ["| run | H (m) | lowering speed / limit (m/s) | impacts | fastest (m/s) | "
             "fall (kN) | sling (kN) | seat SRSS (m/s²) | DRI | released (s) | checks failed |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -73,6 +74,17 @@ def solas_calm(folder):
     return "\n".join(rows)
 
 
+# name -> the page of doc/ that holds the table
+PAGES = {"launch_loads": os.path.join("doc", "validation", "launch.md"),
+         "regress_decks": os.path.join("doc", "validation", "index.md"),
+         "solas_calm": os.path.join("doc", "howto", "operability.md")}
+
+
+def page_path(name, readme=None):
+    """The file that holds table `name`: `readme` when given, else its page of doc/."""
+    return readme or os.path.join(ROOT, PAGES[name])
+
+
 # name -> (decks it needs in the folder, maker)
 TABLES = {"launch_loads": (LAUNCH_DECKS, launch_loads),
           "regress_decks": (REGRESS_DECKS, regress_decks),
@@ -84,7 +96,7 @@ def _markers(name):
 
 
 def readme_copy(text, name):
-    """The README's copy of table `name` (None if it has no such table)."""
+    """The page's copy of table `name` (None if it has no such table)."""
     start, end = _markers(name)
     if start not in text or end not in text:
         return None
@@ -131,7 +143,7 @@ NUMBER = re.compile(r"(?<![\w.])[-+]?\d+(?:\.(\d+))?(?![\w.])")
 # How far a number may move between CPUs and compilers (FMA or not, vector widths): the
 # tables come from whole launches, where a last-bit difference in one step can move a
 # located event by microseconds and a peak by a few parts in 10^4 (measured between
-# -march=native and -march=x86-64-v2 builds: README "Tests"). A model change moves them
+# -march=native and -march=x86-64-v2 builds: doc/validation/tests.md). A model change moves them
 # by far more (a 10 % change of the strip drag coefficient moves most rows by > 1 %).
 REL_TOL = 2e-3
 
@@ -143,7 +155,7 @@ def _split(line):
 
 
 def _close(old, new):
-    """True when `new` equals the README's `old` at the precision `old` was printed with:
+    """True when `new` equals the page's `old` at the precision `old` was printed with:
     one unit of its last decimal (a rounding that flips) plus REL_TOL of its size;
     integers (counts, whole newtons) only within REL_TOL."""
     (a, decimals), (b, _) = old, new
@@ -152,25 +164,25 @@ def _close(old, new):
 
 
 def differences(copy, made):
-    """Lines where the README's copy of a table and the made one differ: in their text, in
+    """Lines where the page's copy of a table and the made one differ: in their text, in
     how many numbers they hold, or in a number beyond its printed precision (_close)."""
     if copy is None:
-        return ["(no table in the README)"]
+        return ["(no table in the page)"]
     old_lines, new_lines = copy.split("\n"), made.split("\n")
     if len(old_lines) != len(new_lines):
-        return [f"{len(old_lines)} lines in the README, {len(new_lines)} made"]
+        return [f"{len(old_lines)} lines in the page, {len(new_lines)} made"]
     found = []
     for old, new in zip(old_lines, new_lines):
         (old_text, old_numbers), (new_text, new_numbers) = _split(old), _split(new)
         if (old_text != new_text or len(old_numbers) != len(new_numbers)
                 or not all(map(_close, old_numbers, new_numbers))):
-            found.append(f"README: {old}\nmade:   {new}")
+            found.append(f"page: {old}\nmade:   {new}")
     return found
 
 
 def stale(tables, text):
-    """Names of the tables whose README copy differs (beyond the numbers' printed precision,
-    see differences) from the made one, or that the README lacks."""
+    """Names of the tables whose page copy differs (beyond the numbers' printed precision,
+    see differences) from the made one, or that the page lacks."""
     return [name for name, table in tables.items()
             if differences(readme_copy(text, name), table)]
 
@@ -180,9 +192,10 @@ def main(argv=None):
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("folder", nargs="?", default="out", help="run files (default out/)")
     parser.add_argument("--run", action="store_true", help="run the decks first")
-    parser.add_argument("--write", action="store_true", help="put the tables into README")
-    parser.add_argument("--check", action="store_true", help="exit 1 if README is stale")
-    parser.add_argument("--readme", default=os.path.join(ROOT, "README.md"))
+    parser.add_argument("--write", action="store_true", help="put the tables into their pages")
+    parser.add_argument("--check", action="store_true", help="exit 1 if a page's table is stale")
+    parser.add_argument("--readme", default=None,
+                        help="one file holding every table (default: each table's page of doc/)")
     parser.add_argument("--only", action="append", choices=sorted(TABLES),
                         help="this table only (repeatable)")
     args = parser.parse_args(argv)
@@ -192,22 +205,29 @@ def main(argv=None):
             decks = sorted({d for n in names for d in TABLES[n][0]})
             run_decks(args.folder, decks, davit_binary())
         tables = make(args.folder, names)
-        with open(args.readme) as f:
-            text = f.read()
+        texts = {}
+        for name in names:
+            path = page_path(name, args.readme)
+            if path not in texts:
+                with open(path) as f:
+                    texts[path] = f.read()
     except (OSError, ValueError, KeyError) as exc:
         print(f"davit-post readme-tables: {exc}", file=sys.stderr)
         return 1
     if args.write:
         for name, table in tables.items():
-            text = replace(text, name, table)
-        with open(args.readme, "w") as f:
-            f.write(text)
-        print(f"readme-tables: wrote {', '.join(tables)} into {args.readme}")
+            path = page_path(name, args.readme)
+            texts[path] = replace(texts[path], name, table)
+        for path, text in texts.items():
+            with open(path, "w") as f:
+                f.write(text)
+        print(f"readme-tables: wrote {', '.join(tables)} into {', '.join(texts)}")
     elif args.check:
-        old = stale(tables, text)
+        old = [name for name, table in tables.items()
+               if stale({name: table}, texts[page_path(name, args.readme)])]
         for name in old:
-            print(f"readme-tables: {args.readme}: table '{name}' is stale (or missing): "
-                  f"davit-post readme-tables {args.folder} --write", file=sys.stderr)
+            print(f"readme-tables: {page_path(name, args.readme)}: table '{name}' is stale "
+                  f"(or missing): davit-post readme-tables {args.folder} --write", file=sys.stderr)
         return 1 if old else 0
     else:
         for name, table in tables.items():

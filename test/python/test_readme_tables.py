@@ -1,6 +1,7 @@
-"""The README's generated tables (launch loads of every III.A/III.B deck, the regression
-report's deck rows, the SOLAS decks) against fresh runs of their decks, so that no number
-in them goes stale silently (issue 17). ~43 decks, two at a time: about 1.5 min."""
+"""The documentation's generated tables (launch loads of every III.A/III.B deck in
+doc/validation/launch.md, the regression report's deck rows in doc/validation/index.md, the
+SOLAS decks in doc/howto/operability.md) against fresh runs of their decks, so that no
+number in them goes stale silently. ~43 decks, two at a time: about 1.5 min."""
 import pathlib
 
 import pytest
@@ -20,12 +21,12 @@ def fresh(davit_bin, tmp_path_factory):
 
 @pytest.mark.parametrize("name", sorted(readme_tables.TABLES))
 def test_readme_table_is_what_the_runs_give(fresh, name):
-    text = (ROOT / "README.md").read_text()
-    copy = readme_tables.readme_copy(text, name)
-    assert copy is not None, f"README.md has no table '{name}'"
+    page = pathlib.Path(readme_tables.page_path(name))
+    copy = readme_tables.readme_copy(page.read_text(), name)
+    assert copy is not None, f"{page} has no table '{name}'"
     made = readme_tables.make(str(fresh), [name])[name]
     found = readme_tables.differences(copy, made)
-    assert not found, (f"README table '{name}' is stale "
+    assert not found, (f"table '{name}' in {page} is stale "
                        "(davit-post readme-tables out --run --write):\n" + "\n".join(found))
 
 
@@ -56,3 +57,14 @@ def test_numbers_compare_at_their_printed_precision():
     for line in changed:
         assert readme_tables.differences(old, line), line
     assert readme_tables.differences(old, old + "\n| extra |")
+
+
+def test_every_table_sits_in_its_page_once():
+    """Each generated table is in the page PAGES names, once, and nowhere else in doc/ or
+    the README (a copy left behind would go stale unchecked)."""
+    for name in readme_tables.TABLES:
+        start = f"<!-- table:{name} -->"
+        holders = [p for p in [ROOT / "README.md", *sorted((ROOT / "doc").rglob("*.md"))]
+                   if start in p.read_text()]
+        assert holders == [pathlib.Path(readme_tables.page_path(name))], (name, holders)
+        assert pathlib.Path(readme_tables.page_path(name)).read_text().count(start) == 1

@@ -1,0 +1,199 @@
+"""The documentation's blocks generated from the code, and the site: `davit-post doc-blocks`.
+
+Each block sits in its page of doc/ between `<!-- NAME:start -->` and `<!-- NAME:end -->`:
+
+  keys        doc/reference/deck_keys.md  `davit keys` (every deck key, Markdown tables)
+  davit_help  doc/reference/cli.md        `davit --help`
+  post_help   doc/reference/cli.md        `davit-post --help` (its command list)
+  modules     doc/reference/modules.md    every folder of src/ and its source files
+
+  python -m postproc.doc_blocks [--write | --check] [--davit PATH]
+      print the blocks made from the code; --write puts them into their pages, --check exits
+      1 naming each page whose block differs (the davit of --davit, DAVIT_BIN, else `davit`
+      on PATH)
+  python -m postproc.doc_blocks --site [OUTDIR]
+      build the site with FORD (settings in fpm.toml [extra.ford]; README.md is its front
+      page, doc/ its pages) into build/doc/, then point the pages' links to other pages
+      (`x.md`, `x.md#part`) at their HTML (`x.html`), so that the same Markdown reads on
+      GitHub and on the site
+
+test/python/test_docs.py checks that the pages hold what the code prints and that the site
+builds with every internal link resolved; bash make.sh docs runs --write, then --site.
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+KEYS_PAGE = os.path.join("doc", "reference", "deck_keys.md")
+CLI_PAGE = os.path.join("doc", "reference", "cli.md")
+# name -> page of doc/ that holds it
+MODULES_PAGE = os.path.join("doc", "reference", "modules.md")
+PAGES = {"keys": KEYS_PAGE, "davit_help": CLI_PAGE, "post_help": CLI_PAGE,
+         "modules": MODULES_PAGE}
+SITE = os.path.join(ROOT, "build", "doc")
+
+
+def davit_binary(given=None):
+    """The davit to run: `given`, DAVIT_BIN, else `davit` on PATH."""
+    binary = given or os.environ.get("DAVIT_BIN") or shutil.which("davit")
+    if not binary:
+        raise OSError("no davit: give --davit PATH, set DAVIT_BIN or put davit on PATH "
+                      "(bash make.sh install)")
+    return binary
+
+
+def _run(argv):
+    result = subprocess.run(argv, capture_output=True, text=True, cwd=ROOT,
+                            env=dict(os.environ, COLUMNS="100"))
+    if result.returncode != 0:
+        raise OSError(f"{' '.join(argv)} failed ({result.returncode}): {result.stderr.strip()}")
+    return result.stdout
+
+
+def post_help():
+    """The command list of `davit-post --help` (its description, not argparse's option
+    listing, whose layout changes with the Python version)."""
+    text = _run([sys.executable, "-m", "postproc", "--help"])
+    start = text.index("Command line:")
+    end = text.index("\npositional arguments:")
+    body = text[start:end].rstrip() + "\n"
+    return body.replace("python -m postproc", "davit-post")
+
+
+def modules():
+    """A table of every folder of src/ and its Fortran (and C) sources."""
+    src = os.path.join(ROOT, "src")
+    rows = ["| folder | sources |", "|---|---|"]
+    top = sorted(f for f in os.listdir(src) if os.path.isfile(os.path.join(src, f)))
+    rows.append("| `src/` | " + ", ".join(f"`{f}`" for f in top) + " |")
+    for folder in sorted(f for f in os.listdir(src) if os.path.isdir(os.path.join(src, f))):
+        files = sorted(f for f in os.listdir(os.path.join(src, folder))
+                       if f.endswith((".f90", ".F90", ".c")))
+        rows.append(f"| `src/{folder}/` | " + ", ".join(f"`{f}`" for f in files) + " |")
+    return "\n".join(rows) + "\n"
+
+
+def make(binary):
+    """{name: block text} from the code."""
+    return {"keys": _run([binary, "keys"]),
+            "davit_help": "```text\n" + _run([binary, "--help"]).rstrip() + "\n```\n",
+            "post_help": "```text\n" + post_help() + "```\n",
+            "modules": modules()}
+
+
+def _markers(name):
+    return f"<!-- {name}:start -->\n", f"<!-- {name}:end -->"
+
+
+def copy_of(text, name):
+    """The page's copy of block `name` (None where the page has no such block)."""
+    start, end = _markers(name)
+    if start not in text or end not in text:
+        return None
+    return text.split(start, 1)[1].split(end, 1)[0]
+
+
+def replace(text, name, block):
+    start, end = _markers(name)
+    head, rest = text.split(start, 1)
+    return head + start + block + end + rest.split(end, 1)[1]
+
+
+def page_text(name):
+    with open(os.path.join(ROOT, PAGES[name])) as f:
+        return f.read()
+
+
+def stale(blocks):
+    """Names of the blocks whose page copy differs from the code's."""
+    return [name for name, block in blocks.items() if copy_of(page_text(name), name) != block]
+
+
+def write(blocks):
+    for name, block in blocks.items():
+        path = os.path.join(ROOT, PAGES[name])
+        with open(path) as f:
+            text = f.read()
+        new = replace(text, name, block)
+        if new != text:
+            with open(path, "w") as f:
+                f.write(new)
+            print(f"doc-blocks: updated '{name}' in {PAGES[name]}")
+
+
+# href="x.md" or href="x.md#part" (relative, not a scheme): the page's own HTML
+MD_LINK = re.compile(r'href="(?![a-z]+:|/|#)([^"#]*?)\.md(#[^"]*)?"')
+
+
+def _html_links(path, front=False):
+    with open(path) as f:
+        text = f.read()
+    if front:
+        # the front page is README.md at the root: its links into doc/ go to page/
+        text = re.sub(r'href="doc/([^"]*)"', r'href="page/\1"', text)
+        text = text.replace('href="doc/"', 'href="page/index.html"')
+    new = MD_LINK.sub(lambda m: f'href="{m.group(1)}.html{m.group(2) or ""}"', text)
+    if new != text:
+        with open(path, "w") as f:
+            f.write(new)
+
+
+def build_site(outdir=SITE):
+    """FORD into `outdir` (README.md the front page, fpm.toml's [extra.ford] the settings),
+    then the pages' .md links rewritten to .html. Returns FORD's output (warnings)."""
+    ford = shutil.which("ford")
+    if not ford:
+        raise OSError("no ford: pip install ford (bash make.sh docs installs it)")
+    result = subprocess.run([ford, "--output_dir", outdir, "README.md"], cwd=ROOT,
+                            capture_output=True, text=True)
+    if result.returncode != 0:
+        raise OSError(f"ford failed ({result.returncode}):\n{result.stdout}\n{result.stderr}")
+    _html_links(os.path.join(outdir, "index.html"), front=True)
+    for folder, _, files in os.walk(os.path.join(outdir, "page")):
+        for name in files:
+            if name.endswith(".html"):
+                _html_links(os.path.join(folder, name))
+    return result.stdout + result.stderr
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="davit-post doc-blocks",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("--write", action="store_true", help="put the blocks into their pages")
+    parser.add_argument("--check", action="store_true", help="exit 1 if a page is stale")
+    parser.add_argument("--davit", help="the davit binary (default DAVIT_BIN, else PATH)")
+    parser.add_argument("--site", nargs="?", const=SITE, metavar="OUTDIR",
+                        help="build the site with FORD (default build/doc)")
+    args = parser.parse_args(argv)
+    try:
+        if args.site:
+            log = build_site(os.path.abspath(args.site))
+            warnings = [line for line in log.splitlines() if "warn" in line.lower()]
+            for line in warnings:
+                print(line, file=sys.stderr)
+            print(f"doc-blocks: site in {os.path.join(os.path.abspath(args.site), 'index.html')}")
+            return 0
+        blocks = make(davit_binary(args.davit))
+    except (OSError, ValueError) as exc:
+        print(f"davit-post doc-blocks: {exc}", file=sys.stderr)
+        return 1
+    if args.write:
+        write(blocks)
+    elif args.check:
+        old = stale(blocks)
+        for name in old:
+            print(f"doc-blocks: {PAGES[name]}: block '{name}' differs from the code: "
+                  "davit-post doc-blocks --write (or .ci/update_docs.sh)", file=sys.stderr)
+        return 1 if old else 0
+    else:
+        for name, block in blocks.items():
+            print(f"<!-- {name} ({PAGES[name]}) -->\n{block}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
