@@ -211,7 +211,7 @@ contains
                   "hertz_elastoplastic", "lankarani_nikravesh"], "A rubber fender's "// &
                   "published reaction-deflection curve with hysteresis returning e_r^2 of the "// &
                   "work (README Fenders); or the paper's Hertz compression with the corrected "// &
-                  "elastoplastic restitution (eqs. 27-28, review §1.7); or the smooth "// &
+                  "elastoplastic restitution (eqs. 27-28); or the smooth "// &
                   "Lankarani-Nikravesh Hertz law (accurate for e_r near 1).")
     call r%real(g, "fender_diameter", s%fender_diameter, 1.0_wp, 0.01_wp, 10.0_wp, "m", &
                 "rubber_fender: diameter D; the curve's deflections are fractions of it "// &
@@ -220,7 +220,8 @@ contains
                 "rubber_fender: rated reaction R_r at the rated 60 % deflection (ISO "// &
                 "17357-1, 1000 x 1500 at 50 kPa: 182 kN, 32 kJ).")
     call r%real(g, "youngs_boat", s%youngs_boat, 55.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
-                "Hertz laws: Young's modulus E_b of the fender (paper; review §1.7 on 55 GPa).")
+                "Hertz laws: Young's modulus E_b of the fender (the paper's value; 55 GPa "// &
+                "gives 100+ g impacts).")
     call r%real(g, "poisson_boat", s%poisson_boat, 0.45_wp, 0.0_wp, 0.5_wp, "-", &
                 "Poisson's ratio nu_b of the fender (paper).")
     call r%real(g, "youngs_ship", s%youngs_ship, 200.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
@@ -228,22 +229,23 @@ contains
     call r%real(g, "poisson_ship", s%poisson_ship, 0.3_wp, 0.0_wp, 0.5_wp, "-", &
                 "Poisson's ratio nu_s of the ship's side (0.3; the paper's 0.6 is impossible).")
     call r%real(g, "radius_boat", s%radius_boat, 0.15_wp, 0.0_wp, 10.0_wp, "m", &
-                "Fender radius of curvature R_b (review G16).", lo_open=.true.)
+                "Fender radius of curvature R_b.", lo_open=.true.)
     call r%real(g, "radius_ship", s%radius_ship, 0.0_wp, 0.0_wp, 1.0e3_wp, "m", &
                 "Radius of curvature R_s of the side; 0 = flat plate (R = R_b).")
     call r%real(g, "restitution", s%restitution, 0.8_wp, 0.0_wp, 1.0_wp, "-", &
                 "Coefficient of restitution e_r (paper).", lo_open=.true.)
     call r%real_list(g, "fender_x", s%fender_x, [3.0_wp, -3.0_wp], -50.0_wp, 50.0_wp, "m", &
-                     "Boat-frame x of each fender (review G16: two fenders at +-3 m).", 1, 8)
+                     "Boat-frame x of each fender (two fenders at +-3 m; the paper gives "// &
+                     "none).", 1, 8)
     call r%real(g, "fender_y", s%fender_y, -1.4_wp, -50.0_wp, 50.0_wp, "m", &
-                "Boat-frame y of the fenders: the port side, facing the ship (G16).")
+                "Boat-frame y of the fenders: the port side, facing the ship.")
     call r%real_vec(g, "fender_z", s%fender_z, [-0.8_wp, 0.2_wp], -50.0_wp, 50.0_wp, "m", &
-                    "Boat-frame z span of each fender (z down, G16).")
+                    "Boat-frame z span of each fender (z down).")
     call r%int(g, "fender_points", s%fender_points, 5, 1, 100, "-", &
                "Points n_d per fender; one contact per fender at its deepest point.")
     call r%real(g, "side_y", s%side_y, 0.5_wp*ship%beam + 0.1_wp, -100.0_wp, 100.0_wp, &
                 "m", "Ship-frame y of the side plane (normal +s2, towards the boat); default "// &
-                "the paper's y1 = 10.5 m (III.B, review F12; starboard, so +): half the "// &
+                "the paper's y1 = 10.5 m (III.B; starboard, so +): half the "// &
                 "&ship beam plus 0.1 m.", default_text="&ship beam/2 + 0.1 (10.5)")
   end subroutine read_contact
 
@@ -276,11 +278,11 @@ contains
     character(len=*), parameter :: g = "simulation"
     call r%real(g, "t_end", s%t_end, 0.0_wp, 0.0_wp, 1.0e5_wp, "s", &
                 "Simulated time span from t = 0; 0 = derived: 'launch' and 'lowering' "// &
-                "end at review G24's limit, winch start + ramp + 1.3 x (CG height above "// &
+                "end at the derived limit, winch start + ramp + 1.3 x (CG height above "// &
                 "the water)/(boat lowering speed) + after_release; other scenes 60 s.", &
                 default_text="0 (derived)")
     call r%real(g, "after_release", s%after_release, 5.0_wp, 0.0_wp, 1.0e4_wp, "s", &
-                "A launch ends this long after the hooks are released (review G24).")
+                "A launch ends this long after the hooks are released.")
     call r%real(g, "dt", s%dt, 1.0e-3_wp, 0.0_wp, 1.0_wp, "s", &
                 "Integrator time step (fixed-step methods).", lo_open=.true.)
     call r%real(g, "dt_contact", s%dt_contact, 0.0_wp, 0.0_wp, 1.0_wp, "s", &
@@ -344,7 +346,7 @@ contains
                     lo_open=.true.)
     call r%real_vec(g, "position", b%position, [0.0_wp, 13.3_wp, -15.0_wp], -1.0e4_wp, &
                     1.0e4_wp, "m", "Initial CG position in the inertial frame (x along "// &
-                    "N1, y starboard, z down; 15 m above the still water, review G3).")
+                    "N1, y starboard, z down; 15 m above the still water).")
     call r%real_vec(g, "euler", b%euler, [0.0_wp, 0.0_wp, 0.0_wp], -1.5_wp, 1.5_wp, "rad", &
                     "Initial roll, pitch, yaw (ZYX, eq. 2; x forward, y starboard, "// &
                     "z down: roll starboard down, pitch bow up, yaw bow to starboard).")
@@ -359,10 +361,10 @@ contains
     call r%real(g, "height", b%height, 3.1_wp, 0.01_wp, 50.0_wp, "m", &
                 "Hull section height H (III.B).")
     call r%real(g, "keel", b%keel, 1.1_wp, -50.0_wp, 50.0_wp, "m", &
-                "Keel below the CG along b3 (review G25: CG 1.1 m above the keel).")
+                "Keel below the CG along b3 (CG 1.1 m above the keel).")
     call r%real(g, "breadth_exponent", b%breadth_exponent, 4.3_wp, 1.0_wp, 100.0_wp, "-", &
-                "p in b(x) = B (1 - |2x/L|^p) (G25: 4.3 gives A3 = 26.2 m^2).")
-    call r%int(g, "strips", b%strips, 20, 1, 400, "-", "Number of strips n (eq. 18, G25).")
+                "p in b(x) = B (1 - |2x/L|^p) (4.3 gives the waterplane area A3 = 26.2 m^2).")
+    call r%int(g, "strips", b%strips, 20, 1, 400, "-", "Number of strips n (eq. 18).")
     call r%real_vec(g, "drag_coefficients", b%drag_coefficients, [1.2_wp, 1.2_wp, 1.2_wp], &
                     0.0_wp, 10.0_wp, "-", "Water drag coefficients c_D1..3 (paper C_fluid).")
     call r%choice(g, "roll_restoring", b%roll_restoring, "hull", &
@@ -374,7 +376,7 @@ contains
                 "(eq. 24, paper III.B).")
     call r%real_vec(g, "zeta", b%zeta, [0.0_wp, 0.0_wp, 0.0_wp], 0.0_wp, 2.0_wp, "-", &
                     "Linear heave, roll, pitch damping on the water, fraction of critical "// &
-                    "(G25 suggests 0.1; the paper has none).")
+                    "(0.1 is typical; the paper gives none).")
     call r%real_vec(g, "wind_areas", b%wind_areas, [8.5_wp, 26.2_wp, 26.2_wp], 0.0_wp, &
                     1.0e4_wp, "m^2", "Projected areas normal to b1, b2, b3 (III.B).")
     call r%real(g, "wind_drag_coefficient", b%wind_drag_coefficient, 0.5_wp, 0.0_wp, &
@@ -382,10 +384,10 @@ contains
     call r%real(g, "lift_coefficient", b%lift_coefficient, 1.2_wp, 0.0_wp, 10.0_wp, "-", &
                 "Wind lift coefficient C_L (paper).")
     call r%real(g, "lift_diameter", b%lift_diameter, 3.29_wp, 0.0_wp, 50.0_wp, "m", &
-                "Lift cylinder diameter D_b (G27: circle of the frontal area).")
+                "Lift cylinder diameter D_b (the circle of the frontal area).")
     call r%choice(g, "lift_form", b%lift_form, "symmetric", &
                   [character(len=9) :: "symmetric", "literal"], "Wind lift: 'symmetric' "// &
-                  "(upward, from the lateral cross-flow) or eq. 16 'literal' (review §1.4).")
+                  "(upward, from the lateral cross-flow) or eq. 16 'literal'.")
     call read_boat_water(r, b)
   end subroutine read_boat
 
@@ -419,9 +421,9 @@ contains
     type(slings_config), intent(inout) :: s
     character(len=*), parameter :: g = "slings"
     call r%real_vec(g, "hook_fore", s%hook_fore, [4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
-                    50.0_wp, "m", "Fore hook point in the boat frame (review G4).")
+                    50.0_wp, "m", "Fore hook point in the boat frame.")
     call r%real_vec(g, "hook_aft", s%hook_aft, [-4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
-                    50.0_wp, "m", "Aft hook point in the boat frame (review G4).")
+                    50.0_wp, "m", "Aft hook point in the boat frame.")
     call r%real_vec(g, "anchor_fore", s%anchor_fore, [4.6_wp, 13.3_wp, -19.55_wp], &
                     -1.0e4_wp, 1.0e4_wp, "m", &
                     "Fixed upper end of the fore sling, inertial frame.")
@@ -434,7 +436,7 @@ contains
     call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
                 "Pa", "Young's modulus of the wire (paper III.B).")
     call r%real(g, "damping", s%damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
-                "Absolute axial dashpot per sling (review §1.6, G26); 0 = undamped.")
+                "Absolute axial dashpot per sling; 0 = undamped.")
     call r%logical(g, "attached", s%attached, .true., &
                    "Hang the boat on the slings; .false. = a free boat (floating tests).")
   end subroutine read_slings
@@ -446,7 +448,7 @@ contains
     real(wp) :: preset_height, deg
     deg = pi/180.0_wp
     call r%int(g, "level", s%level, 5, 3, 5, "-", &
-               "Sea-state preset (review G19): 3 = H 1.25 m, wind 5.5 m/s (issue 16); 4 = "// &
+               "Sea-state preset: 3 = H 1.25 m, wind 5.5 m/s; 4 = "// &
                "H 2.5 m, wind 8 m/s; 5 = H 4 m, wind 10 m/s.")
     preset_height = level_wave_height(s%level)
     s%height_source = source(r%has(g, "height"), "level "//digit(s%level)//" preset")
@@ -460,12 +462,12 @@ contains
                 lo_open=.true., default_text="level preset (4)")
     call r%real(g, "period", s%period, 2.0_wp*pi/spectrum_peak_omega(s%height), 1.0_wp, &
                 40.0_wp, "s", "Regular-wave period; default the peak period of eq. 44 "// &
-                "for the height (10.06 s at 2.5 m, 12.72 s at 4 m, review G18).", &
+                "for the height (10.06 s at 2.5 m, 12.72 s at 4 m).", &
                 default_text="peak period (12.72)")
     call r%real(g, "direction_deg", s%direction, 90.0_wp, -360.0_wp, 360.0_wp, "deg", &
                 "Direction the waves travel towards (mean direction if irregular), from "// &
                 "N1 towards N2 (N1 the ship's heading at heading_deg = 0, N2 starboard, N3 "// &
-                "down); the encounter angle chi (review §0): 0 = following seas, 90 = from "// &
+                "down); the encounter angle chi: 0 = following seas, 90 = from "// &
                 "port (travelling towards the starboard side, where the boat hangs), 180 = "// &
                 "head seas, 270 = from starboard.")
     s%direction = s%direction*deg
@@ -473,13 +475,13 @@ contains
                 "Phase epsilon of a regular wave at the origin at t = 0.")
     s%phase = s%phase*deg
     call r%int(g, "spreading_s", s%spreading_s, 1, 1, 30, "-", &
-               "Exponent s of the cos-2s spreading, eq. 45 (review G20).")
+               "Exponent s of the cos-2s spreading, eq. 45.")
     call r%real(g, "spread_window_deg", s%spread_window, 30.0_wp, 0.0_wp, 90.0_wp, "deg", &
                 "Directions span mean +- this; weights renormalised to sum to one.", &
                 lo_open=.true.)
     s%spread_window = s%spread_window*deg
     call r%int(g, "n_frequencies", s%n_frequencies, 100, 1, 5000, "-", &
-               "Number of frequency bins (review G21).")
+               "Number of frequency bins.")
     call r%int(g, "n_directions", s%n_directions, 13, 1, 361, "-", &
                "Number of directions, endpoints of the window included (1 = long-crested).")
     call r%real(g, "omega_min", s%omega_min, 0.3_wp, 0.0_wp, 20.0_wp, "rad/s", &

@@ -57,18 +57,18 @@ contains
     character(len=*), parameter :: g = "rigging"
     call r%choice(g, "reeving", s%reeving, "a", [character(len=1) :: "a", "b"], &
                   "'a': one cable drum-lead-fore head-block 1-aft head-block 2-dead end "// &
-                  "(paper Fig. 8, boat speed = drum/4); 'b': one wire per fall (drum/2), G6.")
+                  "(paper Fig. 8, boat speed = drum/4); 'b': one wire per fall (drum/2).")
     call r%choice(g, "sheaves", s%sheaves, "quasi_static", &
                   [character(len=12) :: "rotating", "quasi_static"], &
                   "'rotating': sheave DOFs with torque r (f_out - f_in) (eq. 71, c_gamma = 1); "// &
-                  "'quasi_static': one tension per cable, no sheave DOFs (review §4.3 item 3).")
+                  "'quasi_static': one tension per cable, no sheave DOFs.")
     call r%choice(g, "blocks", s%blocks, "massive", &
                   [character(len=12) :: "massive", "quasi_static"], &
                   "'massive': each movable block a 3-DOF mass (eqs. 74-82); 'quasi_static': "// &
                   "no block inertia (eq. 82 dropped, weight kept), the position solved from "// &
                   "the balance of eqs. 78-81 at every evaluation (removes the ~200 Hz mode).")
     call r%int(g, "lumps", s%lumps, 0, 0, 20, "-", &
-               "Lumped masses per sling; 0 = massless tension-only spring (review §4.3, §4.4).")
+               "Lumped masses per sling; 0 = massless tension-only spring.")
     call r%choice(g, "initial", s%initial, "equilibrium", &
                   [character(len=11) :: "equilibrium", "unstretched"], &
                   "Initial rigging: static equilibrium for the hanging boat, or unstretched "// &
@@ -80,9 +80,9 @@ contains
     type(rigging_config), intent(inout) :: s
     character(len=*), parameter :: g = "rigging"
     call r%real(g, "sling_length", s%sling_length, 1.0_wp, 0.01_wp, 100.0_wp, "m", &
-                "Unstretched sling length, block to hook (review G5).")
+                "Unstretched sling length, block to hook.")
     call r%real(g, "sling_mass_per_length", s%sling_mass_per_length, 1.6_wp, 0.0_wp, &
-                100.0_wp, "kg/m", "Sling mass per metre, shared by the lumps (20 mm 6x36, G5).")
+                100.0_wp, "kg/m", "Sling mass per metre, shared by the lumps (20 mm 6x36).")
     call r%real(g, "wire_diameter", s%wire_diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", &
                 "Wire diameter of slings and cable; EA = E pi d^2/4 (paper III.B).", &
                 lo_open=.true.)
@@ -94,7 +94,7 @@ contains
     ! paper's Fig. 13 (the bounce settles in ~2.5 s); the same ratio then holds for the
     ! block's own mode on each wire (~200 Hz), which is what rings after a snatch.
     call r%real(g, "wire_damping_ratio", s%wire_damping_ratio, 0.02_wp, 0.0_wp, 1.0_wp, "-", &
-                "Damping ratio of the wire (loss factor / 2, G26): each sling and cable "// &
+                "Damping ratio of the wire (loss factor / 2): each sling and cable "// &
                 "segment gets at least c = 2 zeta sqrt(k m_b), k its EA/L0, m_b the block.")
     s%sling_damping_given = r%has(g, "sling_damping")
     s%cable_damping_given = r%has(g, "cable_damping")
@@ -106,8 +106,8 @@ contains
     ! than the falls, so a sling dashpot sees little motion (review §4.1). 1e4 N s/m per
     ! cable segment gives the bounce zeta ~ 0.02 (G26), above the wire's block-mode floor.
     call r%real(g, "cable_damping", s%cable_damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
-                "Absolute axial dashpot of each cable segment on its stretch rate (§1.10, "// &
-                "G26: bounce zeta ~ 0.02); if not given, at least the wire's floor.")
+                "Absolute axial dashpot of each cable segment on its stretch rate "// &
+                "(bounce zeta ~ 0.02); if not given, at least the wire's floor.")
   end subroutine read_wire
 
   subroutine read_geometry(r, s)
@@ -116,7 +116,7 @@ contains
     character(len=*), parameter :: g = "rigging"
     call r%real_vec(g, "head_fore", s%head_fore, [4.6_wp, 13.3_wp, -20.55_wp], -1.0e3_wp, &
                     1.0e3_wp, "m", "Fore davit head, midway between its sheave pair (A) or "// &
-                    "head sheave and dead end (B), ship frame; 3 m above the block (G4, G6).")
+                    "head sheave and dead end (B), ship frame; 3 m above the block.")
     call r%real_vec(g, "head_aft", s%head_aft, [-4.6_wp, 13.3_wp, -20.55_wp], -1.0e3_wp, &
                     1.0e3_wp, "m", "Aft davit head, as head_fore.")
     call r%real(g, "head_spacing", s%head_spacing, 0.32_wp, 0.0_wp, 10.0_wp, "m", &
@@ -134,18 +134,18 @@ contains
     type(rigging_config), intent(inout) :: s
     character(len=*), parameter :: g = "rigging"
     call r%real(g, "sheave_radius", s%sheave_radius, 0.16_wp, 0.01_wp, 5.0_wp, "m", &
-                "Radius of every sheave, fixed and movable (D/d = 16, G7).")
+                "Radius of every sheave, fixed and movable (D/d = 16).")
     call r%real(g, "sheave_inertia", s%sheave_inertia, 0.19_wp, 1.0e-4_wp, 1.0e4_wp, &
-                "kg m^2", "Polar inertia of every sheave (15 kg disc, G7).")
+                "kg m^2", "Polar inertia of every sheave (15 kg disc).")
     call r%real(g, "block_mass", s%block_mass, 50.0_wp, 0.01_wp, 1.0e4_wp, "kg", &
-                "Translational mass of each movable block, sheave included (G7).")
+                "Translational mass of each movable block, sheave included.")
     call r%real(g, "block_stop", s%block_stop, 0.3_wp, 0.0_wp, 10.0_wp, "m", &
                 "Height of a block's centre above its hook when it rests on it (slack "// &
                 "fall): sheave radius + becket and hook eye; 0 = no stop.")
     call r%real(g, "drum_radius", s%drum_radius, 0.25_wp, 0.01_wp, 5.0_wp, "m", &
-                "Drum radius; only for the drum angle s/r_d (speed-controlled drum, G8).")
+                "Drum radius; only for the drum angle s/r_d (speed-controlled drum).")
     call r%real(g, "bearing_friction", s%bearing_friction, 0.0_wp, 0.0_wp, 1.0e4_wp, "N m", &
-                "Coulomb bearing moment of each rotating sheave (eq. 71, G7); 0 = none.")
+                "Coulomb bearing moment of each rotating sheave (eq. 71); 0 = none.")
     call r%real(g, "friction_ratio", s%friction_ratio, 1.0_wp, 1.0_wp, 2.0_wp, "-", &
                 "Quasi-static sheaves: T_out/T_in over each sheave in the running direction.")
   end subroutine read_hardware
@@ -158,19 +158,19 @@ contains
                   "'drum': drum_speed is the rope pay-out speed (paper text); 'boat': "// &
                   "lowering_speed is the boat's and the drum runs 4x (A) or 2x (B) (§1.12).")
     call r%real(g, "drum_speed", s%drum_speed, 0.7_wp, 0.0_wp, 10.0_wp, "m/s", &
-                "Steady rope pay-out speed at the drum (paper III.B, G8).")
+                "Steady rope pay-out speed at the drum (paper III.B).")
     call r%real(g, "lowering_speed", s%lowering_speed, 0.7_wp, 0.0_wp, 10.0_wp, "m/s", &
                 "Steady boat lowering speed when winch_mode = 'boat' (SOLAS 0.4 + 0.02 H).")
     call r%real(g, "winch_start", s%winch_start, 0.0_wp, 0.0_wp, 1.0e5_wp, "s", &
                 "Time at which the drum starts paying out.")
     call r%real(g, "ramp_time", s%ramp_time, 1.0_wp, 0.0_wp, 100.0_wp, "s", &
-                "Linear ramp of the pay-out speed from 0 to full (G8).")
+                "Linear ramp of the pay-out speed from 0 to full.")
     call r%real(g, "stop_time", s%stop_time, 1.0e5_wp, 0.0_wp, 1.0e5_wp, "s", &
                 "Time at which the brake starts to stop the drum.")
     call r%real(g, "brake_time", s%brake_time, 0.5_wp, 0.0_wp, 100.0_wp, "s", &
                 "Linear ramp of the pay-out speed from full to 0 once braking.")
     call r%logical(g, "release", s%release, .true., "Release both hooks at once (SOLAS) "// &
-                   "release_delay after the boat is waterborne (review G24).")
+                   "release_delay after the boat is waterborne.")
     call r%real(g, "release_delay", s%release_delay, 0.0_wp, 0.0_wp, 1.0e4_wp, "s", &
                 "Delay between waterborne and hook release.")
   end subroutine read_winch

@@ -34,7 +34,7 @@ contains
     call r%real(g, "length_overall", s%loa, 139.8_wp, 1.0_wp, 500.0_wp, "m", &
                 "Length over all, L_oa (Table 1; wind yaw moment, eq. 46).")
     call r%real(g, "length_waterline", s%lwl, 130.55_wp, 1.0_wp, 500.0_wp, "m", &
-                "Waterline length L_wl (Table 1); box length l = sqrt(C_b) L_wl (review G15).")
+                "Waterline length L_wl (Table 1); box length l = sqrt(C_b) L_wl.")
     call r%real(g, "length_pp", s%lpp, 126.0_wp, 1.0_wp, 500.0_wp, "m", &
                 "Length between perpendiculars (Table 1; radii of gyration, cross-flow drag).")
     call r%real(g, "beam", s%beam, 20.8_wp, 1.0_wp, 100.0_wp, "m", "Beam B (Table 1).")
@@ -45,7 +45,7 @@ contains
                 "Transverse metacentric height (Table 1): C44 = Delta g GM.")
     call r%real(g, "cg_x", s%cg_x, 0.0_wp, -100.0_wp, 100.0_wp, "m", &
                 "CG forward of midship. Table 1's '2.3 m between centre of gravity and "// &
-                "centre' is ambiguous (review §1.12); 0 keeps the paper's CG at the origin.")
+                "centre' is ambiguous; 0 keeps the paper's CG at the origin.")
     call r%real(g, "cg_z", s%cg_z, 0.0_wp, -20.0_wp, 20.0_wp, "m", &
                 "CG below the still waterline (z down); 0 = on the waterline, as the paper "// &
                 "places the ship CG at (0, 0, 0).")
@@ -56,23 +56,23 @@ contains
     call r%real(g, "displacement", s%displacement, 7.55e6_wp, 1.0e3_wp, 1.0e9_wp, "kg", &
                 "Mass Delta (Table 1).")
     call r%real(g, "zeta_heave", s%zeta_heave, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear heave damping as a fraction of critical (review G12).")
+                "Linear heave damping as a fraction of critical.")
     call r%real(g, "zeta_roll", s%zeta_roll, 0.05_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear roll damping as a fraction of critical (review G12); with model = "// &
+                "Linear roll damping as a fraction of critical; with model = "// &
                 "'bem' the viscous part added to the radiation damping, at the roll "// &
                 "resonance of the database.")
     call r%real(g, "zeta_pitch", s%zeta_pitch, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
-                "Linear pitch damping as a fraction of critical (review G12).")
+                "Linear pitch damping as a fraction of critical.")
     call r%real(g, "roll_quadratic", s%roll_quadratic, 0.0_wp, 0.0_wp, 1.0e12_wp, &
                 "N m s^2", "Quadratic roll damping B44q |p| p (0 = off).")
     call r%real(g, "crossflow_cd", s%crossflow_cd, 0.8_wp, 0.0_wp, 5.0_wp, "-", &
-                "Cross-flow drag coefficient for sway and yaw at zero speed (review G12).")
+                "Cross-flow drag coefficient for sway and yaw at zero speed.")
     call r%real(g, "area_front", s%area_front, 400.0_wp, 0.0_wp, 1.0e5_wp, "m^2", &
-                "Frontal windage area A_F (review G14).")
+                "Frontal windage area A_F.")
     call r%real(g, "area_lateral", s%area_lateral, 1600.0_wp, 0.0_wp, 1.0e5_wp, "m^2", &
-                "Lateral windage area A_L (review G14).")
+                "Lateral windage area A_L.")
     call r%real(g, "wind_height", s%wind_height, 7.0_wp, 0.0_wp, 100.0_wp, "m", &
-                "Height h_z of the lateral wind force above G (eq. 46, review G14).")
+                "Height h_z of the lateral wind force above G (eq. 46).")
     call r%real(g, "list_deg", s%list, 0.0_wp, -20.0_wp, 20.0_wp, "deg", &
                 "Static list (equilibrium roll), positive to starboard (SOLAS/LSA: 20 deg).")
     s%list = s%list*deg
@@ -114,7 +114,7 @@ contains
     call r%real(g, "roll_gyradius", s%roll_gyradius, 0.0_wp, 0.0_wp, 50.0_wp, "m", &
                 "BEM ship: roll radius of gyration about the CG in place of the "// &
                 "database's (0 = the database's, 0.38 B for input/ship_bem.nc): the roll "// &
-                "inertia, hence the roll period, that the paper does not give (review G9).")
+                "inertia, hence the roll period, that the paper does not give.")
     call r%real(g, "heading_period", s%heading_period, 30.0_wp, 0.0_wp, 1000.0_wp, "s", &
                 "Heading keeping in the 'launch' scene (autopilot or DP: a PD yaw moment "// &
                 "on the ship towards its initial heading): natural period of the held "// &

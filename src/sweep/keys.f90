@@ -133,8 +133,8 @@ contains
                   "decks only hold "// &
                   "&sweep.")
     call r%int_list(g, "levels", s%levels, [5], 3, 5, "-", "Sea-state levels; each sets "// &
-                    "the level's preset wave height and wind speed (review G19) and the "// &
-                    "peak period of the height (G18).", 1, 10, default_text="base deck")
+                    "the level's preset wave height and wind speed and the "// &
+                    "peak period of the height.", 1, 10, default_text="base deck")
     call r%real_list(g, "heights", s%heights, [4.0_wp], 0.0_wp, 20.0_wp, "m", &
                      "Wave heights H (regular 2a, irregular H of eq. 44), instead of the "// &
                      "level preset; the period follows unless periods is given.", 1, &
