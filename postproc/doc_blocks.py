@@ -6,6 +6,10 @@ Each block sits in its page of doc/ between `<!-- NAME:start -->` and `<!-- NAME
   davit_help  doc/reference/cli.md        `davit --help`
   post_help   doc/reference/cli.md        `davit-post --help` (its command list)
   modules     doc/reference/modules.md    every folder of src/ and its source files
+  output_run  doc/reference/output.md     every dataset of a run file as davit writes it
+                                          (a 2 s run of the default scene): dims, type,
+                                          units, description
+  output_sweep doc/reference/output.md    the same for a sweep summary (two 1 s cases)
 
   python -m postproc.doc_blocks [--write | --check] [--davit PATH]
       print the blocks made from the code; --write puts them into their pages, --check exits
@@ -32,8 +36,11 @@ KEYS_PAGE = os.path.join("doc", "reference", "deck_keys.md")
 CLI_PAGE = os.path.join("doc", "reference", "cli.md")
 # name -> page of doc/ that holds it
 MODULES_PAGE = os.path.join("doc", "reference", "modules.md")
+OUTPUT_PAGE = os.path.join("doc", "reference", "output.md")
 PAGES = {"keys": KEYS_PAGE, "davit_help": CLI_PAGE, "post_help": CLI_PAGE,
-         "modules": MODULES_PAGE}
+         "modules": MODULES_PAGE, "output_run": OUTPUT_PAGE, "output_sweep": OUTPUT_PAGE}
+# the scene whose file the output reference lists, and the sweep over it
+OUTPUT_DECK = os.path.join("input", "iiib_level5_090.nml")
 SITE = os.path.join(ROOT, "build", "doc")
 
 
@@ -47,8 +54,11 @@ def davit_binary(given=None):
 
 
 def _run(argv):
+    # the project's data files (BEM databases) after the user's DAVIT_PATH
+    path = os.pathsep.join(p for p in (os.environ.get("DAVIT_PATH", ""),
+                                       os.path.join(ROOT, "input")) if p)
     result = subprocess.run(argv, capture_output=True, text=True, cwd=ROOT,
-                            env=dict(os.environ, COLUMNS="100"))
+                            env=dict(os.environ, COLUMNS="100", DAVIT_PATH=path))
     if result.returncode != 0:
         raise OSError(f"{' '.join(argv)} failed ({result.returncode}): {result.stderr.strip()}")
     return result.stdout
@@ -77,12 +87,71 @@ def modules():
     return "\n".join(rows) + "\n"
 
 
+def _deck_with(text, group, key, value):
+    """Deck text with `key = value` in `&group`: the key's line replaced where the deck has
+    one, else added at the start of the group."""
+    line = re.compile(rf"^(\s*{key}\s*=\s*)[^!\n]*", re.M | re.I)
+    if line.search(text):
+        return line.sub(rf"\g<1>{value} ", text, count=1)
+    return re.sub(rf"(&{group}\b[^\n]*\n)", rf"\g<1>  {key} = {value}\n", text, count=1,
+                  flags=re.I)
+
+
+def _listing(path):
+    """Markdown table of every dataset of an HDF5 file davit wrote: its path, dimension
+    names (h5py's order), type, units and description (what the writer attached)."""
+    import h5py
+    rows = ["| dataset | dims (h5py order) | type | units | description |", "|---|---|---|---|---|"]
+
+    def text(value):
+        return value.decode() if isinstance(value, bytes) else str(value)
+
+    def visit(name, obj):
+        if not isinstance(obj, h5py.Dataset) or "units" not in obj.attrs:
+            return
+        # netCDF-4's dimension-only scales (a length, no data) are the dims, not datasets
+        if text(obj.attrs.get("NAME", "")).startswith("This is a netCDF dimension"):
+            return
+        dims = ", ".join(d[0].name.rsplit("/", 1)[-1] if len(d) else "-"
+                         for d in obj.dims) or "scalar"
+        kind = {"f": "real", "i": "int", "u": "int", "O": "text", "S": "text"}.get(
+            obj.dtype.kind, str(obj.dtype))
+        if h5py.check_string_dtype(obj.dtype) is not None:
+            kind = "text"
+        rows.append(f"| `/{name}` | {dims} | {kind} | {text(obj.attrs['units'])} | "
+                    f"{text(obj.attrs.get('description', '')).replace('|', '/')} |")
+    with h5py.File(path, "r") as f:
+        f.visititems(visit)
+    return "\n".join(rows) + "\n"
+
+
+def output_blocks(binary):
+    """The run file of a 2 s run of the default scene and the summary of a two-case sweep
+    over it, listed (in a scratch folder)."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as work:
+        with open(os.path.join(ROOT, OUTPUT_DECK)) as f:
+            deck = _deck_with(f.read(), "simulation", "t_end", "2.0")
+        base = os.path.join(work, "base.nml")
+        with open(base, "w") as f:
+            f.write(deck)
+        run = os.path.join(work, "run.h5")
+        _run([binary, "run", base, "-o", run])
+        sweep_deck = os.path.join(work, "sweep.nml")
+        with open(sweep_deck, "w") as f:
+            f.write("&sweep\n  base_deck = 'base.nml'\n  levels = 4, 5\n"
+                    "  realisations = 1\n/\n")
+        summary = os.path.join(work, "sweep.h5")
+        _run([binary, "sweep", sweep_deck, "-o", summary, "--quiet"])
+        return {"output_run": _listing(run), "output_sweep": _listing(summary)}
+
+
 def make(binary):
     """{name: block text} from the code."""
     return {"keys": _run([binary, "keys"]),
             "davit_help": "```text\n" + _run([binary, "--help"]).rstrip() + "\n```\n",
             "post_help": "```text\n" + post_help() + "```\n",
-            "modules": modules()}
+            "modules": modules(), **output_blocks(binary)}
 
 
 def _markers(name):

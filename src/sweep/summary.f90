@@ -80,7 +80,7 @@ contains
                         dims="case")
     icol = int(cases%level, i8)
     call w%write_1d_int("cases/level", icol, "-", &
-                        "Sea-state level (review G19)", dims="case")
+                        "Sea-state level (3-5: the wave height and wind presets)", dims="case")
     icol = int(cases%wave_type, i8)
     call w%write_1d_int("cases/wave_type", icol, "-", &
                         "Wave type: "//wave_type_codes, dims="case")
@@ -157,7 +157,7 @@ contains
                     dims="case")
     col = r%waterborne_time
     call w%write_1d("results/waterborne_time", col, "s", "Time the boat "// &
-                    "became waterborne (review G24); -1 = never"//defined, dims="case")
+                    "became waterborne; -1 = never"//defined, dims="case")
     col = r%end_time
     call w%write_1d("results/end_time", col, "s", "End of the lowering window: "// &
                     "hook release, or the end of the run"//defined, dims="case")
