@@ -44,6 +44,11 @@ program davit
   nargs = command_argument_count()
   if (nargs < 1) call usage_error("missing subcommand")
   command = argument(1)
+  ! `davit SUBCOMMAND --help` (or -h anywhere after it): that subcommand's usage, exit 0
+  if (asks_help(nargs)) then
+    call print_command_help(command)
+    stop
+  end if
   select case (command)
   case ("-h", "--help", "help")
     call print_help()
@@ -450,6 +455,65 @@ contains
       "", &
       "exit status: 0 success, 1 bad input or failed run, 2 usage error"
   end subroutine print_help
+
+  !> True when an argument after the subcommand is -h or --help.
+  logical function asks_help(nargs)
+    integer, intent(in) :: nargs
+    integer :: i
+    asks_help = .false.
+    do i = 2, nargs
+      if (argument(i) == "-h" .or. argument(i) == "--help") asks_help = .true.
+    end do
+  end function asks_help
+
+  !> The usage of one subcommand (the general help for an unknown one).
+  subroutine print_command_help(command)
+    character(len=*), intent(in) :: command
+    select case (command)
+    case ("run")
+      write (output_unit, "(a)") &
+        "usage: davit run DECK.nml [-o OUT.h5]", &
+        "  run the scenario of DECK.nml (scene = hanging_boat, lowering, launch, sea or", &
+        "  ship) and write its record; default output out/DECK.h5", &
+        "  -o, --output OUT.h5   the output file (written whole: a temporary, then renamed)", &
+        "  data files (BEM databases) are found beside the deck, then on DAVIT_PATH"
+    case ("rao")
+      write (output_unit, "(a)") &
+        "usage: davit rao DECK.nml [-o OUT.h5]", &
+        "  the ship's response amplitude operators (&rao, &ship): one run per heading and", &
+        "  frequency; default output out/DECK.h5", &
+        "  -o, --output OUT.h5   the output file (written whole: a temporary, then renamed)"
+    case ("sweep")
+      write (output_unit, "(a)") &
+        "usage: davit sweep SWEEP.nml [-o SUMMARY.h5] [options]", &
+        "       davit sweep --merge OUT.h5 SHARD.h5...", &
+        "  run every case of a sweep deck (&sweep) in parallel; default out/SWEEP.h5", &
+        "  -o, --output SUMMARY.h5  the summary", &
+        "  --threads N              OpenMP threads (default OMP_NUM_THREADS)", &
+        "  --resume                 keep the finished cases of an existing summary", &
+        "  --quiet                  no progress lines", &
+        "  --series DIR             one time-series file per case in DIR", &
+        "  --max-cases K            stop after K newly finished cases (resumable)", &
+        "  --checkpoint S           rewrite the summary every S seconds (default 30)", &
+        "  --dry-run                list the cases and stop", &
+        "  --shard K/N              run only the K-th of N slices of the cases", &
+        "  --merge OUT.h5 SHARD...  join shard summaries into one summary"
+    case ("bench")
+      write (output_unit, "(a)") &
+        "usage: davit bench [--quick] [-o OUT.h5] [--decks DIR]", &
+        "  time fixed scenes, the sea module, a small sweep on 1 and 2 threads and an", &
+        "  operability study; decks from DIR (default input/ or DAVIT_PATH); default", &
+        "  output out/bench.h5; --quick: short runs that check the bench itself"
+    case ("keys")
+      write (output_unit, "(a)") "usage: davit keys", &
+        "  print every deck key: group, default, allowed range, units, meaning (Markdown)"
+    case ("modes")
+      write (output_unit, "(a)") "usage: davit modes DECK.nml", &
+        "  the fastest rates of the deck's system linearised at t = 0 and RK4's step limit"
+    case default
+      call print_help()
+    end select
+  end subroutine print_command_help
 
   function argument(i) result(arg)
     integer, intent(in) :: i

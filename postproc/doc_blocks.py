@@ -3,7 +3,7 @@
 Each block sits in its page of doc/ between `<!-- NAME:start -->` and `<!-- NAME:end -->`:
 
   keys        doc/reference/deck_keys.md  `davit keys` (every deck key, Markdown tables)
-  davit_help  doc/reference/cli.md        `davit --help`
+  davit_help  doc/reference/cli.md        `davit --help` and each subcommand's --help
   post_help   doc/reference/cli.md        `davit-post --help` (its command list)
   modules     doc/reference/modules.md    every folder of src/ and its source files
   output_run  doc/reference/output.md     every dataset of a run file as davit writes it
@@ -146,10 +146,22 @@ def output_blocks(binary):
         return {"output_run": _listing(run), "output_sweep": _listing(summary)}
 
 
+SUBCOMMANDS = ("run", "rao", "sweep", "keys", "modes", "bench")
+
+
+def davit_help(binary):
+    """`davit --help`, then each subcommand's `--help`."""
+    parts = ["```text\n" + _run([binary, "--help"]).rstrip() + "\n```\n"]
+    for sub in SUBCOMMANDS:
+        parts.append(f"\n`davit {sub} --help`:\n\n```text\n"
+                     + _run([binary, sub, "--help"]).rstrip() + "\n```\n")
+    return "".join(parts)
+
+
 def make(binary):
     """{name: block text} from the code."""
     return {"keys": _run([binary, "keys"]),
-            "davit_help": "```text\n" + _run([binary, "--help"]).rstrip() + "\n```\n",
+            "davit_help": davit_help(binary),
             "post_help": "```text\n" + post_help() + "```\n",
             "modules": modules(), **output_blocks(binary)}
 

@@ -83,3 +83,13 @@ def test_diverging_run_keeps_partial_output(davit, tmp_path):
         assert "diverged" in f.attrs["status"].decode()
         assert 0 < f["time"].shape[0] < 501
     assert not (tmp_path / "diverge.h5.tmp").exists()
+
+
+@pytest.mark.parametrize("sub", ["run", "rao", "sweep", "keys", "modes", "bench"])
+def test_subcommand_help(davit, sub):
+    """`davit SUB --help` prints that subcommand's usage on stdout and exits 0 (it used to
+    be refused as an unknown option)."""
+    result = davit(sub, "--help")
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith(f"usage: davit {sub}")
+    assert result.stderr == ""
