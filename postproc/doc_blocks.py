@@ -31,6 +31,8 @@ import shutil
 import subprocess
 import sys
 
+from . import layout
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 KEYS_PAGE = os.path.join("doc", "reference", "deck_keys.md")
 CLI_PAGE = os.path.join("doc", "reference", "cli.md")
@@ -107,10 +109,10 @@ def _listing(path):
         return value.decode() if isinstance(value, bytes) else str(value)
 
     def visit(name, obj):
-        if not isinstance(obj, h5py.Dataset) or "units" not in obj.attrs:
+        if not isinstance(obj, h5py.Dataset) or layout.UNITS not in obj.attrs:
             return
         # netCDF-4's dimension-only scales (a length, no data) are the dims, not datasets
-        if text(obj.attrs.get("NAME", "")).startswith("This is a netCDF dimension"):
+        if text(obj.attrs.get(layout.SCALE_NAME, "")).startswith(layout.DIMENSION_ONLY):
             return
         dims = ", ".join(d[0].name.rsplit("/", 1)[-1] if len(d) else "-"
                          for d in obj.dims) or "scalar"
@@ -118,8 +120,8 @@ def _listing(path):
             obj.dtype.kind, str(obj.dtype))
         if h5py.check_string_dtype(obj.dtype) is not None:
             kind = "text"
-        rows.append(f"| `/{name}` | {dims} | {kind} | {text(obj.attrs['units'])} | "
-                    f"{text(obj.attrs.get('description', '')).replace('|', '/')} |")
+        rows.append(f"| `/{name}` | {dims} | {kind} | {text(obj.attrs[layout.UNITS])} | "
+                    f"{text(obj.attrs.get(layout.DESCRIPTION, '')).replace('|', '/')} |")
     with h5py.File(path, "r") as f:
         f.visititems(visit)
     return "\n".join(rows) + "\n"

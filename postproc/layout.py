@@ -540,6 +540,7 @@ def load_sweep_columns(path, fields):
 # dimension-only scale (a float dataset of the dimension's length, never written, whose
 # NAME starts with the sentence below: netCDF-4, h5netcdf and xarray hide it as a variable).
 DIMENSION_ONLY = "This is a netCDF dimension but not a netCDF variable."
+SCALE_NAME = "NAME"                 # a dimension scale's name attribute (HDF5 DS)
 UNITS = "units"
 DESCRIPTION = "description"
 LONG_NAME = "long_name"
