@@ -45,7 +45,8 @@ contains
                    new_case("modal_mass_block_solves_m_plus_s_a_inf", modal_block), &
                    new_case("in_air_no_added_mass_no_radiation", in_air), &
                    new_case("water_entry_force_continuous", water_entry), &
-                   new_case("diffraction_slow_clock_vs_exact_sum", diffraction_clock)]
+                   new_case("diffraction_slow_clock_vs_exact_sum", diffraction_clock), &
+                   new_case("heeled_heaving_memory_no_sway", heeled_heave_memory)]
   end function collect_boat_bem
 
   !> Linear interpolation of y(x) at v (x ascending, clamped).
@@ -392,5 +393,58 @@ contains
     call note(state, "largest error / largest load", worst/scale)
     call check_true(state, worst < 2.0e-3_wp*scale, "slow clock within 2e-3")
   end subroutine diffraction_clock
+
+  !> The radiation memory in the seakeeping frame (level, yawed with the boat): a boat
+  !> heeled 10 deg and yawed 0.3 rad, fully immersed in calm water, heaving straight up at
+  !> 1 m/s (inertial) with the states of its pure-heave kernel K33 after a 1 m/s, 1 s heave
+  !> (all other states zero): the memory force is vertical, its sway and surge in the
+  !> seakeeping frame < 1e-12 of the heave force, and the memory is fed pure heave (the
+  !> sway and roll kernels' state rates < 1e-12 of the largest rate; before: sin(phi) of
+  !> the input). Fed and applied in body axes (before),
+  !> the heave memory force leaned with the heel: a sway force -sin(phi) of it (17 %).
+  subroutine heeled_heave_memory(state)
+    type(case_state), intent(inout) :: state
+    type(system_type) :: sys
+    type(diffraction_cache_type) :: none
+    real(wp), allocatable :: y(:), x(:), xdot(:)
+    real(wp) :: c(3, 3), rz(3, 3), u(6), f(6), v(6), fh(3), phi, psi, driven
+    integer :: k, i0
+    y = new_test_system(sys, deck_config(base//" &boat "//water//" /"))
+    associate (q => sys%par%radiation_part%q)
+      allocate (x(q(2) - q(1) + 1), xdot(q(2) - q(1) + 1))
+    end associate
+    phi = 10.0_wp*pi/180.0_wp
+    psi = 0.3_wp
+    c = rotation_matrix([phi, 0.0_wp, psi])
+    rz = rotation_matrix([0.0_wp, 0.0_wp, psi])
+    u = [0.0_wp, 0.0_wp, 0.0_wp, c(3, :)]    ! 1 m/s along the inertial vertical
+    x = 0.0_wp
+    x(1) = 1.0_wp
+    do k = 1, size(sys%par%bem%db%pairs)
+      associate (p => sys%par%bem%db%pairs(k))
+        i0 = 1 + p%first
+        if (p%i == 3 .and. p%j == 3) x(i0:i0 + p%n - 1) = p%b
+      end associate
+    end do
+    call boat_bem_loads(sys%par%bem, sys%par%sea, 0.0_wp, c, matmul(c, [0.0_wp, 0.0_wp, &
+                        z_float]), psi, u, 1.0_wp, x, none, xdot, f, v)
+    fh = matmul(transpose(rz), matmul(c, f(4:6)))    ! the force in the seakeeping frame
+    driven = 0.0_wp
+    do k = 1, size(sys%par%bem%db%pairs)
+      associate (p => sys%par%bem%db%pairs(k))
+        i0 = 1 + p%first
+        if (p%j == 2 .or. p%j == 4) driven = max(driven, maxval(abs(xdot(i0:i0 + p%n - 1))))
+      end associate
+    end do
+    call note(state, "heave memory force [N]", fh(3))
+    call note(state, "sway memory force [N]", fh(2))
+    call check_true(state, abs(fh(3)) > 0.0_wp, "the heave memory acts")
+    call check(state, fh(2), 0.0_wp, "no sway force from the heave memory", &
+               abs_tol=1.0e-12_wp*abs(fh(3)))
+    call check(state, fh(1), 0.0_wp, "no surge force from the heave memory", &
+               abs_tol=1.0e-12_wp*abs(fh(3)))
+    call check(state, driven, 0.0_wp, "sway and roll kernels not driven by a pure heave", &
+               abs_tol=1.0e-12_wp*maxval(abs(xdot(2:))))
+  end subroutine heeled_heave_memory
 
 end module test_boat_bem

@@ -22,7 +22,14 @@
 !> (surge, sway, heave, roll, pitch, yaw), Kane order (omega, v) (eq. 4) by to_kane_order.
 !> Wave loads: F = Re[X a exp(i (w t + eps - k (x_G cos g + y_G sin g)))] at the CG's
 !> current horizontal position, relative heading beta = g - yaw, in the level heading
-!> frame, turned into body axes (F_b = C^T Rz(yaw) F_h) as the ship's.
+!> frame, turned into body axes (F_b = C^T Rz(yaw) F_h) as the ship's. The radiation memory
+!> likewise: Cummins' equation is linear in that seakeeping frame h (level, yawed with the
+!> boat), not in the rolling and pitching body axes, so mu is fed the speeds resolved in h,
+!> m^T u (m = C^T Rz(yaw)), and its load is turned into body axes, m mu. Fed and applied in
+!> body axes, the heave memory force of a heeled boat leaned with the heel: a sway force
+!> -sin(phi) mu_3, whose mean over a roll in phase with the heave is a spurious second-order
+!> drift (the ship's error of issue 20, item 1). A(inf) (the layout's modal block
+!> M + s A(inf)) is still applied in body axes, without the turning and transport terms.
 module davit_boat_bem_water
   use davit_kinds, only: wp, pi
   use davit_error, only: error_type, fatal_error
@@ -170,8 +177,12 @@ contains
       v = 1.0_wp
       return
     end if
-    call bem_memory(self%db, x(2:), s*[u(4:6), u(1:3)], xdot(2:), mu)
-    f = -s*[mu(4:6), mu(1:3)] - 0.5_wp*xdot(1)*matmul(self%a_inf, u)
+    ! the memory of Cummins' equation in the seakeeping frame (level, yawed with the boat;
+    ! m = C^T Rz(psi) turns its components into body axes): fed the speeds resolved
+    ! there, its load turned back into body axes (as the ship's, davit_ship_ship_model)
+    m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, psi]))
+    call bem_memory(self%db, x(2:), s*[matmul(u(4:6), m), matmul(u(1:3), m)], xdot(2:), mu)
+    f = -s*[matmul(m, mu(4:6)), matmul(m, mu(1:3))] - 0.5_wp*xdot(1)*matmul(self%a_inf, u)
     f(1) = f(1) - s*self%b44*u(1)
     v = 1.0_wp + s*self%lambda
     if (s <= 0.0_wp .or. sea%kind == wave_none) return
@@ -180,7 +191,6 @@ contains
     else
       load = wave_ramp(sea, t)*diffraction_load(self, sea, t, r, psi)
     end if
-    m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, psi]))
     f(1:3) = f(1:3) + s*matmul(m, load(4:6))
     f(4:6) = f(4:6) + s*matmul(m, load(1:3))
   end subroutine boat_bem_loads
