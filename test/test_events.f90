@@ -34,6 +34,15 @@ module test_events
     procedure :: modes => bouncer_modes
   end type bouncer
 
+  !> y' = (1, 1) with two modes that switch at different times: y(1) passes 0.3 and y(2)
+  !> passes 0.7, both inside one step from 0 to 1 (as one sling goes taut before the other).
+  type, extends(ode_problem) :: two_switches
+  contains
+    procedure :: rhs => two_switches_rhs
+    procedure :: n_modes => two_switches_n_modes
+    procedure :: modes => two_switches_modes
+  end type two_switches
+
   !> y' = 1 with a mode that changes every 1e-9 s: every step holds a switch just past the
   !> last one, as a link at zero tension chatters between taut and slack.
   type, extends(ode_problem) :: chatterer
@@ -54,7 +63,8 @@ contains
                    new_case("hertz_impact_onset_and_peak_located", hertz_located), &
                    new_case("fender_next_phase_is_fender_update", next_phase), &
                    new_case("bench_accuracy_against_a_written_reference", bench_accuracy), &
-                   new_case("chattering_modes_do_not_stall_the_run", chattering)]
+                   new_case("chattering_modes_do_not_stall_the_run", chattering), &
+                   new_case("two_modes_switching_apart_located_in_turn", two_apart)]
   end function collect_events
 
   subroutine bouncer_rhs(self, t, y, dydt)
@@ -121,6 +131,52 @@ contains
     call check(state, y(1), t, "y = t", abs_tol=1e-15_wp)
     call check(state, t, 0.01_wp, "reached the end", abs_tol=1e-12_wp)
   end subroutine chattering
+
+  subroutine two_switches_rhs(self, t, y, dydt)
+    class(two_switches), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    real(wp), intent(out) :: dydt(:)
+    dydt = 1.0_wp
+  end subroutine two_switches_rhs
+
+  pure integer function two_switches_n_modes(self)
+    class(two_switches), intent(in) :: self
+    two_switches_n_modes = 2
+  end function two_switches_n_modes
+
+  subroutine two_switches_modes(self, t, y, m)
+    class(two_switches), intent(in) :: self
+    real(wp), intent(in) :: t, y(:)
+    integer, intent(out) :: m(:)
+    m(1) = merge(1, 0, y(1) > 0.3_wp)
+    m(2) = merge(1, 0, y(2) > 0.7_wp)
+  end subroutine two_switches_modes
+
+  !> Two modes switching at 0.3 and 0.7 s (closed form: y = t) inside one RK4 step from 0
+  !> to 1 s: the stepper stops just past the FIRST switch, then past the second. A
+  !> bisection that kept the left end while any mode was unchanged would land on 0.7 first.
+  subroutine two_apart(state)
+    type(case_state), intent(inout) :: state
+    type(two_switches) :: p
+    type(event_stepper_type) :: stepper
+    class(integrator_type), allocatable :: integ
+    type(error_type), allocatable :: error
+    real(wp) :: t, y(2)
+    logical :: event
+    call new_integrator("rk4", 2, integ, error)
+    call stepper%init(2, 2)
+    t = 0.0_wp
+    y = 0.0_wp
+    call stepper%step(integ, p, t, y, 1.0_wp, event)
+    call check_true(state, event, "first step ends at an event")
+    call check(state, t, 0.3_wp, "first switch located (y(1) = 0.3)", abs_tol=1.0e-7_wp)
+    call stepper%step(integ, p, t, y, 1.0_wp, event)
+    call check_true(state, event, "second step ends at an event")
+    call check(state, t, 0.7_wp, "second switch located (y(2) = 0.7)", abs_tol=1.0e-7_wp)
+    call stepper%step(integ, p, t, y, 1.0_wp, event)
+    call check(state, t, 1.0_wp, "then the step's end", abs_tol=1.0e-12_wp)
+    call check(state, y(2), 1.0_wp, "y = t", abs_tol=1.0e-12_wp)
+  end subroutine two_apart
 
   subroutine bouncer_modes(self, t, y, m)
     class(bouncer), intent(in) :: self
