@@ -46,7 +46,8 @@ contains
                    new_case("fender_impact_in_system", fender_impact), &
                    new_case("approach_rate_eq33_moving_side_vs_fd", moving_side_rate), &
                    new_case("surface_watch_never_skips_a_wet_hull", surface_watch), &
-                   new_case("contact_approach_graded_vs_window", contact_approach)]
+                   new_case("contact_approach_graded_vs_window", contact_approach), &
+                   new_case("strip_sway_drag_half_rho_cd_a_v2", sway_drag)]
   end function collect_boat_water
 
 
@@ -439,5 +440,35 @@ contains
     call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
     call check_true(state, dry > 1000, "the watch skips the high poses")
   end subroutine surface_watch
+
+  !> The strips' quadratic drag (eq. 20's drag term, 0.5 rho C_D A |v| v) in sway: the
+  !> boat upright in calm water with its keel 0.6 m deep, moving sideways at +-V: the odd
+  !> part of the sway force is -0.5 rho C_D,y (L T) |V| V, L T the wetted lateral area of
+  !> the wall-sided sections (L the hull length, T = 0.6 m), at V = 0.5 and 2 m/s. Buoyancy
+  !> and the other loads do not depend on the sign of a pure sway speed.
+  subroutine sway_drag(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type) :: sys
+    real(wp), allocatable :: y0(:)
+    real(wp), parameter :: depth = 0.6_wp
+    real(wp) :: c(3, 3), r(3), u(6), fp(6), fm(6), volume, v, expected
+    integer :: i
+    cfg = strip_config("&slings attached = .false. / &contact enabled = .false. /")
+    y0 = new_test_system(sys, cfg)
+    c = rotation_matrix([0.0_wp, 0.0_wp, 0.0_wp])
+    r = [0.0_wp, 0.0_wp, depth - sys%par%water%hull%keel]
+    do i = 1, 2
+      v = merge(0.5_wp, 2.0_wp, i == 1)
+      u = 0.0_wp
+      u(5) = v
+      call strip_loads(sys%par%water, sys%par%sea, 0.0_wp, c, r, u, fp, volume)
+      u(5) = -v
+      call strip_loads(sys%par%water, sys%par%sea, 0.0_wp, c, r, u, fm, volume)
+      expected = -0.5_wp*rho_water*sys%par%water%cd(2)*sys%par%water%hull%length*depth*v*v
+      call check(state, 0.5_wp*(fp(5) - fm(5)), expected, "odd sway force vs drag law", &
+                 rel_tol=1.0e-9_wp)
+    end do
+  end subroutine sway_drag
 
 end module test_boat_water
