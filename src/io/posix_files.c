@@ -74,19 +74,28 @@ long davit_read(int fd, char *buf, long n, int *err) {
 
 int davit_close(int fd) { return close(fd); }
 
-/* `path` created exclusively and written in place (where hard links are not supported):
- * on a failed write it is removed again. 0, or an errno value. */
-static int create_in_place(const char *path, const char *text, long n) {
+/* `path` created exclusively and the n bytes of `text` written and flushed to the disk:
+ * 0, or an errno value (ENOSPC for a short write); *opened says whether the file was
+ * created (it is then left in place whatever the outcome). */
+static int write_exclusive(const char *path, const char *text, long n, int *opened) {
   int fd, status = 0;
   ssize_t put;
   fd = open(path, O_WRONLY | O_CREAT | O_EXCL, 0644);
+  *opened = fd >= 0;
   if (fd < 0) return errno;
   put = write(fd, text, (size_t)n);
   if (put < 0) status = errno;
   else if (put != n) status = ENOSPC;
   if (fsync(fd) != 0 && status == 0) status = errno;
   if (close(fd) != 0 && status == 0) status = errno;
-  if (status != 0) unlink(path);
+  return status;
+}
+
+/* `path` created exclusively and written in place (where hard links are not supported):
+ * on a failed write it is removed again. 0, or an errno value. */
+static int create_in_place(const char *path, const char *text, long n) {
+  int opened, status = write_exclusive(path, text, n, &opened);
+  if (status != 0 && opened) unlink(path);
   return status;
 }
 
@@ -97,16 +106,10 @@ static int create_in_place(const char *path, const char *text, long n) {
  * 0, -1 (exists) or an errno value; `tmp` never remains. */
 int davit_write_whole(const char *path, const char *tmp, const char *text, long n,
                       int replace) {
-  int fd, status = 0;
-  ssize_t put;
+  int opened, status;
   unlink(tmp);  /* named after this process: a leftover is a dead namesake's */
-  fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) return errno;
-  put = write(fd, text, (size_t)n);
-  if (put < 0) status = errno;
-  else if (put != n) status = ENOSPC;
-  if (fsync(fd) != 0 && status == 0) status = errno;
-  if (close(fd) != 0 && status == 0) status = errno;
+  status = write_exclusive(tmp, text, n, &opened);
+  if (!opened) return status;
   if (status == 0 && replace) {
     if (rename(tmp, path) != 0) status = errno;
   } else if (status == 0 && link(tmp, path) != 0) {

@@ -73,3 +73,16 @@ def sea_run(davit, tmp_path_factory):
     result = davit("run", deck, "-o", out)
     assert result.returncode == 0, result.stderr
     return deck, out
+
+
+@pytest.fixture(scope="module")
+def launch(davit, tmp_path_factory):
+    """A 2 s launch of input/iiib_level5_090.nml (the deck's text with t_end = 2)."""
+    folder = tmp_path_factory.mktemp("launch")
+    text = (ROOT / "input" / "iiib_level5_090.nml").read_text()
+    deck = folder / "launch.nml"
+    deck.write_text(text.replace("t_end = 0.0", "t_end = 2.0", 1))
+    out = folder / "launch.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    return out

@@ -16,7 +16,6 @@ from postproc import launch_geometry as geo
 from postproc import layout, scene
 
 meshio = pytest.importorskip("meshio")
-ROOT = pathlib.Path(__file__).resolve().parents[2]
 EVERY = 3
 # points per frame of each part: the BEM ship's hull lines (stations of closed sections:
 # both sides from the keel through the waterline to the deck); 8 corners of each of the
@@ -31,19 +30,6 @@ POINTS = {"ship": geo.SHIP_STATIONS * 2 * (sum(geo.SHIP_LEVELS) + 1), "davit": 8
 SHIP_BEAM, SHIP_DRAUGHT, SHIP_DEPTH, SHIP_LWL = 20.8, 4.4, 11.4, 130.55
 HEADS_Z = 20.55        # m above the still water (&rigging head_fore/head_aft z = -20.55)
 PNG_SIZE = (800, 450)
-
-
-@pytest.fixture(scope="module")
-def launch(davit, tmp_path_factory):
-    """A 2 s launch of input/iiib_level5_090.nml (the deck's text with t_end = 2)."""
-    folder = tmp_path_factory.mktemp("launch")
-    text = (ROOT / "input" / "iiib_level5_090.nml").read_text()
-    deck = folder / "launch.nml"
-    deck.write_text(text.replace("t_end = 0.0", "t_end = 2.0", 1))
-    out = folder / "launch.h5"
-    result = davit("run", deck, "-o", out)
-    assert result.returncode == 0, result.stderr
-    return out
 
 
 @pytest.fixture(scope="module")

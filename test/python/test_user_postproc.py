@@ -140,19 +140,6 @@ def test_bench_outside_the_checkout_finds_its_decks(davit_bin, tmp_path):
 
 # --- stills and single-run titles -----------------------------------------------------------
 
-@pytest.fixture(scope="module")
-def launch(davit, tmp_path_factory):
-    """A 2 s launch of input/iiib_level5_090.nml."""
-    folder = tmp_path_factory.mktemp("launch")
-    text = (ROOT / "input" / "iiib_level5_090.nml").read_text()
-    deck = folder / "launch.nml"
-    deck.write_text(text.replace("t_end = 0.0", "t_end = 2.0", 1))
-    out = folder / "launch.h5"
-    result = davit("run", deck, "-o", out)
-    assert result.returncode == 0, result.stderr
-    return out
-
-
 @pytest.mark.parametrize("name, magic", [("still.jpg", b"\xff\xd8\xff"),
                                          ("still.png", b"\x89PNG")])
 def test_still_writes_the_file_named(launch, tmp_path, name, magic):
