@@ -66,3 +66,16 @@ def test_the_check_sees_a_module_without_a_test(tmp_path):
     """The scan itself: a made-up module is neither used by a test nor listed."""
     assert "davit_made_up_module" not in used_by_tests() | set(index_lines())
     assert "davit_core_kane" in used_by_tests()
+
+
+def test_no_doc_comment_starts_as_ford_metadata():
+    """FORD reads `word: text` on the first line of a doc comment block as metadata and
+    drops it from the page; such a first line must be worded otherwise."""
+    bad = []
+    for path in sorted((ROOT / "src").rglob("*.[fF]90")) + sorted((ROOT / "app").rglob("*.[fF]90")):
+        lines = path.read_text().splitlines()
+        for i, line in enumerate(lines):
+            if re.match(r"\s*!>\s*[A-Za-z0-9_-]+:", line) and (
+                    i == 0 or not re.match(r"\s*!>", lines[i - 1])):
+                bad.append(f"{path.relative_to(ROOT)}:{i + 1}")
+    assert not bad, bad
