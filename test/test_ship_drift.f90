@@ -29,7 +29,8 @@ contains
     suite%cases = [new_case("load_mean_and_newman_closed_forms", closed_forms), &
                    new_case("database_down_wave_and_reflection_limit", database_physics), &
                    new_case("beam_sea_mean_sway_force_is_the_drift", beam_sea_force), &
-                   new_case("beam_sea_sway_after_100s_newton", beam_sea_sway)]
+                   new_case("beam_sea_sway_after_100s_newton", beam_sea_sway), &
+                   new_case("yawed_ship_drift_along_the_waves", yawed_ship)]
   end function collect_ship_drift
 
   !> Two components (0.5 and 1.0 rad/s, amplitudes 1.5 and 0.7 m, phases 0.3 and 1.1 rad)
@@ -228,6 +229,29 @@ contains
                rel_tol=0.1_wp)
   end subroutine beam_sea_sway
 
+  !> The ship heading 30 deg in waves travelling towards 120 deg (relative heading 90 deg, H =
+  !> 1.5 m, T = 6 s), drift 'mean': the mean inertial horizontal force over periods 3-7
+  !> (phases 0 and 180 deg averaged) points along the waves, (cos 120, sin 120) D a^2,
+  !> within 10 % of D a^2 in each component: the load acts in the seakeeping frame and is
+  !> turned with the yaw (a lost or doubled yaw rotation points it along 90 or 150 deg).
+  subroutine yawed_ship(state)
+    type(case_state), intent(inout) :: state
+    real(wp) :: f(2, 2), fy, y, d_a2, t, me, expected(2)
+    integer :: k
+    do k = 1, 2
+      call drift_run("mean", "height = 1.5, period = 6, ", 180.0_wp*(k - 1), 8, fy, y, d_a2, &
+                     t, me, "heading_deg = 30, ", 120.0_wp, f(:, k))
+    end do
+    expected = d_a2*[cos(120.0_wp*pi/180.0_wp), sin(120.0_wp*pi/180.0_wp)]
+    call note(state, "D a^2 [N]", d_a2)
+    call note(state, "mean force x [N]", sum(f(1, :))/2.0_wp)
+    call note(state, "mean force y [N]", sum(f(2, :))/2.0_wp)
+    call check(state, sum(f(1, :))/2.0_wp, expected(1), "x along the waves", &
+               abs_tol=0.1_wp*d_a2)
+    call check(state, sum(f(2, :))/2.0_wp, expected(2), "y along the waves", &
+               abs_tol=0.1_wp*d_a2)
+  end subroutine yawed_ship
+
   !> Mean over [t0, t0 + period] of int_0^t (t - tau) r(tau)^2 dtau, r = (1 - cos(pi tau/tr))/2
   !> up to the ramp time tr, 1 after: trapezoidal rule on 0.01 s.
   pure real(wp) function period_mean_ramped_drift(tr, t0, period) result(s)
@@ -260,11 +284,15 @@ contains
   !> each: the mean inertial sway force of the external loads over periods 3-7 (fbar), the
   !> mean sway over the last period (ybar), D(w, 90 deg) a^2 of the database, the period
   !> and m_e = M + A22(0.1 rad/s).
-  subroutine drift_run(drift, extra, phase_deg, n_periods, fbar, ybar, d_a2, period, me)
+  subroutine drift_run(drift, extra, phase_deg, n_periods, fbar, ybar, d_a2, period, me, &
+                       ship_extra, direction_deg, fxy)
     character(len=*), intent(in) :: drift, extra
     real(wp), intent(in) :: phase_deg
     integer, intent(in) :: n_periods
     real(wp), intent(out) :: fbar, ybar, d_a2, period, me
+    character(len=*), intent(in), optional :: ship_extra
+    real(wp), intent(in), optional :: direction_deg
+    real(wp), intent(out), optional :: fxy(2)
     integer, parameter :: per_period = 128
     character(len=16) :: phase
     type(config_type) :: cfg
@@ -272,24 +300,32 @@ contains
     type(ship_system_type) :: ship
     type(rk4_type) :: rk
     real(wp), allocatable :: y(:)
-    real(wp) :: t, dt, c(3, 3), load(6), d(3)
+    real(wp) :: t, dt, c(3, 3), load(6), d(3), f(2), chi
+    character(len=16) :: direction
+    character(len=:), allocatable :: keys
     integer :: i
     write (phase, "(f6.1)") phase_deg
+    chi = 90.0_wp
+    if (present(direction_deg)) chi = direction_deg
+    write (direction, "(f6.1)") chi
+    keys = ""
+    if (present(ship_extra)) keys = ship_extra
     call parse_config("t.nml", "&ship model = 'bem', database = '"//database// &
-                      "', crossflow_cd = 0, drift = '"//drift//"' / &sea level = 5, "// &
-                      extra//"wave_type = 'airy', direction_deg = 90, ramp_periods = 2, "// &
-                      "phase_deg = "//trim(phase)//" / &wind speed = 0 /", cfg, error)
+                      "', crossflow_cd = 0, "//keys//"drift = '"//drift//"' / &sea level = 5, "// &
+                      extra//"wave_type = 'airy', direction_deg = "//trim(direction)// &
+                      ", ramp_periods = 2, phase_deg = "//trim(phase)//" / &wind speed = 0 /", &
+                      cfg, error)
     if (allocated(error)) error stop error%message
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
-    d = bem_drift(ship%hydro%db, ship%sea%omega(1), 0.5_wp*pi)
+    d = bem_drift(ship%hydro%db, ship%sea%omega(1), ship%sea%direction(1) - ship%psi_ref)
     d_a2 = d(2)*ship%sea%amplitude(1)**2
     me = ship%hydro%mass + ship%hydro%db%added_mass(2, 2, 1)
     period = 2.0_wp*pi/ship%sea%omega(1)
     dt = period/per_period
     call rk%init(size(y))
     ybar = 0.0_wp
-    fbar = 0.0_wp
+    f = 0.0_wp
     do i = 1, n_periods*per_period
       t = real(i - 1, wp)*dt
       call rk%step(ship, t, y, dt)
@@ -298,11 +334,13 @@ contains
         if (i > 2*per_period .and. i <= 7*per_period) then
           c = rotation_matrix(q(1:3))
           load = ship_loads(ship, t + dt, q, u, c)
-          fbar = fbar + dot_product(c(2, :), load(1:3))/(5*per_period)
+          f = f + matmul(c(1:2, :), load(1:3))/(5*per_period)
         end if
         if (i > (n_periods - 1)*per_period) ybar = ybar + q(5)/per_period
       end associate
     end do
+    fbar = f(2)
+    if (present(fxy)) fxy = f
   end subroutine drift_run
 
 end module test_ship_drift
