@@ -21,10 +21,12 @@
 !> component; DGEMM), exact at the nodes to rounding.
 !>
 !> Interpolation: Catmull-Rom cubics in x, y, t (and d): C1, reproduce quadratics, error
-!> O(h^3) per component of wavenumber k (O(dt^3) in time, frequency w); the derivatives
-!> (d/dt, d/dx, d/dy, d/dd) are those of the interpolant, O(h^2). The test suite checks
-!> the orders on one Airy component. Values are unramped (the caller multiplies by
-!> wave_ramp, as for the exact sums).
+!> O(h^3) per component of wavenumber k (O(dt^3) in time, frequency w). The elevation's
+!> derivatives (d/dt, d/dx, d/dy) are fields of their own, sampled exactly and
+!> interpolated (O(h^3)); the velocity's (d/dt, d/dx, d/dy, d/dd: the slow clock's rates
+!> and first-order expansion over centimetres) are those of the interpolant, O(h^2). The
+!> test suite checks the orders on one Airy component. Values are unramped (the caller
+!> multiplies by wave_ramp, as for the exact sums).
 module davit_sea_wave_grid
   use davit_kinds, only: wp
   use davit_core_fastmath, only: fast_sincos
@@ -37,6 +39,10 @@ module davit_sea_wave_grid
 
   !> Rows of one matrix product (fields x samples), at least.
   integer, parameter :: rows = 64
+  !> Elevation fields per node: eta and its derivatives (t, x, y), each sampled exactly and
+  !> interpolated (O(h^3)) rather than differentiated from the interpolant (O(h^2)): the
+  !> slope sets the tangent-plane buoyancy, and the steep short components dominate it.
+  integer, parameter :: ne = 4
   !> Nodes built beyond the footprint's stencils on each side.
   integer, parameter :: pad = 0
 
@@ -47,7 +53,7 @@ module davit_sea_wave_grid
     real(wp) :: h = 1.0_wp, dt = 0.1_wp, margin = 3.0_wp, depth = 3.0_wp
     !> Node (1, 1) at (x0, y0); nx x ny nodes; nl depth levels; nfld fields per node.
     real(wp) :: x0 = 0.0_wp, y0 = 0.0_wp
-    integer :: nx = 0, ny = 0, nl = 0, nfld = 1
+    integer :: nx = 0, ny = 0, nl = 0, nfld = ne
     !> Samples per block; global index of the block's first sample (time s0 dt); samples held.
     integer :: nb = 16, nt = 0
     integer(8) :: s0 = 0
@@ -55,7 +61,7 @@ module davit_sea_wave_grid
     integer :: builds = 0, node_builds = 0, placements = 0
     !> Nodes whose spatial phasors are known; nodes built for the block in memory.
     logical, allocatable :: phased(:), ready(:)
-    !> Fields (nfld, nt, nx*ny): 1 eta, then (u, v, w) per level.
+    !> Fields (nfld, nt, nx*ny): eta, d eta/dt, d eta/dx, d eta/dy, then (u, v, w) per level.
     real(wp), allocatable :: f(:, :, :)
     !> Spatial phasors (nx*ny, 2n): cos(k . x), sin(k . x) of each node.
     real(wp), allocatable :: sp(:, :)
@@ -92,7 +98,7 @@ contains
     if (.not. g%enabled) return
     g%nl = 0
     if (velocity) g%nl = ceiling(depth/h - 1.0e-9_wp) + 3
-    g%nfld = 1 + 3*g%nl
+    g%nfld = ne + 3*g%nl
     allocate (g%decay(field%n, g%nl))
     do l = 1, g%nl
       g%decay(:, l) = field%omega*exp(-field%k*real(l - 2, wp)*h)
@@ -232,17 +238,25 @@ contains
     call rotation_phasors(field, g%dt, cr, sr)
     do j0 = 1, g%nt, nsub
       do jl = 1, nsub
+        ! a cos(A - B) = (a cos A) cos B + (a sin A) sin B and a sin(A - B) = (a sin A)
+        ! cos B - (a cos A) sin B: columns 1..n multiply cos B, n+1..2n sin B
         r = 1 + g%nfld*(jl - 1)
         tt(r, 1:n) = ca
         tt(r, n + 1:2*n) = sa
+        tt(r + 1, 1:n) = -field%omega*sa
+        tt(r + 1, n + 1:2*n) = field%omega*ca
+        tt(r + 2, 1:n) = field%kx*sa
+        tt(r + 2, n + 1:2*n) = -field%kx*ca
+        tt(r + 3, 1:n) = field%ky*sa
+        tt(r + 3, n + 1:2*n) = -field%ky*ca
         do l = 1, g%nl
-          associate (e => g%decay(:, l))
-            tt(r + 3*l - 2, 1:n) = ca*e*field%cos_dir
-            tt(r + 3*l - 2, n + 1:2*n) = sa*e*field%cos_dir
-            tt(r + 3*l - 1, 1:n) = ca*e*field%sin_dir
-            tt(r + 3*l - 1, n + 1:2*n) = sa*e*field%sin_dir
-            tt(r + 3*l, 1:n) = sa*e
-            tt(r + 3*l, n + 1:2*n) = -ca*e
+          associate (e => g%decay(:, l), q => r + ne + 3*(l - 1))
+            tt(q, 1:n) = ca*e*field%cos_dir
+            tt(q, n + 1:2*n) = sa*e*field%cos_dir
+            tt(q + 1, 1:n) = ca*e*field%sin_dir
+            tt(q + 1, n + 1:2*n) = sa*e*field%sin_dir
+            tt(q + 2, 1:n) = sa*e
+            tt(q + 2, n + 1:2*n) = -ca*e
           end associate
         end do
         call advance_phasors(ca, sa, cr, sr)
@@ -331,10 +345,10 @@ contains
 
   !> Bounds of the interpolation error of the elevation [m] and of its slope [-], for the
   !> surface watch's proof of dryness. One dimension, a cos(k x) sampled at spacing h:
-  !> value error <= a E(k h), E(z) = min(0.034 z^3, 2.25); derivative error <= a k 0.17
-  !> (k h)^2 (maxima over phase and position, z <= 3; 2.25 = 1 + the weights' largest
-  !> sum of magnitudes 1.25). The tensor product in x, y, t compounds them with factors
-  !> 1.25 (value) and 3/h (the derivative weights' largest sum of magnitudes).
+  !> error <= a E(k h), E(z) = min(0.034 z^3, 2.25) (maximum over phase and position,
+  !> z <= 3; 2.25 = 1 + the weights' largest sum of magnitudes 1.25). The tensor product
+  !> in x, y, t compounds them with the factor 1.25 per dimension (1.5625 for three); the
+  !> slope is a field of its own (a k sin), so its bound carries a factor k.
   pure function grid_error_bounds(g, field) result(b)
     type(wave_grid_type), intent(in) :: g
     type(wave_field_type), intent(in) :: field
@@ -348,9 +362,7 @@ contains
       ey = cubic_error(abs(field%ky(i))*g%h)
       et = cubic_error(field%omega(i)*g%dt)
       b(1) = b(1) + abs(field%amplitude(i))*1.5625_wp*(ex + ey + et)
-      b(2) = b(2) + abs(field%amplitude(i))*(field%k(i)* &
-             min(2.5_wp, 0.27_wp*((field%k(i)*g%h)**2 + (field%omega(i)*g%dt)**2)) + &
-             3.75_wp/g%h*(ex + ey + et))
+      b(2) = b(2) + abs(field%amplitude(i))*field%k(i)*1.5625_wp*(ex + ey + et)
     end do
   end function grid_error_bounds
 
@@ -392,7 +404,7 @@ contains
     type(wave_grid_type), intent(in) :: g
     real(wp), intent(in) :: t, x, y
     real(wp), intent(out) :: e(4)
-    real(wp) :: wx(4), dwx(4), wy(4), dwy(4), wt(4), dwt(4), v, vt
+    real(wp) :: wx(4), dwx(4), wy(4), dwy(4), wt(4), dwt(4)
     integer :: ix, iy, it, a, b, node
     call stencil((x - g%x0)/g%h, g%nx, ix, wx, dwx)
     call stencil((y - g%y0)/g%h, g%ny, iy, wy, dwy)
@@ -401,17 +413,9 @@ contains
     do b = 1, 4
       do a = 1, 4
         node = ix + a - 1 + g%nx*(iy + b - 2)
-        v = sum(wt*g%f(1, it:it + 3, node))
-        vt = sum(dwt*g%f(1, it:it + 3, node))
-        e(1) = e(1) + wx(a)*wy(b)*v
-        e(2) = e(2) + wx(a)*wy(b)*vt
-        e(3) = e(3) + dwx(a)*wy(b)*v
-        e(4) = e(4) + wx(a)*dwy(b)*v
+        e = e + wx(a)*wy(b)*matmul(g%f(1:ne, it:it + 3, node), wt)
       end do
     end do
-    e(2) = e(2)/g%dt
-    e(3) = e(3)/g%h
-    e(4) = e(4)/g%h
   end subroutine grid_elevation
 
   !> Unramped elevation terms e and water velocity (inertial, z down) at (x, y), stretched
@@ -435,7 +439,7 @@ contains
         node = ix + a - 1 + g%nx*(iy + b - 2)
         do l = 1, 4
           do c = 1, 3
-            fl = 1 + 3*(id + l - 2) + c
+            fl = ne + 3*(id + l - 2) + c
             q(c, l) = sum(wt*g%f(fl, it:it + 3, node))
             qt(c, l) = sum(dwt*g%f(fl, it:it + 3, node))
           end do
