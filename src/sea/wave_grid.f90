@@ -37,8 +37,6 @@ module davit_sea_wave_grid
   public :: wave_grid_type, new_wave_grid, grid_place, grid_prepare, grid_covers
   public :: grid_elevation, grid_kinematics, catmull_rom, grid_error_bounds
 
-  !> Rows of one matrix product (fields x samples), at least.
-  integer, parameter :: rows = 64
   !> Elevation fields per node: eta and its derivatives (t, x, y), each sampled exactly and
   !> interpolated (O(h^3)) rather than differentiated from the interpolant (O(h^2)): the
   !> slope sets the tangent-plane buoyancy, and the steep short components dominate it.
@@ -63,8 +61,11 @@ module davit_sea_wave_grid
     logical, allocatable :: phased(:), ready(:)
     !> Fields (nfld, nt, nx*ny): eta, d eta/dt, d eta/dx, d eta/dy, then (u, v, w) per level.
     real(wp), allocatable :: f(:, :, :)
-    !> Spatial phasors (nx*ny, 2n): cos(k . x), sin(k . x) of each node.
+    !> Spatial phasors (2n, nx*ny): cos(k . x), sin(k . x) of each node.
     real(wp), allocatable :: sp(:, :)
+    !> The block's time phasors times each field's factor, (2n, nfld*nt): a node's fields
+    !> are sp(:, node) . tp(:, row) (one matrix product for the nodes built together).
+    real(wp), allocatable :: tp(:, :)
     !> w_i exp(-k_i d_l), (n, nl).
     real(wp), allocatable :: decay(:, :)
   end type wave_grid_type
@@ -132,7 +133,7 @@ contains
     g%y0 = g%h*real(floor(lo(2)/g%h) - 1, wp)
     g%nx = ceiling(hi(1)/g%h) + 2 - nint(g%x0/g%h)
     g%ny = ceiling(hi(2)/g%h) + 2 - nint(g%y0/g%h)
-    allocate (g%sp(g%nx*g%ny, 2*field%n), g%phased(g%nx*g%ny), g%ready(g%nx*g%ny))
+    allocate (g%sp(2*field%n, g%nx*g%ny), g%phased(g%nx*g%ny), g%ready(g%nx*g%ny))
     g%phased = .false.
     g%ready = .false.
     if (allocated(f)) allocate (g%f(g%nfld, g%nt, g%nx*g%ny))
@@ -146,7 +147,7 @@ contains
           j = ix + g%nx*(iy - 1)
           k = jx + old(3)*(jy - 1)
           g%phased(j) = phased(k)
-          if (phased(k)) g%sp(j, :) = sp(k, :)
+          if (phased(k)) g%sp(:, j) = sp(:, k)
           if (allocated(f)) then
             g%ready(j) = ready(k)
             if (ready(k)) g%f(:, :, j) = f(:, :, k)
@@ -179,18 +180,17 @@ contains
     if (.not. (time_inside(g, t_lo) .and. time_inside(g, t_hi))) then
       need = ceiling((t_hi - t_lo)/g%dt) + 4
       g%nt = max(g%nb, need)
-      g%nt = block_rows(g)*((g%nt + block_rows(g) - 1)/block_rows(g))
       g%s0 = floor(t_lo/g%dt, kind=8) - 1
       if (allocated(g%f)) then
         if (size(g%f, 2) /= g%nt .or. size(g%f, 3) /= g%nx*g%ny) deallocate (g%f)
       end if
       if (.not. allocated(g%f)) allocate (g%f(g%nfld, g%nt, g%nx*g%ny))
+      call block_phasors(g, field)
       g%ready = .false.
       g%builds = g%builds + 1
     end if
     ! stencils of the footprint's box: nodes int(s) - 1 .. int(s) + 2 (0-based), and `pad`
-    ! more on each side, so that a boat moving by centimetres per step needs new nodes
-    ! rarely (each build packs the time phasors anew)
+    ! more on each side (fewer, larger matrix products as the boat moves)
     i0(1) = max(0, int((minval(xy(1, :)) - g%x0)/g%h) - 1 - pad)
     i1(1) = min(g%nx - 1, int((maxval(xy(1, :)) - g%x0)/g%h) + 2 + pad)
     i0(2) = max(0, int((minval(xy(2, :)) - g%y0)/g%h) - 1 - pad)
@@ -208,64 +208,66 @@ contains
     if (m > 0) call build_nodes(g, field, list(1:m))
   end subroutine grid_prepare
 
-  !> Samples per matrix product: rows = fields x samples >= 64, a divisor of the block.
-  pure integer function block_rows(g)
-    type(wave_grid_type), intent(in) :: g
-    block_rows = 8
-    do while (block_rows*g%nfld < rows .and. mod(g%nb, 2*block_rows) == 0)
-      block_rows = 2*block_rows
+  !> The block's time phasors, each field's factor applied: per sample a (cos A_i, sin A_i)
+  !> advanced by rotation (no trigonometry in the loop, resynchronised at the block's
+  !> start). a cos(A - B) = (a cos A) cos B + (a sin A) sin B and a sin(A - B) = (a sin A)
+  !> cos B - (a cos A) sin B: rows 1..n multiply cos B, n+1..2n sin B.
+  subroutine block_phasors(g, field)
+    type(wave_grid_type), intent(inout) :: g
+    type(wave_field_type), intent(in) :: field
+    real(wp), allocatable :: ca(:), sa(:), cr(:), sr(:)
+    integer :: n, j, l, r
+    n = field%n
+    if (allocated(g%tp)) then
+      if (size(g%tp, 2) /= g%nfld*g%nt) deallocate (g%tp)
+    end if
+    if (.not. allocated(g%tp)) allocate (g%tp(2*n, g%nfld*g%nt))
+    allocate (ca(n), sa(n), cr(n), sr(n))
+    call time_phasors(field, real(g%s0, wp)*g%dt, ca, sa)
+    call rotation_phasors(field, g%dt, cr, sr)
+    do j = 1, g%nt
+      r = g%nfld*(j - 1)
+      g%tp(1:n, r + 1) = ca
+      g%tp(n + 1:2*n, r + 1) = sa
+      g%tp(1:n, r + 2) = -field%omega*sa
+      g%tp(n + 1:2*n, r + 2) = field%omega*ca
+      g%tp(1:n, r + 3) = field%kx*sa
+      g%tp(n + 1:2*n, r + 3) = -field%kx*ca
+      g%tp(1:n, r + 4) = field%ky*sa
+      g%tp(n + 1:2*n, r + 4) = -field%ky*ca
+      do l = 1, g%nl
+        associate (e => g%decay(:, l), q => r + ne + 3*(l - 1))
+          g%tp(1:n, q + 1) = ca*e*field%cos_dir
+          g%tp(n + 1:2*n, q + 1) = sa*e*field%cos_dir
+          g%tp(1:n, q + 2) = ca*e*field%sin_dir
+          g%tp(n + 1:2*n, q + 2) = sa*e*field%sin_dir
+          g%tp(1:n, q + 3) = sa*e
+          g%tp(n + 1:2*n, q + 3) = -ca*e
+        end associate
+      end do
+      call advance_phasors(ca, sa, cr, sr)
     end do
-  end function block_rows
+  end subroutine block_phasors
 
-  !> The block's time series of the nodes in `list`: their spatial phasors (if not yet),
-  !> the time phasors advanced by rotation, one matrix product per `block_rows` samples.
+  !> The block's time series of the nodes in `list` (their spatial phasors first, if not
+  !> yet): one matrix product, (fields x samples) x nodes.
   subroutine build_nodes(g, field, list)
     type(wave_grid_type), intent(inout) :: g
     type(wave_field_type), intent(in) :: field
     integer, intent(in) :: list(:)
-    real(wp), allocatable :: tt(:, :), spc(:, :), out(:, :), ca(:), sa(:), cr(:), sr(:)
-    integer :: n, j0, jl, l, r, m, nsub, c
-    n = field%n
+    real(wp), allocatable :: spc(:, :), out(:, :)
+    integer :: m, c, rows_all
     m = size(list)
-    nsub = block_rows(g)
     do c = 1, m
       if (.not. g%phased(list(c))) call node_phasors(g, field, list(c))
     end do
-    allocate (tt(g%nfld*nsub, 2*n), spc(m, 2*n), out(g%nfld*nsub, m), ca(n), sa(n), cr(n), &
-              sr(n))
-    spc = g%sp(list, :)
-    call time_phasors(field, real(g%s0, wp)*g%dt, ca, sa)
-    call rotation_phasors(field, g%dt, cr, sr)
-    do j0 = 1, g%nt, nsub
-      do jl = 1, nsub
-        ! a cos(A - B) = (a cos A) cos B + (a sin A) sin B and a sin(A - B) = (a sin A)
-        ! cos B - (a cos A) sin B: columns 1..n multiply cos B, n+1..2n sin B
-        r = 1 + g%nfld*(jl - 1)
-        tt(r, 1:n) = ca
-        tt(r, n + 1:2*n) = sa
-        tt(r + 1, 1:n) = -field%omega*sa
-        tt(r + 1, n + 1:2*n) = field%omega*ca
-        tt(r + 2, 1:n) = field%kx*sa
-        tt(r + 2, n + 1:2*n) = -field%kx*ca
-        tt(r + 3, 1:n) = field%ky*sa
-        tt(r + 3, n + 1:2*n) = -field%ky*ca
-        do l = 1, g%nl
-          associate (e => g%decay(:, l), q => r + ne + 3*(l - 1))
-            tt(q, 1:n) = ca*e*field%cos_dir
-            tt(q, n + 1:2*n) = sa*e*field%cos_dir
-            tt(q + 1, 1:n) = ca*e*field%sin_dir
-            tt(q + 1, n + 1:2*n) = sa*e*field%sin_dir
-            tt(q + 2, 1:n) = sa*e
-            tt(q + 2, n + 1:2*n) = -ca*e
-          end associate
-        end do
-        call advance_phasors(ca, sa, cr, sr)
-      end do
-      call dgemm('N', 'T', g%nfld*nsub, m, 2*n, 1.0_wp, tt, g%nfld*nsub, spc, m, 0.0_wp, &
-                 out, g%nfld*nsub)
-      do c = 1, m
-        g%f(:, j0:j0 + nsub - 1, list(c)) = reshape(out(:, c), [g%nfld, nsub])
-      end do
+    rows_all = g%nfld*g%nt
+    allocate (spc(2*field%n, m), out(rows_all, m))
+    spc = g%sp(:, list)
+    call dgemm('T', 'N', rows_all, m, 2*field%n, 1.0_wp, g%tp, 2*field%n, spc, 2*field%n, &
+               0.0_wp, out, rows_all)
+    do c = 1, m
+      g%f(:, :, list(c)) = reshape(out(:, c), [g%nfld, g%nt])
     end do
     g%ready(list) = .true.
     g%node_builds = g%node_builds + m
@@ -284,8 +286,8 @@ contains
       m = min(wave_chunk, field%n - i0 + 1)
       b(1:m) = field%kx(i0:i0 + m - 1)*x + field%ky(i0:i0 + m - 1)*y
       call fast_sincos(b(1:m), sn(1:m), cs(1:m))
-      g%sp(j, i0:i0 + m - 1) = cs(1:m)
-      g%sp(j, field%n + i0:field%n + i0 + m - 1) = sn(1:m)
+      g%sp(i0:i0 + m - 1, j) = cs(1:m)
+      g%sp(field%n + i0:field%n + i0 + m - 1, j) = sn(1:m)
     end do
     g%phased(j) = .true.
   end subroutine node_phasors
