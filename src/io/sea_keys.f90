@@ -34,7 +34,7 @@ contains
                 "kinematics = 'grid': time between samples.", lo_open=.true.)
     call r%real(g, "grid_margin", s%margin, 3.0_wp, 0.0_wp, 50.0_wp, "m", &
                 "kinematics = 'grid': margin of the grid around the boat's footprint "// &
-                "where it is placed (the first step).")
+                "(placed anew, the nodes it shares kept, when the boat leaves it).")
     call r%real(g, "grid_depth", s%depth, 3.0_wp, 0.0_wp, 20.0_wp, "m", &
                 "kinematics = 'grid': deepest stretched depth of the velocity levels "// &
                 "(deeper points take the exact sum).", lo_open=.true.)

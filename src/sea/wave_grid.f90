@@ -2,10 +2,13 @@
 !> component sum of eq. (43) (davit_sea_wave_field) evaluated once per node and time sample
 !> and interpolated, so that a query costs the same for 100 or 1300 components.
 !>
-!> Nodes: an earth-fixed horizontal box (spacing h) around the boat's footprint at its
-!> placement plus a margin (the boat hangs from a ship that drifts by centimetres over a
-!> launch; a query outside the box returns inside = .false. and the caller takes the
-!> exact sum). Optionally, velocity at depth levels d_l = (l - 2) h below the
+!> Nodes: an earth-fixed horizontal box of the lattice (i h, j h) around the boat's
+!> footprint plus a margin. The free-floating ship drifts (in the Level 5 irregular launch
+!> the boat's CG moves 15 m across the waves over 117 s), so the box is placed anew around
+!> the footprint when the boat leaves it, keeping the nodes both boxes share; a query
+!> outside the box, or at a node not built, gets grid_covers = .false. and the caller
+!> takes the exact sum. Nodes are built lazily: only those the footprint's interpolation
+!> stencils reach. Optionally, velocity at depth levels d_l = (l - 2) h below the
 !> instantaneous surface (the Wheeler-stretched depth of davit_sea_wave_field), l = 1..nl,
 !> covering 0 <= d <= depth; one level above the surface and one below the deepest keep
 !> the interpolation stencil inside. Time samples at a uniform step dt, held in a block of
@@ -264,7 +267,7 @@ contains
     rows_all = g%nfld*g%nt
     allocate (spc(2*field%n, m), out(rows_all, m))
     spc = g%sp(:, list)
-    call dgemm('T', 'N', rows_all, m, 2*field%n, 1.0_wp, g%tp, 2*field%n, spc, 2*field%n, &
+    call dgemm("T", "N", rows_all, m, 2*field%n, 1.0_wp, g%tp, 2*field%n, spc, 2*field%n, &
                0.0_wp, out, rows_all)
     do c = 1, m
       g%f(:, :, list(c)) = reshape(out(:, c), [g%nfld, g%nt])
