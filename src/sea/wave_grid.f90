@@ -31,7 +31,7 @@
 !> test suite checks the orders on one Airy component. Values are unramped (the caller
 !> multiplies by wave_ramp, as for the exact sums).
 module davit_sea_wave_grid
-  use davit_kinds, only: wp
+  use davit_kinds, only: wp, i8
   use davit_core_fastmath, only: fast_sincos
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, time_phasors, &
                                   rotation_phasors, advance_phasors, wave_chunk
@@ -57,7 +57,7 @@ module davit_sea_wave_grid
     integer :: nx = 0, ny = 0, nl = 0, nfld = ne
     !> Samples per block; global index of the block's first sample (time s0 dt); samples held.
     integer :: nb = 16, nt = 0
-    integer(8) :: s0 = 0
+    integer(i8) :: s0 = 0
     !> Blocks started, node time series built, placements (for the report).
     integer :: builds = 0, node_builds = 0, placements = 0
     !> Nodes whose spatial phasors are known; nodes built for the block in memory.
@@ -183,7 +183,7 @@ contains
     if (.not. (time_inside(g, t_lo) .and. time_inside(g, t_hi))) then
       need = ceiling((t_hi - t_lo)/g%dt) + 4
       g%nt = max(g%nb, need)
-      g%s0 = floor(t_lo/g%dt, kind=8) - 1
+      g%s0 = floor(t_lo/g%dt, kind=i8) - 1
       if (allocated(g%f)) then
         if (size(g%f, 2) /= g%nt .or. size(g%f, 3) /= g%nx*g%ny) deallocate (g%f)
       end if
