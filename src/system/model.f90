@@ -85,7 +85,11 @@ contains
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
     call kane_blocks(self, t, y, dydt, kane, loads_fast)
-    call kane_rates(self%par%layout, kane, dydt)
+    if (self%par%with_ship) then
+      call kane_rates(self%par%layout, kane, dydt, self%par%ship_slice)
+    else
+      call kane_rates(self%par%layout, kane, dydt)
+    end if
   end subroutine system_rhs_fast
 
   !> Every body's q_dot and Kane blocks at (t, y): the ship, the boat and, on the davit,
@@ -103,7 +107,8 @@ contains
       pose = ship_pose(par, y)
       if (par%with_ship) then
         if (part == loads_fast) then
-          call kane_at_rest(dydt(s(1):s(2)), kane(:, s(1):s(2)))
+          ! the ship's rows are 0 here; kane_rates leaves its speeds so
+          dydt(s(1):s(2)) = 0.0_wp
         else
           call self%ship%kane_blocks(t, y(s(1):s(2)), dydt(s(1):s(2)), kane(:, s(1):s(2)))
         end if
