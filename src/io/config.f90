@@ -317,8 +317,9 @@ contains
                   "substeps inside each dt.")
     call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
                "RK4 substeps of the fast part per macro step dt (integrator = "// &
-               "'multirate' or 'multirate2'; the substep dt/substeps must resolve the "// &
-               "falls' ~200 Hz mode: <= ~2.5e-3 s); other integrators ignore it.")
+               "'multirate' or 'multirate2'; the substep dt/substeps must keep the falls' "// &
+               "~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other integrators "// &
+               "ignore it.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &
