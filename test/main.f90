@@ -26,6 +26,7 @@ program main
   use test_adaptive, only: collect_adaptive
   use test_core, only: collect_core
   use test_wave_grid, only: collect_wave_grid
+  use test_multirate, only: collect_multirate
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -50,7 +51,7 @@ program main
             collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
             collect_assess(), collect_adaptive(), collect_core(), &
-            collect_wave_grid()]
+            collect_wave_grid(), collect_multirate()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

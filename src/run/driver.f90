@@ -172,7 +172,7 @@ contains
     logical :: done, event
 
     call new_integrator(sim%integrator, size(y), integ, error, sim%rtol, sim%atol, &
-                        fixed_step=sim%fixed_step)
+                        fixed_step=sim%fixed_step, substeps=sim%substeps)
     if (allocated(error)) return
     ! adaptive integrators return after each accepted step: the history, the monitors
     ! and event location see every step, and dt is the largest step
