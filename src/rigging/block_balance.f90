@@ -24,17 +24,21 @@ module davit_rigging_block_balance
   public :: balance_input_type, solve_blocks
 
   !> Newton on the elastic balance stops after a step of at most newton_tol [m]:
-  !> convergence is quadratic there (analytic tangents, smooth while the active set
-  !> holds), so what remains is below 1e-12 m, which keeps finite-difference Jacobians of
-  !> the right-hand side (davit modes, RODAS3) clean; from an RK4 stage's start that takes
-  !> 3 evaluations of the balance (start, step, dashpots). A step moves a block by at most
+  !> convergence is quadratic there (analytic tangents, smooth while no link crosses its
+  !> slack kink), so what remains is below 1e-12 m, which keeps finite-difference Jacobians
+  !> of the right-hand side (davit modes, RODAS3) clean. A step moves a block by at most
   !> newton_cap [m] (a block falling onto its cable after the drum paid out over a slack
-  !> sling); newton_floor [N/m] on the diagonal keeps the matrix regular while a block has
-  !> no taut link (stiffnesses are 1e2 to 1e8 N/m, so it changes the converged answer not
-  !> at all).
+  !> sling).
   real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 2.0_wp
-  real(wp), parameter :: newton_floor = 1.0e-3_wp
-  integer, parameter :: newton_max = 50, search_max = 12, max_switches = 8
+  !> newton_floor [N/m] on the diagonal keeps the matrix positive definite where a block
+  !> has a direction that nothing holds (resting on its hook stop, both links slack: any
+  !> place on the stop within the slings' slack is a balance), and ties the block's velocity
+  !> in such a direction to its hook's (as the stop's friction does for a massive block).
+  !> Far below every stiffness that holds a block (its pendulum on slack falls, m_b g/l ~
+  !> 25 N/m; taut links 1e5 to 1e8 N/m), so it moves neither the balance (the floor is in
+  !> the Newton matrix, not in the force) nor, by more than floor/k, the velocity.
+  real(wp), parameter :: newton_floor = 0.1_wp
+  integer, parameter :: newton_max = 60, search_max = 12
   !> A Newton step is cut back when it overshoots the balance along its line by more than
   !> search_ratio of the force component it started with (line_search); 0.1 leaves the
   !> quadratic regime alone (there the overshoot is ~|step|/l of it).
@@ -47,13 +51,6 @@ module davit_rigging_block_balance
   !> above a nearly slack block's pendulum stiffness (~1e2 to 1e3 N/m), far below a taut
   !> link's (1e7 N/m along it).
   real(wp), parameter :: anchor_time = 0.05_wp
-  !> A sling counts as slack at the balance if its continued tension is below -k kink_tol
-  !> (and as taut if its tension-only value is above k kink_tol); kink_tol [m] of stretch
-  !> is far below what Newton leaves (< 1e-12 m) and far below anything physical.
-  real(wp), parameter :: kink_tol = 1.0e-11_wp
-  !> ... and is corrected during the iterations once it is off by more than gross_stretch
-  !> [m] of stretch (6 kN on the default sling), which no converging iterate comes near.
-  real(wp), parameter :: gross_stretch = 1.0e-4_wp
 
   !> What the balance takes from the rest of the system. The caller sets the lower ends of
   !> the top sling segments (hook or top lump) and their velocities, the hooks (for the
@@ -79,13 +76,13 @@ module davit_rigging_block_balance
   end type balance_type
 
   !> Newton's iterate: blocks b, their velocity v, the last solve's solution x (step,
-  !> velocity), the active set taut, the best iterate so far, the balance at b, and the
-  !> counts of active-set switches and balance evaluations.
+  !> velocity), the best iterate so far, the balance at b, and the count of balance
+  !> evaluations.
   type :: newton_type
     real(wp) :: b(6) = 0.0_wp, v(6) = 0.0_wp, x(6, 2) = 0.0_wp
     real(wp) :: b_best(6) = 0.0_wp, best_norm = 0.0_wp
-    logical :: taut(2) = .false., solved = .false.
-    integer :: nswitch = 0, nbal = 0
+    logical :: solved = .false.
+    integer :: nbal = 0
     type(balance_type) :: bal
   end type newton_type
 
@@ -132,26 +129,39 @@ contains
     if (present(iterations)) iterations = n1 + n2
   end subroutine solve_blocks
 
-  !> First the elastic balance (no dashpots): it minimises a convex potential (elastic
-  !> energies - m_b g z) whose gradient and Hessian are -F and -dF/dr, so it is unique and
-  !> symmetric, and it is well posed whenever the cable is taut, which the weight ensures
-  !> (a tension-only sling pulls its block towards the hook; only the cable holds it up).
+  !> First the elastic balance (no dashpots), then the blocks' velocity on it, then the
+  !> dashpots' first-order shift (dashpot_shift).
+  !>
+  !> Why it always converges: the elastic balance is the minimum of the potential
+  !> Phi(b) = cable energies + top sling energies + hook stops' energies - m_b g z over
+  !> both blocks, whose gradient is -F and Hessian -dF/dr. Every term is convex in b and
+  !> C1: a chord length is convex in its end, the quasi-static cable's energy
+  !> EA max(0, L - L0)^2/(2 L0) is convex and non-decreasing in the sum L of its chords, a
+  !> tension-only sling's k max(0, D - l0)^2/2 likewise in D, the stop's energy in the
+  !> block's height (the weight is linear). The slings' slack kinks are taken exactly (the
+  !> tension-only law, no continued law, so -dF/dr is positive semi-definite everywhere).
+  !> Phi is bounded below and grows along every direction that leaves the stops, the taut
+  !> links' reach or rises against the weight, so a minimum exists for every hook position
+  !> and drum passage (with slack falls and slings the block rests on its stop; where
+  !> nothing holds it sideways there is a set of minima). Newton's matrix -dF/dr + floor I
+  !> is positive definite, so each step descends Phi; along it the force component
+  !> g(alpha) = step . F(b + alpha step) = -dPhi/dalpha is non-increasing (Phi is convex
+  !> along a line), and the line search takes a step where |g| <= search_ratio g(0) or
+  !> g >= 0 (Wolfe's curvature condition, with Phi decreasing); with the matrix's
+  !> condition bounded this drives F to 0 (Zoutendijk). Near the minimum the tangents are
+  !> exact, so convergence is quadratic. (The quasi-static sheaves' friction ratio, when
+  !> not 1, makes the cable's pull non-conservative by (ratio - 1), which the convergence
+  !> does not need to be exact.)
+  !>
   !> Along the motion dF/dr dr + dF/dt = 0, so the blocks move at bv = -(dF/dr)^(-1) dF/dt,
   !> dF/dt the force rate due to everything else (hooks or lumps, ship-fixed nodes, drum,
-  !> sheaves) at fixed blocks. Then the dashpots, at that velocity, shift the blocks by
-  !> (-dF/dr)^(-1) F_dashpot, ~1e-4 m: the slow motion of the massive model to first
-  !> order in c/k (its block lags the same way); left out are O((c v/k)^2/l) and the
-  !> dashpots' response to accelerations, O(c a/k).
-  !>
-  !> Newton with: an active set for the slings' slack kink (D = l0, where Newton would
-  !> cycle between the sides): each sling is held (its law continued smoothly through
-  !> D = l0) or free (left out), guessed at the start, corrected once converged (a held
-  !> sling that would push, or a free one that would pull, changes side) or at once when
-  !> off by gross_stretch; steps capped at newton_cap per block and cut back where they
-  !> overshoot (search_ratio); the diagonal floor newton_floor for a block with no taut
-  !> link. After newton_max iterations the best iterate is taken if the force left on
-  !> each block is below its weight, else solved = .false.; iterations counts the balance
-  !> evaluations (3 from an RK4 stage's start: start, step, dashpots).
+  !> sheaves) at fixed blocks; a direction that nothing holds moves with the hook
+  !> (newton_floor). Then the dashpots, at that velocity, shift the blocks by
+  !> (-dF/dr)^(-1) F_dashpot, ~1e-4 m: the slow motion of the massive model to first order
+  !> in c/k (its block lags the same way); left out are O((c v/k)^2/l) and the dashpots'
+  !> response to accelerations, O(c a/k). If Newton has not converged after newton_max
+  !> iterations the best iterate is taken if the force left on each block is below its
+  !> weight, else solved = .false.; iterations counts the balance evaluations.
   pure subroutine newton_blocks(falls, inp, br, bv, solved, iterations)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
@@ -177,105 +187,74 @@ contains
     iterations = nt%nbal
   end subroutine newton_blocks
 
-  !> Newton's start at br: which slings hold their blocks is guessed from their tension-only
-  !> law there (then corrected: the active set), and the balance evaluated.
+  !> Newton's start at br: the balance evaluated there.
   pure subroutine newton_start(falls, inp, br, nt)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     real(wp), intent(in) :: br(3, 2)
     type(newton_type), intent(out) :: nt
-    real(wp) :: f_top(3), k(3, 3), f_sling, f_real
-    integer :: c
     nt%b(1:3) = br(:, 1)
     nt%b(4:6) = br(:, 2)
     nt%v = 0.0_wp
-    nt%nswitch = 0
     nt%solved = .false.
-    do c = 1, 2
-      call top_segment_tangent(falls%sling, inp%low_r(:, c), inp%low_v(:, c), br(:, c), &
-                               0.0_wp*br(:, c), f_top, f_sling, f_real, k)
-      nt%taut(c) = f_real > 0.0_wp
-    end do
-    call block_balance(falls, inp, nt%b, nt%v, nt%taut, nt%bal)
+    call block_balance(falls, inp, nt%b, nt%v, nt%bal)
     nt%nbal = 1
     nt%best_norm = huge(1.0_wp)
     nt%b_best = nt%b
   end subroutine newton_start
 
-  !> One Newton iteration: (-dF/dr + floor) x = [F, dF/dt], x(:, 1) the step (capped at
-  !> newton_cap), x(:, 2) the velocity. A step below newton_tol has converged for this
-  !> active set (active_set); a larger one is cut back by the line search and taken.
-  !> done: stop iterating (solved, or out of active-set switches).
+  !> One Newton iteration: (-dF/dr + floor) x = [F, dF/dt + floor v_hook], x(:, 1) the
+  !> step (capped at newton_cap), x(:, 2) the velocity. A step below newton_tol has
+  !> converged (done, solved); a larger one is cut back by the line search and taken.
   pure subroutine newton_iteration(falls, inp, nt, done)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     type(newton_type), intent(inout) :: nt
     logical, intent(out) :: done
-    real(wp) :: step(6), b_try(6), longest
+    real(wp) :: step(6), b_try(6), longest, res_norm
     type(balance_type) :: bal_t
     done = .false.
     call newton_matrix(nt%bal%jac)
     nt%x(:, 1) = nt%bal%res
-    nt%x(:, 2) = nt%bal%rate
+    nt%x(:, 2) = velocity_rhs(inp, nt%bal)
     call dense_solve(nt%bal%jac, nt%x)
     step = nt%x(:, 1)
     longest = max(norm2(step(1:3)), norm2(step(4:6)))
     if (longest > newton_cap) step = step*(newton_cap/longest)
     if (maxval(abs(step)) <= newton_tol) then
       nt%b = nt%b + step
-      call active_set(falls, inp, nt, done)
+      nt%solved = .true.
+      done = .true.
       return
     end if
     call line_search(falls, inp, nt, step, b_try, bal_t)
     nt%b = b_try
     nt%bal = bal_t
-    if (max(norm2(nt%bal%res(1:3)), norm2(nt%bal%res(4:6))) < nt%best_norm) then
-      nt%best_norm = max(norm2(nt%bal%res(1:3)), norm2(nt%bal%res(4:6)))
+    res_norm = max(norm2(nt%bal%res(1:3)), norm2(nt%bal%res(4:6)))
+    if (res_norm < nt%best_norm) then
+      nt%best_norm = res_norm
       nt%b_best = nt%b
     end if
-    call gross_correction(falls, inp, nt)
   end subroutine newton_iteration
 
-  !> Converged with these slings holding: a held sling must pull, a free one must not. If
-  !> none changes side the balance is solved (done); else, up to max_switches times, the
-  !> balance is taken again with the new active set.
-  pure subroutine active_set(falls, inp, nt, done)
-    type(falls_type), intent(in) :: falls
+  !> Right-hand side of the velocity solve: dF/dt, plus floor v_hook so that a direction
+  !> nothing holds moves with the block's hook.
+  pure function velocity_rhs(inp, bal) result(r)
     type(balance_input_type), intent(in) :: inp
-    type(newton_type), intent(inout) :: nt
-    logical, intent(out) :: done
-    real(wp) :: f_tol
-    logical :: changed
-    integer :: c
-    f_tol = falls%sling%k_seg*kink_tol
-    changed = .false.
-    do c = 1, 2
-      if (nt%taut(c) .and. nt%bal%f_sling(c) < -f_tol .or. &
-          .not. nt%taut(c) .and. nt%bal%f_real(c) > f_tol) then
-        nt%taut(c) = .not. nt%taut(c)
-        changed = .true.
-      end if
-    end do
-    done = .true.
-    if (.not. changed) then
-      nt%solved = .true.
-      return
-    end if
-    nt%nswitch = nt%nswitch + 1
-    if (nt%nswitch > max_switches) return
-    call block_balance(falls, inp, nt%b, nt%v, nt%taut, nt%bal)
-    nt%nbal = nt%nbal + 1
-    nt%best_norm = huge(1.0_wp)
-    done = .false.
-  end subroutine active_set
+    type(balance_type), intent(in) :: bal
+    real(wp) :: r(6)
+    r(1:3) = bal%rate(1:3) + newton_floor*inp%hook_v(:, 1)
+    r(4:6) = bal%rate(4:6) + newton_floor*inp%hook_v(:, 2)
+  end function velocity_rhs
 
   !> Line search: along the step the force component g(alpha) = step . F(b + alpha step)
-  !> starts positive, g(0) = F . (-dF/dr)^(-1) F, and falls (the potential is convex).
-  !> A whole step leaves g(1) ~ 0 (quadratic convergence) and is taken; one that
-  !> overshoots, g(1) < -search_ratio g(0) (a far start, a kink where a link goes slack,
-  !> the soft swing of a block on slack links), is cut back to where g is within
-  !> search_ratio g(0) of zero, by regula falsi (Illinois) on [0, 1]. Returns the blocks
-  !> b_try taken and the balance bal_t there.
+  !> starts positive, g(0) = F . (-dF/dr + floor)^(-1) F, and does not increase (the
+  !> potential is convex along the line). A whole step leaves g(1) ~ 0 (quadratic
+  !> convergence) and is taken, as is one that falls short (g(1) > 0: the potential fell
+  !> all along); one that overshoots, g(1) < -search_ratio g(0) (a far start, a link going
+  !> slack or taut, the soft swing of a block on slack links), is cut back to where g is
+  !> within search_ratio g(0) of zero, by regula falsi (Illinois) on [0, 1]. Returns the
+  !> blocks b_try taken and the balance bal_t there.
   pure subroutine line_search(falls, inp, nt, step, b_try, bal_t)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
@@ -286,7 +265,7 @@ contains
     real(wp) :: g, g_lo, g_hi, g_tol, a_lo, a_hi, alpha
     integer :: ls, side
     b_try = nt%b + step
-    call block_balance(falls, inp, b_try, nt%v, nt%taut, bal_t)
+    call block_balance(falls, inp, b_try, nt%v, bal_t)
     nt%nbal = nt%nbal + 1
     g_lo = dot_product(nt%bal%res, step)
     g_hi = dot_product(bal_t%res, step)
@@ -298,7 +277,7 @@ contains
     do ls = 1, search_max
       alpha = a_hi - g_hi*(a_hi - a_lo)/(g_hi - g_lo)
       b_try = nt%b + alpha*step
-      call block_balance(falls, inp, b_try, nt%v, nt%taut, bal_t)
+      call block_balance(falls, inp, b_try, nt%v, bal_t)
       nt%nbal = nt%nbal + 1
       g = dot_product(bal_t%res, step)
       if (abs(g) <= g_tol) exit
@@ -316,33 +295,10 @@ contains
     end do
   end subroutine line_search
 
-  !> A guess that is plainly wrong (a free sling stretched, or a held one pushing, by more
-  !> than gross_stretch) is corrected at once rather than after converging to it.
-  pure subroutine gross_correction(falls, inp, nt)
-    type(falls_type), intent(in) :: falls
-    type(balance_input_type), intent(in) :: inp
-    type(newton_type), intent(inout) :: nt
-    real(wp) :: f_gross
-    f_gross = falls%sling%k_seg*gross_stretch
-    associate (taut => nt%taut, f_sling => nt%bal%f_sling, f_real => nt%bal%f_real)
-      if (nt%nswitch < max_switches .and. any(taut .and. f_sling < -f_gross .or. &
-                                              .not. taut .and. f_real > f_gross)) then
-        taut = taut .neqv. (taut .and. f_sling < -f_gross .or. &
-                            .not. taut .and. f_real > f_gross)
-        nt%nswitch = nt%nswitch + 1
-        call block_balance(falls, inp, nt%b, nt%v, taut, nt%bal)
-        nt%nbal = nt%nbal + 1
-        nt%best_norm = huge(1.0_wp)
-        nt%b_best = nt%b
-      end if
-    end associate
-  end subroutine gross_correction
-
-  !> Newton stalled (links near slack: soft and kinked): take the best iterate (of this
-  !> active set) if the force left on each block, and the force a sling would have on the
-  !> wrong side of its kink, are below the block's weight. Neglecting the block's inertia
-  !> already errs by m_b a, of that size when slack slings jerk the block about; taut
-  !> links converge in 2-3 evaluations. Leaves the velocity solve in x(:, 2).
+  !> Newton ran out of iterations: take the best iterate if the force left on each block is
+  !> below the block's weight (neglecting the block's inertia already errs by m_b a, of
+  !> that size when slack links jerk the block about). Leaves the velocity solve in
+  !> x(:, 2).
   pure subroutine best_iterate(falls, inp, nt)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
@@ -350,15 +306,11 @@ contains
     real(wp) :: weight
     weight = falls%block_mass*gravity
     nt%b = nt%b_best
-    call block_balance(falls, inp, nt%b, nt%v, nt%taut, nt%bal)
+    call block_balance(falls, inp, nt%b, nt%v, nt%bal)
     nt%nbal = nt%nbal + 1
-    associate (res => nt%bal%res, taut => nt%taut)
-      nt%solved = max(norm2(res(1:3)), norm2(res(4:6))) <= weight .and. &
-                  all(.not. taut .or. nt%bal%f_sling >= -weight) .and. &
-                  all(taut .or. nt%bal%f_real <= weight)
-    end associate
+    nt%solved = max(norm2(nt%bal%res(1:3)), norm2(nt%bal%res(4:6))) <= weight
     call newton_matrix(nt%bal%jac)
-    nt%x(:, 2) = nt%bal%rate
+    nt%x(:, 2) = velocity_rhs(inp, nt%bal)
     call dense_solve(nt%bal%jac, nt%x)
   end subroutine best_iterate
 
@@ -371,7 +323,7 @@ contains
     type(newton_type), intent(inout) :: nt
     real(wp) :: step(6), longest
     nt%v = nt%x(:, 2)
-    call block_balance(falls, inp, nt%b, nt%v, nt%taut, nt%bal, dashpots=.true.)
+    call block_balance(falls, inp, nt%b, nt%v, nt%bal, dashpots=.true.)
     nt%nbal = nt%nbal + 1
     call newton_matrix(nt%bal%jac)
     nt%x(:, 1) = nt%bal%res + nt%bal%res_d
@@ -381,8 +333,8 @@ contains
     ! only where the sling holds: a free block would be moved by the cable's dashpot
     ! alone, along links so slack that the shift would no longer be small (and could
     ! take up its sling's slack, which the balance has not seen)
-    if (.not. nt%taut(1)) step(1:3) = 0.0_wp
-    if (.not. nt%taut(2)) step(4:6) = 0.0_wp
+    if (.not. nt%bal%f_real(1) > 0.0_wp) step(1:3) = 0.0_wp
+    if (.not. nt%bal%f_real(2) > 0.0_wp) step(4:6) = 0.0_wp
     longest = max(norm2(step(1:3)), norm2(step(4:6)))
     if (longest > dashpot_cap) step = step*(dashpot_cap/longest)
     nt%b = nt%b + step
@@ -399,15 +351,14 @@ contains
   end subroutine newton_matrix
 
   !> The elastic balance bal on the two blocks at positions b (cable and top sling segments
-  !> where held, without their dashpots, and weight; balance_type); with dashpots, also
-  !> the dashpots' force on the blocks moving at v (cable, and held slings). With
+  !> where taut, without their dashpots, and weight; balance_type); with dashpots, also
+  !> the dashpots' force on the blocks moving at v (cable, and taut slings). With
   !> inp%k_anchor > 0 a spring k_anchor ties each block to inp%anchor (solve_blocks'
   !> fallback).
-  pure subroutine block_balance(falls, inp, b, v, taut, bal, dashpots)
+  pure subroutine block_balance(falls, inp, b, v, bal, dashpots)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     real(wp), intent(in) :: b(6), v(6)
-    logical, intent(in) :: taut(2)
     type(balance_type), intent(out) :: bal
     logical, intent(in), optional :: dashpots
     real(wp) :: br(3, 2), bv(3, 2), block_f(3, 2), damp_f(3, 2)
@@ -424,7 +375,7 @@ contains
     block_f = 0.0_wp
     block_f(3, :) = falls%block_mass*gravity
     damp_f = 0.0_wp
-    call sling_pulls(falls, inp, br, bv, taut, with_dashpots, block_f, damp_f, bal)
+    call sling_pulls(falls, inp, br, bv, with_dashpots, block_f, damp_f, bal)
     call cable_pulls(falls, inp, br, bv, with_dashpots, block_f, damp_f, bal)
     call stop_pushes(falls, inp, br, block_f, bal)
     bal%res(1:3) = block_f(:, 1)
@@ -440,15 +391,16 @@ contains
   end subroutine block_balance
 
   !> block_balance's top sling segments (eqs. 80-81): their elastic pull on the blocks at
-  !> br where held (taut), its tangent and rate (the low ends moving), the continued and
-  !> tension-only tensions, and with_dashpots the dashpots' share at block velocities bv.
-  pure subroutine sling_pulls(falls, inp, br, bv, taut, with_dashpots, block_f, damp_f, bal)
-    ! 9 arguments: the balance's accumulators (block_f, damp_f, bal) are shared with
+  !> br where taut (tension-only), its tangent and rate (the low ends moving), the
+  !> continued and tension-only tensions, and with_dashpots the dashpots' share at block
+  !> velocities bv.
+  pure subroutine sling_pulls(falls, inp, br, bv, with_dashpots, block_f, damp_f, bal)
+    ! 8 arguments: the balance's accumulators (block_f, damp_f, bal) are shared with
     ! cable_pulls, which adds to them in the order block_balance has always summed.
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     real(wp), intent(in) :: br(3, 2), bv(3, 2)
-    logical, intent(in) :: taut(2), with_dashpots
+    logical, intent(in) :: with_dashpots
     real(wp), intent(inout) :: block_f(3, 2), damp_f(3, 2)
     type(balance_type), intent(inout) :: bal
     type(sling_chain_type) :: sling_el
@@ -460,7 +412,8 @@ contains
     do a = 1, 2
       call top_segment_tangent(sling_el, inp%low_r(:, a), inp%low_v(:, a), br(:, a), &
                                bv(:, a), f_top, bal%f_sling(a), bal%f_real(a), k)
-      if (.not. taut(a)) cycle
+      ! tension-only: a slack sling (D <= l0) pulls not at all, and adds no stiffness
+      if (.not. bal%f_real(a) > 0.0_wp) cycle
       if (with_dashpots) then
         call top_segment_tangent(falls%sling, inp%low_r(:, a), inp%low_v(:, a), br(:, a), &
                                  bv(:, a), f_damped, fs_damped, fr_damped, k_damped)
