@@ -148,6 +148,38 @@ setup() {
   fpm build "${FPM_FLAGS[@]}" >/dev/null 2>&1 || fpm build "${FPM_FLAGS[@]}"
   DAVIT_BIN="$(fpm run "${FPM_FLAGS[@]}" --runner echo 2>/dev/null | tail -n 1)"
   export DAVIT_BIN="$PWD/$DAVIT_BIN"
+  setup_library
+}
+
+# The library (include/davit.h, doc/howto/library.md): build/libdavit.so linked from the
+# very archive fpm linked DAVIT_BIN from (same objects, so the library's runs equal davit
+# run's bit for bit), and the Python package python/davit made importable: a .pth file in
+# the Python's site-packages (.venv's, where setup made one) names python/. fpm prints the
+# archive only when it links, so the binary is relinked (a second) when the archive is
+# newer than the library or the library is missing.
+DAVIT_LIB=build/libdavit.so
+setup_library() {
+  local archive site
+  if [ ! -e "$DAVIT_LIB" ] || [ "$DAVIT_BIN" -nt "$DAVIT_LIB" ] || [ make.sh -nt "$DAVIT_LIB" ]; then
+    rm -f "$DAVIT_BIN"
+    archive="$(fpm build "${FPM_FLAGS[@]}" --verbose 2>&1 | grep -o '[^ ]*/libdavit\.a' | tail -n 1)"
+    if [ -z "$archive" ] || [ ! -e "$archive" ]; then
+      log "cannot find fpm's libdavit.a: $DAVIT_LIB not built"
+      return 1
+    fi
+    log "linking $DAVIT_LIB from $archive"
+    # shellcheck disable=SC2046  # pkg-config's flags are words
+    gfortran -shared -o "$DAVIT_LIB.tmp" -Wl,--whole-archive "$archive" -Wl,--no-whole-archive \
+      -fopenmp $(pkg-config --libs hdf5) -lhdf5hl_fortran -lhdf5_fortran -lhdf5_hl -llapack -lblas
+    mv -f "$DAVIT_LIB.tmp" "$DAVIT_LIB"
+  fi
+  export DAVIT_LIB="$PWD/$DAVIT_LIB"
+  site="$(python3 -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+  if [ -w "$site" ]; then
+    printf '%s\n' "$PWD/python" >"$site/davit_library.pth"
+  else
+    log "$site is not writable: import davit needs PYTHONPATH=$PWD/python"
+  fi
 }
 
 # Single-quoted for a generated shell script (any character, quotes included).
