@@ -21,6 +21,7 @@ module davit_capi_session
   use davit_run_driver, only: first_bad, speed_limit
   use davit_run_launch_log, only: launch_log, new_launch_log
   use davit_run_budget, only: check_run_budget
+  use davit_core_blas_threads, only: single_threaded_blas
   implicit none
   private
   public :: session_type, session_open, session_advance_to, session_control, session_replay
@@ -60,6 +61,9 @@ contains
     type(config_type), intent(in) :: cfg
     character(len=*), intent(in) :: name, text
     type(error_type), allocatable, intent(out) :: error
+    ! as davit does at its start: OpenBLAS's threads would split its sums differently from
+    ! davit run's (and only compete for the cores on the small matrices davit solves)
+    call single_threaded_blas()
     s%cfg = cfg
     s%deck_name = name
     s%deck_text = text

@@ -56,7 +56,7 @@ contains
       return
     end if
     head = transfer(b(9:8 + 8*n_head), head)
-    if (any(head < 0) .or. any(head > int(size(b), i8))) then
+    if (any(head < 0) .or. any(head([1, 2, 4, 5]) > size(b, kind=i8))) then
       call fatal_error(error, "snapshot: corrupt header")
       return
     end if
