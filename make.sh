@@ -160,7 +160,7 @@ setup() {
 DAVIT_LIB=build/libdavit.so
 setup_library() {
   local archive site
-  if [ ! -e "$DAVIT_LIB" ] || [ "$DAVIT_BIN" -nt "$DAVIT_LIB" ] || [ make.sh -nt "$DAVIT_LIB" ]; then
+  if [ ! -e "$DAVIT_LIB" ] || [ "$DAVIT_BIN" -nt "$DAVIT_LIB" ]; then
     rm -f "$DAVIT_BIN"
     archive="$(fpm build "${FPM_FLAGS[@]}" --verbose 2>&1 | grep -o '[^ ]*/libdavit\.a' | tail -n 1)"
     if [ -z "$archive" ] || [ ! -e "$archive" ]; then
@@ -524,7 +524,8 @@ usage: bash make.sh COMMAND
                      (CI: results must not hang on this CPU's FMA or vector width)
   docs               the documentation site (FORD) -> build/doc/index.html; the deck-key
                      and command-line pages regenerated from the code first
-  setup              install what is missing and build
+  setup              install what is missing and build (the binary, build/libdavit.so,
+                     import davit: doc/howto/library.md)
   help               this text
 EOF
 }

@@ -3,13 +3,12 @@
 !> Arrays are written into the caller's buffers of the length given; a short buffer is an
 !> error (DAVIT_E_ARG), never a partial write.
 module davit_capi_getters
-  use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_char, c_size_t, &
-                                         c_null_char
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_size_t
   use davit_kinds, only: wp
   use davit_system_parameters, only: nslings, hook_kinematics, ship_pose
   use davit_core_pose, only: pose_type
   use davit_assess_rules, only: n_checks, rule_check, check_ids
-  use davit_capi_handle, only: capi_handle, ready_handle, fail, e_arg, e_ok
+  use davit_capi_handle, only: capi_handle, ready_handle, fail, copy_c_string, e_arg, e_ok
   implicit none
   private
   public :: davit_time, davit_finished, davit_sizes, davit_state, davit_boat_pose
@@ -256,17 +255,12 @@ contains
   !> -1 for no such check.
   integer(c_int) function davit_check_name(i, buf, len) bind(c) result(n)
     integer(c_int), value, intent(in) :: i
-    character(kind=c_char), intent(out) :: buf(*)
+    type(c_ptr), value, intent(in) :: buf
     integer(c_size_t), value, intent(in) :: len
-    integer :: j
     n = -1
     if (i < 1 .or. i > n_checks) return
     n = len_trim(check_ids(i))
-    if (len < 1) return
-    do j = 1, min(n, int(len) - 1)
-      buf(j) = check_ids(i)(j:j)
-    end do
-    buf(min(n, int(len) - 1) + 1) = c_null_char
+    call copy_c_string(check_ids(i), buf, len)
   end function davit_check_name
 
 end module davit_capi_getters

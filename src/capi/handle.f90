@@ -17,7 +17,7 @@ module davit_capi_handle
   use davit_capi_snapshot, only: snapshot_bytes, snapshot_restore
   implicit none
   private
-  public :: capi_handle, handle_of, c_string, fail
+  public :: capi_handle, handle_of, c_string, copy_c_string, fail
   public :: e_ok, e_input, e_run, e_arg, e_snapshot
   public :: davit_create_file, davit_create_text, davit_destroy, davit_error_code
   public :: davit_error_message, davit_advance, davit_advance_to, davit_set_winch_speed
@@ -63,6 +63,22 @@ contains
       text(i:i) = s(i)
     end do
   end function c_string
+
+  !> `text` into the C buffer `buf` of `len` bytes, NUL-terminated, cut to len - 1.
+  subroutine copy_c_string(text, buf, len)
+    character(len=*), intent(in) :: text
+    type(c_ptr), intent(in) :: buf
+    integer(c_size_t), intent(in) :: len
+    character(kind=c_char, len=1), pointer :: out(:)
+    integer(c_size_t) :: i, k
+    if (len < 1 .or. .not. c_associated(buf)) return
+    call c_f_pointer(buf, out, [len])
+    k = min(int(len_trim(text), c_size_t), len - 1)
+    do i = 1, k
+      out(i) = text(i:i)
+    end do
+    out(k + 1) = c_null_char
+  end subroutine copy_c_string
 
   !> Note `code` and `message` in the handle; returns the code.
   integer(c_int) function fail(p, code, message) result(rc)
@@ -139,22 +155,15 @@ contains
 
   !> Copies the last message (NUL-terminated, cut to len - 1); returns its full length.
   integer(c_size_t) function davit_error_message(h, buf, len) bind(c) result(n)
-    type(c_ptr), value, intent(in) :: h
-    character(kind=c_char), intent(out) :: buf(*)
+    type(c_ptr), value, intent(in) :: h, buf
     integer(c_size_t), value, intent(in) :: len
     type(capi_handle), pointer :: p
     character(len=:), allocatable :: m
-    integer(c_size_t) :: i, k
     p => handle_of(h)
     m = "null handle"
     if (associated(p)) m = p%message
     n = int(len_trim(m), c_size_t)
-    if (len < 1) return
-    k = min(n, len - 1)
-    do i = 1, k
-      buf(i) = m(i:i)
-    end do
-    buf(k + 1) = c_null_char
+    call copy_c_string(m, buf, len)
   end function davit_error_message
 
   !> The handle ready to run, or null with the code set.

@@ -72,8 +72,10 @@ contains
     case ("sea", "ship")
       call fatal_error(error, "deck '"//name//"': &simulation scene = '"// &
                        trim(cfg%simulation%scene)//"' has no boat; the library runs the "// &
-                       "scenes with one (launch, hanging, lowering, ...)")
+                       "scenes with one (hanging_boat, lowering, launch)")
       return
+    case default
+      ! hanging_boat, lowering, launch: the scenes with the boat
     end select
     call check_run_budget(cfg, error)
     if (allocated(error)) return

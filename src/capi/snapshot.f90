@@ -16,7 +16,8 @@ module davit_capi_snapshot
   public :: snapshot_bytes, snapshot_restore
 
   character(len=8), parameter :: magic = "DAVITSV1"
-  !> Header: magic, then the lengths of name and text, the passes, the controls, the state.
+  !> The header after the magic: the lengths of name and text, the passes, the controls,
+  !> the state.
   integer, parameter :: n_head = 5
 
 contains
@@ -94,9 +95,10 @@ contains
     end if
     call session_replay(s, head(3), ctrl_pass, int(kinds), values, error)
     if (allocated(error)) return
-    if (any(transfer([s%t, s%y], [0_i8]) /= transfer(check, [0_i8]))) &
+    if (any(transfer([s%t, s%y], [0_i8]) /= transfer(check, [0_i8]))) then
       call fatal_error(error, "snapshot: the replay of '"//name//"' did not reach the "// &
                        "saved state (another build or machine of davit?)")
+    end if
   end subroutine snapshot_restore
 
   pure function itoa(n) result(text)

@@ -150,12 +150,13 @@ contains
     partial = path//".partial.h5"
   end function partial_path
 
-  !> The time loop shared by all integrated scenes (davit_capi_session steps the same
-  !> loop one pass at a time: a change here goes there too; test_library compares them): from t = 0 to t_end, or until the
+  !> The time loop shared by all integrated scenes: from t = 0 to t_end, or until the
   !> monitor ends the run, sampling `rec` (in memory) at exact multiples of the output
   !> interval. A divergence or a failed step ends the loop with its message in run_error and
   !> the record so far kept; `error` reports a set-up failure only. `progress`, if given,
-  !> is told the time after every step (it redraws on its own clock).
+  !> is told the time after every step (it redraws on its own clock). davit_capi_session
+  !> steps the same loop one pass at a time: a change here goes there too (test_capi and
+  !> test_library compare them).
   subroutine integrate(sim, problem, y, rec, summary, run_error, error, monitor, progress)
     type(simulation_config), intent(in) :: sim
     class(ode_problem), intent(inout) :: problem

@@ -201,6 +201,31 @@ def test_release_drops_the_boat():
         assert boat_z(run) - z0 == pytest.approx(v0 * t + 0.5 * 9.81 * t**2, rel=0.01)
 
 
+def test_heading_set_point_turns_the_ship():
+    """Calm water, drum at rest: the ship's heading keeping (a spring of period 30 s, the
+    &ship heading_period default, with damping and an integral term) turned 0.05 rad to
+    starboard at 1 s: the yaw moves towards the set-point only, is within 20 % of the step
+    after one period and within 10 % after two; a deck on foundation slings (no moving
+    ship) refuses the set-point."""
+    deck = CALM.replace("drum_speed = 0.7", "drum_speed = 0.0").replace(
+        "t_end = 40.0", "t_end = 70.0")
+    with davit.Launch.from_text(deck, "calm.nml") as run:
+        run.advance_to(1.0)
+        yaw0 = run.ship_pose()["euler"][2]
+        run.set_heading(yaw0 + 0.05)
+        turned = []
+        while run.time < 61.0 - 1e-9:
+            run.advance(0.5)
+            turned.append(run.ship_pose()["euler"][2] - yaw0)
+        assert min(turned) >= 0.0
+        assert turned[59] == pytest.approx(0.05, rel=0.2)   # 31 s
+        assert turned[-1] == pytest.approx(0.05, rel=0.1)   # 61 s
+    with davit.Launch.from_text("&simulation scene = 'hanging_boat', t_end = 1.0 /\n", "h.nml") as run:
+        with pytest.raises(davit.DavitError) as err:
+            run.set_heading(0.1)
+        assert err.value.code == davit.E_ARG and "heading" in err.value.message
+
+
 def test_bad_deck_gives_code_and_message():
     deck = "! a deck\n&simulation\n  dt = 1.0e-3\n  t_end = -5.0\n/\n"
     with pytest.raises(davit.DavitError) as err:
