@@ -108,6 +108,25 @@ setup_paraview() {
     log "could not install ParaView: the scene's rendering test will skip"
 }
 
+# Headless Chromium (Debian's chromium and chromium-driver) and Selenium (PyPI):
+# test_live drives the live page in a real browser (bash make.sh test installs them; the
+# test skips, saying why, only where they cannot be installed; DAVIT_NO_BROWSER=1 leaves
+# them out)
+BROWSER_APT_PACKAGES=(chromium chromium-driver)
+setup_browser() {
+  [ "${DAVIT_NO_BROWSER:-0}" = 1 ] && return 0
+  if ! command -v chromedriver >/dev/null 2>&1; then
+    log "installing ${BROWSER_APT_PACKAGES[*]} (the live page's browser test)"
+    { as_root apt-get update -qq &&
+        as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+          "${BROWSER_APT_PACKAGES[@]}" >/dev/null; } ||
+      log "could not install Chromium: the live page's browser test will skip"
+  fi
+  python3 -c "import selenium" >/dev/null 2>&1 ||
+    python3 -m pip install -q --disable-pip-version-check selenium ||
+    log "could not install Selenium: the live page's browser test will skip"
+}
+
 mpi() {
   setup_apt
   setup_python
@@ -215,12 +234,17 @@ install_files() {
   cp -R input "$prefix/share/davit/input.tmp"
   rm -rf "$prefix/share/davit/input"
   mv "$prefix/share/davit/input.tmp" "$prefix/share/davit/input"
+  py="$(python3 -c 'import sys; print(sys.executable)')"
   install_script "$prefix/bin/davit" "#!/bin/sh
 # davit, installed by bash make.sh install from $PWD
 DAVIT_PATH=\"\${DAVIT_PATH:+\$DAVIT_PATH:}\"$(shell_quote "$prefix/share/davit/input")
 export DAVIT_PATH
+# davit live: the launch in a browser (python3 -m davit.live over build/libdavit.so)
+if [ \"\${1:-}\" = live ]; then
+  shift
+  PYTHONPATH=$(shell_quote "$PWD/python")\"\${PYTHONPATH:+:\$PYTHONPATH}\" exec $(shell_quote "$py") -m davit.live \"\$@\"
+fi
 exec $(shell_quote "$prefix/libexec/davit/davit") \"\$@\""
-  py="$(python3 -c 'import sys; print(sys.executable)')"
   install_script "$prefix/bin/davit-post" "#!/bin/sh
 # davit-post: python -m postproc of the davit checkout $PWD
 # (installed by bash make.sh install; the study and fender tools run \$DAVIT)
@@ -438,6 +462,7 @@ run_tests() {
   apt_install "${TEST_APT_PACKAGES[@]}"
   setup_mpi
   setup_paraview
+  setup_browser
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"
   plog="$(mktemp)"
