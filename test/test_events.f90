@@ -17,6 +17,8 @@ module test_events
                                 new_rubber_fender_law, law_hertz_elastoplastic
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, deck_config
+  use davit_system_events, only: advance_history
+  use davit_core_rotation, only: rotation_matrix
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_bench_accuracy, only: accuracy_type, scene_accuracy
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -64,7 +66,8 @@ contains
                    new_case("fender_next_phase_is_fender_update", next_phase), &
                    new_case("bench_accuracy_against_a_written_reference", bench_accuracy), &
                    new_case("chattering_modes_do_not_stall_the_run", chattering), &
-                   new_case("two_modes_switching_apart_located_in_turn", two_apart)]
+                   new_case("two_modes_switching_apart_located_in_turn", two_apart), &
+                   new_case("waterborne_hold_restarts_above_the_gate", waterborne_hold)]
   end function collect_events
 
   subroutine bouncer_rhs(self, t, y, dydt)
@@ -539,5 +542,53 @@ contains
     acc = scene_accuracy(path, "regular", t, x, [1.0_wp], [1.0_wp])
     call check_true(state, .not. acc%known, "other sling count: unknown")
   end subroutine bench_accuracy
+
+  !> Waterborne (hooks < 1 % of the weight, or rho g V >= W) must hold for 1 s without a
+  !> break while the keel can reach the water (CG < 10 m above it). On calm water a boat
+  !> lifted off its slings (slack hooks, no buoyancy) 9.85 m above the still water, then
+  !> swung up to 10.4 m, then back to 9.85 m 1.5 s after the start, was not afloat in the
+  !> second in between: it must not be waterborne, and no hooks may open. The control:
+  !> the same slack state held 1 s unbroken is waterborne from its start (so the low state
+  !> does count as afloat, and the first check is not vacuous).
+  subroutine waterborne_hold(state)
+    type(case_state), intent(inout) :: state
+    type(system_type) :: sys
+    type(config_type) :: cfg
+    real(wp), allocatable :: y0(:), low(:), high(:)
+    cfg = deck_config("&simulation scene = 'lowering' / &wind speed = 0.0 / "// &
+                      "&sea wave_type = 'calm' / &boat position = 0.0, 13.3, -9.8 /")
+    y0 = new_test_system(sys, cfg)
+    low = raised(sys, y0, 9.85_wp)
+    high = raised(sys, y0, 10.4_wp)
+    call advance_history(sys%par, sys%hist, 0.0_wp, low)
+    call advance_history(sys%par, sys%hist, 0.5_wp, high)
+    call advance_history(sys%par, sys%hist, 1.0_wp, high)
+    call advance_history(sys%par, sys%hist, 1.5_wp, low)
+    call check_true(state, sys%hist%waterborne_time < 0.0_wp, &
+                    "broken hold (10.4 m above the water between): not waterborne")
+    call check_true(state, sys%hist%release_time < 0.0_wp, "broken hold: hooks closed")
+    y0 = new_test_system(sys, cfg)
+    call advance_history(sys%par, sys%hist, 0.0_wp, low)
+    call advance_history(sys%par, sys%hist, 0.5_wp, low)
+    call advance_history(sys%par, sys%hist, 1.0_wp, low)
+    call check(state, sys%hist%waterborne_time, 0.0_wp, "unbroken 1 s hold: waterborne at 0", &
+               abs_tol=0.0_wp)
+  end subroutine waterborne_hold
+
+  !> State y0 with the boat's CG moved straight up to `height` [m] above the still water
+  !> (z down), everything else (blocks, falls) as in y0.
+  function raised(sys, y0, height) result(y)
+    type(system_type), intent(in) :: sys
+    real(wp), intent(in) :: y0(:), height
+    real(wp), allocatable :: y(:)
+    real(wp) :: c(3, 3), r(3)
+    y = y0
+    associate (q => y(sys%par%boat_part%q(1):sys%par%boat_part%q(2)))
+      c = rotation_matrix(q(1:3))
+      r = matmul(c, q(4:6))
+      r(3) = -height
+      q(4:6) = matmul(transpose(c), r)
+    end associate
+  end function raised
 
 end module test_events

@@ -121,13 +121,19 @@ contains
 
   !> Waterborne when rho g V >= W or the hooks carry < 1 % of W, held for 1 s; the hooks
   !> open release_delay later. Checked only when the keel can reach the water (CG less
-  !> than 10 m above the still water), so the hanging phase costs nothing.
+  !> than 10 m above the still water), so the hanging phase costs nothing. Above that
+  !> height the boat is not afloat: the hold restarts (a boat swinging on its falls went
+  !> above it with slack hooks and came back with slack hooks seconds later; the old hold
+  !> spanned the gap and released the hooks 10 m above the water).
   subroutine watch_waterborne(par, hist, t, y)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(inout) :: hist
     real(wp), intent(in) :: t, y(:)
     real(wp), parameter :: hold = 1.0_wp
-    if (.not. keel_can_reach_water(par, y)) return
+    if (.not. keel_can_reach_water(par, y)) then
+      hist%afloat_since = -1.0_wp
+      return
+    end if
     if (hist%waterborne_time < 0.0_wp) then
       if (.not. afloat(par, hist, t, y)) then
         hist%afloat_since = -1.0_wp
