@@ -34,12 +34,12 @@ module davit_bench_suite
   !> (bench_reference.h5) and an integrator override ("" keeps the deck's; with rtol,
   !> atol and the largest step dt).
   type :: scene_spec
-    character(len=24) :: name
+    character(len=32) :: name
     character(len=48) :: deck
     real(wp) :: t_full, t_quick
     logical :: at_limit
     character(len=16) :: reference
-    character(len=8) :: integrator = ""
+    character(len=16) :: integrator = ""
     real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, dt = 0.0_wp
   end type scene_spec
 
@@ -52,8 +52,10 @@ module davit_bench_suite
   !> The single-summation sea (100 components, one direction per frequency, instead of
   !> 100 x 13) at the default level of detail, with Rosenbrock-W, and at the fast level
   !> for irregular sweeps (quasi-static blocks, Rosenbrock-W), measured against the
-  !> converged reference of that sea.
-  type(scene_spec), parameter :: scenes(11) = [ &
+  !> converged reference of that sea. The multirate method (MIS: the ship, the boat's
+  !> water and wind once per 0.02 s stage, the rigging, hooks and fenders in 10 RK4
+  !> substeps) in the regular and single-summation seas.
+  type(scene_spec), parameter :: scenes(13) = [ &
     scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., "regular"), &
     scene_spec("regular_rosw", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
                "regular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
@@ -71,6 +73,11 @@ module davit_bench_suite
                20.0_wp, .false., "irregular_single", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
     scene_spec("irregular_single_fast", "iiib_level5_090_irregular_single_fast.nml", 0.0_wp, &
                20.0_wp, .false., "irregular_single"), &
+    scene_spec("regular_multirate", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
+               "regular", "multirate", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
+    scene_spec("irregular_single_multirate", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
+               20.0_wp, .false., "irregular_single", "multirate", 1.0e-4_wp, 1.0e-5_wp, &
+               0.02_wp), &
     scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true., &
                "paper_literal"), &
     scene_spec("paper_literal_rosw", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
