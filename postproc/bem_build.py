@@ -12,7 +12,7 @@ import time as _time
 import numpy as np
 
 from . import bem_db as db
-from . import bem_fit, layout
+from . import bem_checks, bem_fit, layout
 
 RHO = 1025.0
 G = 9.81
@@ -54,6 +54,22 @@ def default_headings_deg():
     return np.arange(0.0, 360.0001, 15.0)
 
 
+def default_gyradii(hull, given=(None, None, None), paper_box=False):
+    """Radii of gyration (roll, pitch, yaw) [m] and where each comes from: those given,
+    else 0.38 B (roll; review G9's 0.38 B, within the usual 0.35-0.40 B of ships) and
+    0.25 L (pitch, yaw) of this hull, the paper's 0.25 L_wl = 32.6375 m for the default
+    box (paper_box)."""
+    pitch = PITCH_GYRADIUS if paper_box else 0.25 * hull.length
+    pitch_source = "0.25 L_wl of the paper's ship" if paper_box else "0.25 L of the hull"
+    defaults = ((ROLL_GYRADIUS_FACTOR * hull.beam, f"{ROLL_GYRADIUS_FACTOR:g} B of the hull"),
+                (pitch, pitch_source), (pitch, pitch_source))
+    radii, sources = [], []
+    for value, (fallback, source) in zip(given, defaults):
+        radii.append(float(fallback if value is None else value))
+        sources.append(source if value is None else "given")
+    return tuple(radii), tuple(sources)
+
+
 def mass_matrix(mass, gyradii):
     """Diagonal 6x6 rigid-body mass matrix about the CG (the same in both frames)."""
     return np.diag([mass, mass, mass] + [mass * r**2 for r in gyradii])
@@ -88,12 +104,14 @@ def make_body(hull, cg, mass=None, gyradii=None, rho=RHO, g=G):
         mass = rho * volume
     body.mass = mass
     if gyradii is None:
-        gyradii = (ROLL_GYRADIUS_FACTOR * hull.beam, PITCH_GYRADIUS, PITCH_GYRADIUS)
+        gyradii = default_gyradii(hull, paper_box=hull.kind == "box")[0]
     m6 = mass_matrix(mass, gyradii)
     dofs = list(body.dofs)
     body.inertia_matrix = xr.DataArray(m6, dims=["influenced_dof", "radiating_dof"],
                                        coords={"influenced_dof": dofs, "radiating_dof": dofs})
     body.hydrostatic_stiffness = body.compute_hydrostatic_stiffness(rho=rho, g=g)
+    checked = bem_checks.hydrostatics(hull.mesh, cg)
+    bem_checks.check_stability(checked)
     hydro = {"volume": volume, "waterplane_area": float(body.waterplane_area),
              "centre_of_buoyancy": np.asarray(body.center_of_buoyancy, float),
              "gm_t": float(body.transversal_metacentric_height),
@@ -247,6 +265,8 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
                     else np.asarray(headings_deg, float))
     body, m6, hydro = make_body(hull, cg, mass, gyradii, rho, g)
     if progress:
+        for line in bem_checks.report(bem_checks.hydrostatics(hull.mesh, cg)):
+            print(f"bem: {line}", file=sys.stderr)
         print(f"bem: {hull.kind} hull {hull.length:.2f} x {hull.beam:.2f} x {hull.draught:.2f} m, "
               f"{hull.panels} panels + {hull.lid_panels} lid panels (z = {hull.lid_z:.2f} m), "
               f"{len(omegas)} frequencies x {len(headings_deg)} headings", file=sys.stderr)
