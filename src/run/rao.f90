@@ -109,8 +109,9 @@ contains
     sa = 2.0_wp*sa/nmeas
     amplitude = sqrt(ca**2 + sa**2)/zeta
     phase = atan2(-sa, ca)
-    if (.not. all(ieee_is_finite(amplitude)) .or. .not. all(ieee_is_finite(phase))) &
+    if (.not. all(ieee_is_finite(amplitude)) .or. .not. all(ieee_is_finite(phase))) then
       call fatal_error(error, "the fitted amplitude or phase is not finite")
+    end if
   end subroutine rao_case
 
   subroutine run_rao(cfg, out_path, summary, error)
