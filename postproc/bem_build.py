@@ -167,6 +167,16 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     a_sp = _ordered(ds_special.added_mass, dofs)
     a_zero = _sign_matrix(a_sp.sel(omega=0.0).values)
     a_inf = _sign_matrix(a_sp.sel(omega=np.inf).values)
+    # the pairs the hull's symmetries make zero are zero (not the solver's round-off, whose
+    # fits had negative damping) and are not fitted
+    zero = bem_fit.symmetry_zero_pairs(body.mesh.vertices, cg)
+    for m in (added_mass, damping):
+        m[:, zero] = 0.0
+    a_zero[zero] = 0.0
+    a_inf[zero] = 0.0
+    if progress and zero.any():
+        print(f"bem: {int(zero.sum()) // 2} radiation pairs zero by the hull's symmetry, "
+              f"not fitted", file=sys.stderr)
 
     beta = np.radians(headings_deg)
     beta_c = np.mod(-beta, 2 * np.pi)
@@ -190,10 +200,14 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     time = np.arange(0.0, end + 0.5 * dt, dt)
     kernel = bem_fit.retardation(omega, damping, time)
     fits = bem_fit.fit_all(omega, added_mass, damping, a_inf, time, kernel, nmax=nmax,
-                           tol=tol, window=window, tail=tail)
+                           tol=tol, window=window, tail=tail, zero=zero)
     order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
+    hydro["min_eigen_damping"] = bem_fit.min_eigen_damping(fits, omega[-1], damping)
     if progress:
         print_fit_report(fits)
+        print(f"bem: fitted damping matrix, smallest eigenvalue over 0..20 w_N (scaled by "
+              f"sqrt(max B_ii max B_jj)): {hydro['min_eigen_damping']:.3g} (each diagonal "
+              f"fit is passive; the couplings are fitted pair by pair)", file=sys.stderr)
     return {
         db.OMEGA: omega, db.HEADING: beta, db.WAVENUMBER: k,
         db.ADDED_MASS: added_mass, db.DAMPING: damping,
@@ -283,6 +297,7 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         "lid_z": hull.lid_z, "rho": rho, "g": g, "mass": hydro["mass"],
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
+        "fit_min_eigen_damping": hydro["min_eigen_damping"],
         "retardation_dt_end_window": np.asarray(retardation, float),
         db.ATTR_COMMAND_LINE: command, db.ATTR_SOLVE_TIME: elapsed,
         "davit_conventions": db.__doc__.strip(),

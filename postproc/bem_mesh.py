@@ -278,7 +278,12 @@ def file_hull(path, omega_max=2.0, lid=True, file_format=None):
     lid_mesh, zl = None, float("nan")
     if lid:
         zl = max(lid_position(length, beam, omega_max), -0.5 * draught)
-        lid_mesh = mesh.generate_lid(z=zl)
+        # Capytaine's default lid panel is the hull's mean panel size, which left a slender
+        # hull's waterplane (a Wigley model, B = 0.3 m) without a lid: panels of B/6 or finer
+        for radius in (beam / 6.0, beam / 10.0, beam / 16.0):
+            lid_mesh = mesh.generate_lid(z=zl, faces_max_radius=radius)
+            if lid_mesh.nb_faces > 0:
+                break
         if lid_mesh.nb_faces == 0:
             lid_mesh, zl = None, float("nan")
     return Hull("file", mesh, lid_mesh, length, beam, draught, zl,
