@@ -125,3 +125,17 @@ def test_restrained_heave_gives_the_five_dof_frequency_domain_pitch(wigley_db, d
         z += 1j * w * np.diag(bv)
         xi = np.linalg.solve(z[np.ix_(keep, keep)], x[k, keep])
         assert td[n, 4] == pytest.approx(abs(xi[3]), rel=0.01), w
+
+
+def test_the_paper_ships_drag_on_the_model_fails_loudly(wigley_db, davit):
+    """The same deck with the paper's empirical loads (cross-flow drag on L_pp = 126 m,
+    d = 4.4 m, 1,600 m^2 of windage) on the 77 kg model: the runs blow up within seconds,
+    and davit rao says which and why and exits 1 instead of writing them as results."""
+    folder, _, _ = wigley_db
+    deck = folder / "paper_drag.nml"
+    deck.write_text(DECK.format(extra="", omegas="4.0, 6.0", heading=180.0)
+                    .replace("empirical_loads = 'off'", "empirical_loads = 'deck'"))
+    result = davit("rao", deck, "-o", folder / "paper_drag.h5")
+    assert result.returncode == 1
+    assert "2 of 2 runs failed" in result.stderr
+    assert "omega 4 rad/s, heading 180 deg: " in result.stderr
