@@ -17,6 +17,10 @@
       (postproc.bem_build.lifeboat_omegas), headings every 15 deg; -o input/boat_bem.nc.
       --mesh FILE: any mesh Capytaine or meshio reads, in Capytaine's frame (x forward,
       y port, z up, waterline z = 0); give --cg (and --mesh-format nemoh for .dat).
+      Checked first (postproc.bem_checks): inward normals flipped with a message; a hole
+      below the waterline, no waterplane, or GM_T or GM_L <= 0 refused (exit 1). Gyradii
+      default to 0.38 B (roll) and 0.25 L (pitch, yaw) of the hull. Radiation pairs that
+      the hull's symmetry makes zero are not fitted; the diagonal fits are passive.
 
   python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--gm GM] [--omegas W ...]
                              [--headings-deg B ...] [-o FILE.h5|FILE.csv]

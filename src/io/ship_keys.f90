@@ -152,8 +152,10 @@ contains
     call r%choice_list(g, "restrain", restrain, [character(len=5) :: "none"], &
                        [character(len=5) :: "none", dofs], &
                        "Degrees of freedom held fixed, as a tank test restrains a model "// &
-                       "(e.g. 'surge', 'sway', 'yaw'): their accelerations are zero and "// &
-                       "they keep their initial values; 'none' = a free ship.", 1, 6)
+                       "(e.g. 'surge', 'sway', 'yaw'): their accelerations in ship axes "// &
+                       "are zero, so their speeds keep their initial values (the CG's "// &
+                       "inertial motion in them is then of second order, e.g. pitch times "// &
+                       "surge); 'none' = a free ship.", 1, 6)
     do k = 1, 6
       s%restrained(k) = any(restrain == dofs(k))
     end do

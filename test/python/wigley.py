@@ -101,3 +101,16 @@ def write_obj(path, vertices, faces, inward=False):
         for face in faces:
             face = face[::-1] if inward else face
             f.write("f " + " ".join(str(k + 1) for k in face) + "\n")
+
+
+if __name__ == "__main__":
+    # python test/python/wigley.py OUT.obj [L B T NX NZ]: the parabolic Wigley hull, NX
+    # stations and NZ waterlines a side (default the own-ship how-to's 3 x 0.3 x 0.1875 m,
+    # 24 x 6: 288 panels)
+    import sys
+    args = sys.argv[1:]
+    if not args:
+        sys.exit("usage: python test/python/wigley.py OUT.obj [L B T NX NZ]")
+    dims = [float(a) for a in args[1:4]] or [3.0, 0.3, 0.1875]
+    counts = [int(a) for a in args[4:6]] or [24, 6]
+    write_obj(args[0], *wigley_faces(*dims, *counts))
