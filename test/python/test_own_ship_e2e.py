@@ -139,3 +139,37 @@ def test_the_paper_ships_drag_on_the_model_fails_loudly(wigley_db, davit):
     assert result.returncode == 1
     assert "2 of 2 runs failed" in result.stderr
     assert "omega 4 rad/s, heading 180 deg: " in result.stderr
+
+
+def test_one_heading_database_is_refused_by_the_run_and_answered_at_its_heading(wigley_db,
+                                                                                 davit):
+    """The database cut to its 180 deg heading: `bem rao` answers at 180 deg (the full
+    database's answer) and refuses 90 deg; `davit rao` refuses it, naming why."""
+    import shutil
+    folder, base, _ = wigley_db
+    one = folder / "one" / "wigley_bem.nc"
+    one.parent.mkdir()
+    shutil.copy(folder / "wigley_bem.nc", one)
+    k = int(np.argmin(np.abs(base.heading - np.pi)))
+    with h5py.File(one, "r+") as f:
+        for name in (db.HEADING, db.EXCITATION_RE, db.EXCITATION_IM, db.FROUDE_KRYLOV_RE,
+                     db.FROUDE_KRYLOV_IM):
+            data, attrs = f[name][()], dict(f[name].attrs)
+            data = data[k:k + 1] if name == db.HEADING else data[:, k:k + 1]
+            for dim in ("DIMENSION_LIST", "REFERENCE_LIST", "CLASS", "NAME"):
+                attrs.pop(dim, None)
+            del f[name]
+            f.create_dataset(name, data=data)
+            f[name].attrs.update(attrs)
+    single = db.Database(one)
+    xi, _ = bem_rao.raos(single, np.array([5.0]), np.array([np.pi]))
+    ref, _ = bem_rao.raos(base, np.array([5.0]), np.array([np.pi]))
+    np.testing.assert_allclose(xi, ref, rtol=1e-12)
+    with pytest.raises(ValueError, match="covers the one heading 180 deg only"):
+        bem_rao.raos(single, np.array([5.0]), np.array([0.5 * np.pi]))
+    deck = one.parent / "one.nml"
+    deck.write_text(DECK.format(extra="", omegas="5.0", heading=180.0))
+    result = davit("rao", deck, "-o", one.parent / "one.h5")
+    assert result.returncode == 1
+    assert "holds one heading only" in result.stderr
+    assert not (one.parent / "one.h5").exists()
