@@ -107,11 +107,12 @@ def check_restoring(base, g=9.81):
     for dof in RESTORED:
         c = float(base.stiffness[dof, dof])
         if not c > 0.0:
-            gm = c / (base.mass[0, 0] * g)
+            why = ""
+            if dof in (3, 4):
+                why = (f" (GM {c / (base.mass[0, 0] * g):.4g} m <= 0: unstable; give --gm, "
+                       f"or rebuild with a lower --cg)")
             raise ValueError(f"the hull has no {db.DOFS[dof]} restoring: C{dof + 1}{dof + 1} "
-                             f"= {c:.4g}" + (f" (GM {gm:.4g} m <= 0: unstable; give --gm, "
-                                             f"or rebuild with a lower --cg)"
-                                             if dof in (3, 4) else "") + "")
+                             f"= {c:.4g}{why}")
 
 
 def covered_headings(base, headings, tol=1e-6):

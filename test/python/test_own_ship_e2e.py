@@ -25,7 +25,7 @@ CG_Z = -0.06                       # KG 0.1275 m: GM_T 0.031 m
 OMEGAS = np.concatenate([np.arange(1.0, 4.0, 0.5), np.arange(4.0, 9.0, 0.25),
                          np.arange(9.0, 16.01, 1.0)])
 COMPARE = [3.0, 4.0, 5.0, 6.0]     # rad/s: head seas, heave and pitch within 1 %
-DECK = """&ship model = 'bem', database = 'wigley_bem.nc', empirical_loads = 'off',
+DECK = """&ship model = 'bem', database = 'wigley_bem.nc', empirical_loads = '{loads}',
       zeta_roll = 0.05{extra} /
 &rao omegas = {omegas}, headings_deg = {heading}, amplitude = 0.005,
      settle_time = 30.0, measure_periods = 10, dt = 0.005 /
@@ -47,10 +47,10 @@ def wigley_db(tmp_path_factory):
     return folder, db.Database(out), result.stderr
 
 
-def _davit_rao(davit, folder, name, omegas, heading, extra=""):
+def _davit_rao(davit, folder, name, omegas, heading, extra="", loads="off"):
     deck = folder / f"{name}.nml"
     deck.write_text(DECK.format(extra=extra, omegas=", ".join(f"{w:g}" for w in omegas),
-                                heading=heading))
+                                heading=heading, loads=loads))
     out = folder / f"{name}.h5"
     result = davit("rao", deck, "-o", out)
     assert result.returncode == 0, result.stderr
@@ -133,12 +133,24 @@ def test_the_paper_ships_drag_on_the_model_fails_loudly(wigley_db, davit):
     and davit rao says which and why and exits 1 instead of writing them as results."""
     folder, _, _ = wigley_db
     deck = folder / "paper_drag.nml"
-    deck.write_text(DECK.format(extra="", omegas="4.0, 6.0", heading=180.0)
-                    .replace("empirical_loads = 'off'", "empirical_loads = 'deck'"))
+    deck.write_text(DECK.format(extra="", omegas="4.0, 6.0", heading=180.0, loads="deck"))
     result = davit("rao", deck, "-o", folder / "paper_drag.h5")
     assert result.returncode == 1
     assert "2 of 2 runs failed" in result.stderr
     assert "omega 4 rad/s, heading 180 deg: " in result.stderr
+
+
+def test_the_models_own_drag_and_windage_admitted_and_small(wigley_db, davit):
+    """The deck's empirical loads sized for the model itself (the ranges admit it): the
+    runs complete, and at a 5 mm wave the quadratic drag moves heave and pitch by < 2 %."""
+    folder, _, _ = wigley_db
+    own = (", length_overall = 3.0, length_waterline = 3.0,"
+           " length_pp = 3.0, beam = 0.3, draught = 0.1875, depth = 0.3,"
+           " displacement = 75.8, block_coefficient = 0.444, area_front = 0.03,"
+           " area_lateral = 0.3, wind_height = 0.1")
+    td = _davit_rao(davit, folder, "own_drag", [4.0, 6.0], 180.0, own, loads="deck")
+    free = _davit_rao(davit, folder, "no_drag", [4.0, 6.0], 180.0)
+    np.testing.assert_allclose(td[:, [2, 4]], free[:, [2, 4]], rtol=0.02)
 
 
 def test_one_heading_database_is_refused_by_the_run_and_answered_at_its_heading(wigley_db,
@@ -168,7 +180,7 @@ def test_one_heading_database_is_refused_by_the_run_and_answered_at_its_heading(
     with pytest.raises(ValueError, match="covers the one heading 180 deg only"):
         bem_rao.raos(single, np.array([5.0]), np.array([0.5 * np.pi]))
     deck = one.parent / "one.nml"
-    deck.write_text(DECK.format(extra="", omegas="5.0", heading=180.0))
+    deck.write_text(DECK.format(extra="", omegas="5.0", heading=180.0, loads="off"))
     result = davit("rao", deck, "-o", one.parent / "one.h5")
     assert result.returncode == 1
     assert "holds one heading only" in result.stderr
