@@ -108,6 +108,25 @@ setup_paraview() {
     log "could not install ParaView: the scene's rendering test will skip"
 }
 
+# Headless Chromium (Debian's chromium and chromium-driver) and Selenium (PyPI):
+# test_live drives the live page in a real browser (bash make.sh test installs them; the
+# test skips, saying why, only where they cannot be installed; DAVIT_NO_BROWSER=1 leaves
+# them out)
+BROWSER_APT_PACKAGES=(chromium chromium-driver)
+setup_browser() {
+  [ "${DAVIT_NO_BROWSER:-0}" = 1 ] && return 0
+  if ! command -v chromedriver >/dev/null 2>&1; then
+    log "installing ${BROWSER_APT_PACKAGES[*]} (the live page's browser test)"
+    { as_root apt-get update -qq &&
+        as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+          "${BROWSER_APT_PACKAGES[@]}" >/dev/null; } ||
+      log "could not install Chromium: the live page's browser test will skip"
+  fi
+  python3 -c "import selenium" >/dev/null 2>&1 ||
+    python3 -m pip install -q --disable-pip-version-check selenium ||
+    log "could not install Selenium: the live page's browser test will skip"
+}
+
 mpi() {
   setup_apt
   setup_python
@@ -148,6 +167,38 @@ setup() {
   fpm build "${FPM_FLAGS[@]}" >/dev/null 2>&1 || fpm build "${FPM_FLAGS[@]}"
   DAVIT_BIN="$(fpm run "${FPM_FLAGS[@]}" --runner echo 2>/dev/null | tail -n 1)"
   export DAVIT_BIN="$PWD/$DAVIT_BIN"
+  setup_library
+}
+
+# The library (include/davit.h, doc/howto/library.md): build/libdavit.so linked from the
+# very archive fpm linked DAVIT_BIN from (same objects, so the library's runs equal davit
+# run's bit for bit), and the Python package python/davit made importable: a .pth file in
+# the Python's site-packages (.venv's, where setup made one) names python/. fpm prints the
+# archive only when it links, so the binary is relinked (a second) when the archive is
+# newer than the library or the library is missing.
+DAVIT_LIB=build/libdavit.so
+setup_library() {
+  local archive site
+  if [ ! -e "$DAVIT_LIB" ] || [ "$DAVIT_BIN" -nt "$DAVIT_LIB" ]; then
+    rm -f "$DAVIT_BIN"
+    archive="$(fpm build "${FPM_FLAGS[@]}" --verbose 2>&1 | grep -o '[^ ]*/libdavit\.a' | tail -n 1)"
+    if [ -z "$archive" ] || [ ! -e "$archive" ]; then
+      log "cannot find fpm's libdavit.a: $DAVIT_LIB not built"
+      return 1
+    fi
+    log "linking $DAVIT_LIB from $archive"
+    # shellcheck disable=SC2046  # pkg-config's flags are words
+    gfortran -shared -o "$DAVIT_LIB.tmp" -Wl,--whole-archive "$archive" -Wl,--no-whole-archive \
+      -fopenmp $(pkg-config --libs hdf5) -lhdf5hl_fortran -lhdf5_fortran -lhdf5_hl -llapack -lblas
+    mv -f "$DAVIT_LIB.tmp" "$DAVIT_LIB"
+  fi
+  export DAVIT_LIB="$PWD/$DAVIT_LIB"
+  site="$(python3 -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+  if [ -w "$site" ]; then
+    printf '%s\n' "$PWD/python" >"$site/davit_library.pth"
+  else
+    log "$site is not writable: import davit needs PYTHONPATH=$PWD/python"
+  fi
 }
 
 # Single-quoted for a generated shell script (any character, quotes included).
@@ -183,12 +234,17 @@ install_files() {
   cp -R input "$prefix/share/davit/input.tmp"
   rm -rf "$prefix/share/davit/input"
   mv "$prefix/share/davit/input.tmp" "$prefix/share/davit/input"
+  py="$(python3 -c 'import sys; print(sys.executable)')"
   install_script "$prefix/bin/davit" "#!/bin/sh
 # davit, installed by bash make.sh install from $PWD
 DAVIT_PATH=\"\${DAVIT_PATH:+\$DAVIT_PATH:}\"$(shell_quote "$prefix/share/davit/input")
 export DAVIT_PATH
+# davit live: the launch in a browser (python3 -m davit.live over build/libdavit.so)
+if [ \"\${1:-}\" = live ]; then
+  shift
+  PYTHONPATH=$(shell_quote "$PWD/python")\"\${PYTHONPATH:+:\$PYTHONPATH}\" exec $(shell_quote "$py") -m davit.live \"\$@\"
+fi
 exec $(shell_quote "$prefix/libexec/davit/davit") \"\$@\""
-  py="$(python3 -c 'import sys; print(sys.executable)')"
   install_script "$prefix/bin/davit-post" "#!/bin/sh
 # davit-post: python -m postproc of the davit checkout $PWD
 # (installed by bash make.sh install; the study and fender tools run \$DAVIT)
@@ -406,6 +462,7 @@ run_tests() {
   apt_install "${TEST_APT_PACKAGES[@]}"
   setup_mpi
   setup_paraview
+  setup_browser
   local flog plog fpass=0 ffail=1 ppass=0 pfail=0 status=0 line
   flog="$(mktemp)"
   plog="$(mktemp)"
@@ -492,7 +549,8 @@ usage: bash make.sh COMMAND
                      (CI: results must not hang on this CPU's FMA or vector width)
   docs               the documentation site (FORD) -> build/doc/index.html; the deck-key
                      and command-line pages regenerated from the code first
-  setup              install what is missing and build
+  setup              install what is missing and build (the binary, build/libdavit.so,
+                     import davit: doc/howto/library.md)
   help               this text
 EOF
 }

@@ -26,7 +26,7 @@
                                                    the documentation's blocks made from the
                                                    code (deck keys, command line) and the
                                                    FORD site (postproc.doc_blocks)
-  python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity|summation-compare ...
+  python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity|compare-sweeps ...
                                                    the tool postproc.study, .bem, ...
                                                    (their own --help)
   (`davit-post ...` = `python -m postproc ...` in the project's environment, from any folder)
@@ -198,7 +198,8 @@ def _movie(args):
 TOOLS = {"readme-tables": "readme_tables", "doc-blocks": "doc_blocks", "study": "study", "bem": "bem",
          "bench-reference": "bench_reference", "boat-rao": "boat_rao",
          "fender-test": "fender_test", "launch-table": "launch_table",
-         "sensitivity": "sensitivity", "summation-compare": "summation_compare"}
+         "sensitivity": "sensitivity", "summation-compare": "summation_compare",
+         "compare-sweeps": "summation_compare"}
 
 
 def main(argv=None):

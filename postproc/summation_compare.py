@@ -1,6 +1,7 @@
 """Launch statistics of two sweeps that differ in one modelling choice (e.g. the sea's
-double summation, eq. 43, against a single summation): `davit-post summation-compare
-A.h5 B.h5 [-o TABLE.md]`.
+double summation, eq. 43, against a single summation, or a sweep deck against its fast
+level of detail): `davit-post compare-sweeps A.h5 B.h5 [--pool] [-o TABLE.md]` (also
+`davit-post summation-compare`, its first name). Any two sweep summaries are accepted.
 
 For every cell (level, encounter angle, clearance) both summaries hold, over the launches
 that completed: the collision probability (a fender touched the ship's side) with its
@@ -9,7 +10,10 @@ impact speed on the ship's side (0 for a launch without impact), each with its
 distribution-free 95 % interval from order statistics. The difference B - A is judged
 with Newcombe's hybrid score interval for two proportions (Newcombe 1998, method 10) and
 a seeded percentile bootstrap for the quantiles: "equal" when the 95 % interval of the
-difference holds 0, else the difference is reported.
+difference holds 0, else the difference is reported. `--pool` also compares every completed
+launch of each summary as one cell ("all"): a sweep of a few launches per cell (8 in
+sweep_fig19) leaves each cell's intervals too wide to see a difference that the pooled
+launches can.
 """
 import argparse
 import math
@@ -91,29 +95,41 @@ def _cells(columns):
             & (columns["clearance_b"] == key[2]) for key in keys}
 
 
-def compare(path_a, path_b):
-    """Rows (dicts) of the comparison, one per cell and statistic."""
+POOLED = ("all", "", "")
+
+
+def compare(path_a, path_b, pool=False):
+    """Rows (dicts) of the comparison, one per cell and statistic; with `pool` first the
+    rows of every completed launch of each summary as one cell (POOLED)."""
     a, b = _load(path_a), _load(path_b)
     cells_a, cells_b = _cells(a), _cells(b)
     rows = []
+    if pool and cells_a and cells_b:
+        rows += _cell_rows(a, b, POOLED, a["status"] == 1, b["status"] == 1)
     for key in sorted(set(cells_a) & set(cells_b)):
-        ma, mb = cells_a[key], cells_b[key]
-        ka, na = int(a["collided"][ma].sum()), int(ma.sum())
-        kb, nb = int(b["collided"][mb].sum()), int(mb.sum())
-        lo, hi = newcombe_difference(kb, nb, ka, na)
-        rows.append(dict(cell=key, statistic="collision probability", a=ka / na,
-                         a_int=assessment.wilson_interval(ka, na), b=kb / nb,
-                         b_int=assessment.wilson_interval(kb, nb), diff=(lo, hi),
-                         n=(na, nb)))
-        for name, unit, scale in (("sling", "kN", 1e-3), ("impact", "m/s", 1.0)):
-            xa, xb = a[name][ma] * scale, b[name][mb] * scale
-            for q in (0.5, 0.9):
-                rows.append(dict(cell=key, statistic=f"P{int(q * 100)} "
-                                 f"{'peak sling tension' if name == 'sling' else 'fastest impact'}"
-                                 f" ({unit})", a=float(np.quantile(xa, q)),
-                                 a_int=quantile_interval(xa, q), b=float(np.quantile(xb, q)),
-                                 b_int=quantile_interval(xb, q),
-                                 diff=bootstrap_difference(xa, xb, q), n=(na, nb)))
+        rows += _cell_rows(a, b, key, cells_a[key], cells_b[key])
+    return rows
+
+
+def _cell_rows(a, b, key, ma, mb):
+    """The five rows of one cell: launches `ma` of summary a against `mb` of b."""
+    rows = []
+    ka, na = int(a["collided"][ma].sum()), int(ma.sum())
+    kb, nb = int(b["collided"][mb].sum()), int(mb.sum())
+    lo, hi = newcombe_difference(kb, nb, ka, na)
+    rows.append(dict(cell=key, statistic="collision probability", a=ka / na,
+                     a_int=assessment.wilson_interval(ka, na), b=kb / nb,
+                     b_int=assessment.wilson_interval(kb, nb), diff=(lo, hi),
+                     n=(na, nb)))
+    for name, unit, scale in (("sling", "kN", 1e-3), ("impact", "m/s", 1.0)):
+        xa, xb = a[name][ma] * scale, b[name][mb] * scale
+        for q in (0.5, 0.9):
+            rows.append(dict(cell=key, statistic=f"P{int(q * 100)} "
+                             f"{'peak sling tension' if name == 'sling' else 'fastest impact'}"
+                             f" ({unit})", a=float(np.quantile(xa, q)),
+                             a_int=quantile_interval(xa, q), b=float(np.quantile(xb, q)),
+                             b_int=quantile_interval(xb, q),
+                             diff=bootstrap_difference(xa, xb, q), n=(na, nb)))
     return rows
 
 
@@ -124,7 +140,9 @@ def markdown(rows, name_a, name_b):
     for r in rows:
         lo, hi = r["diff"]
         same = lo <= 0.0 <= hi
-        cell = f"L{int(r['cell'][0])}, {r['cell'][1]:g} deg, {r['cell'][2]:g} (n = {r['n'][0]}/{r['n'][1]})"
+        where = ("all launches" if r["cell"] == POOLED else
+                 f"L{int(r['cell'][0])}, {r['cell'][1]:g} deg, {r['cell'][2]:g}")
+        cell = f"{where} (n = {r['n'][0]}/{r['n'][1]})"
         lines.append(f"| {cell} | {r['statistic']} | {r['a']:.3g} [{r['a_int'][0]:.3g}, "
                      f"{r['a_int'][1]:.3g}] | {r['b']:.3g} [{r['b_int'][0]:.3g}, "
                      f"{r['b_int'][1]:.3g}] | {r['b'] - r['a']:+.3g} [{lo:+.3g}, {hi:+.3g}] | "
@@ -133,19 +151,21 @@ def markdown(rows, name_a, name_b):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="davit-post summation-compare",
+    parser = argparse.ArgumentParser(prog="davit-post compare-sweeps",
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("a", help="sweep summary A (e.g. the double summation)")
     parser.add_argument("b", help="sweep summary B (e.g. the single summation)")
+    parser.add_argument("--pool", action="store_true",
+                        help="first compare all completed launches of each summary as one cell")
     parser.add_argument("-o", "--output", help="write the Markdown table here too")
     args = parser.parse_args(argv)
     try:
-        rows = compare(args.a, args.b)
+        rows = compare(args.a, args.b, args.pool)
     except (OSError, ValueError, KeyError) as exc:
-        print(f"davit-post summation-compare: {exc}", file=sys.stderr)
+        print(f"davit-post compare-sweeps: {exc}", file=sys.stderr)
         return 1
     if not rows:
-        print("davit-post summation-compare: the two summaries share no completed cell",
+        print("davit-post compare-sweeps: the two summaries share no completed cell",
               file=sys.stderr)
         return 1
     text = markdown(rows, "A", "B")

@@ -12,6 +12,7 @@ program main
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
   use test_slack, only: collect_slack
+  use test_block_balance, only: collect_block_balance
   use test_integrators, only: collect_integrators
   use test_sweep, only: collect_sweep
   use test_strip_waves, only: collect_strip_waves
@@ -26,6 +27,8 @@ program main
   use test_adaptive, only: collect_adaptive
   use test_core, only: collect_core
   use test_wave_grid, only: collect_wave_grid
+  use test_multirate, only: collect_multirate
+  use test_capi, only: collect_capi
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -50,7 +53,8 @@ program main
             collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
             collect_assess(), collect_adaptive(), collect_core(), &
-            collect_wave_grid()]
+            collect_wave_grid(), collect_multirate(), collect_block_balance(), &
+            collect_capi()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

@@ -23,22 +23,29 @@ module davit_core_kane
 contains
 
   !> Eq. (89): u_dot = V^-1 (F - W phi) at every speed of the layout: V diagonal, but for
-  !> the layout's coupled blocks.
-  pure subroutine kane_rates(layout, kane, dydt)
+  !> the layout's coupled blocks. The speeds inside the state range `at_rest` (a part the
+  !> caller set at rest, its u_dot = 0: the ship in the multirate method's fast part) are
+  !> left as they are.
+  pure subroutine kane_rates(layout, kane, dydt, at_rest)
     type(state_layout_type), intent(in) :: layout
     real(wp), intent(in) :: kane(:, :)
     real(wp), intent(inout) :: dydt(:)
-    integer :: k
+    integer, intent(in), optional :: at_rest(2)
+    integer :: k, skip(2)
+    skip = [1, 0]
+    if (present(at_rest)) skip = at_rest
     ! part by part: each part's speeds are contiguous, so this is whole-array work on
     ! sections, with no gathered temporaries
     do k = 1, layout%nparts
       associate (u1 => layout%parts(k)%u(1), u2 => layout%parts(k)%u(2))
+        if (u1 >= skip(1) .and. u2 <= skip(2)) cycle
         dydt(u1:u2) = (kane(kane_f, u1:u2) - kane(kane_w_phi, u1:u2))/kane(kane_v, u1:u2)
       end associate
     end do
     if (.not. allocated(layout%coupled)) return
     do k = 1, size(layout%coupled)
       associate (b => layout%coupled(k))
+        if (b%u(1) >= skip(1) .and. b%u(2) <= skip(2)) cycle
         if (b%modal) then
           call apply_modal(b%v_inv, kane(:, b%u(1):b%u(2)), dydt(b%u(1):b%u(2)))
         else

@@ -29,12 +29,20 @@ module davit_rigging_block_balance
   !> the right-hand side (davit modes, RODAS3) clean; from an RK4 stage's start that takes
   !> 3 evaluations of the balance (start, step, dashpots). A step moves a block by at most
   !> newton_cap [m] (a block falling onto its cable after the drum paid out over a slack
-  !> sling); newton_floor [N/m] on the diagonal keeps the matrix regular while a block has
-  !> no taut link (stiffnesses are 1e2 to 1e8 N/m, so it changes the converged answer not
-  !> at all).
+  !> sling).
   real(wp), parameter :: newton_tol = 1.0e-9_wp, newton_cap = 2.0_wp
-  real(wp), parameter :: newton_floor = 1.0e-3_wp
-  integer, parameter :: newton_max = 50, search_max = 12, max_switches = 8
+  !> newton_floor [N/m] on the diagonal keeps the matrix positive definite where a block
+  !> has a direction that nothing holds (resting on its hook stop with both links slack:
+  !> any place on the stop within the sling's slack is a balance) and ties the block's
+  !> velocity in such a direction to its hook's, as the stop's friction does for a massive
+  !> block. (With 1e-3 N/m and no tie, the velocity -(dF/dr)^(-1) dF/dt of such a block
+  !> came out at ~100 m/s from the last few mN of a sling at its kink, its position copy
+  !> ran off, and 13 of 432 water entries at 0.85 m/s stopped: input/sweep_lsa_fast.nml.)
+  !> Far below every stiffness that holds a block (its pendulum on slack falls, m_b g/l ~
+  !> 25 N/m; taut links 1e5 to 1e8 N/m), so it moves neither the balance (the floor is in
+  !> the Newton matrix, not in the force) nor, by more than floor/k, the velocity.
+  real(wp), parameter :: newton_floor = 0.1_wp
+  integer, parameter :: newton_max = 60, search_max = 12, max_switches = 8
   !> A Newton step is cut back when it overshoots the balance along its line by more than
   !> search_ratio of the force component it started with (line_search); 0.1 leaves the
   !> quadratic regime alone (there the overshoot is ~|step|/l of it).
@@ -54,6 +62,9 @@ module davit_rigging_block_balance
   !> ... and is corrected during the iterations once it is off by more than gross_stretch
   !> [m] of stretch (6 kN on the default sling), which no converging iterate comes near.
   real(wp), parameter :: gross_stretch = 1.0e-4_wp
+  !> ... or, for a held sling that pushes, once its push exceeds push_share of the block's
+  !> weight (gross_correction).
+  real(wp), parameter :: push_share = 0.1_wp
 
   !> What the balance takes from the rest of the system. The caller sets the lower ends of
   !> the top sling segments (hook or top lump) and their velocities, the hooks (for the
@@ -79,11 +90,12 @@ module davit_rigging_block_balance
   end type balance_type
 
   !> Newton's iterate: blocks b, their velocity v, the last solve's solution x (step,
-  !> velocity), the active set taut, the best iterate so far, the balance at b, and the
-  !> counts of active-set switches and balance evaluations.
+  !> velocity), the active set taut, the best iterate so far, the balance at b, the
+  !> counts of active-set switches and balance evaluations, and the elastic force left on
+  !> a block at the end [N].
   type :: newton_type
     real(wp) :: b(6) = 0.0_wp, v(6) = 0.0_wp, x(6, 2) = 0.0_wp
-    real(wp) :: b_best(6) = 0.0_wp, best_norm = 0.0_wp
+    real(wp) :: b_best(6) = 0.0_wp, best_norm = 0.0_wp, left = 0.0_wp
     logical :: taut(2) = .false., solved = .false.
     integer :: nswitch = 0, nbal = 0
     type(balance_type) :: bal
@@ -100,8 +112,10 @@ contains
   !> waterborne boat) the blocks are tied by m_b/anchor_time^2 to their start (the
   !> state's copies) and the balance solved again: the copies follow the solved blocks, so
   !> the anchor acts like the block's inertia over anchor_time, letting it drift rather
-  !> than jump to where its slack links would put it. iterations: balance evaluations.
-  pure subroutine solve_blocks(falls, inp, ship, br, bv, solved, iterations)
+  !> than jump to where its slack links would put it. iterations: balance evaluations;
+  !> residual: the elastic force left on a block at the balance [N] (links, stop and
+  !> weight, without the fallback's anchor).
+  pure subroutine solve_blocks(falls, inp, ship, br, bv, solved, iterations, residual)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     type(pose_type), intent(in) :: ship
@@ -109,8 +123,9 @@ contains
     real(wp), intent(out) :: bv(3, 2)
     logical, intent(out) :: solved
     integer, intent(out), optional :: iterations
+    real(wp), intent(out), optional :: residual
     type(balance_input_type) :: in
-    real(wp) :: b0(3, 2)
+    real(wp) :: b0(3, 2), left
     integer :: c, n1, n2
     in = inp
     ! the ship-fixed nodes once (blocks at rest in vn); block_balance places the blocks
@@ -122,14 +137,15 @@ contains
     in%anchor(4:6) = br(:, 2)
     in%k_anchor = 0.0_wp
     b0 = br
-    call newton_blocks(falls, in, br, bv, solved, n1)
+    call newton_blocks(falls, in, br, bv, solved, n1, left)
     n2 = 0
     if (.not. solved) then
       br = b0
       in%k_anchor = falls%block_mass/anchor_time**2
-      call newton_blocks(falls, in, br, bv, solved, n2)
+      call newton_blocks(falls, in, br, bv, solved, n2, left)
     end if
     if (present(iterations)) iterations = n1 + n2
+    if (present(residual)) residual = left
   end subroutine solve_blocks
 
   !> First the elastic balance (no dashpots): it minimises a convex potential (elastic
@@ -152,13 +168,14 @@ contains
   !> link. After newton_max iterations the best iterate is taken if the force left on
   !> each block is below its weight, else solved = .false.; iterations counts the balance
   !> evaluations (3 from an RK4 stage's start: start, step, dashpots).
-  pure subroutine newton_blocks(falls, inp, br, bv, solved, iterations)
+  pure subroutine newton_blocks(falls, inp, br, bv, solved, iterations, left)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     real(wp), intent(inout) :: br(3, 2)
     real(wp), intent(out) :: bv(3, 2)
     logical, intent(out) :: solved
     integer, intent(out) :: iterations
+    real(wp), intent(out) :: left
     type(newton_type) :: nt
     integer :: it
     logical :: done
@@ -169,6 +186,7 @@ contains
     end do
     if (.not. nt%solved) call best_iterate(falls, inp, nt)
     call dashpot_shift(falls, inp, nt)
+    left = nt%left
     br(:, 1) = nt%b(1:3)
     br(:, 2) = nt%b(4:6)
     bv(:, 1) = nt%v(1:3)
@@ -216,7 +234,7 @@ contains
     done = .false.
     call newton_matrix(nt%bal%jac)
     nt%x(:, 1) = nt%bal%res
-    nt%x(:, 2) = nt%bal%rate
+    nt%x(:, 2) = velocity_rhs(inp, nt%bal)
     call dense_solve(nt%bal%jac, nt%x)
     step = nt%x(:, 1)
     longest = max(norm2(step(1:3)), norm2(step(4:6)))
@@ -301,7 +319,7 @@ contains
       call block_balance(falls, inp, b_try, nt%v, nt%taut, bal_t)
       nt%nbal = nt%nbal + 1
       g = dot_product(bal_t%res, step)
-      if (abs(g) <= g_tol) exit
+      if (abs(g) <= g_tol) return
       if (g < 0.0_wp) then
         a_hi = alpha
         g_hi = g
@@ -314,21 +332,32 @@ contains
         side = 1
       end if
     end do
+    ! not bracketed to search_ratio within search_max: take the bracket's low end, up to
+    ! which the force component stayed positive (the potential fell all the way there)
+    if (a_lo > 0.0_wp) then
+      b_try = nt%b + a_lo*step
+      call block_balance(falls, inp, b_try, nt%v, nt%taut, bal_t)
+      nt%nbal = nt%nbal + 1
+    end if
   end subroutine line_search
 
-  !> A guess that is plainly wrong (a free sling stretched, or a held one pushing, by more
-  !> than gross_stretch) is corrected at once rather than after converging to it.
+  !> A guess that is plainly wrong (a free sling stretched by more than gross_stretch, or
+  !> a held one pushing by more than push_share of the block's weight) is corrected at
+  !> once rather than after converging to it. (A held sling that carries the block's weight
+  !> as a push is an inverted pendulum: the continued law has no stable balance there for
+  !> Newton to converge to, so the push must free it at once.)
   pure subroutine gross_correction(falls, inp, nt)
     type(falls_type), intent(in) :: falls
     type(balance_input_type), intent(in) :: inp
     type(newton_type), intent(inout) :: nt
-    real(wp) :: f_gross
+    real(wp) :: f_gross, f_push
+    logical :: wrong(2)
     f_gross = falls%sling%k_seg*gross_stretch
+    f_push = push_share*falls%block_mass*gravity
     associate (taut => nt%taut, f_sling => nt%bal%f_sling, f_real => nt%bal%f_real)
-      if (nt%nswitch < max_switches .and. any(taut .and. f_sling < -f_gross .or. &
-                                              .not. taut .and. f_real > f_gross)) then
-        taut = taut .neqv. (taut .and. f_sling < -f_gross .or. &
-                            .not. taut .and. f_real > f_gross)
+      wrong = taut .and. f_sling < -f_push .or. .not. taut .and. f_real > f_gross
+      if (nt%nswitch < max_switches .and. any(wrong)) then
+        taut = taut .neqv. wrong
         nt%nswitch = nt%nswitch + 1
         call block_balance(falls, inp, nt%b, nt%v, taut, nt%bal)
         nt%nbal = nt%nbal + 1
@@ -358,9 +387,19 @@ contains
                   all(taut .or. nt%bal%f_real <= weight)
     end associate
     call newton_matrix(nt%bal%jac)
-    nt%x(:, 2) = nt%bal%rate
+    nt%x(:, 2) = velocity_rhs(inp, nt%bal)
     call dense_solve(nt%bal%jac, nt%x)
   end subroutine best_iterate
+
+  !> Right-hand side of the velocity solve (-dF/dr + floor) v = dF/dt + floor v_hook: a
+  !> direction that nothing holds moves with the block's hook.
+  pure function velocity_rhs(inp, bal) result(r)
+    type(balance_input_type), intent(in) :: inp
+    type(balance_type), intent(in) :: bal
+    real(wp) :: r(6)
+    r(1:3) = bal%rate(1:3) + newton_floor*inp%hook_v(:, 1)
+    r(4:6) = bal%rate(4:6) + newton_floor*inp%hook_v(:, 2)
+  end function velocity_rhs
 
   !> The velocity on the balance (from the last tangent, within newton_tol of it), then
   !> the dashpots at that velocity and the shift by what is left (their force, and the
@@ -373,6 +412,9 @@ contains
     nt%v = nt%x(:, 2)
     call block_balance(falls, inp, nt%b, nt%v, nt%taut, nt%bal, dashpots=.true.)
     nt%nbal = nt%nbal + 1
+    ! the force left by the links, stop and weight alone (without the fallback's anchor)
+    step = nt%bal%res + inp%k_anchor*(nt%b - inp%anchor)
+    nt%left = max(norm2(step(1:3)), norm2(step(4:6)))
     call newton_matrix(nt%bal%jac)
     nt%x(:, 1) = nt%bal%res + nt%bal%res_d
     nt%x(:, 2) = 0.0_wp
@@ -467,10 +509,30 @@ contains
         damp_f(:, a) = f_damped - f_top
       end if
       block_f(:, a) = block_f(:, a) + f_top
+      ! a held sling pushing (continued through slack, f < 0) would turn its push with the
+      ! chord, a negative stiffness across it (the continued energy is not convex there):
+      ! Newton's tangent keeps only what a pull would give, so its matrix stays positive
+      ! definite and the step descends; the active set then frees the sling
+      if (bal%f_sling(a) < 0.0_wp) call clip_across(inp%low_r(:, a), br(:, a), bal%f_sling(a), k)
       bal%jac(3*a - 2:3*a, 3*a - 2:3*a) = k
       bal%rate(3*a - 2:3*a) = -matmul(k, inp%low_v(:, a))
     end do
   end subroutine sling_pulls
+
+  !> The tangent k of a segment from r_low to r_top pushing with f < 0, without its
+  !> negative stiffness across the chord, f/D (I - e e^T).
+  pure subroutine clip_across(r_low, r_top, f, k)
+    real(wp), intent(in) :: r_low(3), r_top(3), f
+    real(wp), intent(inout) :: k(3, 3)
+    real(wp) :: e(3), dist
+    integer :: j
+    dist = norm2(r_top - r_low)
+    e = (r_top - r_low)/dist
+    do j = 1, 3
+      k(:, j) = k(:, j) - f/dist*e(j)*e
+      k(j, j) = k(j, j) + f/dist
+    end do
+  end subroutine clip_across
 
   !> block_balance's hook stops (davit_rigging_block_stop): a block resting on its hook
   !> (slack falls) is held there under its weight, where without the stop it would have no

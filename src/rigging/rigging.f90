@@ -413,28 +413,35 @@ contains
 
   !> Block positions and velocities (3, block), inertial: the states for massive blocks;
   !> for quasi-static blocks the solved balance at this state (the copies in y are only the
-  !> start). solved is .false. if the balance did not converge; iterations: Newton's.
+  !> start). solved is .false. if the balance did not converge; iterations: Newton's
+  !> balance evaluations; residual: the elastic force left on a block [N].
   pure subroutine rigging_block_state(self, t, y, hook_pos, hook_vel, ship, r, v, solved, &
-                                      iterations)
-    ! 10 arguments: the evaluation's inputs as in kane_blocks, and two optional diagnostics.
+                                      iterations, residual)
+    ! 11 arguments: the evaluation's inputs as in kane_blocks, and three optional
+    ! diagnostics.
     class(rigging_type), intent(in) :: self
     real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
     type(pose_type), intent(in) :: ship
     real(wp), intent(out) :: r(3, 2), v(3, 2)
     logical, intent(out), optional :: solved
     integer, intent(out), optional :: iterations
+    real(wp), intent(out), optional :: residual
     logical :: ok
     integer :: it
+    real(wp) :: left
     r = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
     v = reshape(y(self%block_v(1):self%block_v(2)), [3, 2])
     ok = .true.
     it = 0
+    left = 0.0_wp
     if (self%static_blocks) then
       call solve_blocks(self%falls_type, balance_input(self, y, hook_pos, hook_vel, &
-                        rigging_drive(self, y, winch_speed(self%winch, t))), ship, r, v, ok, it)
+                        rigging_drive(self, y, winch_speed(self%winch, t))), ship, r, v, ok, it, &
+                        left)
     end if
     if (present(solved)) solved = ok
     if (present(iterations)) iterations = it
+    if (present(residual)) residual = left
   end subroutine rigging_block_state
 
   !> Initial rigging state for a boat hanging at rest with its hooks at hook_pos and needing

@@ -28,7 +28,7 @@ module davit_run_driver
   use davit_run_progress, only: progress_meter
   implicit none
   private
-  public :: run_simulation, integrate
+  public :: run_simulation, integrate, first_bad, speed_limit
 
   !> Speeds beyond this (m/s, rad/s) are a numerical blow-up, not a lifeboat or a ship.
   real(wp), parameter :: speed_limit = 1.0e3_wp
@@ -154,7 +154,9 @@ contains
   !> monitor ends the run, sampling `rec` (in memory) at exact multiples of the output
   !> interval. A divergence or a failed step ends the loop with its message in run_error and
   !> the record so far kept; `error` reports a set-up failure only. `progress`, if given,
-  !> is told the time after every step (it redraws on its own clock).
+  !> is told the time after every step (it redraws on its own clock). davit_capi_session
+  !> steps the same loop one pass at a time: a change here goes there too (test_capi and
+  !> test_library compare them).
   subroutine integrate(sim, problem, y, rec, summary, run_error, error, monitor, progress)
     type(simulation_config), intent(in) :: sim
     class(ode_problem), intent(inout) :: problem
@@ -172,7 +174,7 @@ contains
     logical :: done, event
 
     call new_integrator(sim%integrator, size(y), integ, error, sim%rtol, sim%atol, &
-                        fixed_step=sim%fixed_step)
+                        fixed_step=sim%fixed_step, substeps=sim%substeps)
     if (allocated(error)) return
     ! adaptive integrators return after each accepted step: the history, the monitors
     ! and event location see every step, and dt is the largest step

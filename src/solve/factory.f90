@@ -8,6 +8,7 @@ module davit_solve_factory
   use davit_solve_dopri5, only: dopri5_type
   use davit_solve_rosenbrock, only: rosenbrock_type
   use davit_solve_rosenbrock_w, only: rosenbrock_w_type
+  use davit_solve_multirate, only: multirate_type
   implicit none
   private
   public :: new_integrator
@@ -18,14 +19,24 @@ contains
   !> state of size n. rtol/atol set the adaptive methods' tolerances (defaults 1e-6, 1e-9);
   !> rk4 has no error control and ignores them. fixed_step (default .false.) makes the
   !> adaptive methods take exactly one step of the macro step dt, without error control
-  !> (observed-order studies); rk4 is always fixed-step and ignores it.
-  subroutine new_integrator(name, n, integrator, error, rtol, atol, fixed_step)
+  !> (observed-order studies); rk4 is always fixed-step and ignores it. "multirate" (the
+  !> Wicker-Skamarock tableau) and "multirate2" (the midpoint tableau) are the MIS methods of
+  !> davit_solve_multirate, with `substeps` RK4 substeps of the fast part per macro step dt
+  !> (default 10).
+  subroutine new_integrator(name, n, integrator, error, rtol, atol, fixed_step, substeps)
     character(len=*), intent(in) :: name
     integer, intent(in) :: n
     class(integrator_type), allocatable, intent(out) :: integrator
     type(error_type), allocatable, intent(out) :: error
     real(wp), intent(in), optional :: rtol, atol
     logical, intent(in), optional :: fixed_step
+    integer, intent(in), optional :: substeps
+    if (present(substeps)) then
+      if (substeps < 1) then
+        call fatal_error(error, "multirate substeps must be >= 1")
+        return
+      end if
+    end if
     if (present(rtol)) then
       if (.not. rtol > 0.0_wp) then
         call fatal_error(error, "integrator rtol must be > 0")
@@ -47,9 +58,17 @@ contains
       allocate (rosenbrock_type :: integrator)
     case ("rosw")
       allocate (rosenbrock_w_type :: integrator)
+    case ("multirate")
+      allocate (multirate_type :: integrator)
+    case ("multirate2")
+      allocate (multirate_type :: integrator)
+      select type (integrator)
+      type is (multirate_type)
+        integrator%c = [0.5_wp, 1.0_wp]
+      end select
     case default
       call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock, "// &
-                       "rosw)")
+                       "rosw, multirate, multirate2)")
       return
     end select
     call integrator%init(n)
@@ -58,6 +77,8 @@ contains
       if (present(rtol)) integrator%rtol = rtol
       if (present(atol)) integrator%atol = atol
       if (present(fixed_step)) integrator%fixed_step = fixed_step
+    type is (multirate_type)
+      if (present(substeps)) integrator%substeps = substeps
     end select
   end subroutine new_integrator
 

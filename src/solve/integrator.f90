@@ -28,6 +28,12 @@ module davit_solve_integrator
     procedure :: coupled_states => no_stiff_states
     procedure :: n_modes => no_n_modes
     procedure :: modes => no_modes
+    !> The multirate split f = f_slow + f_fast (davit_solve_multirate): the slow part is
+    !> evaluated once per stage of the macro step, the fast part at every substep. By
+    !> default everything is fast (f_slow = 0), and the multirate method is RK4 at the
+    !> substep.
+    procedure :: rhs_slow => no_rhs_slow
+    procedure :: rhs_fast => all_rhs_fast
   end type ode_problem
 
   abstract interface
@@ -85,6 +91,22 @@ module davit_solve_integrator
   end interface
 
 contains
+
+  subroutine no_rhs_slow(self, t, y, dydt)
+    class(ode_problem), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: dydt(:)
+    dydt = 0.0_wp
+  end subroutine no_rhs_slow
+
+  subroutine all_rhs_fast(self, t, y, dydt)
+    class(ode_problem), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: dydt(:)
+    call self%rhs(t, y, dydt)
+  end subroutine all_rhs_fast
 
   subroutine no_after_step(self, t, y)
     class(ode_problem), intent(inout) :: self

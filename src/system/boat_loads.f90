@@ -22,38 +22,84 @@ module davit_system_boat_loads
   implicit none
   private
   public :: boat_kane_blocks, water_loads
+  public :: loads_all, loads_slow, loads_fast
+
+  !> Which of the boat's terms boat_kane_blocks forms (the multirate split,
+  !> davit_solve_multirate): all of them; the slow ones (water by strips and BEM with the
+  !> BEM states' rates, wind); the fast ones (q_dot, W phi, gravity, foundation slings,
+  !> fenders). Slow plus fast is all, term by term.
+  integer, parameter :: loads_all = 0, loads_slow = 1, loads_fast = 2
 
 contains
 
   !> q_dot (eqs. 5-6) and the Kane blocks V, W phi, F of the boat at (q, u), with the ship's
   !> side at `side`; with the BEM water model, the rates xdot of its water states x (part
-  !> "boat_radiation"; empty otherwise).
-  pure subroutine boat_kane_blocks(par, hist, t, q, u, x, side, qdot, xdot, kane)
+  !> "boat_radiation"; empty otherwise). `part` (loads_all by default) selects the terms;
+  !> V is the whole mass block in every part.
+  pure subroutine boat_kane_blocks(par, hist, t, q, u, x, side, qdot, xdot, kane, part)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(in) :: hist
     real(wp), intent(in) :: t, q(6), u(6), x(:)
     type(side_plane_type), intent(in) :: side
     real(wp), intent(out) :: qdot(6), xdot(:), kane(3, 6)
-    qdot = body_qdot(q, u)
+    integer, intent(in), optional :: part
+    logical :: slow, fast
+    slow = .true.
+    fast = .true.
+    if (present(part)) then
+      slow = part /= loads_fast
+      fast = part /= loads_slow
+    end if
     kane(kane_v, :) = body_mass_diagonal(par%boat)
-    kane(kane_w_phi, :) = body_w_phi(par%boat, u)
-    call boat_forces(par, hist, t, q, u, x, side, kane(kane_f, :), xdot, kane(kane_v, :))
+    if (fast) then
+      qdot = body_qdot(q, u)
+      kane(kane_w_phi, :) = body_w_phi(par%boat, u)
+    else
+      qdot = 0.0_wp
+      kane(kane_w_phi, :) = 0.0_wp
+    end if
+    call boat_forces(par, hist, t, q, u, x, side, kane(kane_f, :), xdot, kane(kane_v, :), &
+                     slow, fast)
   end subroutine boat_kane_blocks
 
   !> Generalized active forces f on the boat but the davit's hook forces; with the BEM
-  !> water model, its states' rates and the modal masses v of M + s A(inf).
-  pure subroutine boat_forces(par, hist, t, q, u, x, side, f, xdot, v)
+  !> water model, its states' rates and the modal masses v of M + s A(inf). Only the slow
+  !> terms, or only the fast ones, where one of `slow`, `fast` is false (the BEM states
+  !> then have no rates in the fast part, and the modal masses come from their immersion
+  !> state alone, as boat_bem_loads forms them for s >= 0).
+  pure subroutine boat_forces(par, hist, t, q, u, x, side, f, xdot, v, slow, fast)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(in) :: hist
     real(wp), intent(in) :: t, q(6), u(6), x(:)
     type(side_plane_type), intent(in) :: side
     real(wp), intent(out) :: f(6), xdot(:)
     real(wp), intent(inout) :: v(6)
-    real(wp) :: c(3, 3), r(3), fh(3), tension, fw(6), volume, force(par%fenders%nf)
-    integer :: i
+    logical, intent(in) :: slow, fast
+    real(wp) :: c(3, 3), r(3)
     c = rotation_matrix(q(1:3))
     r = matmul(c, q(4:6))
-    f = body_gravity_force(par%boat, c)
+    if (fast) then
+      f = body_gravity_force(par%boat, c)
+      call sling_forces(par, c, r, u, f)
+    else
+      f = 0.0_wp
+    end if
+    if (slow) then
+      call slow_forces(par, hist, t, q, u, x, c, r, f, xdot, v)
+    else
+      xdot = 0.0_wp
+      if (par%bem_water) v = 1.0_wp + x(1)*par%bem%lambda
+    end if
+    if (fast .and. par%contact) call fender_forces(par, hist, side, c, r, u, f)
+  end subroutine boat_forces
+
+  !> The foundation slings' hook forces (eq. 26) added to f.
+  pure subroutine sling_forces(par, c, r, u, f)
+    type(system_params_type), intent(in) :: par
+    real(wp), intent(in) :: c(3, 3), r(3), u(6)
+    real(wp), intent(inout) :: f(6)
+    real(wp) :: fh(3), tension
+    integer :: i
     if (par%slings_attached) then
       do i = 1, nslings
         call sling_hook_force(par%slings(i), r + matmul(c, par%hooks(:, i)), &
@@ -61,6 +107,16 @@ contains
         f = f + body_point_force(par%hooks(:, i), matmul(transpose(c), fh))
       end do
     end if
+  end subroutine sling_forces
+
+  !> Water (strips, BEM) and wind added to f, the BEM states' rates and modal masses.
+  pure subroutine slow_forces(par, hist, t, q, u, x, c, r, f, xdot, v)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    real(wp), intent(in) :: t, q(6), u(6), x(:), c(3, 3), r(3)
+    real(wp), intent(inout) :: f(6), v(6)
+    real(wp), intent(out) :: xdot(:)
+    real(wp) :: fw(6), volume
     call water_loads(par, hist, t, c, r, u, fw, volume)
     f = f + fw
     if (par%bem_water) then
@@ -71,11 +127,19 @@ contains
     end if
     f(4:6) = f(4:6) + boat_wind_force(par%air, u(4:6) - matmul(wind_velocity(par%wind), c), &
                                       max(0.0_wp, 1.0_wp - volume/par%hull_volume))
-    if (par%contact) then
-      call fender_loads(par%fenders, hist%fender_states, side, c, r, u, fw, force)
-      f = f + fw
-    end if
-  end subroutine boat_forces
+  end subroutine slow_forces
+
+  !> The fenders' contact loads (eq. 34) added to f.
+  pure subroutine fender_forces(par, hist, side, c, r, u, f)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(in) :: hist
+    type(side_plane_type), intent(in) :: side
+    real(wp), intent(in) :: c(3, 3), r(3), u(6)
+    real(wp), intent(inout) :: f(6)
+    real(wp) :: fw(6), force(par%fenders%nf)
+    call fender_loads(par%fenders, hist%fender_states, side, c, r, u, fw, force)
+    f = f + fw
+  end subroutine fender_forces
 
   !> Strip water loads (eqs. 18-25) and wet volume, exactly zero without forming them
   !> while the surface watch proves the hull dry; from the strips' slow clock where it

@@ -17,7 +17,7 @@ module davit_system_events
   use davit_sea_wave_grid, only: wave_grid_type, grid_prepare
   implicit none
   private
-  public :: advance_history
+  public :: advance_history, release_hooks
 
 contains
 
@@ -127,7 +127,6 @@ contains
     type(system_history_type), intent(inout) :: hist
     real(wp), intent(in) :: t, y(:)
     real(wp), parameter :: hold = 1.0_wp
-    real(wp) :: hook_vel(3, nslings)
     if (.not. keel_can_reach_water(par, y)) return
     if (hist%waterborne_time < 0.0_wp) then
       if (.not. afloat(par, hist, t, y)) then
@@ -139,12 +138,19 @@ contains
       end if
     end if
     if (par%release .and. hist%waterborne_time >= 0.0_wp .and. &
-        t >= hist%waterborne_time + hold + par%release_delay) then
-      hist%release_time = t
-      call hook_kinematics(par, y, hist%released_hooks, hook_vel)
-      hist%released_pose = ship_pose(par, y)
-    end if
+        t >= hist%waterborne_time + hold + par%release_delay) call release_hooks(par, hist, t, y)
   end subroutine watch_waterborne
+
+  !> Open the hooks at the accepted state (t, y): the falls freeze where the hooks are.
+  subroutine release_hooks(par, hist, t, y)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(inout) :: hist
+    real(wp), intent(in) :: t, y(:)
+    real(wp) :: hook_vel(3, nslings)
+    hist%release_time = t
+    call hook_kinematics(par, y, hist%released_hooks, hook_vel)
+    hist%released_pose = ship_pose(par, y)
+  end subroutine release_hooks
 
   !> The CG is less than 10 m above the still water.
   pure logical function keel_can_reach_water(par, y)

@@ -19,7 +19,7 @@ module davit_system_model
                                      hook_kinematics, fender_gaps
   use davit_system_history, only: system_history_type
   use davit_system_contact_policy, only: contact_policy_type, contact_max_step
-  use davit_system_boat_loads, only: boat_kane_blocks
+  use davit_system_boat_loads, only: boat_kane_blocks, loads_all, loads_slow, loads_fast
   use davit_system_events, only: advance_history
   use davit_boat_contact, only: fender_next_phase
   use davit_system_observables, only: boat_kinematics, rigging_state, sling_tensions, &
@@ -35,6 +35,8 @@ module davit_system_model
     type(ship_system_type) :: ship
   contains
     procedure :: rhs => system_rhs
+    procedure :: rhs_slow => system_rhs_slow
+    procedure :: rhs_fast => system_rhs_fast
     procedure :: after_step => system_after_step
     procedure :: max_step => system_max_step
     procedure :: stiff_states => system_stiff_states
@@ -57,27 +59,70 @@ contains
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
-    call kane_blocks(self, t, y, dydt, kane)
+    call kane_blocks(self, t, y, dydt, kane, loads_all)
     call kane_rates(self%par%layout, kane, dydt)
   end subroutine system_rhs
 
+  !> The slow part of the multirate split (davit_solve_multirate): the one-way coupled
+  !> ship whole, and the boat's water and wind loads (with the BEM water states); eq. 89
+  !> with the same V, so slow + fast = system_rhs.
+  subroutine system_rhs_slow(self, t, y, dydt)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: dydt(:)
+    real(wp) :: kane(3, size(y))
+    call kane_blocks(self, t, y, dydt, kane, loads_slow)
+    call kane_rates(self%par%layout, kane, dydt)
+  end subroutine system_rhs_slow
+
+  !> The fast part: the boat's kinematics, gyroscopic terms, gravity, slings and fenders,
+  !> and the rigging with its hook forces; the ship has no rates here.
+  subroutine system_rhs_fast(self, t, y, dydt)
+    class(system_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp), intent(in) :: y(:)
+    real(wp), intent(out) :: dydt(:)
+    real(wp) :: kane(3, size(y))
+    call kane_blocks(self, t, y, dydt, kane, loads_fast)
+    if (self%par%with_ship) then
+      call kane_rates(self%par%layout, kane, dydt, self%par%ship_slice)
+    else
+      call kane_rates(self%par%layout, kane, dydt)
+    end if
+  end subroutine system_rhs_fast
+
   !> Every body's q_dot and Kane blocks at (t, y): the ship, the boat and, on the davit,
   !> the rigging, whose hook forces act on the boat through the hooks' partial
-  !> velocities (eq. 26).
-  subroutine kane_blocks(self, t, y, dydt, kane)
+  !> velocities (eq. 26); `part` (loads_all, loads_slow, loads_fast) selects the terms of
+  !> the multirate split, the parts it leaves out at rest.
+  subroutine kane_blocks(self, t, y, dydt, kane, part)
     type(system_type), intent(in) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(inout) :: dydt(:), kane(:, :)
+    integer, intent(in) :: part
     type(pose_type) :: pose
     associate (par => self%par, b => self%par%boat_part, s => self%par%ship_slice, &
-               x => self%par%radiation_part%q)
+               x => self%par%radiation_part%q, r => self%par%rig_slice)
       pose = ship_pose(par, y)
-      if (par%with_ship) call self%ship%kane_blocks(t, y(s(1):s(2)), dydt(s(1):s(2)), &
-                                                    kane(:, s(1):s(2)))
+      if (par%with_ship) then
+        if (part == loads_fast) then
+          ! the ship's rows are 0 here; kane_rates leaves its speeds so
+          dydt(s(1):s(2)) = 0.0_wp
+        else
+          call self%ship%kane_blocks(t, y(s(1):s(2)), dydt(s(1):s(2)), kane(:, s(1):s(2)))
+        end if
+      end if
       call boat_kane_blocks(par, self%hist, t, y(b%q(1):b%q(2)), y(b%u(1):b%u(2)), &
                             y(x(1):x(2)), side_plane(par, pose), dydt(b%q(1):b%q(2)), &
-                            dydt(x(1):x(2)), kane(:, b%u(1):b%u(2)))
-      if (par%on_davit) call rigging_blocks(self, t, y, pose, dydt, kane)
+                            dydt(x(1):x(2)), kane(:, b%u(1):b%u(2)), part)
+      if (par%on_davit) then
+        if (part == loads_slow) then
+          call kane_at_rest(dydt(r(1):r(2)), kane(:, r(1):r(2)))
+        else
+          call rigging_blocks(self, t, y, pose, dydt, kane)
+        end if
+      end if
     end associate
   end subroutine kane_blocks
 

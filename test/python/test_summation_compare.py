@@ -66,3 +66,47 @@ def test_verdicts_on_known_differences(tmp_path):
     assert not any(r["diff"][0] <= 0.0 <= r["diff"][1] for r in rows)
     table = sc.markdown(rows, "A", "B")
     assert table.count("differs") == 5 and "n = 400/400" in table
+
+
+def _summary_cells(path, angles, collided, sling, impact):
+    """A summary of one launch per element, the cells told apart by their angle."""
+    _summary(path, collided, sling, impact)
+    with h5py.File(path, "r+") as f:
+        f[layout.SWEEP_CASE_ANGLE][...] = np.asarray(angles, float)
+
+
+def test_pooled_cell_sees_what_small_cells_cannot(tmp_path):
+    # ten cells of 8 launches (sweep_fig19's design): 1 of 8 collide in A, 4 of 8 in B.
+    # Per cell, Newcombe's interval of 4/8 - 1/8 holds 0 (n too small); pooled, 40/80 -
+    # 10/80 = 0.375 lies in [0.235, 0.496] (the same formula at n = 80), which excludes 0.
+    angles = np.repeat(np.arange(10) * 10.0, 8)
+    first = np.tile(np.arange(8), 10)
+    rng = np.random.default_rng(7)
+    sling, impact = rng.gumbel(60e3, 8e3, 80), rng.gumbel(1.0, 0.3, 80)
+    a, b = tmp_path / "a.h5", tmp_path / "b.h5"
+    _summary_cells(a, angles, first < 1, sling, impact)
+    _summary_cells(b, angles, first < 4, sling, impact)
+    assert len(sc.compare(a, b)) == 50                 # no pooled row unless asked
+    rows = sc.compare(a, b, pool=True)
+    assert len(rows) == 55 and rows[0]["cell"] == sc.POOLED
+    pooled = rows[0]
+    assert pooled["n"] == (80, 80) and (pooled["a"], pooled["b"]) == (0.125, 0.5)
+    assert pooled["diff"][0] > 0.2 and pooled["diff"][1] < 0.5
+    cells = [r for r in rows[5:] if r["statistic"] == "collision probability"]
+    assert len(cells) == 10 and all(r["diff"][0] < 0.0 < r["diff"][1] for r in cells)
+    # the same loads in both: the pooled quantiles agree
+    assert all(r["diff"][0] <= 0.0 <= r["diff"][1] for r in rows[1:5])
+
+
+def test_compare_sweeps_command_writes_the_pooled_table(tmp_path):
+    from postproc import __main__ as cli
+    angles = np.repeat([45.0, 90.0], 20)
+    rng = np.random.default_rng(5)
+    a, b, out = tmp_path / "a.h5", tmp_path / "b.h5", tmp_path / "t.md"
+    for path in (a, b):
+        _summary_cells(path, angles, rng.random(40) < 0.5, rng.gumbel(60e3, 8e3, 40),
+                       rng.gumbel(1.0, 0.3, 40))
+    assert cli.main(["compare-sweeps", str(a), str(b), "--pool", "-o", str(out)]) == 0
+    table = out.read_text()
+    assert table.count("| all launches (n = 40/40) |") == 5
+    assert table.count("| L5, 45 deg, 0.5 (n = 20/20) |") == 5

@@ -1,0 +1,123 @@
+!> Multirate infinitesimal step (MIS) integration of y' = f_slow(t, y) + f_fast(t, y)
+!> (Wensch, Knoth & Galant, BIT Numer. Math. 49, 2009; the split-explicit scheme of
+!> Wicker & Skamarock, Mon. Wea. Rev. 130, 2002). A macro step H from y_n takes s stages;
+!> stage i integrates the fast ODE
+!>     v' = f_fast(t_n + tau, v) + f_slow(t_n + c_(i-1) H, Y_(i-1)),   v(0) = y_n,
+!> over tau in [0, c_i H] with the slow tendency of the previous stage held constant
+!> (Y_0 = y_n, c_0 = 0), by RK4 in round(c_i m) substeps (m: the substeps of a whole
+!> macro step); Y_s is y_(n+1). The slow part is evaluated s times per macro step, the
+!> fast part 4 (c_1 + ... + c_s) m times.
+!>
+!> Why this scheme: it needs nothing of the problem but the split of its right-hand side
+!> (no second-order structure, which the water's velocity-dependent loads and the BEM
+!> water states lack), the slow tendency enters every substep smoothly (the davit's ship
+!> states move continuously under it, so the stiff falls see no jump as they would under
+!> impulse splitting), and with f_slow = 0 it is RK4 at the substep, with f_fast = 0 the
+!> outer Runge-Kutta method at H. Order: with the Wicker-Skamarock tableau (c = 1/3, 1/2, 1)
+!> and with the midpoint tableau (c = 1/2, 1) both the outer method's order-2 conditions
+!> and MIS's coupling condition hold, so the scheme is of order 2 in H (Wensch et al.
+!> 2009; for a linear split y' = (A + B) y the Taylor expansion of the step
+!> matches e^((A+B)H) to H^2), plus the inner RK4's O(h^4) in the substep h.
+module davit_solve_multirate
+  use davit_kinds, only: wp
+  use davit_solve_integrator, only: ode_problem, integrator_type
+  implicit none
+  private
+  public :: multirate_type
+
+  type, extends(integrator_type) :: multirate_type
+    !> Stage ends c_i (fractions of the macro step), the last one 1.
+    real(wp), allocatable :: c(:)
+    !> RK4 substeps of the fast part over a whole macro step.
+    integer :: substeps = 10
+    !> Evaluations of each part (rhs_evaluations counts both).
+    integer :: slow_evaluations = 0, fast_evaluations = 0
+    real(wp), allocatable :: y0(:), slow(:), k1(:), k2(:), k3(:), k4(:), ytmp(:)
+  contains
+    procedure :: init => multirate_init
+    procedure :: step => multirate_step
+    procedure :: name => multirate_name
+  end type multirate_type
+
+contains
+
+  subroutine multirate_init(self, n)
+    class(multirate_type), intent(inout) :: self
+    integer, intent(in) :: n
+    if (allocated(self%y0)) deallocate (self%y0, self%slow, self%k1, self%k2, self%k3, &
+                                         self%k4, self%ytmp)
+    allocate (self%y0(n), self%slow(n), self%k1(n), self%k2(n), self%k3(n), self%k4(n), &
+              self%ytmp(n))
+    if (.not. allocated(self%c)) self%c = [1.0_wp/3.0_wp, 0.5_wp, 1.0_wp]
+    self%steps = 0
+    self%rhs_evaluations = 0
+    self%slow_evaluations = 0
+    self%fast_evaluations = 0
+  end subroutine multirate_init
+
+  !> One macro step of size dt (always the whole of it: there is no error control).
+  subroutine multirate_step(self, problem, t, y, dt)
+    class(multirate_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(inout) :: t
+    real(wp), intent(inout) :: y(:)
+    real(wp), intent(in) :: dt
+    real(wp) :: c_prev
+    integer :: i, nsub
+    self%y0 = y
+    c_prev = 0.0_wp
+    do i = 1, size(self%c)
+      ! y holds Y_(i-1): its slow tendency drives stage i, which restarts from y_n
+      call problem%rhs_slow(t + c_prev*dt, y, self%slow)
+      nsub = max(1, nint(self%c(i)*real(self%substeps, wp)))
+      y = self%y0
+      call fast_stage(self, problem, t, y, self%c(i)*dt, nsub)
+      self%slow_evaluations = self%slow_evaluations + 1
+      self%fast_evaluations = self%fast_evaluations + 4*nsub
+      c_prev = self%c(i)
+    end do
+    t = t + dt
+    self%steps = self%steps + 1
+    self%rhs_evaluations = int(self%slow_evaluations + self%fast_evaluations, &
+                               kind(self%rhs_evaluations))
+  end subroutine multirate_step
+
+  !> v' = f_fast(t0 + tau, v) + slow over tau in [0, span], RK4 in nsub equal substeps.
+  subroutine fast_stage(self, problem, t0, v, span, nsub)
+    type(multirate_type), intent(inout) :: self
+    class(ode_problem), intent(in) :: problem
+    real(wp), intent(in) :: t0, span
+    real(wp), intent(inout) :: v(:)
+    integer, intent(in) :: nsub
+    real(wp) :: h, half, ts
+    integer :: k
+    h = span/real(nsub, wp)
+    half = 0.5_wp*h
+    do k = 0, nsub - 1
+      ts = t0 + real(k, wp)*h
+      call problem%rhs_fast(ts, v, self%k1)
+      self%k1 = self%k1 + self%slow
+      self%ytmp = v + half*self%k1
+      call problem%rhs_fast(ts + half, self%ytmp, self%k2)
+      self%k2 = self%k2 + self%slow
+      self%ytmp = v + half*self%k2
+      call problem%rhs_fast(ts + half, self%ytmp, self%k3)
+      self%k3 = self%k3 + self%slow
+      self%ytmp = v + h*self%k3
+      call problem%rhs_fast(ts + h, self%ytmp, self%k4)
+      self%k4 = self%k4 + self%slow
+      v = v + (h/6.0_wp)*(self%k1 + 2.0_wp*(self%k2 + self%k3) + self%k4)
+    end do
+  end subroutine fast_stage
+
+  pure function multirate_name(self) result(name)
+    class(multirate_type), intent(in) :: self
+    character(len=:), allocatable :: name
+    if (size(self%c) == 2) then
+      name = "multirate2"
+    else
+      name = "multirate"
+    end if
+  end function multirate_name
+
+end module davit_solve_multirate
