@@ -17,6 +17,10 @@
       (postproc.bem_build.lifeboat_omegas), headings every 15 deg; -o input/boat_bem.nc.
       --mesh FILE: any mesh Capytaine or meshio reads, in Capytaine's frame (x forward,
       y port, z up, waterline z = 0); give --cg (and --mesh-format nemoh for .dat).
+      Checked first (postproc.bem_checks): inward normals flipped with a message; a hole
+      below the waterline, no waterplane, or GM_T or GM_L <= 0 refused (exit 1). Gyradii
+      default to 0.38 B (roll) and 0.25 L (pitch, yaw) of the hull. Radiation pairs that
+      the hull's symmetry makes zero are not fitted; the diagonal fits are passive.
 
   python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--gm GM] [--omegas W ...]
                              [--headings-deg B ...] [-o FILE.h5|FILE.csv]
@@ -37,7 +41,7 @@ import sys
 
 import numpy as np
 
-from . import bem_db, bem_mesh, bem_rao
+from . import bem_checks, bem_db, bem_mesh, bem_rao
 
 
 def _parser():
@@ -74,9 +78,13 @@ def _parser():
                    metavar=("IXX", "IYY", "IZZ"),
                    help="[kg m^2] about the CG (overrides the gyradii; lifeboat default "
                         "25020 51745 51745)")
-    b.add_argument("--roll-gyradius", type=float, default=None, help="[m] (default 0.38 B)")
-    b.add_argument("--pitch-gyradius", type=float, default=32.6375, help="[m]")
-    b.add_argument("--yaw-gyradius", type=float, default=32.6375, help="[m]")
+    b.add_argument("--roll-gyradius", type=float, default=None,
+                   help="[m] (default 0.38 B of the hull)")
+    b.add_argument("--pitch-gyradius", type=float, default=None,
+                   help="[m] (default 0.25 L of the hull; the default box: the paper's "
+                        "0.25 L_wl = 32.6375 m)")
+    b.add_argument("--yaw-gyradius", type=float, default=None,
+                   help="[m] (default as --pitch-gyradius)")
     b.add_argument("--rho", type=float, default=1025.0)
     b.add_argument("--omegas", type=float, nargs="+", default=None, help="[rad/s]")
     b.add_argument("--headings-deg", type=float, nargs="+", default=None,
@@ -131,6 +139,7 @@ def _build(args, argv):
                                       file_format=args.mesh_format)
         except (OSError, ValueError) as exc:
             return _error(f"{args.mesh}: {exc}")
+        print(f"bem: {args.mesh}: {hull.extra['mesh_checks']}", file=sys.stderr)
     elif lifeboat:
         hull = bem_mesh.lifeboat_hull(length=args.length or bem_mesh.BOAT_LENGTH, beam=beam,
                                       draught=draught, exponent=args.breadth_exponent,
@@ -159,14 +168,25 @@ def _build(args, argv):
             return _error("--inertia needs --mass")
         gyradii = tuple(float(np.sqrt(i / mass)) for i in args.inertia)
     else:
-        gyradii = (args.roll_gyradius or bem_build.ROLL_GYRADIUS_FACTOR * hull.beam,
-                   args.pitch_gyradius, args.yaw_gyradius)
+        gyradii, sources = bem_build.default_gyradii(
+            hull, (args.roll_gyradius, args.pitch_gyradius, args.yaw_gyradius),
+            paper_box=args.hull == "box" and not args.mesh and args.length is None)
+        print("bem: gyradii " + ", ".join(f"{n} {r:.4g} m ({s})" for n, r, s in
+                                          zip(("roll", "pitch", "yaw"), gyradii, sources)),
+              file=sys.stderr)
+    if len(args.headings_deg or (0, 1)) < 2:
+        print("bem: note: a one-heading database answers `bem rao` at that heading only; "
+              "davit's time-domain ship needs at least 2 headings (--headings-deg)",
+              file=sys.stderr)
     output = args.output or ("input/boat_bem.nc" if lifeboat else "input/ship_bem.nc")
     command = "python -m postproc.bem " + " ".join(shlex.quote(a) for a in argv)
-    bem_build.build(hull, output, cg=cg, mass=mass, gyradii=gyradii,
-                    omegas=args.omegas, headings_deg=args.headings_deg, rho=args.rho,
-                    nmax=args.nmax, tol=args.fit_tol, command=command,
-                    progress=not args.quiet)
+    try:
+        bem_build.build(hull, output, cg=cg, mass=mass, gyradii=gyradii,
+                        omegas=args.omegas, headings_deg=args.headings_deg, rho=args.rho,
+                        nmax=args.nmax, tol=args.fit_tol, command=command,
+                        progress=not args.quiet)
+    except bem_checks.MeshError as exc:
+        return _error(f"{args.mesh or args.hull}: {exc}")
     return 0
 
 
@@ -181,9 +201,10 @@ def _rao(args):
                           else [0.0, 45.0, 90.0, 135.0, 180.0])
     omegas = base.omega if args.omegas is None else np.asarray(args.omegas)
     try:
+        bem_rao.check_restoring(base)
         xi, b44 = bem_rao.raos(base, omegas, headings, args.roll_damping)
     except ValueError as exc:
-        return _error(exc)
+        return _error(f"{args.database}: {exc}")
     periods = bem_rao.natural_periods(base)
     ratios = bem_rao.damping_ratios(base)
     c44, gm = float(base.stiffness[3, 3]), bem_rao.roll_gm(base)

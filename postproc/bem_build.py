@@ -12,7 +12,7 @@ import time as _time
 import numpy as np
 
 from . import bem_db as db
-from . import bem_drift, bem_fit, bem_rao, layout
+from . import bem_checks, bem_drift, bem_fit, bem_rao, layout
 
 RHO = 1025.0
 G = 9.81
@@ -56,6 +56,22 @@ def default_headings_deg():
     return np.arange(0.0, 360.0001, 15.0)
 
 
+def default_gyradii(hull, given=(None, None, None), paper_box=False):
+    """Radii of gyration (roll, pitch, yaw) [m] and where each comes from: those given,
+    else 0.38 B (roll; review G9's 0.38 B, within the usual 0.35-0.40 B of ships) and
+    0.25 L (pitch, yaw) of this hull, the paper's 0.25 L_wl = 32.6375 m for the default
+    box (paper_box)."""
+    pitch = PITCH_GYRADIUS if paper_box else 0.25 * hull.length
+    pitch_source = "0.25 L_wl of the paper's ship" if paper_box else "0.25 L of the hull"
+    defaults = ((ROLL_GYRADIUS_FACTOR * hull.beam, f"{ROLL_GYRADIUS_FACTOR:g} B of the hull"),
+                (pitch, pitch_source), (pitch, pitch_source))
+    radii, sources = [], []
+    for value, (fallback, source) in zip(given, defaults):
+        radii.append(float(fallback if value is None else value))
+        sources.append(source if value is None else "given")
+    return tuple(radii), tuple(sources)
+
+
 def mass_matrix(mass, gyradii):
     """Diagonal 6x6 rigid-body mass matrix about the CG (the same in both frames)."""
     return np.diag([mass, mass, mass] + [mass * r**2 for r in gyradii])
@@ -90,12 +106,14 @@ def make_body(hull, cg, mass=None, gyradii=None, rho=RHO, g=G):
         mass = rho * volume
     body.mass = mass
     if gyradii is None:
-        gyradii = (ROLL_GYRADIUS_FACTOR * hull.beam, PITCH_GYRADIUS, PITCH_GYRADIUS)
+        gyradii = default_gyradii(hull, paper_box=hull.kind == "box")[0]
     m6 = mass_matrix(mass, gyradii)
     dofs = list(body.dofs)
     body.inertia_matrix = xr.DataArray(m6, dims=["influenced_dof", "radiating_dof"],
                                        coords={"influenced_dof": dofs, "radiating_dof": dofs})
     body.hydrostatic_stiffness = body.compute_hydrostatic_stiffness(rho=rho, g=g)
+    checked = bem_checks.hydrostatics(hull.mesh, cg)
+    bem_checks.check_stability(checked)
     hydro = {"volume": volume, "waterplane_area": float(body.waterplane_area),
              "centre_of_buoyancy": np.asarray(body.center_of_buoyancy, float),
              "gm_t": float(body.transversal_metacentric_height),
@@ -167,6 +185,16 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     a_sp = _ordered(ds_special.added_mass, dofs)
     a_zero = _sign_matrix(a_sp.sel(omega=0.0).values)
     a_inf = _sign_matrix(a_sp.sel(omega=np.inf).values)
+    # the pairs the hull's symmetries make zero are zero (not the solver's round-off, whose
+    # fits had negative damping) and are not fitted
+    zero = bem_fit.symmetry_zero_pairs(body.mesh.vertices, cg)
+    for m in (added_mass, damping):
+        m[:, zero] = 0.0
+    a_zero[zero] = 0.0
+    a_inf[zero] = 0.0
+    if progress and zero.any():
+        print(f"bem: {int(zero.sum()) // 2} radiation pairs zero by the hull's symmetry, "
+              f"not fitted", file=sys.stderr)
 
     beta = np.radians(headings_deg)
     beta_c = np.mod(-beta, 2 * np.pi)
@@ -190,10 +218,14 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     time = np.arange(0.0, end + 0.5 * dt, dt)
     kernel = bem_fit.retardation(omega, damping, time)
     fits = bem_fit.fit_all(omega, added_mass, damping, a_inf, time, kernel, nmax=nmax,
-                           tol=tol, window=window, tail=tail)
+                           tol=tol, window=window, tail=tail, zero=zero)
     order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
+    hydro["min_eigen_damping"] = bem_fit.min_eigen_damping(fits, omega[-1], damping)
     if progress:
         print_fit_report(fits)
+        print(f"bem: fitted damping matrix, smallest eigenvalue over 0..20 w_N (scaled by "
+              f"sqrt(max B_ii max B_jj)): {hydro['min_eigen_damping']:.3g} (each diagonal "
+              f"fit is passive; the couplings are fitted pair by pair)", file=sys.stderr)
     return {
         db.OMEGA: omega, db.HEADING: beta, db.WAVENUMBER: k,
         db.ADDED_MASS: added_mass, db.DAMPING: damping,
@@ -300,6 +332,8 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
                     else np.asarray(headings_deg, float))
     body, m6, hydro = make_body(hull, cg, mass, gyradii, rho, g)
     if progress:
+        for line in bem_checks.report(bem_checks.hydrostatics(hull.mesh, cg)):
+            print(f"bem: {line}", file=sys.stderr)
         print(f"bem: {hull.kind} hull {hull.length:.2f} x {hull.beam:.2f} x {hull.draught:.2f} m, "
               f"{hull.panels} panels + {hull.lid_panels} lid panels (z = {hull.lid_z:.2f} m), "
               f"{len(omegas)} frequencies x {len(headings_deg)} headings", file=sys.stderr)
@@ -318,6 +352,7 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         "lid_z": hull.lid_z, "rho": rho, "g": g, "mass": hydro["mass"],
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
+        "fit_min_eigen_damping": hydro["min_eigen_damping"],
         "retardation_dt_end_window": np.asarray(retardation, float),
         db.ATTR_DRIFT_ROLL_DAMPING: drift_roll_damping, "drift_roll_damping_visc": b44,
         "drift_theta_points": np.int32(bem_drift.N_THETA),

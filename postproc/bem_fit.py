@@ -146,6 +146,44 @@ def vector_fit(s, f, order, iterations=40, min_damping=1e-3):
     return poles, null @ y
 
 
+def passive_residues(s, f, poles, coef, omega_max, slack=1e-3, bound=None, iterations=30,
+                     weight=30.0):
+    """Residues (same poles) of a fit of f(s) (scaled data, K(0) = 0 kept) whose real part,
+    the damping, stays within its bounds over 0..20 omega_max: the least-squares fit of
+    vector_fit with rows Re K(i w_m) = (the bound) added, heavily weighted, at the extrema
+    where it leaves them, until it no longer does (an active set; Gustavsen's residue
+    perturbation in its simplest form). Bounds: Re K >= -slack max|Re f| (a diagonal
+    pair: passive), or |Re K| <= bound(w) + slack max|Re f| with bound a function of w.
+    Returns coef, or None if it does not converge."""
+    g = _basis(np.array([0.0 + 0.0j]), poles).real[0]
+    null = np.linalg.svd(g[None, :])[2][1:].T
+    phi = _basis(s, poles) @ null
+    w = np.linspace(1e-3, 20.0 * omega_max, 20000)
+    dense = _basis(1j * w, poles).real @ null
+    tol = slack * np.max(np.abs(f.real))
+    upper = None if bound is None else bound(w)
+    rows, targets = np.zeros((0, null.shape[1])), np.zeros(0)
+    y = np.linalg.lstsq(null, coef, rcond=None)[0]
+    for _ in range(iterations):
+        b = dense @ y
+        if upper is None:
+            excess, target = -tol - b, np.zeros_like(b)
+        else:
+            excess, target = np.abs(b) - upper - tol, np.sign(b) * upper
+        peak = (excess > 0) & (excess >= np.roll(excess, 1)) & (excess >= np.roll(excess, -1))
+        low = np.nonzero(peak)[0]
+        if low.size == 0:
+            return null @ y
+        rows = np.vstack([rows, dense[low]])
+        targets = np.concatenate([targets, target[low]])
+        m = np.vstack([np.vstack([phi.real, phi.imag]), weight * rows])
+        r = np.concatenate([f.real, f.imag, weight * targets])
+        scale = np.linalg.norm(m, axis=0)
+        scale[scale == 0.0] = 1.0
+        y = np.linalg.lstsq(m / scale, r, rcond=None)[0] / scale
+    return None
+
+
 def evaluate(poles, coef, s):
     return _basis(np.atleast_1d(s), poles) @ coef
 
@@ -193,28 +231,75 @@ def fit_errors(poles, coef, omega, added_mass, damping, added_mass_inf):
             float(np.max(np.abs(b_fit - damping)) / scale_b))
 
 
-def fit_pair(omega, added_mass, damping, added_mass_inf, nmax=12, tol=0.02):
+def fit_pair(omega, added_mass, damping, added_mass_inf, nmax=12, tol=0.02, passive=False,
+             omega_max=None):
     """Lowest order in 2..nmax whose A and B errors are both below tol (else the best one);
-    the data are K(0) = 0 and the grid."""
+    the data are K(0) = 0 and the grid. With passive (a diagonal pair), only fits whose
+    damping B_fit(w) >= -PASSIVE_SLACK max B over 0..20 omega_max count, as long as one
+    order gives one: a fit that makes energy can drive the time-domain motion unbounded."""
     omega = np.asarray(omega, float)
     s = np.concatenate([[0.0], omega]) * 1j
     k = np.concatenate([[0.0], damping + 1j * omega * (added_mass - added_mass_inf)])
     scale = np.max(np.abs(k))
-    best = None
+    w_top = omega[-1] if omega_max is None else omega_max
+    best, best_passive = None, None
     for order in range(2, nmax + 1):
         try:
             poles, coef = vector_fit(s, k / scale, order)
         except np.linalg.LinAlgError:
             continue
+        if passive and _min_fit_damping(poles, coef * scale, w_top, damping) < -PASSIVE_SLACK:
+            best_raw = (poles, coef * scale)
+            coef = passive_residues(s, k / scale, poles, coef, w_top)
+            if coef is None:
+                poles, coef = best_raw
+                coef = coef / scale
         coef = coef * scale
         ea, eb = fit_errors(poles, coef, omega, added_mass, damping, added_mass_inf)
+        candidate = (max(ea, eb), order, poles, coef, ea, eb)
         if best is None or max(ea, eb) < best[0] - 1e-12:
-            best = (max(ea, eb), order, poles, coef, ea, eb)
-        if max(ea, eb) < tol:
+            best = candidate
+        ok = not passive or _min_fit_damping(poles, coef, w_top, damping) >= -PASSIVE_SLACK
+        if ok and (best_passive is None or max(ea, eb) < best_passive[0] - 1e-12):
+            best_passive = candidate
+        if ok and max(ea, eb) < tol:
             break
-    _, order, poles, coef, ea, eb = best
+    _, order, poles, coef, ea, eb = best_passive if best_passive is not None else best
     a, b, c = realisation(poles, coef)
     return PairFit(order, a, b, c, poles, coef, ea, eb, float("nan"))
+
+
+# DOF parity under the reflections y -> -y (about the centreline plane) and x -> -x (about
+# the transverse plane through the CG): +1 even, -1 odd. A pair of opposite parity under a
+# symmetry of the hull has A_ij = B_ij = K_ij = 0 identically.
+PARITY_Y = np.array([1, -1, 1, -1, 1, -1])      # surge, heave, pitch even; sway, roll, yaw odd
+PARITY_X = np.array([-1, 1, 1, 1, -1, -1])      # sway, heave, roll even; surge, pitch, yaw odd
+
+
+def _mirror_of_itself(points, axis, tol):
+    """Whether the point set maps onto itself when coordinate `axis` changes sign."""
+    key = np.round(points / tol).astype(np.int64)
+    mirrored = key.copy()
+    mirrored[:, axis] = -mirrored[:, axis]
+    # compare as sorted row sets (rounding may split a point across a cell: allow +-1)
+    a = key[np.lexsort(key.T[::-1])]
+    b = mirrored[np.lexsort(mirrored.T[::-1])]
+    return a.shape == b.shape and bool(np.all(np.abs(a - b) <= 1))
+
+
+def symmetry_zero_pairs(vertices, cg, tol=None):
+    """(6, 6) bool: the radiation pairs that the hull's symmetries make zero, from its mesh
+    vertices (mesh frame, Capytaine's: y to port) and the CG (rotation centre): a mesh equal
+    to its mirror image in y about the CG's plane kills the pairs of opposite y-parity
+    (surge/heave/pitch with sway/roll/yaw), in x likewise with PARITY_X."""
+    v = np.asarray(vertices, float) - np.asarray(cg, float)
+    if tol is None:
+        tol = 1e-6 * max(float(np.ptp(v, axis=0).max()), 1e-300)
+    zero = np.zeros((6, 6), bool)
+    for axis, parity in ((1, PARITY_Y), (0, PARITY_X)):
+        if _mirror_of_itself(v, axis, tol):
+            zero |= np.outer(parity, parity) < 0
+    return zero
 
 
 def significant_pairs(kernel, relative=1e-3):
@@ -226,15 +311,21 @@ def significant_pairs(kernel, relative=1e-3):
 
 
 # passivity: a diagonal kernel's fitted damping may dip below zero by this fraction of its
-# largest value, anywhere over 0..20 w_N
+# largest value, anywhere over 0..20 w_N (the lifeboat's shipped database; fit_pair now
+# prefers fits within PASSIVE_SLACK, the rounding of a positive fit)
 PASSIVITY_FLOOR = 0.05
+PASSIVE_SLACK = 1e-3
+
+
+def _min_fit_damping(poles, coef, omega_max, damping):
+    w = np.linspace(1e-3, 20.0 * omega_max, 20000)
+    return float(np.min(evaluate(poles, coef, 1j * w).real)
+                 / max(np.max(np.abs(damping)), 1e-300))
 
 
 def min_damping(fit, omega_max, damping):
     """min over 0..20 omega_max of B_fit(w) / max |B| (negative: the fit makes energy)."""
-    w = np.linspace(1e-3, 20.0 * omega_max, 20000)
-    return float(np.min(evaluate(fit.poles, fit.coef, 1j * w).real)
-                 / max(np.max(np.abs(damping)), 1e-300))
+    return _min_fit_damping(fit.poles, fit.coef, omega_max, damping)
 
 
 def _with_tail(omega, added_mass, damping, added_mass_inf, tail):
@@ -249,9 +340,10 @@ def _with_tail(omega, added_mass, damping, added_mass_inf, tail):
 
 
 def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, tol=0.02,
-            relative=1e-3, window=30.0, tail=None):
+            relative=1e-3, window=30.0, tail=None, zero=None):
     """Fits of every significant pair: dict (i, j) -> PairFit, with the retardation error
-    over 0..window s filled in.
+    over 0..window s filled in. Pairs that `zero` ((6, 6) bool: symmetry_zero_pairs) marks
+    are not fitted. Diagonal pairs are fitted passive (fit_pair).
 
     With tail (multiples of the last frequency, e.g. (1.25, 1.5, 2, 3, 4, 6)) each pair is
     first fitted to the data extended by _with_tail: without it a fit that must still
@@ -262,6 +354,8 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
     still rising at the grid's end (the lifeboat's roll) does not follow the assumed tail.
     The errors are always those on the grid."""
     sig = significant_pairs(kernel, relative)
+    if zero is not None:
+        sig &= ~np.asarray(zero, bool)
     mask = time <= window
     fits = {}
     for i in range(6):
@@ -272,23 +366,39 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
             fit = None
             if tail is not None:
                 fit = fit_pair(*_with_tail(*data, added_mass_inf[i, j], tail),
-                               added_mass_inf[i, j], nmax=nmax, tol=tol)
+                               added_mass_inf[i, j], nmax=nmax, tol=tol, passive=i == j,
+                               omega_max=omega[-1])
                 fit.error_added_mass, fit.error_damping = fit_errors(
                     fit.poles, fit.coef, *data, added_mass_inf[i, j])
                 fit.tail = True
             if fit is None or fit.error > tol:
-                plain = fit_pair(*data, added_mass_inf[i, j], nmax=nmax, tol=tol)
+                plain = fit_pair(*data, added_mass_inf[i, j], nmax=nmax, tol=tol,
+                                 passive=i == j)
                 passive = (i != j or min_damping(plain, omega[-1], data[2])
                            >= -PASSIVITY_FLOOR)
                 if fit is None or (passive and plain.error < fit.error):
                     fit = plain
-            fit.min_damping = min_damping(fit, omega[-1], data[2])
-            kss = impulse_response(fit.poles, fit.coef, time[mask])
-            kref = kernel[mask, i, j]
-            fit.error_retardation = float(np.linalg.norm(kss - kref) /
-                                          max(np.linalg.norm(kref), 1e-300))
             fits[(i, j)] = fit
+    for (i, j), fit in fits.items():
+        fit.min_damping = min_damping(fit, omega[-1], damping[:, i, j])
+        kss = impulse_response(fit.poles, fit.coef, time[mask])
+        kref = kernel[mask, i, j]
+        fit.error_retardation = float(np.linalg.norm(kss - kref) /
+                                      max(np.linalg.norm(kref), 1e-300))
     return fits
+
+
+def min_eigen_damping(fits, omega_max, damping, points=4000):
+    """min over 0..20 omega_max of the smallest eigenvalue of the symmetric part of the
+    fitted damping matrix, scaled by sqrt(max B_ii max B_jj) (>= 0: the radiation memory
+    as a whole is passive)."""
+    w = np.linspace(1e-3, 20.0 * omega_max, points)
+    b = np.zeros((points, 6, 6))
+    for (i, j), f in fits.items():
+        b[:, i, j] = evaluate(f.poles, f.coef, 1j * w).real
+    peak = np.sqrt(np.maximum(np.abs(damping).max(axis=0).diagonal(), 1e-300))
+    b = b / np.outer(peak, peak)
+    return float(np.min(np.linalg.eigvalsh(0.5 * (b + b.transpose(0, 2, 1)))))
 
 
 def pack(fits):

@@ -101,10 +101,40 @@ def roll_damping(base, zeta):
                                                         + added_mass_at(base, 3, w_roll)))
 
 
+def check_restoring(base, g=9.81):
+    """Raise ValueError unless heave, roll and pitch have positive restoring (C_ii > 0):
+    with C44 <= 0 (negative GM) the roll has no natural frequency and the RAOs are NaN."""
+    for dof in RESTORED:
+        c = float(base.stiffness[dof, dof])
+        if not c > 0.0:
+            why = ""
+            if dof in (3, 4):
+                why = (f" (GM {c / (base.mass[0, 0] * g):.4g} m <= 0: unstable; give --gm, "
+                       f"or rebuild with a lower --cg)")
+            raise ValueError(f"the hull has no {db.DOFS[dof]} restoring: C{dof + 1}{dof + 1} "
+                             f"= {c:.4g}{why}")
+
+
+def covered_headings(base, headings, tol=1e-6):
+    """Raise ValueError if a one-heading database is asked for another heading: it says
+    nothing about the others (davit's time-domain ship refuses it for that reason)."""
+    if len(base.heading) > 1:
+        return
+    other = np.abs(np.angle(np.exp(1j * (np.asarray(headings) - base.heading[0])))) > tol
+    if np.any(other):
+        raise ValueError(f"the database covers the one heading "
+                         f"{np.degrees(base.heading[0]):g} deg only; asked for "
+                         f"{', '.join(f'{np.degrees(h):g}' for h in np.asarray(headings)[other])}"
+                         f" deg (give --headings-deg {np.degrees(base.heading[0]):g}, or "
+                         f"rebuild it with more headings)")
+
+
 def raos(base, omegas=None, headings=None, zeta=0.05):
-    """Complex RAOs (nw, nb, 6) in davit's body frame, and B44_visc."""
+    """Complex RAOs (nw, nb, 6) in davit's body frame, and B44_visc. ValueError for a
+    heading a one-heading database does not cover, or a response that is not finite."""
     omegas = base.omega if omegas is None else np.asarray(omegas, float)
     headings = base.heading if headings is None else np.asarray(headings, float)
+    covered_headings(base, headings)
     a = _interp_omega(base.added_mass, base.omega, omegas)
     b = _interp_omega(base.damping, base.omega, omegas)
     x = _interp_heading(_interp_omega(base.excitation, base.omega, omegas), base.heading,
@@ -116,6 +146,10 @@ def raos(base, omegas=None, headings=None, zeta=0.05):
     for n, w in enumerate(omegas):
         z = -w**2 * (base.mass + a[n]) + 1j * w * (b[n] + bv) + base.stiffness
         xi[n] = np.linalg.solve(z, x[n].T).T
+    if not np.all(np.isfinite(xi)):
+        bad = sorted({float(omegas[n]) for n in np.nonzero(~np.isfinite(xi))[0]})
+        raise ValueError(f"the RAOs are not finite at omega {', '.join(f'{w:g}' for w in bad)}"
+                         f" rad/s (check the database's stiffness, mass and roll damping)")
     return xi, b44
 
 

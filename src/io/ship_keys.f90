@@ -24,6 +24,12 @@ module davit_io_ship_keys
     real(wp) :: heading_period, heading_damping, station_period
     !> BEM ship: roll radius of gyration in place of the database's [m] (0 = the database's).
     real(wp) :: roll_gyradius
+    !> 'deck' (cross-flow drag, surge resistance, manoeuvring derivatives and windage from
+    !> the deck's dimensions) or 'off' (none of them: the potential-flow ship alone).
+    character(len=:), allocatable :: empirical_loads
+    !> Restrained DOFs (surge, sway, heave, roll, pitch, yaw), as a tank test restrains a
+    !> model: their accelerations are held at zero.
+    logical :: restrained(6) = .false.
   end type ship_config
 
 contains
@@ -33,17 +39,17 @@ contains
     type(ship_config), intent(inout) :: s
     character(len=*), parameter :: g = "ship"
     real(wp), parameter :: deg = pi/180.0_wp
-    call r%real(g, "length_overall", s%loa, 139.8_wp, 1.0_wp, 500.0_wp, "m", &
+    call r%real(g, "length_overall", s%loa, 139.8_wp, 0.1_wp, 500.0_wp, "m", &
                 "Length over all, L_oa (Table 1; wind yaw moment, eq. 46).")
-    call r%real(g, "length_waterline", s%lwl, 130.55_wp, 1.0_wp, 500.0_wp, "m", &
+    call r%real(g, "length_waterline", s%lwl, 130.55_wp, 0.1_wp, 500.0_wp, "m", &
                 "Waterline length L_wl (Table 1); box length l = sqrt(C_b) L_wl.")
-    call r%real(g, "length_pp", s%lpp, 126.0_wp, 1.0_wp, 500.0_wp, "m", &
+    call r%real(g, "length_pp", s%lpp, 126.0_wp, 0.1_wp, 500.0_wp, "m", &
                 "Length between perpendiculars (Table 1; radii of gyration, cross-flow drag).")
-    call r%real(g, "beam", s%beam, 20.8_wp, 1.0_wp, 100.0_wp, "m", "Beam B (Table 1).")
-    call r%real(g, "draught", s%draught, 4.4_wp, 0.1_wp, 30.0_wp, "m", "Draught d (Table 1).")
-    call r%real(g, "depth", s%depth, 11.4_wp, 0.1_wp, 50.0_wp, "m", &
+    call r%real(g, "beam", s%beam, 20.8_wp, 0.01_wp, 100.0_wp, "m", "Beam B (Table 1).")
+    call r%real(g, "draught", s%draught, 4.4_wp, 0.005_wp, 30.0_wp, "m", "Draught d (Table 1).")
+    call r%real(g, "depth", s%depth, 11.4_wp, 0.01_wp, 50.0_wp, "m", &
                 "Moulded depth (Table 1); the side plane spans the freeboard above the water.")
-    call r%real(g, "gm", s%gm, 5.57_wp, 0.01_wp, 20.0_wp, "m", &
+    call r%real(g, "gm", s%gm, 5.57_wp, 0.001_wp, 20.0_wp, "m", &
                 "Transverse metacentric height (Table 1): C44 = Delta g GM.")
     call r%real(g, "cg_x", s%cg_x, 0.0_wp, -100.0_wp, 100.0_wp, "m", &
                 "CG forward of midship. Table 1's '2.3 m between centre of gravity and "// &
@@ -55,7 +61,7 @@ contains
                 "C_b (Table 1).")
     call r%real(g, "waterplane_coefficient", s%cwp, 0.83_wp, 0.3_wp, 1.0_wp, "-", &
                 "C_wp (Table 1; reported only, the box uses l B).")
-    call r%real(g, "displacement", s%displacement, 7.55e6_wp, 1.0e3_wp, 1.0e9_wp, "kg", &
+    call r%real(g, "displacement", s%displacement, 7.55e6_wp, 0.1_wp, 1.0e9_wp, "kg", &
                 "Mass Delta (Table 1).")
     call r%real(g, "zeta_heave", s%zeta_heave, 0.2_wp, 0.0_wp, 2.0_wp, "-", &
                 "Linear heave damping as a fraction of critical.")
@@ -133,6 +139,35 @@ contains
     call r%real(g, "station_period", s%station_period, 0.0_wp, 0.0_wp, 10000.0_wp, "s", &
                 "Station keeping in the 'launch' scene (DP-like horizontal springs on the "// &
                 "CG towards its initial position): natural period; 0 = off.")
+    call read_ship_terms(r, s)
   end subroutine read_ship_model
+
+  !> Which of the deck's empirical loads act, and which DOFs are restrained.
+  subroutine read_ship_terms(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(ship_config), intent(inout) :: s
+    character(len=*), parameter :: g = "ship"
+    character(len=*), parameter :: dofs(6) = [character(len=5) :: "surge", "sway", "heave", &
+                                               "roll", "pitch", "yaw"]
+    character(len=5), allocatable :: restrain(:)
+    integer :: k
+    call r%choice(g, "empirical_loads", s%empirical_loads, "deck", &
+                  [character(len=4) :: "deck", "off"], &
+                  "The ship's empirical loads: cross-flow drag (crossflow_cd), surge "// &
+                  "resistance, the linear manoeuvring derivatives and the windage "// &
+                  "(area_front, area_lateral, wind_height), all sized by this group's "// &
+                  "dimensions ('deck'), or none of them ('off': the potential-flow ship "// &
+                  "alone, e.g. a model-scale BEM hull against `davit-post bem rao`).")
+    call r%choice_list(g, "restrain", restrain, [character(len=5) :: "none"], &
+                       [character(len=5) :: "none", dofs], &
+                       "Degrees of freedom held fixed, as a tank test restrains a model "// &
+                       "(e.g. 'surge', 'sway', 'yaw'): their accelerations in ship axes "// &
+                       "are zero, so their speeds keep their initial values (the CG's "// &
+                       "inertial motion in them is then of second order, e.g. pitch times "// &
+                       "surge); 'none' = a free ship.", 1, 6)
+    do k = 1, 6
+      s%restrained(k) = any(restrain == dofs(k))
+    end do
+  end subroutine read_ship_terms
 
 end module davit_io_ship_keys

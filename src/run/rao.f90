@@ -7,9 +7,18 @@
 !> position and heading: a free ship at zero speed otherwise turns by tens of degrees in
 !> oblique seas during a run (26 deg in 400 s at 135 deg, 7.5 s waves), which is not what
 !> an RAO describes.
+!>
+!> A run that fails (its scene cannot be built, or its state stops being finite, or the ship
+!> capsizes: roll or pitch beyond 90 deg) is not an RAO: its amplitude and phase are written
+!> as NaN, `rao/failed` marks it, the root attribute `complete` is 0, and `davit rao` names
+!> each failed (frequency, heading) with its reason and exits non-zero. The scene is built
+!> once before any run, so a deck whose ship cannot be built (an unresolvable database)
+!> fails before anything is written.
 module davit_run_rao
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
   use davit_kinds, only: wp, pi, i8
-  use davit_error, only: error_type
+  use davit_error, only: error_type, fatal_error
+  use davit_io_text, only: fmt_real, fmt_fixed
   use davit_io_config, only: config_type
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_solve_rk4, only: rk4_type
@@ -27,6 +36,10 @@ module davit_run_rao
   !> first-order yaw response by (60 s / T)^2... at most 12 % at 0.3 rad/s.
   real(wp), parameter :: mooring_period(3) = [300.0_wp, 300.0_wp, 60.0_wp]
   real(wp), parameter :: mooring_zeta = 0.7_wp
+  !> Roll or pitch [rad] beyond which a run has capsized (no longer a linear response).
+  real(wp), parameter :: capsize_angle = 0.5_wp*pi
+  !> Length of one failed run's reason in the report.
+  integer, parameter :: reason_len = 240
 
 contains
 
@@ -72,11 +85,21 @@ contains
       call rk%step(ship, t, y, dt)
       t = real(i, wp)*dt
       call ship%after_step(t, y)
+      if (.not. all(ieee_is_finite(y))) then
+        call fatal_error(error, "the state stopped being finite (diverged) at t = "// &
+                         fmt_fixed(t, 2)//" s")
+        return
+      end if
+      associate (q => y(ship%layout%parts(1)%q(1):ship%layout%parts(1)%q(2)))
+        ! surge, sway, heave (up), roll, pitch, yaw
+        x = [q(4), q(5), -q(6), q(1), q(2), q(3)]
+      end associate
+      if (abs(x(4)) > capsize_angle .or. abs(x(5)) > capsize_angle) then
+        call fatal_error(error, "roll or pitch beyond 90 deg (capsized) at t = "// &
+                         fmt_fixed(t, 2)//" s")
+        return
+      end if
       if (i > n0) then
-        associate (q => y(ship%layout%parts(1)%q(1):ship%layout%parts(1)%q(2)))
-          ! surge, sway, heave (up), roll, pitch, yaw
-          x = [q(4), q(5), -q(6), q(1), q(2), q(3)]
-        end associate
         ca = ca + x*cos(omega*t)
         sa = sa + x*sin(omega*t)
         mean = mean + x
@@ -86,6 +109,9 @@ contains
     sa = 2.0_wp*sa/nmeas
     amplitude = sqrt(ca**2 + sa**2)/zeta
     phase = atan2(-sa, ca)
+    if (.not. all(ieee_is_finite(amplitude)) .or. .not. all(ieee_is_finite(phase))) then
+      call fatal_error(error, "the fitted amplitude or phase is not finite")
+    end if
   end subroutine rao_case
 
   subroutine run_rao(cfg, out_path, summary, error)
@@ -94,29 +120,42 @@ contains
     type(run_summary), intent(out) :: summary
     type(error_type), allocatable, intent(out) :: error
     type(h5_writer_type) :: writer
-    type(error_type), allocatable :: none
-    real(wp), allocatable :: amp(:, :, :), pha(:, :, :)
+    type(error_type), allocatable :: none, case_error
+    type(ship_system_type) :: probe
+    real(wp), allocatable :: amp(:, :, :), pha(:, :, :), failed_at(:, :), y(:)
+    character(len=reason_len), allocatable :: reason(:)
     integer :: nw, nh, c, iw, ih, failed
     integer(i8) :: clock0, clock1, rate
     real(wp) :: dofs(6)
+    ! the scene once, so that a deck whose ship cannot be built fails before any output
+    call build_ship_scene(cfg, probe, y, error)
+    if (allocated(error)) return
     call writer%create(out_path, error)
     if (allocated(error)) return
     nw = size(cfg%rao%omegas)
     nh = size(cfg%rao%headings)
-    allocate (amp(6, nw, nh), pha(6, nw, nh))
-    failed = 0
+    allocate (amp(6, nw, nh), pha(6, nw, nh), failed_at(nw, nh), reason(nw*nh))
+    reason = ""
+    failed_at = 0.0_wp
     call system_clock(clock0, rate)
-    !$omp parallel do schedule(dynamic) default(none) private(iw, ih, error) &
-    !$omp shared(cfg, nw, nh, amp, pha) reduction(+:failed)
+    !$omp parallel do schedule(dynamic) default(none) private(iw, ih, case_error) &
+    !$omp shared(cfg, nw, nh, amp, pha, reason, failed_at)
     do c = 1, nw*nh
       iw = 1 + mod(c - 1, nw)
       ih = 1 + (c - 1)/nw
       call rao_case(cfg, cfg%rao%omegas(iw), cfg%rao%headings(ih), amp(:, iw, ih), &
-                    pha(:, iw, ih), error)
-      if (allocated(error)) failed = failed + 1
+                    pha(:, iw, ih), case_error)
+      if (allocated(case_error)) then
+        ! no half-measured numbers: a failed run's response is NaN, never zero
+        amp(:, iw, ih) = ieee_value(0.0_wp, ieee_quiet_nan)
+        pha(:, iw, ih) = ieee_value(0.0_wp, ieee_quiet_nan)
+        failed_at(iw, ih) = 1.0_wp
+        reason(c) = case_error%message
+      end if
     end do
     !$omp end parallel do
     call system_clock(clock1)
+    failed = count(failed_at > 0.0_wp)
     summary%wall_time = real(clock1 - clock0, wp)/real(rate, wp)
     summary%complete = failed == 0
     dofs = [1, 2, 3, 4, 5, 6]
@@ -128,13 +167,40 @@ contains
     call writer%write_1d("rao/dof", dofs, "-", &
                          "1 surge, 2 sway, 3 heave (up), 4 roll, 5 pitch, 6 yaw", dims="dof")
     call writer%write_3d("rao/amplitude", amp, "m/m (DOF 1-3), rad/m (DOF 4-6)", &
-                         "Response amplitude per unit wave amplitude, (dof, omega, heading)", &
-                         dims="dof omega heading")
+                         "Response amplitude per unit wave amplitude, (dof, omega, heading); "// &
+                         "NaN where the run failed", dims="dof omega heading")
     call writer%write_3d("rao/phase", pha, "rad", &
-                         "Phase of the response relative to the wave elevation at the ship", &
-                         dims="dof omega heading")
+                         "Phase of the response relative to the wave elevation at the ship; "// &
+                         "NaN where the run failed", dims="dof omega heading")
+    call writer%write_2d("rao/failed", failed_at, "-", &
+                         "1 where the run of that (omega, heading) failed (diverged, "// &
+                         "capsized or not built), 0 where it was measured", &
+                         dims="omega heading")
     call write_root_attributes(writer, cfg, summary, "rk4", none, scenario=.false.)
     call writer%close(error)
+    if (allocated(error)) return
+    if (failed > 0) call fatal_error(error, failure_report(cfg, failed_at, reason, out_path))
   end subroutine run_rao
+
+  !> Which runs failed and why, one line each (the output file keeps the others).
+  function failure_report(cfg, failed_at, reason, out_path) result(text)
+    type(config_type), intent(in) :: cfg
+    real(wp), intent(in) :: failed_at(:, :)
+    character(len=*), intent(in) :: reason(:), out_path
+    character(len=:), allocatable :: text
+    integer :: iw, ih, nw
+    nw = size(failed_at, 1)
+    text = "rao: "//fmt_real(real(count(failed_at > 0.0_wp), wp))//" of "// &
+           fmt_real(real(size(failed_at), wp))//" runs failed ('"//out_path// &
+           "' keeps the others; complete = 0, rao/failed marks them, their values are NaN):"
+    do ih = 1, size(failed_at, 2)
+      do iw = 1, nw
+        if (failed_at(iw, ih) <= 0.0_wp) cycle
+        text = text//new_line("a")//"  omega "//fmt_real(cfg%rao%omegas(iw))// &
+               " rad/s, heading "//fmt_real(cfg%rao%headings(ih)*180.0_wp/pi)//" deg: "// &
+               trim(reason(iw + (ih - 1)*nw))
+      end do
+    end do
+  end function failure_report
 
 end module davit_run_rao

@@ -83,6 +83,14 @@ contains
     if (allocated(error)) return
     nw = size(db%omega)
     nb = size(db%heading)
+    if (nb == 1) then
+      ! the excitation is interpolated between headings as the ship yaws: one heading says
+      ! nothing about the others (`davit-post bem rao` answers at that one heading only)
+      call fatal_error(error, "'"//db%path//"': holds one heading only; davit's ship "// &
+                       "needs at least 2 around the headings it meets (rebuild with "// &
+                       "davit-post bem build --headings-deg ...)")
+      return
+    end if
     ! written as "all ascending" so that a NaN fails the check too
     if (nw < 2 .or. nb < 2 .or. .not. all(db%omega(2:) > db%omega(:nw - 1)) .or. &
         .not. all(db%heading(2:) > db%heading(:nb - 1))) then

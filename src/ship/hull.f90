@@ -32,6 +32,10 @@ module davit_ship_hull
     !> Linear MMG hull derivatives (Kijima et al. 1990, review G13), non-dimensional on
     !> 1/2 rho L_pp d U^2 (forces) and 1/2 rho L_pp^2 d U^2 (moments); v' = v/U, r' = r L/U.
     real(wp) :: yv = 0.0_wp, yr = 0.0_wp, nv = 0.0_wp, nr = 0.0_wp
+    !> The empirical loads (cross-flow drag, surge resistance, manoeuvring, windage) act.
+    logical :: empirical = .true.
+    !> Restrained DOFs (surge, sway, heave, roll, pitch, yaw).
+    logical :: restrained(6) = .false.
   end type hull_type
 
 contains
@@ -76,6 +80,8 @@ contains
     hull%trim = s%trim
     hull%wind = ship_wind_type(s%area_front, s%area_lateral, s%loa, s%wind_height)
     call kijima(hull, s)
+    hull%empirical = s%empirical_loads == "deck"
+    hull%restrained = s%restrained
   end subroutine new_hull
 
   !> Kijima's linear derivatives with k = 2d/L: Y'_beta = (pi/2) k + 1.4 C_b B/L,

@@ -130,7 +130,8 @@ contains
     ! resistance at that speed
     water = crossflow(hull, self%wetted, [headway, 0.0_wp, 0.0_wp], 0.0_wp)
     air = ship_wind_load(hull%wind, [-headway, 0.0_wp, 0.0_wp])
-    self%thrust = -(water(1) + air(1))
+    self%thrust = 0.0_wp
+    if (hull%empirical) self%thrust = -(water(1) + air(1))
     allocate (self%fk_sin(6, sea%n), self%fk_cos(6, sea%n))
     call self%refresh_heading(heading)
     call self%layout%add("ship", 6, 6, self%body)
@@ -364,7 +365,7 @@ contains
     type(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: u(6), m(3, 3), load(6)
     real(wp), intent(out) :: kane(3, 6)
-    real(wp) :: mt(3), it(3), ig(3), a(6, 6), mh(6, 6), transport(6), gyro(6), ud(6)
+    real(wp) :: mt(3), it(3), ig(3), a(6, 6), mh(6, 6), transport(6), gyro(6), ud(6), rhs(6)
     integer :: k
     mt = self%hull%mass + self%hull%added_mass
     it = self%hull%inertia + self%hull%added_inertia
@@ -382,9 +383,12 @@ contains
     transport = [0.0_wp, 0.0_wp, 0.0_wp, cross(u(1:3), u(4:6))]
     gyro = [cross(u(1:3), ig*u(1:3)), 0.0_wp, 0.0_wp, 0.0_wp]
     ud = [load(4:6), load(1:3)] - gyro - matmul(mh, transport)
-    call solve_small(mh, ud)
+    rhs = ud
+    call solve_restrained(self%hull%restrained, mh, ud)
     kane(kane_v, :) = [it, mt]
-    kane(kane_w_phi, :) = gyro + matmul(mh, transport + ud) - kane(kane_v, :)*ud
+    ! + the restraint's reaction rhs - mh ud (zero in the free rows)
+    kane(kane_w_phi, :) = gyro + matmul(mh, transport + ud) - kane(kane_v, :)*ud + &
+                          rhs - matmul(mh, ud)
     kane(kane_f, 1:3) = load(4:6)
     kane(kane_f, 4:6) = load(1:3)
   end subroutine box_blocks
@@ -402,17 +406,41 @@ contains
     type(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: u(6), m(3, 3), load(6)
     real(wp), intent(out) :: kane(3, 6)
-    real(wp) :: mh(6, 6), transport(6), gyro(6), ud(6)
+    real(wp) :: mh(6, 6), transport(6), gyro(6), ud(6), rhs(6)
     mh = seakeeping_mass(self%hydro%a_kane, self%hydro%inertia, self%hydro%mass, m)
     transport = [0.0_wp, 0.0_wp, 0.0_wp, cross(u(1:3), u(4:6))]
     gyro = [cross(u(1:3), self%hydro%inertia*u(1:3)), 0.0_wp, 0.0_wp, 0.0_wp]
     ud = [load(4:6), load(1:3)] - gyro - matmul(mh, transport)
-    call solve_small(mh, ud)
+    rhs = ud
+    call solve_restrained(self%hull%restrained, mh, ud)
     kane(kane_v, :) = 1.0_wp
-    kane(kane_w_phi, :) = gyro + matmul(mh, transport + ud) - matmul(self%hydro%m_kane, ud)
+    ! + the restraint's reaction rhs - mh ud (zero in the free rows)
+    kane(kane_w_phi, :) = gyro + matmul(mh, transport + ud) - matmul(self%hydro%m_kane, ud) + &
+                          rhs - matmul(mh, ud)
     kane(kane_f, 1:3) = load(4:6)
     kane(kane_f, 4:6) = load(1:3)
   end subroutine bem_blocks
+
+  !> Solve mh ud = rhs (ud holds rhs on entry; order roll, pitch, yaw, surge, sway, heave)
+  !> with the restrained DOFs (fixed: surge .. yaw) held at zero acceleration: their rows
+  !> and columns replaced by the identity, so the free ones obey their own block of mh.
+  pure subroutine solve_restrained(fixed, mh, ud)
+    logical, intent(in) :: fixed(6)
+    real(wp), intent(in) :: mh(6, 6)
+    real(wp), intent(inout) :: ud(6)
+    integer, parameter :: slot(6) = [4, 5, 6, 1, 2, 3]
+    real(wp) :: a(6, 6)
+    integer :: k
+    a = mh
+    do k = 1, 6
+      if (.not. fixed(k)) cycle
+      a(slot(k), :) = 0.0_wp
+      a(:, slot(k)) = 0.0_wp
+      a(slot(k), slot(k)) = 1.0_wp
+      ud(slot(k)) = 0.0_wp
+    end do
+    call solve_small(a, ud)
+  end subroutine solve_restrained
 
   !> All external loads (X, Y, Z, K, M, N) in ship axes about G.
   function ship_loads(self, t, q, u, c) result(load)
@@ -438,16 +466,18 @@ contains
         load(5) = -h%c55*(q(2) - h%trim) - h%b55*om(2)
         load(6) = 0.0_wp
       end if
-      load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
-      load(1) = load(1) + self%thrust
+      if (h%empirical) then
+        load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
+        load(1) = load(1) + self%thrust
+        vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
+        load = load + ship_wind_load(h%wind, vrel)
+      end if
       if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, q, c), &
                                                                     q(1:3), c)
       if (self%drift /= drift_none .and. self%sea%kind /= wave_none) then
         load = load + heading_to_body(drift_load(self%drift, self%sea, self%drift_coef, t, &
                                                  self%origin(1), self%origin(2)), q(1:3), c)
       end if
-      vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
-      load = load + ship_wind_load(h%wind, vrel)
       if (any(self%moor_k > 0.0_wp)) load = load + mooring(self, q, u, c)
     end associate
   end function ship_loads
