@@ -4,6 +4,9 @@
 module davit_io_ship_keys
   use davit_kinds, only: wp, pi
   use davit_io_deck_reader, only: deck_reader_type
+  use davit_io_mmg_keys, only: read_mmg
+  use davit_ship_mmg, only: mmg_type
+  use davit_ship_rudder, only: rudder_type
   implicit none
   private
   public :: ship_config, read_ship
@@ -22,6 +25,13 @@ module davit_io_ship_keys
     real(wp) :: heading_period, heading_damping, station_period
     !> BEM ship: roll radius of gyration in place of the database's [m] (0 = the database's).
     real(wp) :: roll_gyradius
+    !> Horizontal-plane manoeuvring: 'kijima' (linear derivatives, cross-flow drag,
+    !> constant thrust) or 'mmg' (group &mmg: hull, propeller at `rps`, rudder steered by
+    !> `rudder`).
+    character(len=:), allocatable :: manoeuvring
+    type(mmg_type) :: mmg
+    type(rudder_type) :: rudder
+    real(wp) :: rps = 0.0_wp
   end type ship_config
 
 contains
@@ -124,6 +134,12 @@ contains
     call r%real(g, "station_period", s%station_period, 0.0_wp, 0.0_wp, 10000.0_wp, "s", &
                 "Station keeping in the 'launch' scene (DP-like horizontal springs on the "// &
                 "CG towards its initial position): natural period; 0 = off.")
+    call r%choice(g, "manoeuvring", s%manoeuvring, "kijima", &
+                  [character(len=8) :: "kijima", "mmg"], &
+                  "Horizontal-plane forces: linear Kijima hull derivatives, cross-flow "// &
+                  "drag and a constant thrust ('kijima'), or the standard MMG model with "// &
+                  "propeller and rudder of group &mmg ('mmg', box ship only).")
+    call read_mmg(r, s%mmg, s%rps, s%rudder)
   end subroutine read_ship_model
 
 end module davit_io_ship_keys
