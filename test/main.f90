@@ -23,6 +23,7 @@ program main
   use test_events, only: collect_events
   use test_assess, only: collect_assess
   use test_adaptive, only: collect_adaptive
+  use test_mmg, only: collect_mmg
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -45,7 +46,7 @@ program main
             collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
-            collect_assess(), collect_adaptive()]
+            collect_assess(), collect_adaptive(), collect_mmg()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.
