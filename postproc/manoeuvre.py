@@ -11,35 +11,27 @@ moment the rudder leaves amidships (extrapolated back from the first two moving 
 L_pp is the deck's `&ship length_pp` (the run's stored deck) unless --length is given.
 """
 import argparse
-import re
 import sys
 
 import numpy as np
 
-from . import layout  # noqa: F401  (the package's file conventions)
-
-
-def _deck_value(deck, key, default):
-    """The number `key = value` of the stored deck text, or the key's default."""
-    match = re.search(key + r"\s*=\s*([-+0-9.eEdD]+)", deck)
-    return float(match.group(1).replace("d", "e").replace("D", "e")) if match else default
+from . import layout
 
 
 def load(path):
     """time, CG position (n, 3), yaw (n), rudder (n), L_pp [m] and the zig-zag switching
-    heading [deg] of a ship run (&ship length_pp, &mmg zigzag_heading_deg)."""
-    import h5py
-    with h5py.File(path, "r") as f:
-        for name in ("time", "ship/position", "ship/euler", "ship/rudder"):
-            if name not in f:
-                raise ValueError(f"{path}: no dataset '{name}' (a 'ship' scene run with "
-                                 f"&ship manoeuvring = 'mmg' records it)")
-        deck = f.attrs.get("input_namelist", "")
-        if isinstance(deck, bytes):
-            deck = deck.decode()
-        return (f["time"][:], f["ship/position"][:], f["ship/euler"][:, 2],
-                f["ship/rudder"][:], _deck_value(str(deck), "length_pp", 126.0),
-                _deck_value(str(deck), "zigzag_heading_deg", 10.0))
+    heading [deg] of a ship run (&ship length_pp, &mmg zigzag_heading_deg of its deck, or
+    the keys' defaults)."""
+    run = layout.load(path)
+    names = (layout.TIME, layout.SHIP_POSITION, layout.SHIP_EULER, layout.SHIP_RUDDER)
+    data = [run.get(name) for name in names]
+    for name, value in zip(names, data):
+        if value is None:
+            raise ValueError(f"{path}: no dataset '{name}' (a 'ship' scene run with "
+                             f"&ship manoeuvring = 'mmg' records it)")
+    time, position, euler, rudder = (np.asarray(v, dtype=float) for v in data)
+    return (time, position, euler[:, 2], rudder, float(run.deck("ship", "length_pp", 126.0)),
+            float(run.deck("mmg", "zigzag_heading_deg", 10.0)))
 
 
 def execute_index(t, rudder):

@@ -14,6 +14,8 @@ module test_mmg
   use davit_io_config, only: config_type, parse_config, read_config
   use davit_ship_mmg, only: mmg_type, mmg_hull, mmg_propeller, mmg_rudder, mmg_wake, &
                             mmg_rudder_inflow, mmg_total, mmg_self_propulsion
+  use davit_ship_mmg_loads, only: mmg_body_load
+  use davit_core_rotation, only: rotation_matrix
   use davit_ship_ship_model, only: ship_system_type
   use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
@@ -49,7 +51,8 @@ contains
                    new_case("straight_running_holds_speed", straight_running), &
                    new_case("autopilot_holds_unstable_heading", autopilot), &
                    new_case("steering_gear_rate_limit", steering_gear), &
-                   new_case("mmg_on_bem_ship_refused", bem_refused)]
+                   new_case("mmg_on_bem_ship_refused", bem_refused), &
+                   new_case("forces_in_the_horizontal_body_frame", horizontal_frame)]
   end function collect_mmg
 
   !> The MMG coefficients of a deck, with its L_pp and draught.
@@ -227,6 +230,40 @@ contains
     call check(state, y(13), 35.0_wp*deg, "rudder 3.5 s after the order", rel_tol=1e-6_wp)
     call check_true(state, rmax <= 35.0_wp*deg*(1.0_wp + 1e-12_wp), "never past the order")
   end subroutine steering_gear
+
+  !> The MMG forces live in the horizontal-body frame: on a ship heeled 10 deg, trimmed
+  !> 3 deg and yawed 40 deg, with speeds u (ship axes), the load turned back into the level
+  !> yawed frame (m^T load, m = C^T R_z(psi)) equals the load of the upright ship moving
+  !> with the level-frame speeds m^T u: horizontal forces and a vertical yaw moment only.
+  subroutine horizontal_frame(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    type(mmg_type) :: p
+    real(wp) :: c(3, 3), m(3, 3), u(6), heeled(6), upright(6), eye(3, 3), level(6)
+    integer :: k
+    call read_config("input/kvlcc2.nml", cfg, error)
+    if (allocated(error)) error stop "input/kvlcc2.nml"
+    p = coefficients(cfg)
+    c = rotation_matrix([10.0_wp*deg, 3.0_wp*deg, 40.0_wp*deg])
+    m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, 40.0_wp*deg]))
+    u = [0.01_wp, -0.02_wp, 0.05_wp, 1.0_wp, -0.1_wp, 0.03_wp]
+    heeled = mmg_body_load(p, 0.25_wp, 20.0_wp, 250.0_wp, m, u, 0.2_wp, 11.0_wp)
+    eye = 0.0_wp
+    do k = 1, 3
+      eye(k, k) = 1.0_wp
+    end do
+    upright = mmg_body_load(p, 0.25_wp, 20.0_wp, 250.0_wp, eye, &
+                            [matmul(transpose(m), u(1:3)), matmul(transpose(m), u(4:6))], &
+                            0.2_wp, 11.0_wp)
+    level = [matmul(transpose(m), heeled(1:3)), matmul(transpose(m), heeled(4:6))]
+    call check(state, maxval(abs(upright([3, 4, 5]))), 0.0_wp, "upright: no Z, K, M", &
+               abs_tol=0.0_wp)
+    do k = 1, 6
+      call check(state, level(k), upright(k), "level-frame component", &
+                 abs_tol=1e-12_wp*maxval(abs(upright)))
+    end do
+  end subroutine horizontal_frame
 
   !> &ship manoeuvring = 'mmg' with model = 'bem' stops with an error naming the keys.
   subroutine bem_refused(state)
