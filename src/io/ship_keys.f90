@@ -96,9 +96,10 @@ contains
                 "towards N2 (90 = bow towards N2); wave and wind directions are not relative "// &
                 "to it.")
     s%heading = s%heading*deg
-    call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 2.6_wp, "m/s", &
+    call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 15.0_wp, "m/s", &
                 "Initial forward speed, held by a constant thrust equal to the resistance "// &
-                "(SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s).")
+                "(manoeuvring = 'kijima') or by the propeller (manoeuvring = 'mmg'); "// &
+                "SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s.")
     call r%logical(g, "frozen", s%frozen, .false., &
                    "Hold the ship fixed (III.A's fixed platform; or to isolate the boat).")
     call r%choice(g, "wave_phase", s%wave_phase, "initial", &

@@ -191,3 +191,23 @@ def test_cli_prints_measures(runs):
                           str(ROOT / "input" / "kvlcc2.nml")], capture_output=True, text=True,
                          cwd=ROOT)
     assert bad.returncode == 1 and "davit-post manoeuvre" in bad.stderr
+
+
+@pytest.mark.parametrize("line, message", [
+    ("rudder_rate_deg = 0.0",
+     "&mmg: rudder_rate_deg = 0.0: out of range; allowed: 0.1 <= rudder_rate_deg <= 50 [deg/s]"),
+    ("rudder_mode = 'spiral'",
+     "&mmg: rudder_mode = 'spiral': unknown choice; allowed: one of 'autopilot' 'fixed' "
+     "'turning' 'zigzag'"),
+    ("y_v = -12.0", "&mmg: y_v = -12.0: out of range; allowed: -10 <= y_v <= 10")])
+def test_bad_mmg_key_is_named(davit, tmp_path, line, message):
+    """A bad &mmg key: exit 1, one error naming the file, line, group, key and the
+    allowed range; no output file."""
+    deck = tmp_path / "bad.nml"
+    deck.write_text("&simulation scene = 'ship', t_end = 1.0 /\n&ship manoeuvring = 'mmg' /\n"
+                    f"&mmg\n  {line}\n/\n")
+    out = tmp_path / "bad.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 1
+    assert result.stderr.strip() == f"davit: error: {deck}:4: {message}"
+    assert not out.exists()
