@@ -12,12 +12,14 @@ import time as _time
 import numpy as np
 
 from . import bem_db as db
-from . import bem_fit, layout
+from . import bem_drift, bem_fit, bem_rao, layout
 
 RHO = 1025.0
 G = 9.81
 ROLL_GYRADIUS_FACTOR = 0.38      # k_xx = 0.38 B (review G9)
 PITCH_GYRADIUS = 32.6375         # k_yy = k_zz = 0.25 L_wl [m]
+# viscous roll damping of the motions behind the drift coefficients (davit's zeta_roll default)
+DRIFT_ROLL_DAMPING = 0.05
 RETARDATION_DT = 0.1             # [s]
 RETARDATION_END = 60.0           # [s]
 FIT_WINDOW = 30.0                # [s] of the K(t) error
@@ -105,10 +107,16 @@ def make_body(hull, cg, mass=None, gyradii=None, rho=RHO, g=G):
 def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
     """Radiation + diffraction over omegas x headings (davit's relative headings, deg),
     frequency by frequency; then radiation at omega = 0 and inf. Returns
-    (dataset of the finite frequencies, dataset of 0 and inf, solve time [s])."""
+    (dataset of the finite frequencies, dataset of 0 and inf, solve time [s], far field):
+    the far field holds each frequency's Kochin functions H, H' about the CG's vertical
+    (postproc.bem_drift) of the 6 radiation problems and of the diffraction problems, in
+    Capytaine's wave directions (the sources are dropped once they are taken)."""
     import capytaine as cpt
     solver = cpt.BEMSolver()
     directions = np.unique(np.mod(-np.radians(headings_deg), 2 * np.pi).round(12))
+    theta = bem_drift.theta_grid()
+    ref = np.asarray(body.center_of_mass, float)[:2]
+    far = {"theta": theta, "directions": directions, "radiation": [], "diffraction": []}
     results, t0 = [], _time.time()
     for n, w in enumerate(omegas):
         t = _time.time()
@@ -116,8 +124,18 @@ def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
                     for d in body.dofs]
         problems += [cpt.DiffractionProblem(body=body, wave_direction=b, omega=w, rho=rho, g=g)
                      for b in directions]
-        results += solver.solve_all(problems, progress_bar=False)
+        solved = solver.solve_all(problems, progress_bar=False)
         _clear_capytaine_cache()
+        h, hp = bem_drift.kochin(solved, body, theta, ref)
+        nr = len(body.dofs)
+        hd, hpd = bem_drift.shift_phase(h[nr:], hp[nr:], directions, solved[0].wavenumber,
+                                        ref)
+        far["radiation"].append((h[:nr], hp[:nr]))
+        far["diffraction"].append((hd, hpd))
+        for r in solved:
+            r.sources = None
+            r.potential = None
+        results += solved
         if progress:
             print(f"bem: omega {w:.4f} rad/s ({n + 1}/{len(omegas)}) {_time.time() - t:.1f} s",
                   file=sys.stderr, flush=True)
@@ -130,7 +148,7 @@ def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
     elapsed = _time.time() - t0
     ds = cpt.assemble_dataset(results, hydrostatics=True)
     ds_special = cpt.assemble_dataset(special, hydrostatics=False)
-    return ds, ds_special, elapsed
+    return ds, ds_special, elapsed, far
 
 
 def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12, tol=0.02,
@@ -195,6 +213,41 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     }
 
 
+def drift_variables(ds, far, body, variables, zeta_roll=DRIFT_ROLL_DAMPING, rho=RHO):
+    """The mean drift coefficients (postproc.bem_drift) of the freely floating body in davit's
+    frame and headings: motions from Capytaine's RAOs with a viscous roll damping zeta_roll of
+    critical at the roll resonance (postproc.bem_rao.roll_damping, as davit's `zeta_roll`).
+    Returns the davit variables DRIFT and DRIFT_ENERGY_DEFECT and B44_visc."""
+    import types
+    import capytaine as cpt
+    import xarray as xr
+    dofs = list(body.dofs)
+    base = types.SimpleNamespace(omega=variables[db.OMEGA], added_mass=variables[db.ADDED_MASS],
+                                 added_mass_inf=variables[db.ADDED_MASS_INF],
+                                 stiffness=variables[db.STIFFNESS], mass=variables[db.MASS])
+    b44 = bem_rao.roll_damping(base, zeta_roll) if zeta_roll > 0 else 0.0
+    bv = np.zeros((6, 6))
+    bv[3, 3] = b44
+    bv = xr.DataArray(bv, dims=["influenced_dof", "radiating_dof"],
+                      coords={"influenced_dof": dofs, "radiating_dof": dofs})
+    xi = cpt.post_pro.rao(ds, dissipation=bv).sel(radiating_dof=dofs).transpose(
+        "omega", "wave_direction", "radiating_dof").values
+    theta, directions = far["theta"], far["directions"]
+    omega = ds.omega.values
+    drift = np.empty((omega.size, directions.size, 3))
+    defect = np.empty((omega.size, directions.size))
+    for n, w in enumerate(omega):
+        k = w * w / G
+        h, hp = bem_drift.total_kochin(*far["diffraction"][n], *far["radiation"][n], xi[n])
+        drift[n] = bem_drift.mean_drift(h, hp, theta, directions, w, k, rho)
+        defect[n] = bem_drift.energy_defect(h, theta, directions, w, k)
+    beta_c = np.mod(-variables[db.HEADING], 2 * np.pi)
+    index = [int(np.argmin(np.abs(np.angle(np.exp(1j * (directions - b)))))) for b in beta_c]
+    # Capytaine's (x, y port, z up) to davit's (x, y starboard, z down): sway and yaw flip
+    sign = np.array([1.0, -1.0, -1.0])
+    return {db.DRIFT: drift[:, index, :] * sign, db.DRIFT_ENERGY_DEFECT: defect[:, index]}, b44
+
+
 def print_fit_report(fits, file=sys.stderr):
     print("bem: state-space fits (pair i,j: order, max err A, max err B, L2 err K(t) over "
           "the window)", file=file)
@@ -215,7 +268,7 @@ def write(path, ds, variables, attrs):
     out["radiating_dof"] = out["radiating_dof"].astype(str)
     out["influenced_dof"] = out["influenced_dof"].astype(str)
     for name, value in variables.items():
-        dims, units, description = db.VARIABLES[name]
+        dims, units, description = db.VARIABLES.get(name) or db.DRIFT_VARIABLES[name]
         value = np.asarray(value)
         if name == db.SS_ORDER:
             value = value.astype(np.int32)
@@ -232,7 +285,7 @@ def write(path, ds, variables, attrs):
 
 def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
           headings_deg=None, rho=RHO, g=G, nmax=12, tol=0.02, command="", progress=True,
-          retardation=None):
+          retardation=None, drift_roll_damping=DRIFT_ROLL_DAMPING):
     """Mesh -> BEM solve -> davit variables -> database file. Returns (variables, attrs).
     The lifeboat hull gets its own frequency grid and retardation grid by default."""
     import capytaine as cpt
@@ -250,10 +303,12 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         print(f"bem: {hull.kind} hull {hull.length:.2f} x {hull.beam:.2f} x {hull.draught:.2f} m, "
               f"{hull.panels} panels + {hull.lid_panels} lid panels (z = {hull.lid_z:.2f} m), "
               f"{len(omegas)} frequencies x {len(headings_deg)} headings", file=sys.stderr)
-    ds, ds_special, elapsed = solve(body, omegas, headings_deg, rho, g, progress)
+    ds, ds_special, elapsed, far = solve(body, omegas, headings_deg, rho, g, progress)
     variables = davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g, nmax, tol,
                                 progress, retardation,
                                 LIFEBOAT_FIT_TAIL if lifeboat else None)
+    drift, b44 = drift_variables(ds, far, body, variables, drift_roll_damping, rho)
+    variables.update(drift)
     attrs = {
         "title": (f"davit {'lifeboat' if lifeboat else 'ship'} hydrodynamics "
                   "(Capytaine BEM database)"),
@@ -264,6 +319,8 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
         "retardation_dt_end_window": np.asarray(retardation, float),
+        db.ATTR_DRIFT_ROLL_DAMPING: drift_roll_damping, "drift_roll_damping_visc": b44,
+        "drift_theta_points": np.int32(bem_drift.N_THETA),
         db.ATTR_COMMAND_LINE: command, db.ATTR_SOLVE_TIME: elapsed,
         "davit_conventions": db.__doc__.strip(),
         "frame_of_capytaine_variables": "Capytaine's (x forward, y port, z up; e^{-i w t}; "

@@ -42,6 +42,8 @@ SS_FIT_ERROR_DAMPING = "davit_ss_fit_error_damping"
 SS_FIT_ERROR_RETARDATION = "davit_ss_fit_error_retardation"
 RETARDATION_TIME = "davit_retardation_time"
 RETARDATION = "davit_retardation"
+DRIFT = "davit_drift"
+DRIFT_ENERGY_DEFECT = "davit_drift_energy_defect"
 
 # root attributes of the database read back (the full list: postproc.bem_build.build)
 ATTR_HULL_KIND = "hull_kind"
@@ -52,6 +54,7 @@ ATTR_PANELS = "panels"
 ATTR_LID_PANELS = "lid_panels"
 ATTR_COMMAND_LINE = "command_line"
 ATTR_SOLVE_TIME = "solve_time_s"
+ATTR_DRIFT_ROLL_DAMPING = "drift_roll_damping_ratio"
 
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 DOF_SIGN = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])
@@ -62,6 +65,7 @@ VECTOR_SIGN = np.array([1.0, -1.0, -1.0])
 DIM_OMEGA, DIM_HEADING, DIM_TIME = OMEGA, HEADING, RETARDATION_TIME
 DIM_I, DIM_J, DIM_XYZ = "davit_dof_i", "davit_dof_j", "davit_xyz"
 DIM_N, DIM_M = "davit_ss_n", "davit_ss_m"
+DIM_DRIFT = "davit_drift_dof"
 
 _UNITS_6x6 = ("kg (i, j <= 3), kg m (one of i, j >= 4), kg m^2 (both >= 4); i force/moment, "
               "j motion")
@@ -122,6 +126,20 @@ VARIABLES = {
                   "(B piecewise linear on the grid, tail B_N (w_N/w)^2), for checking"),
 }
 
+# the mean drift coefficients (postproc.bem_drift): optional, so that databases written
+# before them stay readable (davit then refuses `&ship drift` with a message naming the file)
+DRIFT_VARIABLES = {
+    DRIFT: ((DIM_OMEGA, DIM_HEADING, DIM_DRIFT), "N/m^2 (surge, sway), N m/m^2 (yaw)",
+            "Mean wave drift load D_i(omega, beta) per unit wave amplitude squared on the "
+            "freely floating body (i = surge, sway, yaw about the CG's vertical; davit body "
+            "frame), far-field momentum flux (Maruo) from the Kochin functions; the mean load "
+            "in a regular wave of amplitude a is D a^2"),
+    DRIFT_ENERGY_DEFECT: ((DIM_OMEGA, DIM_HEADING), "-",
+                          "(omega Im H(beta) + k^2 int |H|^2) / (k^2 int |H|^2) of the total "
+                          "Kochin function H: zero for a body that absorbs no energy; a check "
+                          "of the far-field discretisation"),
+}
+
 
 class Database:
     """The davit variables of a BEM database, read with h5py (plain HDF5, as the Fortran
@@ -134,6 +152,7 @@ class Database:
             if missing:
                 raise ValueError(f"{path}: not a davit BEM database (missing {missing})")
             self.values = {n: f[n][()] for n in VARIABLES}
+            self.values.update({n: f[n][()] for n in DRIFT_VARIABLES if n in f})
             self.attrs = {k: (v.decode() if isinstance(v, bytes) else v)
                           for k, v in f.attrs.items()}
 
@@ -147,6 +166,11 @@ class Database:
     added_mass_inf = property(lambda self: self.values[ADDED_MASS_INF])
     stiffness = property(lambda self: self.values[STIFFNESS])
     mass = property(lambda self: self.values[MASS])
+
+    @property
+    def drift(self):
+        """D (omega, beta, surge/sway/yaw), or None for a database written without it."""
+        return self.values.get(DRIFT)
 
     @property
     def excitation(self):

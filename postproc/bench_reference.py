@@ -20,7 +20,7 @@ import h5py
 import numpy as np
 
 from . import layout
-from .study import run_davit, variant
+from .deck_edit import run_davit, variant
 
 SCENES = (("regular", "iiib_level5_090.nml", 0.0, "rk4 dt=1e-4"),
           ("irregular", "iiib_level5_090_irregular.nml", 0.0, "rk4 dt=1e-4"),

@@ -36,20 +36,9 @@ import tempfile
 import h5py
 import numpy as np
 
-from . import layout
-
-KEY_GROUPS = {"dt": "simulation", "dt_contact": "simulation", "rtol": "simulation",
-              "atol": "simulation", "wave_update": "simulation", "integrator": "simulation",
-              "t_end": "simulation", "output_interval": "simulation",
-              "fixed_step": "simulation",
-              "lumps": "rigging", "sheaves": "rigging", "strips": "boat",
-              "frozen": "ship", "n_frequencies": "sea", "n_directions": "sea",
-              "wave_type": "sea", "seed": "simulation", "water_model": "boat",
-              "blocks": "rigging", "contact_approach": "simulation",
-              "summation": "sea"}
-STRING_KEYS = {"sheaves", "integrator", "wave_type", "water_model", "blocks",
-               "contact_approach", "summation"}
-
+from . import layout, study_figures
+from .deck_edit import KEY_GROUPS, STRING_KEYS, override, run_davit, variant  # noqa: F401
+from .stability import stability_function  # noqa: F401
 
 def parse_study(path):
     """Read the `&study` group: strings, numbers and comma-separated string lists."""
@@ -70,45 +59,6 @@ def parse_study(path):
         if need not in study:
             raise ValueError(f"{path}: &study: missing key '{need}'")
     return study
-
-
-def override(deck, group, key, value):
-    """The deck text with `key = value` set in `&group` (replaced or added)."""
-    literal = f"'{value}'" if key in STRING_KEYS else str(value)
-    pattern = re.compile(rf"(&{group}\b.*?)(\n\s*/)", re.S)
-    match = pattern.search(deck)
-    if not match:
-        return deck.rstrip() + f"\n&{group}\n  {key} = {literal}\n/\n"
-    block = match.group(1)
-    line = re.compile(rf"^(\s*){key}\s*=.*$", re.M)
-    if line.search(block):
-        block = line.sub(rf"\g<1>{key} = {literal}", block, count=1)
-    else:
-        block = block + f"\n  {key} = {literal}"
-    return deck[:match.start()] + block + match.group(2) + deck[match.end():]
-
-
-def variant(base_text, spec, t_end):
-    """Deck text of one run spec 'integrator key=value ...'."""
-    words = spec.split()
-    deck = override(base_text, "simulation", "integrator", words[0])
-    deck = override(deck, "simulation", "t_end", t_end)
-    for word in words[1:]:
-        key, value = word.split("=")
-        if key not in KEY_GROUPS:
-            raise ValueError(f"study run '{spec}': unknown key '{key}'")
-        deck = override(deck, KEY_GROUPS[key], key, value)
-    return deck
-
-
-def run_davit(davit, deck_text, workdir, name):
-    """Run one variant; returns the output path and whether it completed."""
-    deck = os.path.join(workdir, name + ".nml")
-    out = os.path.join(workdir, name + ".h5")
-    with open(deck, "w") as f:
-        f.write(deck_text)
-    result = subprocess.run([davit, "run", deck, "-o", out], capture_output=True, text=True)
-    return out, result.returncode == 0, result.stderr.strip()
 
 
 def metrics(path):
@@ -264,30 +214,6 @@ def stability(study, davit, workdir):
     return rows
 
 
-# RODAS3 as in src/solve/rosenbrock.f90 (KPP form): stage coefficients a_ij, c_ij, weights
-# m_i and the diagonal gamma.
-RODAS3_A = np.array([[0, 0, 0, 0], [0, 0, 0, 0], [2, 0, 0, 0], [2, 0, 1, 0]], float)
-RODAS3_C = np.array([[0, 0, 0, 0], [4, 0, 0, 0], [1, -1, 0, 0], [1, -1, -8 / 3, 0]], float)
-RODAS3_M = np.array([2, 0, 1, 1], float)
-RODAS3_GAMMA = 0.5
-
-
-def stability_function(method, z):
-    """R(z) of one step on y' = lambda y, z = h lambda (complex)."""
-    if method == "rk4":
-        return 1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24
-    if method == "rosenbrock":
-        # (1/gamma - z) K_i = z (1 + sum_j a_ij K_j) + sum_j c_ij K_j,  R = 1 + sum m_i K_i
-        z = np.asarray(z, complex)
-        k = []
-        for i in range(4):
-            rhs = z * (1 + sum(RODAS3_A[i, j] * k[j] for j in range(i))) + \
-                sum(RODAS3_C[i, j] * k[j] for j in range(i))
-            k.append(rhs / (1 / RODAS3_GAMMA - z))
-        return 1 + sum(RODAS3_M[i] * k[i] for i in range(4))
-    raise ValueError(f"no stability function for '{method}'")
-
-
 def bounce_decay(path, t_max=1.0):
     """Bounce frequency [rad/s] and decay rate [1/s] from the vertical CG velocity samples:
     a two-pole linear prediction w[n+2] = p1 w[n+1] + p2 w[n] + c (c: a slow drift) fitted
@@ -433,7 +359,6 @@ def main(argv=None):
                   "must be 'work_precision', 'stability', 'damping' or 'statistics'", file=sys.stderr)
             return 1
     print(f"postproc.study: wrote {out}")
-    from . import study_figures
     for fn in study_figures.STUDY_FIGURES.values():
         png = fn(out, args.outdir)
         if png:

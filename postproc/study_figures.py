@@ -13,6 +13,7 @@ import numpy as np  # noqa: E402
 
 from . import layout  # noqa: E402
 from .figures import _save  # noqa: E402
+from .stability import stability_function  # noqa: E402
 
 COLOURS = {"rk4": "tab:blue", "dopri5": "tab:orange", "rosenbrock": "tab:green",
            "rosw": "tab:red"}
@@ -103,7 +104,6 @@ def damping(path, outdir):
     d = layout.load_study(path, "damping")
     if d is None:
         return None
-    from .study import stability_function
     zeta = float(d["zeta_physical"][0])
     lam = complex(-zeta, np.sqrt(1 - zeta**2))
     wh = np.geomspace(0.03, 10, 400)

@@ -16,6 +16,7 @@ program main
   use test_sweep, only: collect_sweep
   use test_strip_waves, only: collect_strip_waves
   use test_bem_ship, only: collect_bem_ship
+  use test_ship_drift, only: collect_ship_drift
   use test_launch_log, only: collect_launch_log
   use test_boat_bem, only: collect_boat_bem
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
@@ -23,6 +24,8 @@ program main
   use test_events, only: collect_events
   use test_assess, only: collect_assess
   use test_adaptive, only: collect_adaptive
+  use test_core, only: collect_core
+  use test_wave_grid, only: collect_wave_grid
   use test_mmg, only: collect_mmg
   implicit none
   interface
@@ -44,9 +47,11 @@ program main
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
             collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
             collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
-            collect_strip_waves(), collect_bem_ship(), collect_launch_log(), &
+            collect_strip_waves(), collect_bem_ship(), collect_ship_drift(), &
+            collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
-            collect_assess(), collect_adaptive(), collect_mmg()]
+            collect_assess(), collect_adaptive(), collect_core(), &
+            collect_wave_grid(), collect_mmg()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

@@ -6,6 +6,8 @@ module test_boat
                                 law_hertz_elastoplastic, law_lankarani_nikravesh, phase_free
   use davit_solve_integrator, only: ode_problem
   use davit_solve_rk4, only: rk4_type
+  use davit_boat_wind_loads, only: boat_wind_type, boat_wind_force, lift_literal, &
+                                   lift_symmetric
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -28,7 +30,8 @@ contains
     suite%name = "boat"
     suite%cases = [new_case("impact_restitution_and_hertz_peak_A4", impact_hertz), &
                    new_case("impact_review_table", impact_table), &
-                   new_case("impact_lankarani_nikravesh", impact_ln)]
+                   new_case("impact_lankarani_nikravesh", impact_ln), &
+                   new_case("wind_drag_and_lift_eqs_15_16", wind_drag_lift)]
   end function collect_boat
 
   subroutine impact_rhs(self, t, y, dydt)
@@ -126,5 +129,46 @@ contains
     call note(state, "LN rebound/approach at e_r 0.8", rebound)
     call check(state, rebound, 0.8_wp, "LN restitution (0.8)", rel_tol=0.06_wp)
   end subroutine impact_ln
+
+  !> Eqs. 15-16 by hand, with rho_air = 1.225 kg/m^3 and the boat's axes b3 down (gravity
+  !> acts along +b3 for a level boat, body_gravity_force), so an upward lift is along -b3.
+  !> A beam wind of 10 m/s relative to the boat: drag on the side area only,
+  !> -1/2 rho C_D A_2 |v| v2 = -0.5*1.225*0.5*20*10*10 = -612.5 N along b2; lift
+  !> 1/2 rho D l C_L v2^2 = 0.5*1.225*3*10*1.2*100 = 2205 N upward ('symmetric': from either
+  !> side); 'literal' (k = b1 x v_n/|b1 x v_n|) turns it downward when the wind comes from
+  !> the other side. An oblique v = (3, 4, 0): drag -1/2 rho C_D (A1*3 + A2*4) v. Half dry:
+  !> half of each force.
+  subroutine wind_drag_lift(state)
+    type(case_state), intent(inout) :: state
+    type(boat_wind_type) :: w
+    real(wp) :: f(3)
+    w%areas = [5.0_wp, 20.0_wp, 30.0_wp]
+    w%cd = 0.5_wp
+    w%cl = 1.2_wp
+    w%diameter = 3.0_wp
+    w%length = 10.0_wp
+    w%lift_form = lift_symmetric
+    f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(1), 0.0_wp, "beam wind: no surge force", abs_tol=1.0e-12_wp)
+    call check(state, f(2), -612.5_wp, "beam wind drag (eq. 15)", rel_tol=1.0e-12_wp)
+    call check(state, f(3), -2205.0_wp, "beam wind lift upward (eq. 16)", rel_tol=1.0e-12_wp)
+    f = boat_wind_force(w, [0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(2), 612.5_wp, "drag opposes the relative velocity", rel_tol=1.0e-12_wp)
+    call check(state, f(3), -2205.0_wp, "symmetric lift upward from the other side", &
+               rel_tol=1.0e-12_wp)
+    f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 0.5_wp)
+    call check(state, f(3), -1102.5_wp, "half dry: half the lift", rel_tol=1.0e-12_wp)
+    f = boat_wind_force(w, [3.0_wp, 4.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(1), -0.5_wp*1.225_wp*0.5_wp*95.0_wp*3.0_wp, "oblique drag b1", &
+               rel_tol=1.0e-12_wp)
+    call check(state, f(2), -0.5_wp*1.225_wp*0.5_wp*95.0_wp*4.0_wp, "oblique drag b2", &
+               rel_tol=1.0e-12_wp)
+    w%lift_form = lift_literal
+    f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(3), -2205.0_wp, "literal lift, wind to +b2: upward", rel_tol=1.0e-12_wp)
+    f = boat_wind_force(w, [0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(3), 2205.0_wp, "literal lift, wind to -b2: downward (eq. 16 as printed)", &
+               rel_tol=1.0e-12_wp)
+  end subroutine wind_drag_lift
 
 end module test_boat

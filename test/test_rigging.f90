@@ -174,18 +174,16 @@ contains
     call p%rig%observe(t, y(13:), hook_pos, hook_vel, ship0, f, sl)
   end function tensions
 
-  !> Static tension per cable part: each block hangs on two parts that meet at the block
-  !> with half-angle alpha (sheaves head_spacing apart), carrying W/2 + block + lumps:
-  !> T = (W/2 + m_b g + n m_p g)/(2 cos alpha), i.e. W/4 plus block and sling weights (A6).
-  function static_tension(p, y) result(t)
+  !> Static tension per cable part, in closed form: each block hangs on two parts of the
+  !> falls and carries W/2 + its weight + its sling's lumps, T = (W/2 + m_b g + n m_p g)/2
+  !> (A6). Exact when the parts hang vertical (the decks below set head_spacing = 0); with
+  !> the default 0.32 m spacing they lean in by alpha, tan alpha = 0.16/drop, which raises
+  !> T by 1/cos(alpha) - 1 < 1e-3 for drops over 3.6 m.
+  function static_tension(p) result(t)
     type(hanging_problem), intent(in) :: p
-    real(wp), intent(in) :: y(:)
-    real(wp) :: t, br(3, 2), drop, cosa
-    br = p%rig%block_positions(y(13:))
-    drop = br(3, 1) - (-20.55_wp)
-    cosa = drop/hypot(drop, 0.16_wp)
+    real(wp) :: t
     t = (0.5_wp*weight + p%rig%block_mass*gravity + &
-         p%rig%nlump*p%rig%sling%m_lump*gravity)/(2.0_wp*cosa)
+         p%rig%nlump*p%rig%sling%m_lump*gravity)/2.0_wp
   end function static_tension
 
   subroutine new_rk4(n, integ)
@@ -241,9 +239,10 @@ contains
     real(wp) :: res, t, t_exp, worst
     integer :: i, k
     do i = 1, size(decks)
-      call setup(p, "sling_damping = 0, drum_speed = 0"//nl//trim(decks(i)), y, state, res)
+      call setup(p, "head_spacing = 0, sling_damping = 0, drum_speed = 0"//nl// &
+                 trim(decks(i)), y, state, res)
       call check(state, res, 0.0_wp, "block force residual "//trim(decks(i)), abs_tol=1.0e-12_wp)
-      t_exp = static_tension(p, y)
+      t_exp = static_tension(p)
       f = tensions(p, 0.0_wp, y)
       call check(state, maxval(abs(f - t_exp))/t_exp, 0.0_wp, "t=0 parts = T "// &
                  trim(decks(i)), abs_tol=1.0e-9_wp)
@@ -396,7 +395,7 @@ contains
     call setup(p, "sheaves = 'rotating', lumps = 0, drum_speed = 0", y, state, res, &
                mode="unstretched")
     call setup(p, "sheaves = 'rotating', lumps = 0, drum_speed = 0", y, state, res)
-    t_exp = static_tension(p, y)
+    t_exp = static_tension(p)
     call setup(p, "sheaves = 'rotating', lumps = 0, drum_speed = 0", y, state, res, &
                mode="unstretched")
     call check(state, maxval(tensions(p, 0.0_wp, y)), 0.0_wp, "unstretched at t=0", &
@@ -431,7 +430,7 @@ contains
                abs_tol=0.02_wp)
     call check(state, dev3, 0.0_wp, "every section within 5 % after 3 s", abs_tol=0.05_wp)
     call check(state, t_settle, 2.5_wp, "settling time", abs_tol=1.5_wp)
-    call note(state, "expected (W + 2 m_b g)/(4 cos a) [N]", t_exp)
+    call note(state, "expected (W + 2 m_b g)/4 [N]", t_exp)
     call note(state, "mean tension [3,8] s [N]", sum(mean)/size(mean))
     call note(state, "peak/static", peak/t_exp)
     call note(state, "settling time into +-5 % [s]", t_settle)
@@ -704,12 +703,12 @@ contains
     logical :: solved
     real(wp), allocatable :: dydt(:)
     do i = 1, size(decks)
-      call setup(p, "blocks = 'quasi_static', sling_damping = 0, drum_speed = 0"//nl// &
-                 trim(decks(i)), y, state, res)
+      call setup(p, "head_spacing = 0, blocks = 'quasi_static', sling_damping = 0, "// &
+                 "drum_speed = 0"//nl//trim(decks(i)), y, state, res)
       call check_true(state, p%rig%ndof == 6*p%rig%nlump + p%rig%nsheave + 1, &
                       "blocks are no DOFs "//trim(decks(i)))
       br0 = p%rig%block_positions(y(13:))
-      t_exp = static_tension(p, y)
+      t_exp = static_tension(p)
       y(12 + p%rig%block_r(1):12 + p%rig%block_r(1) + 2) = br0(:, 1) + offset
       y(12 + p%rig%block_r(1) + 3:12 + p%rig%block_r(2)) = br0(:, 2) - offset
       call hooks(y, hook_pos, hook_vel, c)

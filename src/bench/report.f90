@@ -22,7 +22,7 @@ module davit_bench_report
     real(wp) :: load_start = -1.0_wp, load_end = -1.0_wp
     !> Scenes (one thread) and the sweep on each thread count.
     type(timed_run), allocatable :: runs(:)
-    !> Sweep: cases, and wall time on 1 thread / wall time on 2 threads.
+    !> The sweep row: cases, and wall time on 1 thread / wall time on 2 threads.
     integer :: sweep_cases = 0
     real(wp) :: speed_up = 0.0_wp
     !> Paper-literal scene: |lambda|max at t = 0 [1/s], RK4 limit [s], safety factor.

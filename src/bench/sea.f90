@@ -8,6 +8,9 @@ module davit_bench_sea
   use davit_sea_wave_field, only: wave_field_type, new_irregular_sea, wave_elevation, &
                                   wave_kinematics, point_phasors, time_phasors, &
                                   rotation_phasors, advance_phasors, elevation_from_phasors
+  use davit_sea_wave_grid, only: wave_grid_type, new_wave_grid, grid_prepare, &
+                                 grid_elevation, grid_kinematics
+  use davit_boat_strip_waves, only: elevation_sums, kinematic_sums
   implicit none
   private
   public :: bench_result, bench_sea
@@ -68,6 +71,11 @@ contains
     reps = scaled(budget, timed_libm_ns(10_i8)*1.0e-9_wp*field%n)
     per = timed_libm_ns(reps)
     call add(results, "reference: libm cos per phase", "ns/phase", per)
+
+    ! 5-8. the interpolated sea (&sea kinematics = 'grid', defaults h = 1 m, dt = 0.1 s,
+    ! velocity to 3 m): its build per node and sample, and a strip's sea terms per point
+    ! from the grid against the exact sums (elevation terms; elevation and velocity terms)
+    call bench_grid(budget, field, x, y, results, sink)
     if (sink == 12345.678_wp) write (output_unit, *) sink
 
   contains
@@ -133,6 +141,82 @@ contains
     end function timed_libm_ns
 
   end subroutine bench_sea
+
+  !> The grid's build [ns per node and sample, all fields] and its per-point queries
+  !> against the exact sums of the slow clock (davit_boat_strip_waves) [ns per point].
+  subroutine bench_grid(budget, field, x, y, results, sink)
+    real(wp), intent(in) :: budget, x(:), y(:)
+    type(wave_field_type), intent(in) :: field
+    type(bench_result), allocatable, intent(inout) :: results(:)
+    real(wp), intent(inout) :: sink
+    type(wave_grid_type) :: g
+    real(wp) :: xy(2, 2), e(4), v(3, 5), seconds, t
+    integer(i8) :: c0, c1, rate, reps, r
+    integer :: j, builds
+    xy = reshape([minval(x) - 1.4_wp, minval(y) - 1.4_wp, maxval(x) + 1.4_wp, &
+                  maxval(y) + 1.4_wp], [2, 2])
+    ! build: blocks of 16 samples over the footprint, until the budget is spent
+    call system_clock(c0, rate)
+    builds = 0
+    t = 0.0_wp
+    do
+      g = new_wave_grid(field, 1.0_wp, 0.1_wp, 0.0_wp, 3.0_wp, .true.)
+      call grid_prepare(g, field, t, t + 1.0_wp, xy)
+      builds = builds + g%node_builds*g%nt
+      t = t + 2.0_wp
+      call system_clock(c1)
+      if (real(c1 - c0, wp)/real(rate, wp) > budget) exit
+    end do
+    seconds = real(c1 - c0, wp)/real(rate, wp)
+    call add(results, "sea grid: build (22 fields)", "ns/(node*sample)", &
+             seconds/real(builds, wp)*1.0e9_wp)
+    call grid_prepare(g, field, t - 2.0_wp, t - 1.0_wp, xy)
+    reps = max(1_i8, int(budget/(size(x)*2.0e-7_wp), i8))
+    call system_clock(c0, rate)
+    do r = 1, reps
+      do j = 1, size(x)
+        call grid_kinematics(g, t - 1.9_wp + 1.0e-4_wp*mod(r, 1000_i8), x(j), y(j), 0.5_wp, &
+                             e, v)
+        sink = sink + e(1) + v(1, 1)
+      end do
+    end do
+    call system_clock(c1)
+    call add(results, "sea grid: kinematic terms from the grid", "ns/point", &
+             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
+    reps = max(1_i8, int(budget/(size(x)*field%n*5.0e-9_wp), i8))
+    call system_clock(c0, rate)
+    do r = 1, reps
+      do j = 1, size(x)
+        call kinematic_sums(field, 1.0e-3_wp*r, x(j), y(j), 0.5_wp, e, v)
+        sink = sink + e(1) + v(1, 1)
+      end do
+    end do
+    call system_clock(c1)
+    call add(results, "sea grid: kinematic terms, exact sum", "ns/point", &
+             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
+    reps = max(1_i8, int(budget/(size(x)*field%n*2.0e-9_wp), i8))
+    call system_clock(c0, rate)
+    do r = 1, reps
+      do j = 1, size(x)
+        call elevation_sums(field, 1.0e-3_wp*r, x(j), y(j), e)
+        sink = sink + e(1)
+      end do
+    end do
+    call system_clock(c1)
+    call add(results, "sea grid: elevation terms, exact sum", "ns/point", &
+             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
+    reps = max(1_i8, int(budget/(size(x)*1.0e-7_wp), i8))
+    call system_clock(c0, rate)
+    do r = 1, reps
+      do j = 1, size(x)
+        call grid_elevation(g, t - 1.9_wp + 1.0e-4_wp*mod(r, 1000_i8), x(j), y(j), e)
+        sink = sink + e(1)
+      end do
+    end do
+    call system_clock(c1)
+    call add(results, "sea grid: elevation terms from the grid", "ns/point", &
+             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
+  end subroutine bench_grid
 
   subroutine add(results, name, unit, value)
     type(bench_result), allocatable, intent(inout) :: results(:)

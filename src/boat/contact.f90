@@ -29,7 +29,7 @@ module davit_boat_contact
 
   integer, parameter :: law_hertz_elastoplastic = 1, law_lankarani_nikravesh = 2, &
                         law_rubber_fender = 3
-  !> Separated: the force has vanished at the permanent set delta_p but the point is still
+  !> The separated phase: the force has vanished at the permanent set delta_p but the point is still
   !> inside the undeformed plane; a new contact needs delta_dot > 0 again, and is measured
   !> from the permanent set (the dent), not from zero.
   integer, parameter :: phase_free = 0, phase_compression = 1, phase_restitution = 2, &

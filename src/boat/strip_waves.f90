@@ -27,6 +27,7 @@ module davit_boat_strip_waves
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
   use davit_core_hermite, only: hermite_weights
+  use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
@@ -100,12 +101,15 @@ contains
   !> needs it to find the wet sections), the velocity only at the strips in `maybe_wet` (a
   !> strip the surface watch proves dry over the window needs none; should it get wet
   !> after all, its stages take the exact kinematics).
-  pure subroutine strip_waves_refresh(cache, hull, field, t, c, r, maybe_wet)
+  !> With the grids (`&sea kinematics = 'grid'`), the elevation terms come from `surface`
+  !> and the velocity terms from `volume` wherever they hold the point, else the exact sums.
+  pure subroutine strip_waves_refresh(cache, hull, field, t, c, r, maybe_wet, surface, volume)
     type(strip_wave_cache_type), intent(inout) :: cache
     type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, c(3, 3), r(3)
     logical, intent(in) :: maybe_wet(:)
+    type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
     real(wp) :: p(3), q(3), eta, ramp
     integer :: k, j
@@ -118,7 +122,7 @@ contains
       p = r + c(:, 1)*hull%x(k)
       cache%p(:, k) = p(1:2)
       do j = 1, 2
-        call elevation_sums(field, cache%t(j), p(1), p(2), cache%ep(:, j, k))
+        call elevation_terms(field, cache%t(j), p(1), p(2), cache%ep(:, j, k), surface)
       end do
       if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
@@ -132,12 +136,43 @@ contains
       eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
       cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
       do j = 1, 2
-        call kinematic_sums(field, cache%t(j), q(1), q(2), cache%q(3, k), &
-                            cache%eq(:, j, k), cache%vq(:, :, j, k))
+        call kinematic_terms(field, cache%t(j), q(1), q(2), cache%q(3, k), &
+                             cache%eq(:, j, k), cache%vq(:, :, j, k), volume)
       end do
     end do
     cache%valid = .true.
   end subroutine strip_waves_refresh
+
+  !> Elevation terms from the grid where it holds (t, x, y), else the exact sums.
+  pure subroutine elevation_terms(field, t, x, y, e, grid)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y
+    real(wp), intent(out) :: e(ne)
+    type(wave_grid_type), intent(in), optional :: grid
+    if (present(grid)) then
+      if (grid_covers(grid, t, x, y)) then
+        call grid_elevation(grid, t, x, y, e)
+        return
+      end if
+    end if
+    call elevation_sums(field, t, x, y, e)
+  end subroutine elevation_terms
+
+  !> Elevation and velocity terms from the grid where it holds (t, x, y, d), else the
+  !> exact sums.
+  pure subroutine kinematic_terms(field, t, x, y, d, e, v, grid)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y, d
+    real(wp), intent(out) :: e(ne), v(3, nv)
+    type(wave_grid_type), intent(in), optional :: grid
+    if (present(grid)) then
+      if (grid_covers(grid, t, x, y, d)) then
+        call grid_kinematics(grid, t, x, y, d, e, v)
+        return
+      end if
+    end if
+    call kinematic_sums(field, t, x, y, d, e, v)
+  end subroutine kinematic_terms
 
   !> Dynamic section load of strip k (centre p) at both ends of the window, for its wet
   !> polygon under the tangent plane at t1.

@@ -20,6 +20,8 @@ module davit_boat_surface_watch
   use davit_boat_strip_pressure, only: surface_plane
   use davit_boat_hull, only: section_immersion, section_wet_type
   use davit_boat_strip_loads, only: strip_model_type
+  use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation
+  use davit_sea_wave_field, only: wave_ramp
   implicit none
   private
   public :: surface_watch_type, new_surface_watch, watch_refresh, surely_dry, strip_surely_dry
@@ -36,6 +38,10 @@ module davit_boat_surface_watch
     !> slope in time [1/s] and space [1/m].
     real(wp) :: rate_bound = 0.0_wp, slope_bound = 0.0_wp
     real(wp) :: slope_rate_bound = 0.0_wp, curvature_bound = 0.0_wp
+    !> Interpolation error bounds of the elevation [m] and slope [-] of a sample taken
+    !> from the grid (`&sea kinematics = 'grid'`), added so the proof stays a proof.
+    real(wp) :: grid_error(2) = 0.0_wp
+    logical, allocatable :: from_grid(:)
   end type surface_watch_type
 
 contains
@@ -47,7 +53,8 @@ contains
     real(wp), intent(in) :: interval
     type(surface_watch_type) :: w
     real(wp) :: amp, ramp_rate, stokes
-    allocate (w%eta(nstrips), w%xy(2, nstrips), w%slope(nstrips))
+    allocate (w%eta(nstrips), w%xy(2, nstrips), w%slope(nstrips), w%from_grid(nstrips))
+    w%from_grid = .false.
     w%interval = interval
     if (field%kind == wave_none) return
     amp = sum(abs(field%amplitude))
@@ -67,18 +74,29 @@ contains
     w%curvature_bound = sum(abs(field%amplitude)*field%k**2) + 4.0_wp*stokes*maxval(field%k)**2
   end function new_surface_watch
 
-  !> Sample the elevation at the strips' reference points of the boat at (c, r).
-  pure subroutine watch_refresh(w, s, field, t, c, r)
+  !> Sample the elevation at the strips' reference points of the boat at (c, r): from the
+  !> grid where given and it holds the point (its error bound added in the proof), else
+  !> the exact sum.
+  pure subroutine watch_refresh(w, s, field, t, c, r, grid)
     type(surface_watch_type), intent(inout) :: w
     type(strip_model_type), intent(in) :: s
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3), grad(2)
+    type(wave_grid_type), intent(in), optional :: grid
+    real(wp) :: p(3), grad(2), e(4)
     integer :: k
     do k = 1, s%hull%n
       p = r + c(:, 1)*s%hull%x(k)
       w%xy(:, k) = p(1:2)
-      call surface_plane(field, t, p(1), p(2), w%eta(k), grad)
+      w%from_grid(k) = .false.
+      if (present(grid)) w%from_grid(k) = grid_covers(grid, t, p(1), p(2))
+      if (w%from_grid(k)) then
+        call grid_elevation(grid, t, p(1), p(2), e)
+        w%eta(k) = wave_ramp(field, t)*e(1)
+        grad = wave_ramp(field, t)*e(3:4)
+      else
+        call surface_plane(field, t, p(1), p(2), w%eta(k), grad)
+      end if
       w%slope(k) = norm2(grad)
     end do
     w%t = t
@@ -105,7 +123,7 @@ contains
     type(strip_model_type), intent(in) :: s
     integer, intent(in) :: k
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3), eta_up, dist, radius
+    real(wp) :: p(3), eta_up, dist, radius, grid_error(2)
     type(section_wet_type) :: wet
     strip_surely_dry = .false.
     if (.not. w%valid) return
@@ -114,9 +132,11 @@ contains
     dist = norm2(p(1:2) - w%xy(:, k))
     radius = hypot(0.5_wp*s%hull%breadth(k), max(abs(s%hull%keel), &
                                                  abs(s%hull%keel - s%hull%height)))
-    eta_up = w%eta(k) + w%rate_bound*abs(t - w%t) + w%slope_bound*dist + radius* &
-             min(w%slope_bound, w%slope(k) + w%slope_rate_bound*abs(t - w%t) + &
-                 w%curvature_bound*dist)
+    grid_error = 0.0_wp
+    if (w%from_grid(k)) grid_error = w%grid_error
+    eta_up = w%eta(k) + grid_error(1) + w%rate_bound*abs(t - w%t) + w%slope_bound*dist + &
+             radius*min(w%slope_bound, w%slope(k) + grid_error(2) + &
+                        w%slope_rate_bound*abs(t - w%t) + w%curvature_bound*dist)
     wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
     strip_surely_dry = wet%area <= 0.0_wp
   end function strip_surely_dry

@@ -8,6 +8,7 @@ module davit_io_config
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_rigging_keys, only: rigging_config, read_rigging
   use davit_io_ship_keys, only: ship_config, read_ship
+  use davit_io_sea_keys, only: sea_grid_config, read_sea_grid
   use davit_io_limits_keys, only: limits_config, read_limits
   implicit none
   private
@@ -40,6 +41,7 @@ module davit_io_config
     character(len=:), allocatable :: height_source, period_source
     logical :: jitter, independent_frequencies
     real(wp), allocatable :: probes_x(:), probes_y(:)
+    type(sea_grid_config) :: grid
   end type sea_config
 
   !> Response amplitude operators of the ship (`davit rao`).
@@ -509,6 +511,7 @@ contains
                      "x of the wave probes recorded by the 'sea' scene.", 1, 1000)
     call r%real_list(g, "probes_y", s%probes_y, [0.0_wp], -1.0e5_wp, 1.0e5_wp, "m", &
                      "y of the wave probes (as many as probes_x).", 1, 1000)
+    call read_sea_grid(r, s%grid)
   end subroutine read_sea
 
   subroutine read_wind(r, w, sea)

@@ -50,6 +50,7 @@ module davit_io_hdf5_reader
     procedure :: attr_str => reader_attr_str
     procedure :: attr_int => reader_attr_int
     procedure :: has_attr => reader_has_attr
+    procedure :: has_dataset => reader_has_dataset
   end type h5_reader_type
 
 contains
@@ -566,5 +567,14 @@ contains
     call h5aexists_by_name_f(self%file, "/", name, exists, hdferr)
     if (hdferr /= 0) exists = .false.
   end function reader_has_attr
+
+  !> Whether the root group has a link `name` (optional datasets: a BEM database's drift).
+  logical function reader_has_dataset(self, name) result(exists)
+    class(h5_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer :: hdferr
+    call h5lexists_f(self%file, name, exists, hdferr)
+    if (hdferr /= 0) exists = .false.
+  end function reader_has_dataset
 
 end module davit_io_hdf5_reader

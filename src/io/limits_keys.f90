@@ -23,7 +23,7 @@ module davit_io_limits_keys
     !> Seat position in the boat frame [m], the occupant filter's -3 dB frequency [Hz] and
     !> the interval its input is resampled at [s].
     real(wp) :: seat(3), seat_filter, seat_interval
-    !> Occupant: SRSS limit of the filtered seat acceleration [m/s^2] (0 = none); the spine
+    !> The occupant: SRSS limit of the filtered seat acceleration [m/s^2] (0 = none); the spine
     !> model's natural frequency [rad/s], damping ratio [-] and DRI limit [-].
     real(wp) :: srss_limit, dr_frequency, dr_damping, dri_limit
   end type limits_config

@@ -21,6 +21,8 @@ module davit_io_ship_keys
     character(len=:), allocatable :: wave_phase
     !> 'fk_box' (the paper's box) or 'bem' (Cummins' equation from `database`).
     character(len=:), allocatable :: model, database
+    !> BEM ship's wave drift: 'none', 'mean' or 'newman' (davit_ship_wave_drift).
+    character(len=:), allocatable :: drift
     !> Heading keeping and station keeping: natural periods [s] (0 = off), damping ratio.
     real(wp) :: heading_period, heading_damping, station_period
     !> BEM ship: roll radius of gyration in place of the database's [m] (0 = the database's).
@@ -122,6 +124,13 @@ contains
     call r%string(g, "database", s%database, "ship_bem.nc", &
                   "BEM database of model = 'bem' (davit-post bem build), relative "// &
                   "to the deck's folder unless absolute.")
+    call r%choice(g, "drift", s%drift, "none", [character(len=8) :: "none", "mean", "newman"], &
+                  "Second-order wave drift of the BEM ship (model = 'bem'; surge, sway, yaw) "// &
+                  "from the database's mean drift coefficients D(omega, beta): none; the mean "// &
+                  "load sum D a^2 ('mean'); or Newman's approximation of the slowly varying "// &
+                  "load in irregular seas ('newman', the same constant in a regular wave). "// &
+                  "Off by default: the lifeboat has no drift load, and the ship's alone "// &
+                  "would drive the two apart.")
     call r%real(g, "roll_gyradius", s%roll_gyradius, 0.0_wp, 0.0_wp, 50.0_wp, "m", &
                 "BEM ship: roll radius of gyration about the CG in place of the "// &
                 "database's (0 = the database's, 0.38 B for input/ship_bem.nc): the roll "// &

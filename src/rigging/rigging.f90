@@ -83,7 +83,7 @@ module davit_rigging_rigging
   !> The falls (cables, top sling segments, blocks; davit_rigging_block_balance) plus the
   !> lumps, the sheaves' dynamics, the winch and the state layout.
   type, extends(falls_type) :: rigging_type
-    !> Sizes: state length, DOFs (F1), lumps per sling.
+    !> The sizes: state length, DOFs (F1), lumps per sling.
     integer :: nstate = 0, ndof = 0, nlump = 0
     !> The rigging's own state layout (parts "lumps", "blocks", "sheaves", "drum"), and
     !> those parts; block_r, block_v: where the block positions and velocities are (the

@@ -150,10 +150,27 @@ contains
       ! the filter's copies
       per_sample = 96.0_wp + 6.0_wp*real(cfg%rigging%lumps, wp)
       parts(2) = 8.0_wp*3.0_wp*4.0_wp*cfg%simulation%t_end/seat_dt
-      parts(3) = n_comp*(bytes_component_sea + bytes_component_boat)
+      parts(3) = n_comp*(bytes_component_sea + bytes_component_boat) + grid_bytes(cfg, n_comp)
     end select
     parts(1) = 8.0_wp*per_sample*samples
   end function memory_parts
+
+  !> The interpolated sea's two grids (davit_sea_wave_grid; `&sea kinematics = 'grid'`):
+  !> spatial phasors (2 n per node) over a box of side (L + B + 2 margin)/h + 4 nodes (the
+  !> boat's footprint at any heading) and the block's time phasors (2 n per field and
+  !> sample, 16 samples; 4 + 4 + 3 nl fields), and the fields themselves [bytes].
+  pure real(wp) function grid_bytes(cfg, n_comp) result(bytes)
+    type(config_type), intent(in) :: cfg
+    real(wp), intent(in) :: n_comp
+    real(wp) :: nodes, fields
+    bytes = 0.0_wp
+    if (cfg%sea%grid%kinematics /= "grid" .or. cfg%sea%wave_type /= "irregular") return
+    associate (g => cfg%sea%grid)
+      nodes = ((cfg%boat%length + cfg%boat%beam + 2.0_wp*g%margin)/g%spacing + 4.0_wp)**2
+      fields = 8.0_wp + 3.0_wp*(real(ceiling(g%depth/g%spacing), wp) + 3.0_wp)
+    end associate
+    bytes = 8.0_wp*(2.0_wp*n_comp*(2.0_wp*nodes + 16.0_wp*fields) + 16.0_wp*fields*nodes)
+  end function grid_bytes
 
   !> The estimate's terms in words.
   function memory_terms(cfg) result(s)

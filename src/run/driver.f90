@@ -1,6 +1,6 @@
-!> Runs: build the scene's system, integrate (step dt, or smaller where the problem asks),
-!> record at exact multiples of the output interval
-!> and write the HDF5 file. One time loop serves every scene; each scene brings its recorder.
+!> Running a scene: build the scene's system, integrate (step dt, or smaller where the
+!> problem asks), record at exact multiples of the output interval and write the HDF5
+!> file. One time loop serves every scene; each scene brings its recorder.
 !> A non-finite state (or an unphysical speed) stops the run with a diagnostic naming the
 !> time and the offending quantity; the partial record is still written, marked incomplete,
 !> under the output name, or beside an existing output (OUT.partial.h5), which stays as it was.

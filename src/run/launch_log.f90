@@ -50,9 +50,9 @@ module davit_run_launch_log
     type(rule_watch) :: rules
     type(limits_config) :: limits
     logical :: contact = .false.
-    !> CG: inertial velocity of the last step, its peak step-mean acceleration and when.
+    !> The CG: inertial velocity of the last step, its peak step-mean acceleration and when.
     real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp, peak_cg = 0.0_wp, peak_cg_time = -1.0_wp
-    !> Outcome: shares of time in contact and with slack falls (averages over ~judge_time),
+    !> The outcome: shares of time in contact and with slack falls (averages over ~judge_time),
     !> snatches (slack to taut), lowest CG height above the still water [m], last time [s].
     real(wp) :: contact_share = 0.0_wp, slack_share = 0.0_wp, lowest = huge(1.0_wp)
     !> Largest tilt of the boat (its b3 axis from the vertical) [rad] and when [s].

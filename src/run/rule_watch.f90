@@ -33,7 +33,7 @@ module davit_run_rule_watch
     logical :: on_davit = .false.
     !> Heads' midpoint in the ship frame [m]; keel below the CG [m]; boat weight [N].
     real(wp) :: head_mid(3) = 0.0_wp, keel = 0.0_wp, weight = 0.0_wp
-    !> Winch: end of the initial acceleration, brake start and end of its ring-out [s].
+    !> The winch: end of the initial acceleration, brake start and end of its ring-out [s].
     real(wp) :: t_accel = 0.0_wp, t_stop = huge(1.0_wp), t_ring = huge(1.0_wp)
     !> Davit head height above the still water at t = 0 [m] (< 0: not seen yet).
     real(wp) :: head_height = -1.0_wp
@@ -44,7 +44,7 @@ module davit_run_rule_watch
     !> covered [s], the largest fall load after it [N], and whether the run saw it all.
     real(wp) :: pre_load = 0.0_wp, pre_time = 0.0_wp, stop_peak = 0.0_wp
     logical :: stop_seen = .false.
-    !> Hooks: their load at the last step [N], at release [N] (< 0: no release).
+    !> The hooks: their load at the last step [N], at release [N] (< 0: no release).
     real(wp) :: hook_load = 0.0_wp, release_load = -1.0_wp, t_release = -1.0_wp
     real(wp) :: t_prev = -1.0_wp
   contains

@@ -19,7 +19,8 @@ module davit_ship_bem_database
   use davit_io_hdf5_reader, only: h5_reader_type
   implicit none
   private
-  public :: bem_database_type, radiation_pair_type, read_bem_database, bem_excitation, bracket
+  public :: bem_database_type, radiation_pair_type, read_bem_database, bem_excitation, bracket, &
+            bem_drift
 
   !> One fitted memory kernel: force DOF i, motion DOF j, order n, its first state in the
   !> ship's radiation states, and its matrices (n x n, n, n).
@@ -40,6 +41,10 @@ module davit_ship_bem_database
     real(wp), allocatable :: fk_re(:, :, :), fk_im(:, :, :)
     real(wp) :: added_mass_inf(6, 6) = 0.0_wp, stiffness(6, 6) = 0.0_wp
     real(wp) :: mass(6, 6) = 0.0_wp, volume = 0.0_wp
+    !> Mean wave drift load per unit amplitude squared D_i(omega, beta) (surge, sway [N/m^2],
+    !> yaw [N m/m^2]) as (i, beta, omega): optional (databases written before it lack it).
+    logical :: has_drift = .false.
+    real(wp), allocatable :: drift(:, :, :)
     !> Radiation states in all (sum of the orders).
     integer :: nrad = 0
     type(radiation_pair_type), allocatable :: pairs(:)
@@ -59,6 +64,7 @@ contains
     call read_grid(h5, db, error)
     if (.not. allocated(error)) call read_matrices(h5, db, error)
     if (.not. allocated(error)) call read_radiation(h5, db, error)
+    if (.not. allocated(error)) call read_drift(h5, db, error)
     call h5%close()
     if (allocated(error)) error%message = "BEM database: "//error%message
   end subroutine read_bem_database
@@ -175,6 +181,24 @@ contains
     end do
   end subroutine read_radiation
 
+  !> The mean drift coefficients davit_drift, numpy (omega, beta, 3), if the file has them.
+  subroutine read_drift(h5, db, error)
+    type(h5_reader_type), intent(inout) :: h5
+    type(bem_database_type), intent(inout) :: db
+    type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: x(:)
+    integer, allocatable :: dims(:)
+    if (.not. h5%has_dataset("davit_drift")) return
+    call read_shaped(h5, "davit_drift", [3, size(db%heading), size(db%omega)], x, dims, error)
+    if (allocated(error)) return
+    if (.not. all(abs(x) < huge(1.0_wp))) then
+      call fatal_error(error, "'"//h5%path//"': davit_drift holds a NaN or infinite value")
+      return
+    end if
+    db%drift = reshape(x, [3, size(db%heading), size(db%omega)])
+    db%has_drift = .true.
+  end subroutine read_drift
+
   !> Pair (i, j) of order n from its zero-padded blocks (a_t: the transposed n x n block).
   pure function new_pair(i, j, n, first, a_t, b, c) result(p)
     integer, intent(in) :: i, j, n, first
@@ -246,6 +270,23 @@ contains
       if (diffraction) z = z - cmplx(db%fk_re(:, kb, kw), db%fk_im(:, kb, kw), wp)
     end function load
   end function bem_excitation
+
+  !> The mean drift load per unit amplitude squared D(omega, beta) (surge, sway, yaw; heading
+  !> frame), linear in omega and beta, clamped at both ends of the frequency grid: in long
+  !> waves it vanishes (the lowest frequency's is ~0), in short ones it tends to the
+  !> reflection limit 1/2 rho g times the lit waterline's projection, not to zero.
+  pure function bem_drift(db, omega, beta) result(d)
+    type(bem_database_type), intent(in) :: db
+    real(wp), intent(in) :: omega, beta
+    real(wp) :: d(3)
+    real(wp) :: b, sw, sb
+    integer :: iw, ib
+    b = modulo(beta - db%heading(1), 2.0_wp*pi) + db%heading(1)
+    call bracket(db%omega, omega, iw, sw)
+    call bracket(db%heading, b, ib, sb)
+    d = (1.0_wp - sw)*((1.0_wp - sb)*db%drift(:, ib, iw) + sb*db%drift(:, ib + 1, iw)) + &
+        sw*((1.0_wp - sb)*db%drift(:, ib, iw + 1) + sb*db%drift(:, ib + 1, iw + 1))
+  end function bem_drift
 
   !> Interval [x(i), x(i+1)] holding v (clamped at the ends) and the weight of x(i+1).
   pure subroutine bracket(x, v, i, s)

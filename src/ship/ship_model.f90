@@ -32,6 +32,7 @@ module davit_ship_ship_model
   use davit_ship_mmg, only: mmg_type, mmg_self_propulsion
   use davit_ship_mmg_loads, only: mmg_body_load
   use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch
+  use davit_ship_wave_drift, only: drift_none, drift_coefficients, drift_load
   implicit none
   private
   public :: ship_system_type, new_ship_system, ship_loads, ship_state
@@ -91,6 +92,10 @@ module davit_ship_ship_model
     real(wp) :: rps = 0.0_wp
     type(rudder_type) :: steer
     type(state_part_type) :: rudder
+    !> The BEM ship's wave drift (davit_ship_wave_drift: drift_none, drift_mean, drift_newman)
+    !> and its coefficients a_i sqrt(|D_i|) sign(D_i) (surge, sway, yaw) at heading psi_ref.
+    integer :: drift = drift_none
+    real(wp), allocatable :: drift_coef(:, :)
   contains
     procedure :: rhs => ship_rhs
     procedure :: kane_blocks => ship_kane_blocks
@@ -98,6 +103,7 @@ module davit_ship_ship_model
     procedure :: after_step => ship_after_step
     procedure :: set_mooring
     procedure :: set_mmg
+    procedure :: set_drift
   end type ship_system_type
 
   !> Yaw drift [rad] after which the Froude-Krylov coefficients are recomputed.
@@ -165,6 +171,8 @@ contains
     self%psi_ref = psi
     if (self%bem) then
       call bem_wave_coefficients(self%hydro, self%sea, psi, self%fk_sin, self%fk_cos)
+      if (self%drift /= drift_none) call drift_coefficients(self%hydro%db, self%sea, psi, &
+                                                            self%drift_coef)
       return
     end if
     associate (s => self%sea, h => self%hull)
@@ -180,6 +188,18 @@ contains
       end do
     end associate
   end subroutine refresh_heading
+
+  !> Switch the BEM ship's wave drift to `level` (its database must hold the coefficients:
+  !> davit_system_build checks).
+  pure subroutine set_drift(self, level)
+    class(ship_system_type), intent(inout) :: self
+    integer, intent(in) :: level
+    self%drift = level
+    if (level == drift_none .or. .not. self%bem) return
+    if (allocated(self%drift_coef)) deallocate (self%drift_coef)
+    allocate (self%drift_coef(3, self%sea%n))
+    call self%refresh_heading(self%psi_ref)
+  end subroutine set_drift
 
   !> Soft mooring with the given natural periods [s] (surge, sway, yaw) and damping ratio,
   !> anchored at the current state; with `integral`, a PID: integral gain k w/10 (integral
@@ -471,6 +491,10 @@ contains
       end if
       if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, q, c), &
                                                                     q(1:3), c)
+      if (self%drift /= drift_none .and. self%sea%kind /= wave_none) then
+        load = load + heading_to_body(drift_load(self%drift, self%sea, self%drift_coef, t, &
+                                                 self%origin(1), self%origin(2)), q(1:3), c)
+      end if
       vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
       load = load + ship_wind_load(h%wind, vrel)
       if (any(self%moor_k > 0.0_wp)) load = load + mooring(self, q, u, c)

@@ -29,7 +29,7 @@ module davit_solve_adaptive
     integer :: max_substeps = 100000
     !> No error control: exactly one internal step of size dt per call (order studies).
     logical :: fixed_step = .false.
-    !> Controller: safety factor and shrink/growth limits of h_new/h.
+    !> The controller: safety factor and shrink/growth limits of h_new/h.
     real(wp) :: safety = 0.9_wp
     real(wp) :: fac_min = 0.2_wp
     real(wp) :: fac_max = 6.0_wp

@@ -20,10 +20,11 @@ module davit_solve_event_location
   integer, parameter :: max_bisections = 80
   !> Brackets tried on ever shorter steps before the switch is crossed where it is.
   integer, parameter :: max_passes = 6
-  !> Chattering: events closer than chatter_gap [s] to the one before, max_chatter of them in
-  !> a row (a link at zero tension switching taut and slack at every crossing step, found
-  !> in a Level 3 launch at the water: 3e-9 s apart, without end); the next step is then
-  !> taken whole, its switches made at its end as without event location.
+  !> Against chattering: events closer than chatter_gap [s] to the one before,
+  !> max_chatter of them in a row (a link at zero tension switching taut and slack at
+  !> every crossing step, found in a Level 3 launch at the water: 3e-9 s apart, without
+  !> end); the next step is then taken whole, its switches made at its end as without
+  !> event location.
   real(wp), parameter :: chatter_gap = 1.0e-7_wp
   integer, parameter :: max_chatter = 20
 

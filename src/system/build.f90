@@ -26,7 +26,9 @@ module davit_system_build
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
   use davit_ship_bem_database, only: bem_database_type, read_bem_database
   use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
+  use davit_ship_wave_drift, only: drift_level
   use davit_sea_wave_field, only: wave_field_type
+  use davit_sea_wave_grid, only: new_wave_grid, grid_error_bounds
   use davit_sea_wind, only: wind_type
   use davit_system_parameters, only: system_params_type, ship_pose, hook_kinematics, nslings
   use davit_system_model, only: system_type
@@ -158,6 +160,19 @@ contains
         end if
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
                              s%wave_phase == "initial", s%headway, bem)
+        if (s%drift /= "none" .and. .not. db%has_drift) then
+          call fatal_error(error, cfg%filename//": &ship: drift = '"//s%drift//"' needs "// &
+                           "the mean drift coefficients (davit_drift), which database '"// &
+                           s%database//"' lacks: rebuild it with davit-post bem build, "// &
+                           "or set drift = 'none'")
+          return
+        end if
+        call ship%set_drift(drift_level(s%drift))
+      else if (s%drift /= "none") then
+        call fatal_error(error, cfg%filename//": &ship: drift = '"//s%drift//"' needs "// &
+                         "model = 'bem' (allowed with model = '"//s%model//"': 'none'): "// &
+                         "the drift coefficients come from its BEM database")
+        return
       else
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
                              s%wave_phase == "initial", s%headway)
@@ -217,6 +232,15 @@ contains
       self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, surface_watch_interval)
       self%hist%waves = new_strip_wave_cache(par%sea, par%water%hull%n, &
                                              cfg%simulation%wave_update)
+      if (cfg%sea%grid%kinematics == "grid") then
+        associate (g => cfg%sea%grid)
+          self%hist%surface_grid = new_wave_grid(par%sea, g%spacing, g%time_step, g%margin, &
+                                                 g%depth, .false.)
+          self%hist%volume_grid = new_wave_grid(par%sea, g%spacing, g%time_step, g%margin, &
+                                                g%depth, .true.)
+        end associate
+        self%hist%watch%grid_error = grid_error_bounds(self%hist%surface_grid, par%sea)
+      end if
     end associate
   end subroutine new_boat_environment
 

@@ -14,6 +14,7 @@ module davit_system_events
   use davit_system_history, only: system_history_type
   use davit_system_boat_loads, only: water_loads
   use davit_system_observables, only: rigging_state
+  use davit_sea_wave_grid, only: wave_grid_type, grid_prepare
   implicit none
   private
   public :: advance_history
@@ -29,7 +30,14 @@ contains
     associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
       if (.not. hist%watch%valid .or. t - hist%watch%t >= hist%watch%interval) then
         c = rotation_matrix(q(1:3))
-        call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)))
+        if (hist%surface_grid%enabled) then
+          call prepare_grid(par, hist%surface_grid, t, hist%watch%interval, c, &
+                            matmul(c, q(4:6)))
+          call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)), &
+                             hist%surface_grid)
+        else
+          call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)))
+        end if
       end if
       call refresh_strip_waves(par, hist, t, q)
     end associate
@@ -55,8 +63,14 @@ contains
       maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
                                             t + hist%waves%window, c, r)
     end do
-    if (any(maybe_wet)) call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, &
-                                                 c, r, maybe_wet)
+    if (any(maybe_wet) .and. hist%surface_grid%enabled) then
+      call prepare_grid(par, hist%surface_grid, t, hist%waves%window, c, r)
+      call prepare_grid(par, hist%volume_grid, t, hist%waves%window, c, r, maybe_wet)
+      call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet, &
+                               hist%surface_grid, hist%volume_grid)
+    else if (any(maybe_wet)) then
+      call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet)
+    end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
       call diffraction_refresh(par%bem, par%sea, hist%waves%t(1), hist%waves%t(2), r, &
@@ -65,6 +79,30 @@ contains
       hist%diffraction%valid = .false.
     end if
   end subroutine refresh_strip_waves
+
+  !> Make grid g hold the boat's footprint (the corners of its strips, or of those in
+  !> `only`; boat at (c, r)) over [t, t + span].
+  subroutine prepare_grid(par, g, t, span, c, r, only)
+    type(system_params_type), intent(in) :: par
+    type(wave_grid_type), intent(inout) :: g
+    real(wp), intent(in) :: t, span, c(3, 3), r(3)
+    logical, intent(in), optional :: only(:)
+    real(wp) :: xy(2, 2*par%water%hull%n), half
+    integer :: k, m
+    m = 0
+    associate (h => par%water%hull)
+      half = 0.5_wp*maxval(h%breadth)
+      do k = 1, h%n
+        if (present(only)) then
+          if (.not. only(k)) cycle
+        end if
+        xy(:, m + 1) = r(1:2) + c(1:2, 1)*h%x(k) + c(1:2, 2)*half
+        xy(:, m + 2) = r(1:2) + c(1:2, 1)*h%x(k) - c(1:2, 2)*half
+        m = m + 2
+      end do
+    end associate
+    if (m > 0) call grid_prepare(g, par%sea, t, t + span, xy(:, 1:m))
+  end subroutine prepare_grid
 
   !> Each fender's contact phase on the accepted state; the first contact.
   subroutine advance_contact(par, hist, t, y)

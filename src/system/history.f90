@@ -9,6 +9,7 @@ module davit_system_history
   use davit_boat_strip_waves, only: strip_wave_cache_type
   use davit_boat_bem_water, only: diffraction_cache_type
   use davit_system_parameters, only: nslings
+  use davit_sea_wave_grid, only: wave_grid_type
   implicit none
   private
   public :: system_history_type
@@ -31,6 +32,9 @@ module davit_system_history
     type(strip_wave_cache_type) :: waves
     !> The BEM water model's diffraction load on the same clock (irregular seas).
     type(diffraction_cache_type) :: diffraction
+    !> `&sea kinematics = 'grid'`: the elevation around the boat (the watch's and strips'
+    !> samples) and, while the hull may be wet, the water velocity at depth.
+    type(wave_grid_type) :: surface_grid, volume_grid
   end type system_history_type
 
 end module davit_system_history

@@ -232,10 +232,12 @@ def test_tiny_build_writes_every_davit_variable(tmp_path):
     assert set(shapes) | {db.RETARDATION_TIME, db.RETARDATION} == set(db.VARIABLES)
     for name, shape in shapes.items():
         assert tiny[name].shape == shape, name
+    assert tiny.drift.shape == (nw, nb, 3)
+    assert tiny[db.DRIFT_ENERGY_DEFECT].shape == (nw, nb)
     nt = tiny[db.RETARDATION_TIME].size
     assert tiny[db.RETARDATION].shape == (nt, 6, 6)
     with h5py.File(out) as f:
-        for name in db.VARIABLES:
+        for name in list(db.VARIABLES) + list(db.DRIFT_VARIABLES):
             assert f[name].dtype == (np.int32 if name == db.SS_ORDER else np.float64), name
             assert f[name].attrs["units"] and f[name].attrs["description"], name
         assert "added_mass" in f and "excitation_force" in f     # Capytaine's own dataset

@@ -172,7 +172,8 @@ def test_printed_table_is_the_file(bench):
     assert speed_up and math.isclose(float(speed_up.group(1)), data["bench/sweep/speed_up"][0],
                                      rel_tol=5e-3)
     sea = [line for line in lines if line.startswith("| sea: ")]
-    assert len(sea) == 3 and len(data["bench/sea/value"]) == 4
+    grid = [line for line in lines if line.startswith("| sea grid: ")]
+    assert len(sea) == 3 and len(grid) == 5 and len(data["bench/sea/value"]) == 9
 
 
 def test_bench_usage_and_missing_decks(davit, tmp_path):

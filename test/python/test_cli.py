@@ -11,6 +11,10 @@ BAD_DECKS = [
     ("&boat mass = heavy /\n", r"bad\.nml:1: &boat: mass = heavy: not a real number"),
     ("&seastate height = 4 /\n", r"bad\.nml:1: unknown namelist group &seastate"),
     ("&simulation t_end = 5\n", r"bad\.nml:1: group &simulation is not closed"),
+    ("&sea\n  kinematics = 'grids' /\n", r"bad\.nml:2: &sea: kinematics = 'grids': unknown "
+                                          r"choice; allowed: one of 'sum' 'grid'"),
+    ("&sea grid_spacing = 0.0 /\n", r"bad\.nml:1: &sea: grid_spacing = 0\.0: out of range; "
+                                    r"allowed: 0 < grid_spacing <= 10 \[m\]"),
 ]
 
 

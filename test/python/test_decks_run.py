@@ -37,15 +37,15 @@ STUDY_DECKS = sorted(p for p in (ROOT / "input").glob("*.nml") if "&study" in p.
 def test_study_deck_variants_are_valid_decks(davit, tmp_path, path):
     """Every run of a study deck (python -m postproc.study) is a deck davit accepts: each
     variant runs 20 steps to a complete file."""
-    from postproc import study
+    from postproc import deck_edit, study
     spec = study.parse_study(path)
     base = (ROOT / spec["base"]).read_text()
     for i, run in enumerate(spec["runs"] + [spec.get("reference", spec["runs"][0])]):
         words = run.split()
         # stability runs have their step bisected by the study: probe them at 1e-5 s
         dt = next((float(w.split("=")[1]) for w in words if w.startswith("dt=")), 1e-5)
-        text = study.override(study.variant(base, run, 20 * dt), "simulation", "dt", dt)
-        text = study.override(text, "simulation", "output_interval", dt)
+        text = deck_edit.override(deck_edit.variant(base, run, 20 * dt), "simulation", "dt", dt)
+        text = deck_edit.override(text, "simulation", "output_interval", dt)
         deck = tmp_path / f"v{i}.nml"
         deck.write_text(text)
         result = davit("run", deck, "-o", tmp_path / f"v{i}.h5")

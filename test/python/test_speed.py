@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from postproc import layout
-from postproc.study import variant
+from postproc.deck_edit import variant
 
 from conftest import ROOT
 

@@ -1,0 +1,95 @@
+!> Second-order mean and slowly varying wave drift loads on the BEM ship (surge, sway, yaw), from
+!> the database's mean drift coefficients D(omega, beta) (far-field momentum flux, Maruo 1960,
+!> per unit amplitude squared; postproc.bem_drift).
+!>
+!> Levels of detail (`&ship drift`):
+!>  * 'mean': the mean load sum_i D_i a_i^2 (exact in a regular wave; in an irregular sea the
+!>    mean of the slowly varying load).
+!>  * 'newman': Newman's (1974) approximation of the difference-frequency load,
+!>      F(t) = sum_i sum_j a_i a_j T_ij cos((w_i - w_j) t + eps_i - eps_j),
+!>    T_ij = sign(D_i) sqrt(D_i D_j) where D_i and D_j share a sign and 0 where they do not,
+!>    summed as the single sums F = |P+|^2 - |P-|^2, P+- = sum_{+-D_i > 0} a_i sqrt(|D_i|)
+!>    exp(i Phi_i) (O(N), not O(N^2)); its mean is sum_i D_i a_i^2 and in a regular wave it
+!>    is the constant mean load.
+!> The phases Phi_i are those of the first-order loads (at the CG's initial position); the
+!> loads act in the seakeeping frame (level, yawed with the ship) and grow with the square of
+!> the sea's start-up ramp.
+module davit_ship_wave_drift
+  use davit_kinds, only: wp
+  use davit_ship_bem_database, only: bem_database_type, bem_drift
+  use davit_sea_wave_field, only: wave_field_type, wave_ramp, wave_chunk, component_phases
+  implicit none
+  private
+  public :: drift_none, drift_mean, drift_newman, drift_level, drift_coefficients, drift_load
+
+  integer, parameter :: drift_none = 0, drift_mean = 1, drift_newman = 2
+
+contains
+
+  !> The level of the key's value ('none', 'mean', 'newman'; anything else: none, the deck
+  !> reader has checked it).
+  pure integer function drift_level(name) result(level)
+    character(len=*), intent(in) :: name
+    select case (name)
+    case ("mean")
+      level = drift_mean
+    case ("newman")
+      level = drift_newman
+    case default
+      level = drift_none
+    end select
+  end function drift_level
+
+  !> a_i sqrt(|D_i|) sign(D_i) of each component (surge, sway, yaw) for the ship at heading
+  !> psi: the signed square roots that both levels sum.
+  pure subroutine drift_coefficients(db, sea, psi, coef)
+    type(bem_database_type), intent(in) :: db
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: psi
+    real(wp), intent(out) :: coef(:, :)
+    real(wp) :: d(3)
+    integer :: i
+    do i = 1, sea%n
+      d = bem_drift(db, sea%omega(i), sea%direction(i) - psi)
+      coef(:, i) = sign(sea%amplitude(i)*sqrt(abs(d)), d)
+    end do
+  end subroutine drift_coefficients
+
+  !> The drift load (X, Y, Z, K, M, N; Z, K, M zero) in the seakeeping frame at time t of
+  !> level `level` from the coefficients of drift_coefficients, the phases taken at (x, y).
+  pure function drift_load(level, sea, coef, t, x, y) result(load)
+    integer, intent(in) :: level
+    type(wave_field_type), intent(in) :: sea
+    real(wp), intent(in) :: coef(:, :), t, x, y
+    real(wp) :: load(6)
+    real(wp) :: f(3), s(wave_chunk), c(wave_chunk), pc(3, 2), ps(3, 2)
+    integer :: i0, i, m, j
+    load = 0.0_wp
+    if (level == drift_none) return
+    if (level == drift_mean) then
+      f = sum(sign(coef**2, coef), dim=2)
+    else
+      pc = 0.0_wp
+      ps = 0.0_wp
+      do i0 = 1, sea%n, wave_chunk
+        m = min(wave_chunk, sea%n - i0 + 1)
+        call component_phases(sea, i0, m, t, x, y, s, c)
+        do i = 1, m
+          do j = 1, 3
+            ! column 1 the positive coefficients, column 2 the negative ones
+            if (coef(j, i0 + i - 1) >= 0.0_wp) then
+              pc(j, 1) = pc(j, 1) + coef(j, i0 + i - 1)*c(i)
+              ps(j, 1) = ps(j, 1) + coef(j, i0 + i - 1)*s(i)
+            else
+              pc(j, 2) = pc(j, 2) - coef(j, i0 + i - 1)*c(i)
+              ps(j, 2) = ps(j, 2) - coef(j, i0 + i - 1)*s(i)
+            end if
+          end do
+        end do
+      end do
+      f = pc(:, 1)**2 + ps(:, 1)**2 - pc(:, 2)**2 - ps(:, 2)**2
+    end if
+    load([1, 2, 6]) = wave_ramp(sea, t)**2*f
+  end function drift_load
+
+end module davit_ship_wave_drift
