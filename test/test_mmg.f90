@@ -15,6 +15,8 @@ module test_mmg
   use davit_ship_mmg, only: mmg_type, mmg_hull, mmg_propeller, mmg_rudder, mmg_wake, &
                             mmg_rudder_inflow, mmg_total, mmg_self_propulsion
   use davit_ship_mmg_loads, only: mmg_body_load
+  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
+                               rudder_servo_time
   use davit_core_rotation, only: rotation_matrix
   use davit_ship_ship_model, only: ship_system_type
   use davit_run_ship_scene, only: build_ship_scene
@@ -52,7 +54,8 @@ contains
                    new_case("autopilot_holds_unstable_heading", autopilot), &
                    new_case("steering_gear_rate_limit", steering_gear), &
                    new_case("mmg_on_bem_ship_refused", bem_refused), &
-                   new_case("forces_in_the_horizontal_body_frame", horizontal_frame)]
+                   new_case("forces_in_the_horizontal_body_frame", horizontal_frame), &
+                   new_case("autopilot_and_steering_orders", steering_orders)]
   end function collect_mmg
 
   !> The MMG coefficients of a deck, with its L_pp and draught.
@@ -264,6 +267,51 @@ contains
                  abs_tol=1e-12_wp*maxval(abs(upright)))
     end do
   end subroutine horizontal_frame
+
+  !> The orders by hand: autopilot -K_p (psi - psi_0) - K_d r (a heading error to starboard
+  !> asks for port rudder) clipped to the angle limit; the turning order only from its
+  !> start; the servo rate (order - delta)/tau inside +-rate; the zig-zag side reverses at
+  !> +switch, stays until -switch, then reverses back.
+  subroutine steering_orders(state)
+    type(case_state), intent(inout) :: state
+    type(rudder_type) :: s
+    s%mode = "autopilot"
+    s%kp = 2.0_wp
+    s%kd = 3.0_wp
+    s%max_angle = 35.0_wp*deg
+    s%rate = 15.68_wp*deg
+    s%heading = 0.1_wp
+    call check(state, rudder_order(s, 5.0_wp, 0.15_wp, 0.004_wp), &
+               -2.0_wp*0.05_wp - 3.0_wp*0.004_wp, "autopilot order", abs_tol=1e-14_wp)
+    call check(state, rudder_order(s, 5.0_wp, -0.5_wp, 0.0_wp), 35.0_wp*deg, &
+               "autopilot order clipped", abs_tol=1e-14_wp)
+    s%mode = "turning"
+    s%angle = -20.0_wp*deg
+    s%start = 1.0_wp
+    call check(state, rudder_order(s, 0.99_wp, 0.0_wp, 0.0_wp), 0.0_wp, "before the start", &
+               abs_tol=0.0_wp)
+    call check(state, rudder_order(s, 1.0_wp, 0.0_wp, 0.0_wp), -20.0_wp*deg, "from the start", &
+               abs_tol=1e-14_wp)
+    call check(state, rudder_rate(s, 0.0_wp, 0.01_wp), 0.01_wp/rudder_servo_time, &
+               "servo inside the limit", abs_tol=1e-14_wp)
+    call check(state, rudder_rate(s, 0.0_wp, -0.5_wp), -15.68_wp*deg, "rate limit", &
+               abs_tol=1e-14_wp)
+    s%mode = "zigzag"
+    s%angle = 10.0_wp*deg
+    s%switch = 10.0_wp*deg
+    s%heading = 0.0_wp
+    s%side = 1.0_wp
+    call rudder_switch(s, 2.0_wp, 9.9_wp*deg)
+    call check(state, s%side, 1.0_wp, "no reversal below the switch", abs_tol=0.0_wp)
+    call rudder_switch(s, 2.0_wp, 10.1_wp*deg)
+    call check(state, s%side, -1.0_wp, "reversed at +switch", abs_tol=0.0_wp)
+    call check(state, rudder_order(s, 2.0_wp, 0.0_wp, 0.0_wp), -10.0_wp*deg, "port order", &
+               abs_tol=1e-14_wp)
+    call rudder_switch(s, 3.0_wp, 0.0_wp)
+    call check(state, s%side, -1.0_wp, "held between the switches", abs_tol=0.0_wp)
+    call rudder_switch(s, 4.0_wp, -10.1_wp*deg)
+    call check(state, s%side, 1.0_wp, "back at -switch", abs_tol=0.0_wp)
+  end subroutine steering_orders
 
   !> &ship manoeuvring = 'mmg' with model = 'bem' stops with an error naming the keys.
   subroutine bem_refused(state)

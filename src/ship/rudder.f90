@@ -22,11 +22,11 @@ module davit_ship_rudder
     real(wp) :: angle = 0.0_wp, switch = 0.0_wp, start = 0.0_wp
     !> Rate [rad/s] and angle [rad] limits.
     real(wp) :: rate = 0.0_wp, max_angle = 0.0_wp
-    !> Autopilot: rudder per heading error [-] and per yaw rate [s].
+    !> Autopilot gains: rudder per heading error [-] and per yaw rate [s].
     real(wp) :: kp = 0.0_wp, kd = 0.0_wp
     !> Heading held by the autopilot and from which zig-zags are counted [rad].
     real(wp) :: heading = 0.0_wp
-    !> Zig-zag: +1 while the order is to starboard, -1 to port (changed by rudder_switch).
+    !> Zig-zag side, +1 while the order is to starboard, -1 to port (rudder_switch).
     real(wp) :: side = 1.0_wp
   end type rudder_type
 
