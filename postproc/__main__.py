@@ -26,6 +26,10 @@
                                                    the documentation's blocks made from the
                                                    code (deck keys, command line) and the
                                                    FORD site (postproc.doc_blocks)
+  python -m postproc manoeuvre RUN.h5 [--length L]
+                                                   advance, transfer, tactical diameter
+                                                   or zig-zag overshoot angles of an MMG
+                                                   ship run (postproc.manoeuvre)
   python -m postproc study|bem|bench-reference|boat-rao|fender-test|launch-table|sensitivity|compare-sweeps ...
                                                    the tool postproc.study, .bem, ...
                                                    (their own --help)
@@ -199,7 +203,8 @@ TOOLS = {"readme-tables": "readme_tables", "doc-blocks": "doc_blocks", "study": 
          "bench-reference": "bench_reference", "boat-rao": "boat_rao",
          "fender-test": "fender_test", "launch-table": "launch_table",
          "sensitivity": "sensitivity", "summation-compare": "summation_compare",
-         "compare-sweeps": "summation_compare"}
+         "compare-sweeps": "summation_compare",
+         "manoeuvre": "manoeuvre"}
 
 
 def main(argv=None):

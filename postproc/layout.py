@@ -103,6 +103,7 @@ UNITS = "units"
 DESCRIPTION = "description"
 SHIP_POSITION = "ship/position"
 SHIP_EULER = "ship/euler"
+SHIP_RUDDER = "ship/rudder"        # the MMG ship's rudder angle (&ship manoeuvring = 'mmg')
 SHIP = (SHIP_POSITION, SHIP_EULER)
 
 BOAT = (BOAT_POSITION, BOAT_EULER, BOAT_VELOCITY, BOAT_ANGULAR_VELOCITY, BOAT_ACCELERATION)

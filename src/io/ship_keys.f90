@@ -4,6 +4,9 @@
 module davit_io_ship_keys
   use davit_kinds, only: wp, pi
   use davit_io_deck_reader, only: deck_reader_type
+  use davit_io_mmg_keys, only: read_mmg
+  use davit_ship_mmg, only: mmg_type
+  use davit_ship_rudder, only: rudder_type
   implicit none
   private
   public :: ship_config, read_ship
@@ -30,6 +33,13 @@ module davit_io_ship_keys
     !> Restrained DOFs (surge, sway, heave, roll, pitch, yaw), as a tank test restrains a
     !> model: their accelerations are held at zero.
     logical :: restrained(6) = .false.
+    !> Horizontal-plane manoeuvring: 'kijima' (linear derivatives, cross-flow drag,
+    !> constant thrust) or 'mmg' (group &mmg: hull, propeller at `rps`, rudder steered by
+    !> `rudder`).
+    character(len=:), allocatable :: manoeuvring
+    type(mmg_type) :: mmg
+    type(rudder_type) :: rudder
+    real(wp) :: rps = 0.0_wp
   end type ship_config
 
 contains
@@ -94,9 +104,10 @@ contains
                 "towards N2 (90 = bow towards N2); wave and wind directions are not relative "// &
                 "to it.")
     s%heading = s%heading*deg
-    call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 2.6_wp, "m/s", &
+    call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 15.0_wp, "m/s", &
                 "Initial forward speed, held by a constant thrust equal to the resistance "// &
-                "(SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s).")
+                "(manoeuvring = 'kijima') or by the propeller (manoeuvring = 'mmg'); "// &
+                "SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s.")
     call r%logical(g, "frozen", s%frozen, .false., &
                    "Hold the ship fixed (III.A's fixed platform; or to isolate the boat).")
     call r%choice(g, "wave_phase", s%wave_phase, "initial", &
@@ -140,6 +151,12 @@ contains
                 "Station keeping in the 'launch' scene (DP-like horizontal springs on the "// &
                 "CG towards its initial position): natural period; 0 = off.")
     call read_ship_terms(r, s)
+    call r%choice(g, "manoeuvring", s%manoeuvring, "kijima", &
+                  [character(len=8) :: "kijima", "mmg"], &
+                  "Horizontal-plane forces: linear Kijima hull derivatives, cross-flow "// &
+                  "drag and a constant thrust ('kijima'), or the standard MMG model with "// &
+                  "propeller and rudder of group &mmg ('mmg', box ship only).")
+    call read_mmg(r, s%mmg, s%rps, s%rudder)
   end subroutine read_ship_model
 
   !> Which of the deck's empirical loads act, and which DOFs are restrained.

@@ -89,6 +89,8 @@ module davit_run_recorders
   type, extends(recorder_type) :: ship_recorder
     real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
     real(wp), allocatable :: angular_velocity(:, :)
+    !> The MMG ship's rudder angle (allocated only with &ship manoeuvring = 'mmg').
+    real(wp), allocatable :: rudder(:)
   contains
     procedure :: init => ship_init
     procedure :: sample => ship_sample
@@ -318,6 +320,10 @@ contains
     integer, intent(in) :: nmax
     allocate (self%time(nmax), self%position(3, nmax), self%euler(3, nmax), &
               self%velocity(3, nmax), self%angular_velocity(3, nmax))
+    select type (problem)
+    type is (ship_system_type)
+      if (problem%mmg_on) allocate (self%rudder(nmax))
+    end select
   end subroutine ship_init
 
   subroutine ship_sample(self, problem, t, y)
@@ -327,12 +333,13 @@ contains
     type(state_part_type) :: p
     integer :: k
     if (self%n >= size(self%time)) return
+    self%n = self%n + 1
+    k = self%n
     select type (problem)
     type is (ship_system_type)
       p = problem%layout%parts(1)
+      if (allocated(self%rudder)) self%rudder(k) = y(problem%rudder%q(1))
     end select
-    self%n = self%n + 1
-    k = self%n
     self%time(k) = t
     associate (q => y(p%q(1):p%q(2)), u => y(p%u(1):p%u(2)))
       self%euler(:, k) = q(1:3)
@@ -358,6 +365,9 @@ contains
                     "Ship CG velocity, inertial frame N", dims="component time")
     call w%write_2d("ship/angular_velocity", self%angular_velocity(:, 1:n), "rad/s", &
                     "Ship angular velocity, ship-frame components", dims="component time")
+    if (allocated(self%rudder)) call w%write_1d("ship/rudder", self%rudder(1:n), "rad", &
+                                                "Rudder angle, positive turns to starboard "// &
+                                                "(&mmg)", dims="time")
   end subroutine ship_write
 
   pure function ship_state_name(self, problem, k) result(name)

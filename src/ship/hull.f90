@@ -19,6 +19,9 @@ module davit_ship_hull
     real(wp) :: inertia(3) = 0.0_wp
     !> Added mass (surge, sway, heave) [kg] and added inertia (roll, pitch, yaw) [kg m^2].
     real(wp) :: added_mass(3) = 0.0_wp, added_inertia(3) = 0.0_wp
+    !> Sway-yaw added-mass coupling about G [kg m] (MMG: the sway added mass acts at
+    !> midship, -x_G m_y about G; 0 for the box).
+    real(wp) :: added_sway_yaw = 0.0_wp
     !> Linear restoring: heave [N/m], roll and pitch [N m/rad].
     real(wp) :: c33 = 0.0_wp, c44 = 0.0_wp, c55 = 0.0_wp
     !> Linear damping: heave [N s/m], roll, pitch [N m s]; quadratic roll [N m s^2].
@@ -82,7 +85,22 @@ contains
     call kijima(hull, s)
     hull%empirical = s%empirical_loads == "deck"
     hull%restrained = s%restrained
+    if (s%manoeuvring == "mmg") call mmg_added_masses(hull, s)
   end subroutine new_hull
+
+  !> The MMG ship's horizontal added masses (Yasukawa & Yoshimura 2015 eq. 4) in place of
+  !> the box's: m_x, and m_y and J_z about midship moved to G (x_G forward of midship):
+  !> kinetic energy 1/2 m_y (v_G - x_G r)^2 + 1/2 J_z r^2.
+  pure subroutine mmg_added_masses(hull, s)
+    type(hull_type), intent(inout) :: hull
+    type(ship_config), intent(in) :: s
+    real(wp) :: q, my
+    q = 0.5_wp*rho_water*s%lpp**2*s%draught
+    my = s%mmg%my*q
+    hull%added_mass(1:2) = [s%mmg%mx*q, my]
+    hull%added_inertia(3) = s%mmg%jz*q*s%lpp**2 + s%cg_x**2*my
+    hull%added_sway_yaw = -s%cg_x*my
+  end subroutine mmg_added_masses
 
   !> Kijima's linear derivatives with k = 2d/L: Y'_beta = (pi/2) k + 1.4 C_b B/L,
   !> (m' + m'_x) - Y'_r = 1.5 C_b B/L, N'_beta = k, N'_r = -0.54 k + k^2. With the drift

@@ -29,6 +29,9 @@ module davit_ship_ship_model
   use davit_ship_hull, only: hull_type
   use davit_ship_froude_krylov, only: fk_box_load, fk_transfer
   use davit_ship_wind_load, only: ship_wind_load
+  use davit_ship_mmg, only: mmg_type, mmg_self_propulsion
+  use davit_ship_mmg_loads, only: mmg_body_load
+  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch
   use davit_ship_wave_drift, only: drift_none, drift_coefficients, drift_load
   implicit none
   private
@@ -81,6 +84,14 @@ module davit_ship_ship_model
     !> The BEM ship in place of the box's hydrodynamics.
     logical :: bem = .false.
     type(bem_ship_type) :: hydro
+    !> The MMG manoeuvring model (set_mmg) in place of the cross-flow drag, Kijima
+    !> derivatives and constant thrust: its coefficients, the propeller revolutions
+    !> [1/s], the steering, and the rudder angle's state part "ship_rudder".
+    logical :: mmg_on = .false.
+    type(mmg_type) :: mmg
+    real(wp) :: rps = 0.0_wp
+    type(rudder_type) :: steer
+    type(state_part_type) :: rudder
     !> The BEM ship's wave drift (davit_ship_wave_drift: drift_none, drift_mean, drift_newman)
     !> and its coefficients a_i sqrt(|D_i|) sign(D_i) (surge, sway, yaw) at heading psi_ref.
     integer :: drift = drift_none
@@ -91,6 +102,7 @@ module davit_ship_ship_model
     procedure :: refresh_heading
     procedure :: after_step => ship_after_step
     procedure :: set_mooring
+    procedure :: set_mmg
     procedure :: set_drift
   end type ship_system_type
 
@@ -216,11 +228,29 @@ contains
     if (any(self%moor_i > 0.0_wp)) call self%layout%add("ship_control", 3, 0, self%control)
   end subroutine set_mooring
 
+  !> Switch to the MMG manoeuvring model p with the steering `steer` (its heading: the
+  !> initial one) and the propeller at `rps` (0: the self-propulsion point at `headway`);
+  !> the rudder angle joins the state as part "ship_rudder".
+  subroutine set_mmg(self, p, steer, rps, headway)
+    class(ship_system_type), intent(inout) :: self
+    type(mmg_type), intent(in) :: p
+    type(rudder_type), intent(in) :: steer
+    real(wp), intent(in) :: rps, headway
+    self%mmg_on = .true.
+    self%mmg = p
+    self%steer = steer
+    self%steer%heading = self%psi_ref
+    self%rps = rps
+    if (rps <= 0.0_wp) self%rps = mmg_self_propulsion(p, headway)
+    call self%layout%add("ship_rudder", 1, 0, self%rudder)
+  end subroutine set_mmg
+
   subroutine ship_after_step(self, t, y)
     class(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp) :: yaw
     yaw = y(self%body%q(1) + 2)
+    if (self%mmg_on) call rudder_switch(self%steer, t, yaw)
     if (abs(yaw - self%psi_ref) > heading_tolerance) then
       call self%refresh_heading(yaw)
       self%wave_cached = .false.
@@ -323,6 +353,8 @@ contains
         load = ship_loads(self, t, q, u, c)
         dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
         dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
+        if (self%mmg_on) call mmg_blocks(self, t, q, u, c, y(self%rudder%q(1)), load, &
+                                         dydt(self%rudder%q(1)))
         if (self%control%q(2) >= self%control%q(1)) then
           call integral_control(self, q, c, y(self%control%q(1):self%control%q(2)), load, &
                                 dydt(self%control%q(1):self%control%q(2)))
@@ -341,6 +373,19 @@ contains
       end associate
     end associate
   end subroutine ship_kane_blocks
+
+  !> The MMG loads at rudder angle delta, added to `load`, and the steering gear's rate.
+  pure subroutine mmg_blocks(self, t, q, u, c, delta, load, delta_dot)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t, q(6), u(6), c(3, 3), delta
+    real(wp), intent(inout) :: load(6)
+    real(wp), intent(out) :: delta_dot
+    associate (h => self%hull)
+      load = load + mmg_body_load(self%mmg, h%cg_x, h%added_mass(1), h%added_mass(2), &
+                                  level_to_body(q(3), c), u, delta, self%rps)
+    end associate
+    delta_dot = rudder_rate(self%steer, delta, rudder_order(self%steer, t, q(3), u(3)))
+  end subroutine mmg_blocks
 
   !> The integral term of the heading and station keeping: its states z integrate the
   !> errors (inertial x, y of the CG; yaw), and -k_i z adds to the loads (ship axes).
@@ -379,6 +424,8 @@ contains
       a(k, k) = self%hull%added_inertia(k)
       a(k + 3, k + 3) = self%hull%added_mass(k)
     end do
+    a(3, 5) = self%hull%added_sway_yaw
+    a(5, 3) = self%hull%added_sway_yaw
     mh = seakeeping_mass(a, self%hull%inertia, self%hull%mass, m)
     transport = [0.0_wp, 0.0_wp, 0.0_wp, cross(u(1:3), u(4:6))]
     gyro = [cross(u(1:3), ig*u(1:3)), 0.0_wp, 0.0_wp, 0.0_wp]
@@ -467,8 +514,10 @@ contains
         load(6) = 0.0_wp
       end if
       if (h%empirical) then
-        load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
-        load(1) = load(1) + self%thrust
+        if (.not. self%mmg_on) then
+          load = load + crossflow(h, self%wetted, v, om(3)) + manoeuvring(h, v, om(3))
+          load(1) = load(1) + self%thrust
+        end if
         vrel = matmul(transpose(c), wind_velocity(self%wind)) - v
         load = load + ship_wind_load(h%wind, vrel)
       end if

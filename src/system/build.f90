@@ -22,6 +22,7 @@ module davit_system_build
   use davit_boat_surface_watch, only: new_surface_watch
   use davit_rigging_rigging, only: new_rigging
   use davit_ship_hull, only: hull_type, new_hull
+  use davit_ship_mmg, only: mmg_type
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
   use davit_ship_bem_database, only: bem_database_type, read_bem_database
   use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
@@ -176,9 +177,30 @@ contains
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
                              s%wave_phase == "initial", s%headway)
       end if
+      if (s%manoeuvring == "mmg") call new_mmg(ship, cfg, error)
     end associate
     ship%wave_dt = cfg%simulation%wave_update
   end subroutine new_ship
+
+  !> The MMG manoeuvring model of group &mmg on the box ship, with its dimensions.
+  subroutine new_mmg(ship, cfg, error)
+    type(ship_system_type), intent(inout) :: ship
+    type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
+    type(mmg_type) :: p
+    associate (s => cfg%ship)
+      if (s%model == "bem") then
+        call fatal_error(error, cfg%filename//": &ship: manoeuvring = 'mmg' needs "// &
+                         "model = 'fk_box' (the MMG added masses on the BEM ship's A(inf) "// &
+                         "are not implemented)")
+        return
+      end if
+      p = s%mmg
+      p%lpp = s%lpp
+      p%draught = s%draught
+      call ship%set_mmg(p, s%rudder, s%rps, s%headway)
+    end associate
+  end subroutine new_mmg
 
   !> A data file named in deck `deck`: `path` as given if absolute; else the first that
   !> exists of the deck's folder and each folder of DAVIT_PATH (davit_io_search_path);

@@ -1,0 +1,71 @@
+!> The steering gear and its orders: the rudder angle is a state driven by a rate-limited
+!> servo towards the ordered angle; the order comes from a PD autopilot on the heading
+!> error, a fixed angle, a turning-circle order or the zig-zag logic (IMO MSC.137(76)
+!> manoeuvres: the order reverses when the heading change reaches the switching angle).
+module davit_ship_rudder
+  use davit_kinds, only: wp
+  implicit none
+  private
+  public :: rudder_type, rudder_order, rudder_rate, rudder_switch, rudder_servo_time
+
+  !> Time constant [s] of the servo inside the rate limit: delta' = (order - delta)/tau,
+  !> clipped to the rudder rate. Small against every manoeuvre (the rate limit governs a
+  !> 35 deg order for 2.2 s at model scale, 15 s at full scale) but keeps the rate
+  !> continuous for the integrator.
+  real(wp), parameter :: rudder_servo_time = 0.1_wp
+
+  type :: rudder_type
+    !> 'autopilot', 'fixed', 'turning' or 'zigzag'.
+    character(len=16) :: mode = "autopilot"
+    !> Ordered angle (fixed, turning) or zig-zag rudder angle [rad]; zig-zag switching
+    !> heading change [rad]; time of the manoeuvre's first order [s].
+    real(wp) :: angle = 0.0_wp, switch = 0.0_wp, start = 0.0_wp
+    !> Rate [rad/s] and angle [rad] limits.
+    real(wp) :: rate = 0.0_wp, max_angle = 0.0_wp
+    !> Autopilot gains: rudder per heading error [-] and per yaw rate [s].
+    real(wp) :: kp = 0.0_wp, kd = 0.0_wp
+    !> Heading held by the autopilot and from which zig-zags are counted [rad].
+    real(wp) :: heading = 0.0_wp
+    !> Zig-zag side, +1 while the order is to starboard, -1 to port (rudder_switch).
+    real(wp) :: side = 1.0_wp
+  end type rudder_type
+
+contains
+
+  !> The ordered rudder angle at time t for heading psi and yaw rate r, within the angle
+  !> limit. The autopilot orders -kp (psi - psi_0) - kd r (a starboard heading error asks
+  !> for port rudder); before `start` the manoeuvres hold the rudder amidships.
+  pure real(wp) function rudder_order(self, t, psi, r) result(order)
+    type(rudder_type), intent(in) :: self
+    real(wp), intent(in) :: t, psi, r
+    select case (self%mode)
+    case ("autopilot")
+      order = -self%kp*(psi - self%heading) - self%kd*r
+    case ("fixed")
+      order = self%angle
+    case ("turning")
+      order = merge(self%angle, 0.0_wp, t >= self%start)
+    case default
+      order = merge(self%side*self%angle, 0.0_wp, t >= self%start)
+    end select
+    order = max(-self%max_angle, min(self%max_angle, order))
+  end function rudder_order
+
+  !> The steering gear: delta' = (order - delta)/tau within +-rate.
+  pure real(wp) function rudder_rate(self, delta, order) result(rate)
+    type(rudder_type), intent(in) :: self
+    real(wp), intent(in) :: delta, order
+    rate = max(-self%rate, min(self%rate, (order - delta)/rudder_servo_time))
+  end function rudder_rate
+
+  !> Zig-zag logic after each step: the order goes to port once the heading has changed by
+  !> +switch (to starboard), and back to starboard at -switch.
+  pure subroutine rudder_switch(self, t, psi)
+    type(rudder_type), intent(inout) :: self
+    real(wp), intent(in) :: t, psi
+    if (self%mode /= "zigzag" .or. t < self%start) return
+    if (self%side > 0.0_wp .and. psi - self%heading >= self%switch) self%side = -1.0_wp
+    if (self%side < 0.0_wp .and. psi - self%heading <= -self%switch) self%side = 1.0_wp
+  end subroutine rudder_switch
+
+end module davit_ship_rudder
