@@ -6,9 +6,11 @@ module system_fixture
   use davit_io_config, only: config_type, parse_config
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
+  use davit_solve_rk4, only: rk4_type
+  use davit_core_rotation, only: rotation_matrix
   implicit none
   private
-  public :: new_test_system, nstate, deck_config
+  public :: new_test_system, nstate, deck_config, drop_cg
 
   !> State length of a boat on foundation slings (the boat's part alone, eqs. 3-4).
   integer, parameter :: nstate = 12
@@ -33,5 +35,25 @@ contains
     call parse_config("test.nml", text, cfg, error)
     if (allocated(error)) error stop "test deck rejected: "//error%message
   end function deck_config
+
+  !> The boat's inertial CG after n RK4 steps of dt from t = 0, the after-step hook run at
+  !> the start and after every step (as the driver does).
+  function drop_cg(sys, y, n, dt) result(cg)
+    type(system_type), intent(inout) :: sys
+    real(wp), intent(inout) :: y(:)
+    integer, intent(in) :: n
+    real(wp), intent(in) :: dt
+    real(wp) :: cg(3), t
+    type(rk4_type) :: rk4
+    integer :: i
+    call rk4%init(size(y))
+    t = 0.0_wp
+    call sys%after_step(t, y)
+    do i = 1, n
+      call rk4%step(sys, t, y, dt)
+      call sys%after_step(t, y)
+    end do
+    cg = matmul(rotation_matrix(y(1:3)), y(4:6))
+  end function drop_cg
 
 end module system_fixture

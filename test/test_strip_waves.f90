@@ -14,7 +14,7 @@ module test_strip_waves
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_refresh, cached_elevation, cached_kinematics
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system
+  use system_fixture, only: new_test_system, drop_cg
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -170,14 +170,7 @@ contains
       call parse_config("test.nml", deck//merge("0.05", "0.00", j == 1)//" /", cfg, error)
       if (allocated(error)) error stop "test deck rejected: "//error%message
       y = new_test_system(sys, cfg)
-      call rk4%init(size(y))
-      t = 0.0_wp
-      call sys%after_step(t, y)
-      do i = 1, 600
-        call rk4%step(sys, t, y, 5.0e-3_wp)
-        call sys%after_step(t, y)
-      end do
-      cg(:, j) = matmul(rotation_matrix(y(1:3)), y(4:6))
+      cg(:, j) = drop_cg(sys, y, 600, 5.0e-3_wp)
       if (j == 1) used = sys%hist%waves%valid
     end do
     call note(state, "CG difference after 3 s (m)", norm2(cg(:, 1) - cg(:, 2)))

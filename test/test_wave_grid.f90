@@ -15,7 +15,7 @@ module test_wave_grid
   use davit_sea_wave_grid, only: wave_grid_type, new_wave_grid, grid_prepare, grid_covers, &
                                  grid_elevation, grid_kinematics, grid_error_bounds
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system, deck_config
+  use system_fixture, only: new_test_system, deck_config, drop_cg
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -170,14 +170,7 @@ contains
     builds = 0
     do j = 1, 2
       y = new_test_system(sys, deck_config(deck//trim(merge("grid", "sum ", j == 1))//rest))
-      call rk4%init(size(y))
-      t = 0.0_wp
-      call sys%after_step(t, y)
-      do i = 1, 600
-        call rk4%step(sys, t, y, 5.0e-3_wp)
-        call sys%after_step(t, y)
-      end do
-      cg(:, j) = matmul(rotation_matrix(y(1:3)), y(4:6))
+      cg(:, j) = drop_cg(sys, y, 600, 5.0e-3_wp)
       if (j == 1) builds = sys%hist%volume_grid%node_builds
     end do
     call note(state, "CG difference after 3 s (m)", norm2(cg(:, 1) - cg(:, 2)))
