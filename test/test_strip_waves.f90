@@ -15,7 +15,6 @@ module test_strip_waves
                                     strip_waves_refresh, cached_elevation, cached_kinematics
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
-  use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -153,10 +152,8 @@ contains
     type(system_type) :: sys
     type(config_type) :: cfg
     type(error_type), allocatable :: error
-    type(rk4_type) :: rk4
     real(wp), allocatable :: y(:), cg(:, :)
-    real(wp) :: t
-    integer :: i, j
+    integer :: j
     logical :: used
     character(len=*), parameter :: deck = "&sea level = 5 wave_type = 'irregular' "// &
                                           "ramp_periods = 0.0 / &slings attached = .false. / "// &

@@ -6,7 +6,6 @@
 module test_wave_grid
   use davit_kinds, only: wp, pi
   use davit_core_random, only: rng_type, new_rng, rng_uniform
-  use davit_core_rotation, only: rotation_matrix
   use davit_sea_wave_field, only: wave_field_type, new_regular_wave, new_single_sum_sea, &
                                   new_irregular_sea, single_equal_energy, wave_airy, &
                                   wave_irregular, wave_elevation, wave_kinematics
@@ -16,7 +15,6 @@ module test_wave_grid
                                  grid_elevation, grid_kinematics, grid_error_bounds
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, deck_config, drop_cg
-  use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
@@ -156,10 +154,8 @@ contains
   subroutine coupled_boat(state)
     type(case_state), intent(inout) :: state
     type(system_type) :: sys
-    type(rk4_type) :: rk4
     real(wp), allocatable :: y(:), cg(:, :)
-    real(wp) :: t
-    integer :: i, j, builds
+    integer :: j, builds
     character(len=*), parameter :: deck = "&sea level = 5 wave_type = 'irregular' "// &
                                           "ramp_periods = 0.0 kinematics = '"
     character(len=*), parameter :: rest = "' / &slings attached = .false. / "// &
