@@ -10,6 +10,7 @@ module davit_capi_session
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
   use davit_io_deck_reader, only: fmt_real
+  use davit_io_namelist, only: int_to_str
   use davit_solve_integrator, only: integrator_type
   use davit_solve_factory, only: new_integrator
   use davit_solve_step_control, only: stretch_to
@@ -160,7 +161,7 @@ contains
       bad = first_bad(s%y, s%sys%par%boat_part%u)
       if (bad > 0) then
         call fatal_error(error, "run diverged at t = "//fmt_real(s%t)//" s: state "// &
-                         "component "//fmt_int(bad)//" = "//fmt_real(s%y(bad))// &
+                         "component "//int_to_str(bad)//" = "//fmt_real(s%y(bad))// &
                          " is not finite or beyond "//fmt_real(speed_limit)// &
                          "; the state is kept at t = "//fmt_real(t_keep)//" s")
         s%y = y_keep
@@ -174,14 +175,6 @@ contains
     end associate
     s%passes = s%passes + 1
   end subroutine one_pass
-
-  pure function fmt_int(n) result(text)
-    integer, intent(in) :: n
-    character(len=:), allocatable :: text
-    character(len=12) :: buf
-    write (buf, "(i0)") n
-    text = trim(buf)
-  end function fmt_int
 
   !> Apply control `kind` with `value` now (before the next pass) and log it.
   subroutine session_control(s, kind, value, error)
@@ -238,7 +231,7 @@ contains
       end if
       s%sys%ship%anchor(3) = value(1)
     case default
-      call fatal_error(error, "unknown control "//fmt_int(kind))
+      call fatal_error(error, "unknown control "//int_to_str(kind))
     end select
   end subroutine apply_control
 

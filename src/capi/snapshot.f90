@@ -10,6 +10,7 @@ module davit_capi_snapshot
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type, parse_config
+  use davit_io_text, only: int_text
   use davit_capi_session, only: session_type, session_open, session_replay
   implicit none
   private
@@ -49,7 +50,7 @@ contains
     character(len=:), allocatable :: name, text
     type(config_type) :: cfg
     if (size(b) < 8 + 8*n_head) then
-      call fatal_error(error, "snapshot: too short ("//itoa(size(b, kind=i8))//" bytes)")
+      call fatal_error(error, "snapshot: too short ("//int_text(size(b, kind=i8))//" bytes)")
       return
     end if
     if (transfer(b(1:8), magic) /= magic) then
@@ -65,8 +66,8 @@ contains
     ny = head(5)
     need = 8 + 8*n_head + head(1) + head(2) + 32*n + 8*(ny + 1)
     if (need /= size(b, kind=i8)) then
-      call fatal_error(error, "snapshot: "//itoa(size(b, kind=i8))//" bytes where its "// &
-                       "header asks for "//itoa(need))
+      call fatal_error(error, "snapshot: "//int_text(size(b, kind=i8))//" bytes where its "// &
+                       "header asks for "//int_text(need))
       return
     end if
     pos = 8 + 8*n_head
@@ -89,8 +90,8 @@ contains
     call session_open(s, cfg, name, text, error)
     if (allocated(error)) return
     if (size(s%y, kind=i8) /= ny) then
-      call fatal_error(error, "snapshot: its state has "//itoa(ny)//" components, the "// &
-                       "deck's "//itoa(size(s%y, kind=i8)))
+      call fatal_error(error, "snapshot: its state has "//int_text(ny)//" components, the "// &
+                       "deck's "//int_text(size(s%y, kind=i8)))
       return
     end if
     call session_replay(s, head(3), ctrl_pass, int(kinds), values, error)
@@ -100,13 +101,5 @@ contains
                        "saved state (another build or machine of davit?)")
     end if
   end subroutine snapshot_restore
-
-  pure function itoa(n) result(text)
-    integer(i8), intent(in) :: n
-    character(len=:), allocatable :: text
-    character(len=24) :: buf
-    write (buf, "(i0)") n
-    text = trim(buf)
-  end function itoa
 
 end module davit_capi_snapshot
