@@ -116,7 +116,17 @@ contains
                  rel_tol=1e-14_wp)
       call check_true(state, cfg%simulation%seed == c4%seed, "case seed in the run")
       call check_true(state, cfg%sea%wave_type == "stokes2", "base deck wave type")
+      call check_true(state, cfg%simulation%integrator == "rk4" .and. &
+                      cfg%simulation%dt == 1.0e-3_wp, "base deck integrator and step")
     end associate
+    ! the numerics of every case from the sweep deck (its own integrator, substeps, step)
+    s = sweep_from_text("&sweep base_deck = 'iiib_level5_090.nml', integrator = 'mri2', "// &
+                        "substeps = 5, dts = 0.01 /")
+    call build_cases(s, 1.5_wp, cases)
+    call case_config(s, cases(1), 1.5_wp, cfg)
+    call check_true(state, cfg%simulation%integrator == "mri2" .and. &
+                    cfg%simulation%substeps == 5 .and. cfg%simulation%dt == 0.01_wp, &
+                    "sweep deck's integrator, substeps and dts in the run")
     call check_true(state, any(abs(cases(1:3)%phase_deg - cases(2)%phase_deg) > 1.0_wp), &
                     "realisations draw different phases")
   end subroutine product_and_presets

@@ -306,20 +306,22 @@ contains
                   "probes) or 'ship' (the ship alone in the sea and wind).")
     call r%choice(g, "integrator", s%integrator, "rk4", &
                   [character(len=10) :: "rk4", "dopri5", "rosenbrock", "rosw", "multirate", &
-                                        "multirate2"], &
+                                        "multirate2", "mri2"], &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's), "// &
                   "adaptive Dormand-Prince 5(4), the linearly implicit, L-stable "// &
                   "Rosenbrock RODAS3 (full finite-difference Jacobian every step), the "// &
                   "Rosenbrock-W ROS34PW2 implicit in the rigging only (its Jacobian block "// &
                   "kept for many steps), or the multirate infinitesimal step methods of "// &
                   "order 2 ('multirate': Wicker-Skamarock stages 1/3, 1/2, 1; 'multirate2': "// &
-                  "midpoint stages 1/2, 1) with dt their macro step: the ship and the boat's "// &
+                  "midpoint stages 1/2, 1; 'mri2': MRI-GARK-ERK22a, the stages chained so "// &
+                  "that the fast part sweeps each step once) with dt their macro step: "// &
+                  "the ship and the boat's "// &
                   "water and wind loads once per stage, the rest (falls, hooks, fenders, "// &
                   "gravity) at `substeps` RK4 substeps per dt; the adaptive ones take "// &
                   "substeps inside each dt.")
     call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
                "RK4 substeps of the fast part per macro step dt (integrator = "// &
-               "'multirate' or 'multirate2'; the substep dt/substeps must keep the falls' "// &
+               "'multirate', 'multirate2' or 'mri2'; the substep dt/substeps must keep the falls' "// &
                "~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other integrators "// &
                "ignore it.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &

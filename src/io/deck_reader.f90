@@ -214,18 +214,23 @@ contains
   end subroutine get_logical
 
   !> String restricted to a list of choices (case-insensitive, quotes optional).
-  subroutine get_choice(self, group, key, s, default, choices, description)
+  subroutine get_choice(self, group, key, s, default, choices, description, default_text)
     class(deck_reader_type), intent(inout) :: self
     character(len=*), intent(in) :: group, key, default, description
     character(len=*), intent(in) :: choices(:)
     character(len=:), allocatable, intent(out) :: s
+    character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: value, allowed
     integer :: line, i
     allowed = "one of"
     do i = 1, size(choices)
       allowed = allowed//" '"//trim(choices(i))//"'"
     end do
-    call self_doc(self, group, key, "'"//default//"'", allowed, "-", description)
+    if (present(default_text)) then
+      call self_doc(self, group, key, default_text, allowed, "-", description)
+    else
+      call self_doc(self, group, key, "'"//default//"'", allowed, "-", description)
+    end if
     s = default
     if (.not. lookup(self, group, key, value, line)) return
     s = to_lower(unquote(value))

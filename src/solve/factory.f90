@@ -22,7 +22,7 @@ contains
   !> (observed-order studies); rk4 is always fixed-step and ignores it. "multirate" (the
   !> Wicker-Skamarock tableau) and "multirate2" (the midpoint tableau) are the MIS methods of
   !> davit_solve_multirate, with `substeps` RK4 substeps of the fast part per macro step dt
-  !> (default 10).
+  !> (default 10); "mri2" its chained MRI-GARK-ERK22a variant (one fast sweep per step).
   subroutine new_integrator(name, n, integrator, error, rtol, atol, fixed_step, substeps)
     character(len=*), intent(in) :: name
     integer, intent(in) :: n
@@ -66,9 +66,17 @@ contains
       type is (multirate_type)
         integrator%c = [0.5_wp, 1.0_wp]
       end select
+    case ("mri2")
+      allocate (multirate_type :: integrator)
+      select type (integrator)
+      type is (multirate_type)
+        integrator%c = [0.5_wp, 1.0_wp]
+        integrator%chained = .true.
+        integrator%gamma = reshape([0.5_wp, -0.5_wp, 0.0_wp, 1.0_wp], [2, 2])
+      end select
     case default
       call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock, "// &
-                       "rosw, multirate, multirate2)")
+                       "rosw, multirate, multirate2, mri2)")
       return
     end select
     call integrator%init(n)

@@ -120,6 +120,8 @@ contains
     cfg = s%base
     cfg%simulation%seed = c%seed
     cfg%simulation%dt = c%dt
+    cfg%simulation%integrator = s%integrator
+    cfg%simulation%substeps = s%substeps
     ramp_periods = s%base%sea%ramp_time/s%base%sea%period
     cfg%sea%level = c%level
     cfg%sea%wave_type = trim(wave_type_names(c%wave_type))

@@ -60,6 +60,9 @@ module davit_sweep_keys
     real(wp) :: target_halfwidth = 0.0_wp
     integer :: max_realisations = 1, realisation_batch = 1
     logical :: random_phase = .true., stop_at_release = .true.
+    !> The time integrator and its fast substeps of every case (default: the base deck's).
+    character(len=:), allocatable :: integrator
+    integer :: substeps = 10
   end type sweep_config
 
 contains
@@ -158,6 +161,15 @@ contains
     call r%real_list(g, "dts", s%dts, [2.0e-4_wp], 0.0_wp, 1.0_wp, "s", &
                      "Time steps (&simulation dt), e.g. a step-size study.", 1, max_values, &
                      default_text="base deck", lo_open=.true.)
+    call r%choice(g, "integrator", s%integrator, "rk4", &
+                  [character(len=10) :: "rk4", "dopri5", "rosenbrock", "rosw", "multirate", &
+                                        "multirate2", "mri2"], &
+                  "Time integrator of every case (&simulation integrator), e.g. 'mri2' "// &
+                  "with dts = 0.01 and substeps = 5 for long sweeps (Benchmarks, "// &
+                  "Multirate).", default_text="base deck")
+    call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
+               "Fast RK4 substeps per step of the multirate integrators (&simulation "// &
+               "substeps).", default_text="base deck")
     call r%int(g, "realisations", s%realisations, 1, 1, 100000, "-", &
                "Random realisations of every combination: random phase (regular waves) "// &
                "or random component phases (irregular).")
@@ -203,6 +215,8 @@ contains
       if (.not. s%has_clearances) s%clearances_b = [-1.0_wp]
       if (.not. r%has(g, "wave_types")) s%wave_types = [character(len=9) :: b%sea%wave_type]
       if (.not. r%has(g, "dts")) s%dts = [b%simulation%dt]
+      if (.not. r%has(g, "integrator")) s%integrator = b%simulation%integrator
+      if (.not. r%has(g, "substeps")) s%substeps = b%simulation%substeps
       if (.not. r%has(g, "base_seed")) s%base_seed = b%simulation%seed
     end associate
   end subroutine complete_defaults
