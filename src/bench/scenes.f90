@@ -31,9 +31,10 @@ contains
   !> or, with `at_limit`, at the step of step_limit. `rate_max` is the deck's largest
   !> |eigenvalue| at t = 0 when at_limit (else 0). The run's errors are measured against
   !> group `group` of the reference file `reference` (where it has one). A nonblank
-  !> `integrator` replaces the deck's, with its tolerances and largest step dt.
+  !> `integrator` replaces the deck's, with its tolerances and largest step dt, and its
+  !> fast substeps when `substeps` > 0.
   subroutine time_deck(name, path, t_end, at_limit, reference, group, integrator, rtol, &
-                       atol, dt, run, rate_max, error)
+                       atol, dt, run, rate_max, error, substeps)
     character(len=*), intent(in) :: name, path, reference, group, integrator
     real(wp), intent(in) :: rtol, atol, dt
     real(wp), intent(in) :: t_end
@@ -41,6 +42,7 @@ contains
     type(timed_run), intent(out) :: run
     real(wp), intent(out) :: rate_max
     type(error_type), allocatable, intent(out) :: error
+    integer, intent(in), optional :: substeps
     type(config_type) :: cfg
     rate_max = 0.0_wp
     call read_config(path, cfg, error)
@@ -50,6 +52,9 @@ contains
       cfg%simulation%rtol = rtol
       cfg%simulation%atol = atol
       cfg%simulation%dt = dt
+      if (present(substeps)) then
+        if (substeps > 0) cfg%simulation%substeps = substeps
+      end if
     end if
     if (t_end > 0.0_wp) cfg%simulation%t_end = max(t_end, cfg%simulation%dt)
     if (at_limit) then

@@ -41,6 +41,8 @@ module davit_bench_suite
     character(len=16) :: reference
     character(len=16) :: integrator = ""
     real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, dt = 0.0_wp
+    !> Fast substeps of a multirate scene (0: the deck's).
+    integer :: substeps = 0
   end type scene_spec
 
   !> The default level of detail (RK4 1e-3 s, massive blocks, events located) in the
@@ -54,8 +56,10 @@ module davit_bench_suite
   !> for irregular sweeps (quasi-static blocks, Rosenbrock-W), measured against the
   !> converged reference of that sea. The multirate method (MIS: the ship, the boat's
   !> water and wind once per 0.02 s stage, the rigging, hooks and fenders in 10 RK4
-  !> substeps) in the regular and single-summation seas.
-  type(scene_spec), parameter :: scenes(13) = [ &
+  !> substeps) in the regular and single-summation seas; its chained variant mri2 (one
+  !> fast sweep per step) at 0.01 s steps with 5 substeps in the regular sea and both
+  !> irregular ones (the Figs. 20-23 sweeps' integrator).
+  type(scene_spec), parameter :: scenes(16) = [ &
     scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., "regular"), &
     scene_spec("regular_rosw", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
                "regular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
@@ -78,6 +82,13 @@ module davit_bench_suite
     scene_spec("irregular_single_multirate", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
                20.0_wp, .false., "irregular_single", "multirate", 1.0e-4_wp, 1.0e-5_wp, &
                0.02_wp), &
+    scene_spec("regular_mri2", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
+               "regular", "mri2", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
+    scene_spec("irregular_mri2", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, &
+               .false., "irregular", "mri2", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
+    scene_spec("irregular_single_mri2", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
+               20.0_wp, .false., "irregular_single", "mri2", 1.0e-4_wp, 1.0e-5_wp, &
+               0.01_wp, 5), &
     scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true., &
                "paper_literal"), &
     scene_spec("paper_literal_rosw", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
@@ -141,7 +152,7 @@ contains
       call time_deck(trim(sc%name), opts%decks//"/"//trim(sc%deck), &
                      merge(sc%t_quick, sc%t_full, opts%quick), sc%at_limit, &
                      reference, trim(sc%reference), trim(sc%integrator), sc%rtol, sc%atol, &
-                     sc%dt, run, rate_max, error)
+                     sc%dt, run, rate_max, error, sc%substeps)
       if (allocated(error)) return
       if (sc%at_limit) then
         rec%rate_max = rate_max
