@@ -118,8 +118,9 @@ contains
       dc = self%c(i) - c_prev
       self%slow = 0.0_wp
       do j = 1, i
-        if (self%gamma(i, j) /= 0.0_wp) &
+        if (self%gamma(i, j) /= 0.0_wp) then
           self%slow = self%slow + (self%gamma(i, j)/dc)*self%fs(:, j)
+        end if
       end do
       nsub = max(1, nint(dc*real(self%substeps, wp)))
       call fast_stage(self, problem, t + c_prev*dt, y, dc*dt, nsub)
