@@ -309,8 +309,9 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr
     if (.not. self%is_open) return
-    if (.not. allocated(self%failed_what)) &
+    if (.not. allocated(self%failed_what)) then
       call self%scales%write_reference_lists(self%file, self%failed_what)
+    end if
     call h5fclose_f(self%file, hdferr)
     self%is_open = .false.
     if (allocated(self%failed_what) .or. hdferr /= 0) then
