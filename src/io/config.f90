@@ -262,8 +262,8 @@ contains
     call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
                "RK4 substeps of the fast part per macro step dt (integrator = "// &
                "'multirate', 'multirate2' or 'mri2'; the substep dt/substeps must keep "// &
-               "the falls' ~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other integrators "// &
-               "ignore it.")
+               "the falls' ~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other "// &
+               "integrators ignore it.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &
