@@ -321,11 +321,7 @@ contains
     type(dim_registry_type), intent(inout) :: self
     character(len=*), intent(in) :: group, dim
     integer(hsize_t), intent(in) :: length
-    type(dim_scale_type) :: s
-    s%group = group
-    s%name = dim
-    s%length = length
-    self%scales = [self%scales, s]
+    self%scales = [self%scales, dim_scale_type(group, dim, length)]
   end subroutine remember
 
   !> The group holding object `name` ("" for the root; a leading "/" is dropped).

@@ -343,13 +343,7 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t
     real(wp), intent(out) :: ca(:), sa(:)
-    real(wp) :: th(chunk)
-    integer :: i0, i1
-    do i0 = 1, field%n, chunk
-      i1 = min(field%n, i0 + chunk - 1)
-      th(1:i1 - i0 + 1) = field%omega(i0:i1)*t + field%phase(i0:i1)
-      call fast_sincos(th(1:i1 - i0 + 1), sa(i0:i1), ca(i0:i1))
-    end do
+    call phase_sincos(field, t, .true., sa, ca)
     ca = field%amplitude*ca
     sa = field%amplitude*sa
   end subroutine time_phasors
@@ -359,14 +353,27 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: dt
     real(wp), intent(out) :: cr(:), sr(:)
+    call phase_sincos(field, dt, .false., sr, cr)
+  end subroutine rotation_phasors
+
+  !> sin and cos of every component's phase w t (+ eps with with_phase), a chunk at a time.
+  pure subroutine phase_sincos(field, t, with_phase, s, c)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t
+    logical, intent(in) :: with_phase
+    real(wp), intent(out) :: s(:), c(:)
     real(wp) :: th(chunk)
     integer :: i0, i1
     do i0 = 1, field%n, chunk
       i1 = min(field%n, i0 + chunk - 1)
-      th(1:i1 - i0 + 1) = field%omega(i0:i1)*dt
-      call fast_sincos(th(1:i1 - i0 + 1), sr(i0:i1), cr(i0:i1))
+      if (with_phase) then
+        th(1:i1 - i0 + 1) = field%omega(i0:i1)*t + field%phase(i0:i1)
+      else
+        th(1:i1 - i0 + 1) = field%omega(i0:i1)*t
+      end if
+      call fast_sincos(th(1:i1 - i0 + 1), s(i0:i1), c(i0:i1))
     end do
-  end subroutine rotation_phasors
+  end subroutine phase_sincos
 
   !> Advance time phasors by the rotation (cr, sr): angle addition, no trigonometry.
   pure subroutine advance_phasors(ca, sa, cr, sr)
