@@ -44,10 +44,7 @@ contains
     integer, intent(in) :: x(:)
     character(len=:), allocatable :: s
     character(len=12) :: items(size(x))
-    integer :: i
-    do i = 1, size(x)
-      items(i) = int_to_str(x(i))
-    end do
+    if (size(x) > 0) write (items, "(i0)") x  ! one record, an item, per value
     s = join_text(items, ", ")
   end function join_ints
 
