@@ -11,6 +11,7 @@ program main
   use test_fenders, only: collect_fenders
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
+  use test_rigging_static, only: collect_rigging_static
   use test_slack, only: collect_slack
   use test_block_balance, only: collect_block_balance
   use test_integrators, only: collect_integrators
@@ -49,7 +50,8 @@ program main
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
             collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
-            collect_rigging(), collect_slack(), collect_integrators(), collect_sweep(), &
+            collect_rigging(), collect_rigging_static(), collect_slack(), &
+            collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_ship_drift(), &
             collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &

@@ -16,7 +16,7 @@ module test_block_balance
   use davit_run_run_summary, only: run_summary
   use davit_run_driver, only: integrate
   use harness, only: suite_type, case_state, new_case, check, check_true, note
-  use test_rigging, only: make_config
+  use rigging_fixture, only: make_config
   implicit none
   private
   public :: collect_block_balance

@@ -25,7 +25,8 @@ contains
                    new_case("number_forms", number_forms), &
                    new_case("missing_file", missing_file), &
                    new_case("full_syntax", full_syntax), &
-                   new_case("defaults_documented_and_valid", defaults_documented)]
+                   new_case("defaults_documented_and_valid", defaults_documented), &
+                   new_case("contact_side_from_beam", contact_side_from_beam)]
   end function collect_deck
 
   function bad(text, expected) result(b)
@@ -102,6 +103,28 @@ contains
                       "message '"//error%message//"' must contain '"//table(i)%expected//"'")
     end do
   end subroutine malformed_decks
+
+  !> &contact side_y defaults to half the &ship beam plus 0.1 m: the paper's y1 = 10.5 m
+  !> (III.B) for its 20.8 m beam, 15.1 m for a 30 m one; a deck's side_y wins; a
+  !> restitution outside (0, 1] is refused naming the group, key and range.
+  subroutine contact_side_from_beam(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    call parse_config("t.nml", "", cfg, error)
+    call check_true(state, .not. allocated(error), "empty deck accepted")
+    call check(state, cfg%contact%side_y, 10.5_wp, "side_y of the paper's ship", &
+               abs_tol=1.0e-12_wp)
+    call parse_config("t.nml", "&ship beam = 30.0 /", cfg, error)
+    call check(state, cfg%contact%side_y, 15.1_wp, "side_y, 30 m beam", abs_tol=1.0e-12_wp)
+    call parse_config("t.nml", "&ship beam = 30.0 /"//nl//"&contact side_y = 9.0 /", cfg, &
+                      error)
+    call check(state, cfg%contact%side_y, 9.0_wp, "side_y from the deck", abs_tol=0.0_wp)
+    call parse_config("t.nml", "&contact restitution = 1.5 /", cfg, error)
+    call check_true(state, allocated(error), "restitution 1.5 refused")
+    if (allocated(error)) call check_true(state, index(error%message, "&contact: "// &
+      "restitution = 1.5: out of range; allowed: 0 < restitution <= 1") > 0, error%message)
+  end subroutine contact_side_from_beam
 
   !> The real forms Fortran and namelists write are all read exactly.
   subroutine number_forms(state)

@@ -4,7 +4,7 @@
 !> non-smooth contact RHS, and failure reporting on a finite-time blow-up.
 module test_integrators
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use davit_kinds, only: wp, pi, gravity
+  use davit_kinds, only: wp, pi
   use davit_error, only: error_type
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_rk4, only: rk4_type
@@ -12,7 +12,7 @@ module test_integrators
   use davit_solve_rosenbrock, only: rosenbrock_type
   use davit_solve_rosenbrock_w, only: rosenbrock_w_type
   use davit_solve_factory, only: new_integrator
-  use test_problems, only: oscillator
+  use test_problems, only: oscillator, ball, ball_energy, blowup
   use test_step_driver, only: step_driver_cases
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -47,23 +47,6 @@ module test_integrators
   contains
     procedure :: stiff_states => oscillator_stiff_states
   end type oscillator_w
-
-  !> Ball of unit mass on a linear spring-dashpot ground contact, y = (x, v). The contact
-  !> force switches on at x = 0 (a jump of c v with damping); after_step counts impacts.
-  type, extends(ode_problem) :: ball
-    real(wp) :: k = 1.0e6_wp, c = 0.0_wp
-    logical :: in_contact = .false.
-    integer :: impacts = 0
-  contains
-    procedure :: rhs => ball_rhs
-    procedure :: after_step => ball_after_step
-  end type ball
-
-  !> y' = y^2, y(0) = 1: y = 1/(1 - t) blows up at t = 1.
-  type, extends(ode_problem) :: blowup
-  contains
-    procedure :: rhs => blowup_rhs
-  end type blowup
 
 contains
 
@@ -109,37 +92,6 @@ contains
     dydt(3) = (-self%k1*y(1) + f)/self%m1
     dydt(4) = -f/self%m2
   end subroutine stiff_pair_rhs
-
-  subroutine ball_rhs(self, t, y, dydt)
-    class(ball), intent(in) :: self
-    real(wp), intent(in) :: t
-    real(wp), intent(in) :: y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = y(2)
-    dydt(2) = -gravity
-    if (y(1) < 0.0_wp) dydt(2) = dydt(2) - self%k*y(1) - self%c*y(2)
-  end subroutine ball_rhs
-
-  subroutine ball_after_step(self, t, y)
-    class(ball), intent(inout) :: self
-    real(wp), intent(in) :: t, y(:)
-    if (y(1) < 0.0_wp .and. .not. self%in_contact) self%impacts = self%impacts + 1
-    self%in_contact = y(1) < 0.0_wp
-  end subroutine ball_after_step
-
-  pure real(wp) function ball_energy(b, y) result(e)
-    type(ball), intent(in) :: b
-    real(wp), intent(in) :: y(:)
-    e = 0.5_wp*y(2)**2 + gravity*y(1) + 0.5_wp*b%k*min(y(1), 0.0_wp)**2
-  end function ball_energy
-
-  subroutine blowup_rhs(self, t, y, dydt)
-    class(blowup), intent(in) :: self
-    real(wp), intent(in) :: t
-    real(wp), intent(in) :: y(:)
-    real(wp), intent(out) :: dydt(:)
-    dydt(1) = y(1)**2
-  end subroutine blowup_rhs
 
   ! ---------------------------------------------------------------- helpers
 

@@ -13,7 +13,7 @@ module test_slack
   use davit_rigging_block_stop, only: stop_force
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_factory, only: new_integrator
-  use test_rigging, only: make_config
+  use rigging_fixture, only: make_config
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private

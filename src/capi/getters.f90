@@ -135,13 +135,16 @@ contains
     call hook_kinematics(p%s%sys%par, p%s%y, out, vel)
   end function davit_hooks
 
-  !> Fall segment tensions (seg) and the slings' hook-end tensions, as the recorder.
+  !> Fall segment tensions (seg; none with the boat not on the davit) and the slings'
+  !> hook-end tensions, as the recorder.
   subroutine tensions(p, seg, sling)
     type(capi_handle), intent(in) :: p
-    real(wp), intent(out) :: seg(:), sling(nslings)
+    real(wp), allocatable, intent(out) :: seg(:)
+    real(wp), intent(out) :: sling(nslings)
     real(wp) :: sl(p%s%sys%par%rig%nlump + 1, nslings), lumps(3, p%s%sys%par%rig%nlump, nslings)
     real(wp) :: paid
     associate (sys => p%s%sys)
+      allocate (seg(merge(sys%par%rig%nseg, 0, sys%par%on_davit)))
       sling = sys%sling_tensions(p%s%y)
       if (sys%par%on_davit) then
         call sys%rigging_state(p%s%t, p%s%y, seg, sl, paid, lumps)
@@ -155,12 +158,9 @@ contains
     type(c_ptr), value, intent(in) :: h
     real(c_double), intent(out) :: out(nslings)
     type(capi_handle), pointer :: p
+    real(wp), allocatable :: seg(:)
     p => ready_handle(h, rc)
-    if (.not. associated(p)) return
-    block
-      real(wp) :: seg(merge(p%s%sys%par%rig%nseg, 0, p%s%sys%par%on_davit))
-      call tensions(p, seg, out)
-    end block
+    if (associated(p)) call tensions(p, seg, out)
   end function davit_sling_tensions
 
   !> The falls' cable segment tensions [N] (/rigging/segment_tension).
@@ -170,13 +170,11 @@ contains
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     real(wp) :: sling(nslings)
+    real(wp), allocatable :: seg(:)
     p => ready_handle(h, rc)
     if (.not. associated(p)) return
-    block
-      real(wp) :: seg(merge(p%s%sys%par%rig%nseg, 0, p%s%sys%par%on_davit))
-      call tensions(p, seg, sling)
-      rc = put(p, "fall tensions", seg, out, len)
-    end block
+    call tensions(p, seg, sling)
+    rc = put(p, "fall tensions", seg, out, len)
   end function davit_fall_tensions
 
   !> Each fender's contact force [N] (/contact/force).

@@ -47,7 +47,6 @@ module davit_core_layout
   contains
     procedure :: add => layout_add
     procedure :: couple => layout_couple
-    procedure :: couple_modal => layout_couple_modal
     procedure :: append => layout_append
     procedure :: part => layout_part
   end type state_layout_type
@@ -86,32 +85,24 @@ contains
     end do
     if (.not. allocated(sub%coupled)) return
     do i = 1, size(sub%coupled)
-      if (sub%coupled(i)%modal) then
-        call self%couple_modal(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv)
-      else
-        call self%couple(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv)
-      end if
+      call self%couple(sub%coupled(i)%u + offset, sub%coupled(i)%v_inv, sub%coupled(i)%modal)
     end do
   end subroutine layout_append
 
-  !> The speeds y(u(1):u(2)) have the full mass block whose inverse is v_inv.
-  subroutine layout_couple(self, u, v_inv)
+  !> The speeds y(u(1):u(2)) have a full mass block: of inverse `matrix` (V^-1), or with
+  !> modal, time-varying of constant modal matrix `matrix` (P): V^-1 = P diag(1/V_k) P^T
+  !> with the V_k the body fills.
+  subroutine layout_couple(self, u, matrix, modal)
     class(state_layout_type), intent(inout) :: self
     integer, intent(in) :: u(2)
-    real(wp), intent(in) :: v_inv(:, :)
+    real(wp), intent(in) :: matrix(:, :)
+    logical, intent(in), optional :: modal
+    logical :: is_modal
+    is_modal = .false.
+    if (present(modal)) is_modal = modal
     if (.not. allocated(self%coupled)) allocate (self%coupled(0))
-    self%coupled = [self%coupled, coupled_block_type(u, v_inv, .false.)]
+    self%coupled = [self%coupled, coupled_block_type(u, matrix, is_modal)]
   end subroutine layout_couple
-
-  !> The speeds y(u(1):u(2)) have a time-varying full mass block of constant modal matrix
-  !> `modes` (P): V^-1 = P diag(1/V_k) P^T with the V_k the body fills.
-  subroutine layout_couple_modal(self, u, modes)
-    class(state_layout_type), intent(inout) :: self
-    integer, intent(in) :: u(2)
-    real(wp), intent(in) :: modes(:, :)
-    if (.not. allocated(self%coupled)) allocate (self%coupled(0))
-    self%coupled = [self%coupled, coupled_block_type(u, modes, .true.)]
-  end subroutine layout_couple_modal
 
   !> The part registered as name (an empty part if there is none).
   pure function layout_part(self, name) result(p)

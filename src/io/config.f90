@@ -10,6 +10,7 @@ module davit_io_config
   use davit_io_ship_keys, only: ship_config, read_ship
   use davit_io_sea_keys, only: sea_grid_config, read_sea_grid
   use davit_io_limits_keys, only: limits_config, read_limits
+  use davit_io_contact_keys, only: contact_config, read_contact
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
@@ -80,18 +81,6 @@ module davit_io_config
     character(len=:), allocatable :: water_model, database
     real(wp) :: roll_damping, full_immersion
   end type boat_config
-
-  !> Fender contact with the ship's side (eqs. 27-34, review §1.7, G16, G17).
-  type :: contact_config
-    logical :: enabled
-    character(len=:), allocatable :: law
-    real(wp) :: youngs_boat, poisson_boat, youngs_ship, poisson_ship
-    real(wp) :: radius_boat, radius_ship, restitution
-    real(wp) :: fender_diameter, fender_reaction
-    real(wp), allocatable :: fender_x(:)
-    real(wp) :: fender_y, fender_z(2), side_y
-    integer :: fender_points
-  end type contact_config
 
   !> Two massless elastic slings from fixed anchors to the hooks (foundation rigging).
   type :: slings_config
@@ -177,7 +166,7 @@ contains
     call read_wind(r, cfg%wind, cfg%sea)
     call read_ship(r, cfg%ship)
     call read_rao(r, cfg%rao)
-    call read_contact(r, cfg%contact, cfg%ship)
+    call read_contact(r, cfg%contact, cfg%ship%beam)
     call read_rigging(r, cfg%rigging)
     call read_limits(r, cfg%limits)
     if (cfg%simulation%t_end == 0.0_wp) cfg%simulation%t_end = default_end_time(cfg)
@@ -203,55 +192,6 @@ contains
           cfg%simulation%after_release
     end associate
   end function default_end_time
-
-  subroutine read_contact(r, s, ship)
-    type(deck_reader_type), intent(inout) :: r
-    type(contact_config), intent(inout) :: s
-    type(ship_config), intent(in) :: ship
-    character(len=*), parameter :: g = "contact"
-    call r%logical(g, "enabled", s%enabled, .true., &
-                   "Fender contact with the ship's side plane (eqs. 27-34).")
-    call r%choice(g, "law", s%law, "rubber_fender", [character(len=20) :: "rubber_fender", &
-                  "hertz_elastoplastic", "lankarani_nikravesh"], "A rubber fender's "// &
-                  "published reaction-deflection curve with hysteresis returning e_r^2 of the "// &
-                  "work (README Fenders); or the paper's Hertz compression with the corrected "// &
-                  "elastoplastic restitution (eqs. 27-28); or the smooth "// &
-                  "Lankarani-Nikravesh Hertz law (accurate for e_r near 1).")
-    call r%real(g, "fender_diameter", s%fender_diameter, 1.0_wp, 0.01_wp, 10.0_wp, "m", &
-                "rubber_fender: diameter D; the curve's deflections are fractions of it "// &
-                "(ISO 17357-1 1000 x 1500 pneumatic fender).")
-    call r%real(g, "fender_reaction", s%fender_reaction, 182.0e3_wp, 1.0e2_wp, 1.0e8_wp, "N", &
-                "rubber_fender: rated reaction R_r at the rated 60 % deflection (ISO "// &
-                "17357-1, 1000 x 1500 at 50 kPa: 182 kN, 32 kJ).")
-    call r%real(g, "youngs_boat", s%youngs_boat, 55.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
-                "Hertz laws: Young's modulus E_b of the fender (the paper's value; 55 GPa "// &
-                "gives 100+ g impacts).")
-    call r%real(g, "poisson_boat", s%poisson_boat, 0.45_wp, 0.0_wp, 0.5_wp, "-", &
-                "Poisson's ratio nu_b of the fender (paper).")
-    call r%real(g, "youngs_ship", s%youngs_ship, 200.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
-                "Young's modulus E_s of the ship's side (steel).")
-    call r%real(g, "poisson_ship", s%poisson_ship, 0.3_wp, 0.0_wp, 0.5_wp, "-", &
-                "Poisson's ratio nu_s of the ship's side (0.3; the paper's 0.6 is impossible).")
-    call r%real(g, "radius_boat", s%radius_boat, 0.15_wp, 0.0_wp, 10.0_wp, "m", &
-                "Fender radius of curvature R_b.", lo_open=.true.)
-    call r%real(g, "radius_ship", s%radius_ship, 0.0_wp, 0.0_wp, 1.0e3_wp, "m", &
-                "Radius of curvature R_s of the side; 0 = flat plate (R = R_b).")
-    call r%real(g, "restitution", s%restitution, 0.8_wp, 0.0_wp, 1.0_wp, "-", &
-                "Coefficient of restitution e_r (paper).", lo_open=.true.)
-    call r%real_list(g, "fender_x", s%fender_x, [3.0_wp, -3.0_wp], -50.0_wp, 50.0_wp, "m", &
-                     "Boat-frame x of each fender (two fenders at +-3 m; the paper gives "// &
-                     "none).", 1, 8)
-    call r%real(g, "fender_y", s%fender_y, -1.4_wp, -50.0_wp, 50.0_wp, "m", &
-                "Boat-frame y of the fenders: the port side, facing the ship.")
-    call r%real_vec(g, "fender_z", s%fender_z, [-0.8_wp, 0.2_wp], -50.0_wp, 50.0_wp, "m", &
-                    "Boat-frame z span of each fender (z down).")
-    call r%int(g, "fender_points", s%fender_points, 5, 1, 100, "-", &
-               "Points n_d per fender; one contact per fender at its deepest point.")
-    call r%real(g, "side_y", s%side_y, 0.5_wp*ship%beam + 0.1_wp, -100.0_wp, 100.0_wp, &
-                "m", "Ship-frame y of the side plane (normal +s2, towards the boat); default "// &
-                "the paper's y1 = 10.5 m (III.B; starboard, so +): half the "// &
-                "&ship beam plus 0.1 m.", default_text="&ship beam/2 + 0.1 (10.5)")
-  end subroutine read_contact
 
   subroutine read_rao(r, s)
     type(deck_reader_type), intent(inout) :: r
@@ -321,9 +261,9 @@ contains
                   "substeps inside each dt.")
     call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
                "RK4 substeps of the fast part per macro step dt (integrator = "// &
-               "'multirate', 'multirate2' or 'mri2'; the substep dt/substeps must keep the falls' "// &
-               "~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other integrators "// &
-               "ignore it.")
+               "'multirate', 'multirate2' or 'mri2'; the substep dt/substeps must keep "// &
+               "the falls' ~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other "// &
+               "integrators ignore it.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &

@@ -124,11 +124,8 @@ contains
     else if (size(x) > 1) then
       allowed = allowed//" ("//int_to_str(size(x))//" values)"
     end if
-    if (present(default_text)) then
-      call self_doc(self, group, key, default_text, allowed, units, description)
-    else
-      call self_doc(self, group, key, join_reals(default), allowed, units, description)
-    end if
+    call self_doc(self, group, key, optional_text(default_text, join_reals(default)), &
+                  allowed, units, description)
     x = default
     if (.not. lookup(self, group, key, value, line)) return
     call split_items(value, items)
@@ -170,11 +167,8 @@ contains
     character(len=:), allocatable :: allowed, value
     integer :: ios, line
     allowed = int_to_str(lo)//" <= "//key//" <= "//int_to_str(hi)//" (integer)"
-    if (present(default_text)) then
-      call self_doc(self, group, key, default_text, allowed, units, description)
-    else
-      call self_doc(self, group, key, int_to_str(default), allowed, units, description)
-    end if
+    call self_doc(self, group, key, optional_text(default_text, int_to_str(default)), &
+                  allowed, units, description)
     n = default
     if (.not. lookup(self, group, key, value, line)) return
     if (.not. is_integer(value)) then
@@ -226,11 +220,8 @@ contains
     do i = 1, size(choices)
       allowed = allowed//" '"//trim(choices(i))//"'"
     end do
-    if (present(default_text)) then
-      call self_doc(self, group, key, default_text, allowed, "-", description)
-    else
-      call self_doc(self, group, key, "'"//default//"'", allowed, "-", description)
-    end if
+    call self_doc(self, group, key, optional_text(default_text, "'"//default//"'"), &
+                  allowed, "-", description)
     s = default
     if (.not. lookup(self, group, key, value, line)) return
     s = to_lower(unquote(value))

@@ -11,7 +11,7 @@ module davit_io_hdf5_reader
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_files, only: file_kind, kind_name, kind_none, kind_regular
-  use davit_io_text, only: int_text
+  use davit_io_text, only: int_text, join_text
   implicit none
   private
   public :: h5_reader_type, h5_start
@@ -176,12 +176,12 @@ contains
   function extents_text(d) result(text)
     integer(hsize_t), intent(in) :: d(:)
     character(len=:), allocatable :: text
+    character(len=20) :: items(size(d))
     integer :: k
-    text = ""
     do k = 1, size(d)
-      if (k > 1) text = text//" x "
-      text = text//int_text(int(d(k), i8))
+      items(k) = int_text(int(d(k), i8))
     end do
+    text = join_text(items, " x ")
   end function extents_text
 
   !> `what` could not be allocated (the memory): a message instead of a crash.
@@ -227,18 +227,54 @@ contains
     call h5tclose_f(ftype, hdferr)
   end function dataset_class
 
-  !> Refuse dataset `name` unless it holds numbers; it is closed when refused.
-  subroutine require_numbers(self, name, dset, error)
+  !> Refuse dataset `name` unless it holds numbers (integers_only: integers, as a real
+  !> column would be silently truncated to integer codes); it is closed when refused.
+  subroutine require_numbers(self, name, dset, error, integers_only)
     type(h5_reader_type), intent(in) :: self
     character(len=*), intent(in) :: name
     integer(hid_t), intent(in) :: dset
     type(error_type), allocatable, intent(out) :: error
+    logical, intent(in), optional :: integers_only
     integer :: tclass, hdferr
     tclass = dataset_class(dset)
+    if (present(integers_only)) then
+      if (integers_only) then
+        if (tclass == H5T_INTEGER_F) return
+        call h5dclose_f(dset, hdferr)
+        call fatal_error(error, "'"//self%path//"': dataset /"//name//" is not of integers")
+        return
+      end if
+    end if
     if (tclass == H5T_INTEGER_F .or. tclass == H5T_FLOAT_F) return
     call h5dclose_f(dset, hdferr)
     call fatal_error(error, "'"//self%path//"': dataset /"//name//" does not hold numbers")
   end subroutine require_numbers
+
+  !> Read the n values of the open dataset `dset` of `name`, converted by HDF5 to the
+  !> memory type `mtype`, into `buf`, which the caller allocated with status alloc_status
+  !> (not 0: out of memory, nothing read); dset is closed. A failure names the file, the
+  !> dataset and what failed.
+  subroutine read_values(self, name, dset, mtype, n, alloc_status, buf, error)
+    type(h5_reader_type), intent(in) :: self
+    character(len=*), intent(in) :: name
+    integer(hid_t), intent(in) :: dset, mtype
+    integer(i8), intent(in) :: n
+    integer, intent(in) :: alloc_status
+    type(c_ptr), intent(in) :: buf
+    type(error_type), allocatable, intent(out) :: error
+    type(c_ptr) :: target_buf  ! HDF5's interface takes the buffer's address inout
+    integer :: hdferr, status
+    if (alloc_status /= 0) then
+      call h5dclose_f(dset, hdferr)
+      call no_memory(self, "/"//name, n, error)
+      return
+    end if
+    status = 0
+    target_buf = buf
+    if (n > 0) call h5dread_f(dset, mtype, target_buf, status)
+    call h5dclose_f(dset, hdferr)
+    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+  end subroutine read_values
 
   subroutine reader_read_1d(self, name, x, error)
     class(h5_reader_type), intent(inout) :: self
@@ -247,21 +283,14 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: n, hdferr, status
-    status = 0
+    integer :: n, status
     call open_1d(self, name, dset, n, error)
     if (.not. allocated(error)) call require_numbers(self, name, dset, error)
     if (allocated(error)) return
     allocate (x(n), stat=status)
-    if (status /= 0) then
-      call h5dclose_f(dset, hdferr)
-      call no_memory(self, "/"//name, int(n, i8), error)
-      return
-    end if
-    buf = c_loc(x)
-    if (n > 0) call h5dread_f(dset, H5T_NATIVE_DOUBLE, buf, status)
-    call h5dclose_f(dset, hdferr)
-    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+    buf = c_null_ptr
+    if (status == 0) buf = c_loc(x)
+    call read_values(self, name, dset, H5T_NATIVE_DOUBLE, int(n, i8), status, buf, error)
   end subroutine reader_read_1d
 
   subroutine reader_read_1d_int(self, name, x, error)
@@ -271,26 +300,15 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: n, hdferr, status
-    status = 0
+    integer :: n, status
     call open_1d(self, name, dset, n, error)
+    if (.not. allocated(error)) call require_numbers(self, name, dset, error, .true.)
     if (allocated(error)) return
-    ! integers only: a real column would be silently truncated to integer codes
-    if (dataset_class(dset) /= H5T_INTEGER_F) then
-      call h5dclose_f(dset, hdferr)
-      call fatal_error(error, "'"//self%path//"': dataset /"//name//" is not of integers")
-      return
-    end if
     allocate (x(n), stat=status)
-    if (status /= 0) then
-      call h5dclose_f(dset, hdferr)
-      call no_memory(self, "/"//name, int(n, i8), error)
-      return
-    end if
-    buf = c_loc(x)
-    if (n > 0) call h5dread_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), buf, status)
-    call h5dclose_f(dset, hdferr)
-    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+    buf = c_null_ptr
+    if (status == 0) buf = c_loc(x)
+    call read_values(self, name, dset, h5kind_to_type(i8, H5_INTEGER_KIND), int(n, i8), &
+                     status, buf, error)
   end subroutine reader_read_1d_int
 
   !> Numeric dataset `name` of any rank (0-7) as reals (HDF5 converts integers), flattened
@@ -303,21 +321,15 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
-    integer :: hdferr, status
+    integer :: status
     call open_dataset(self, name, dset, dims, error)
     if (.not. allocated(error)) call require_numbers(self, name, dset, error)
     if (allocated(error)) return
     allocate (x(product(dims)), stat=status)  ! product <= max_values (open_dataset)
-    if (status /= 0) then
-      call h5dclose_f(dset, hdferr)
-      call no_memory(self, "/"//name, int(product(dims), i8), error)
-      return
-    end if
-    buf = c_loc(x)
-    status = 0
-    if (size(x) > 0) call h5dread_f(dset, H5T_NATIVE_DOUBLE, buf, status)
-    call h5dclose_f(dset, hdferr)
-    if (status /= 0) call fatal_error(error, "'"//self%path//"': cannot read /"//name)
+    buf = c_null_ptr
+    if (status == 0) buf = c_loc(x)
+    call read_values(self, name, dset, H5T_NATIVE_DOUBLE, int(product(dims), i8), status, &
+                     buf, error)
   end subroutine reader_read_array
 
   !> A string dataset, returned blank-padded to its longest entry (variable-length) or to

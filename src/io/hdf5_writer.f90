@@ -11,58 +11,20 @@
 !>
 !> Named dimensions (xarray/netCDF-4 readable): a dataset written with `dims` (one name per
 !> axis, blank-separated, in the order of the Fortran array's extents) has each axis
-!> attached to an HDF5 dimension scale (H5DS), which netCDF-4, h5netcdf and xarray read as
-!> its named dimension. A 1-D dataset whose dims is its own name (/time, /rao/omega) is the
-!> coordinate scale of that dimension; any other name is looked up in the dataset's group
-!> and then its parents (netCDF's scoping), and where none exists a dimension-only scale
-!> `group/name` is created as netCDF-4 does (no data, NAME "This is a netCDF dimension but
-!> not a netCDF variable."), so datasets of a group that share a name share one dimension.
-!> A dimension has one length: a second dataset disagreeing with it fails the write.
+!> attached to a netCDF-4 dimension (davit_io_hdf5_dims says how).
 module davit_io_hdf5_writer
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc, c_ptr, c_size_t, &
-                                         c_sizeof, c_int64_t
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_loc, c_ptr
   use hdf5
-  use h5ds, only: h5dsset_scale_f
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_hdf5_reader, only: h5_start
-  use davit_io_namelist, only: int_to_str
+  use davit_io_hdf5_dims, only: dim_registry_type, describe, put_str, note_failure
   use davit_io_files, only: create_empty, remove_file
   use davit_io_output_lock, only: check_output_path, acquire_lock, release_lock, note_tmp, &
                                   tmp_suffix, create_cause
   implicit none
   private
   public :: h5_writer_type, check_output_path, acquire_lock, release_lock
-
-  !> A dimension scale written so far: dataset `group/name` (group "" is the root).
-  type :: dim_scale_type
-    character(len=:), allocatable :: group, name
-    integer(hsize_t) :: length = 0
-  end type dim_scale_type
-
-  !> One axis of a dataset on a scale: an entry of the scale's REFERENCE_LIST.
-  type :: attachment_type
-    character(len=:), allocatable :: dataset
-    !> Index in the writer's scales; the axis in HDF5's (C) order, from 0.
-    integer :: scale = 0, axis = 0
-  end type attachment_type
-
-  !> HDF5's hvl_t (one DIMENSION_LIST element) and H5DS's ds_list_t (one REFERENCE_LIST
-  !> element), as the HDF5 C library lays them out.
-  type, bind(c) :: vlen_type
-    integer(c_size_t) :: len = 0
-    type(c_ptr) :: p
-  end type vlen_type
-  type, bind(c) :: reference_type
-    integer(c_int64_t) :: dataset = 0  ! hobj_ref_t: the object's address
-    integer(c_int) :: dimension = 0
-  end type reference_type
-
-  !> netCDF-4's NAME of a dimension-only scale, which its readers hide as a variable.
-  !> The longest suffix of a temporary file: ".tmp.", a process id (up to 7 digits on
-  !> Linux, pid_max 4194304), "." and a counter of up to 6 digits.
-  character(len=*), parameter :: not_a_variable = &
-    "This is a netCDF dimension but not a netCDF variable."
 
   type :: h5_writer_type
     integer(hid_t) :: file = -1
@@ -72,13 +34,11 @@ module davit_io_hdf5_writer
     logical :: is_open = .false.
     !> This writer took path.lock (and releases it); false when the caller holds it.
     logical :: owns_lock = .false.
-    !> First HDF5 failure while writing; reported by close().
-    logical :: failed = .false.
+    !> What the first HDF5 failure while writing was writing (unallocated while none);
+    !> reported by close().
     character(len=:), allocatable :: failed_what
-    !> The dimension scales of this file, in the order written.
-    type(dim_scale_type), allocatable :: scales(:)
-    !> Every axis attached so far; the scales' REFERENCE_LISTs are written at close.
-    type(attachment_type), allocatable :: attached(:)
+    !> The file's dimension scales and the axes attached to them (davit_io_hdf5_dims).
+    type(dim_registry_type) :: scales
   contains
     procedure :: create => writer_create
     procedure :: group => writer_group
@@ -116,10 +76,8 @@ contains
     integer(hid_t) :: fapl
     self%path = path
     self%final_path = path
-    self%failed = .false.
-    if (allocated(self%scales)) deallocate (self%scales)
-    if (allocated(self%attached)) deallocate (self%attached)
-    allocate (self%scales(0), self%attached(0))
+    if (allocated(self%failed_what)) deallocate (self%failed_what)
+    call self%scales%reset()
     call check_output_path(path, error)
     if (allocated(error)) return
     call acquire_lock(path, self%owns_lock, error)
@@ -161,7 +119,7 @@ contains
     integer(hid_t) :: gid
     integer :: hdferr
     call h5gcreate_f(self%file, name, gid, hdferr)
-    call check(self, hdferr, "group "//name)
+    call note_failure(self%failed_what, hdferr, "group "//name)
     if (hdferr == 0) call h5gclose_f(gid, hdferr)
   end subroutine writer_group
 
@@ -215,12 +173,13 @@ contains
     extent = size(data, kind=hsize_t)
     call h5screate_simple_f(1, extent, space, hdferr)
     call h5dcreate_f(self%file, name, H5T_STD_I64LE, space, dset, hdferr)
-    call check(self, hdferr, name)
+    call note_failure(self%failed_what, hdferr, name)
     if (hdferr /= 0) return
     call h5dwrite_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(buf), hdferr)
-    call check(self, hdferr, name)
-    call describe(self, dset, units, description)
-    if (present(dims)) call attach_dims(self, name, dset, dims, extent)
+    call note_failure(self%failed_what, hdferr, name)
+    call describe(dset, units, description, self%failed_what)
+    if (present(dims)) call self%scales%attach(self%file, name, dset, dims, extent, &
+                                             self%failed_what)
     call h5dclose_f(dset, hdferr)
     call h5sclose_f(space, hdferr)
   end subroutine writer_write_1d_int
@@ -248,12 +207,13 @@ contains
     call vlen_text_type(atype, hdferr)
     call h5screate_simple_f(1, extent, space, hdferr)
     call h5dcreate_f(self%file, name, atype, space, dset, hdferr)
-    call check(self, hdferr, name)
+    call note_failure(self%failed_what, hdferr, name)
     if (hdferr == 0) then
       if (size(data) > 0) call h5dwrite_f(dset, atype, c_loc(ptr), hdferr)
-      call check(self, hdferr, name)
-      call describe(self, dset, units, description)
-      if (present(dims)) call attach_dims(self, name, dset, dims, extent)
+      call note_failure(self%failed_what, hdferr, name)
+      call describe(dset, units, description, self%failed_what)
+      if (present(dims)) call self%scales%attach(self%file, name, dset, dims, extent, &
+                                             self%failed_what)
       call h5dclose_f(dset, hdferr)
     end if
     call h5sclose_f(space, hdferr)
@@ -280,12 +240,13 @@ contains
     integer :: hdferr
     call h5screate_simple_f(size(extent), extent, space, hdferr)
     call h5dcreate_f(self%file, name, H5T_NATIVE_DOUBLE, space, dset, hdferr)
-    call check(self, hdferr, name)
+    call note_failure(self%failed_what, hdferr, name)
     if (hdferr /= 0) return
     call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, buf, hdferr)
-    call check(self, hdferr, name)
-    call describe(self, dset, units, description)
-    if (present(dims)) call attach_dims(self, name, dset, dims, extent)
+    call note_failure(self%failed_what, hdferr, name)
+    call describe(dset, units, description, self%failed_what)
+    if (present(dims)) call self%scales%attach(self%file, name, dset, dims, extent, &
+                                             self%failed_what)
     call h5dclose_f(dset, hdferr)
     call h5sclose_f(space, hdferr)
   end subroutine write_real
@@ -297,9 +258,9 @@ contains
     integer(hid_t) :: oid
     integer :: hdferr
     call h5oopen_f(self%file, obj, oid, hdferr)
-    call check(self, hdferr, obj)
+    call note_failure(self%failed_what, hdferr, obj)
     if (hdferr /= 0) return
-    call put_str(self, oid, name, value)
+    call put_str(oid, name, value, self%failed_what)
     call h5oclose_f(oid, hdferr)
   end subroutine writer_attr_str
 
@@ -312,10 +273,10 @@ contains
     call h5oopen_f(self%file, obj, oid, hdferr)
     call h5screate_f(H5S_SCALAR_F, space, hdferr)
     call h5acreate_f(oid, name, H5T_STD_I64LE, space, attr, hdferr)
-    call check(self, hdferr, obj//"@"//name)
+    call note_failure(self%failed_what, hdferr, obj//"@"//name)
     if (hdferr == 0) then
       call h5awrite_f(attr, h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(value), hdferr)
-      call check(self, hdferr, obj//"@"//name)
+      call note_failure(self%failed_what, hdferr, obj//"@"//name)
       call h5aclose_f(attr, hdferr)
     end if
     call h5sclose_f(space, hdferr)
@@ -332,7 +293,7 @@ contains
     call h5oopen_f(self%file, obj, oid, hdferr)
     call h5screate_f(H5S_SCALAR_F, space, hdferr)
     call h5acreate_f(oid, name, H5T_NATIVE_DOUBLE, space, attr, hdferr)
-    call check(self, hdferr, obj//"@"//name)
+    call note_failure(self%failed_what, hdferr, obj//"@"//name)
     if (hdferr == 0) then
       call h5awrite_f(attr, H5T_NATIVE_DOUBLE, value, dims, hdferr)
       call h5aclose_f(attr, hdferr)
@@ -348,12 +309,14 @@ contains
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr
     if (.not. self%is_open) return
-    if (.not. self%failed) call write_reference_lists(self)
+    if (.not. allocated(self%failed_what)) then
+      call self%scales%write_reference_lists(self%file, self%failed_what)
+    end if
     call h5fclose_f(self%file, hdferr)
     self%is_open = .false.
-    if (self%failed .or. hdferr /= 0) then
+    if (allocated(self%failed_what) .or. hdferr /= 0) then
       call delete_file(self%tmp_path)
-      if (self%failed) then
+      if (allocated(self%failed_what)) then
         call fatal_error(error, "writing '"//self%final_path//"' failed at "// &
                          self%failed_what//" (disk full or not writable?); any earlier '"// &
                          self%final_path//"' is left as it was")
@@ -382,292 +345,6 @@ contains
     if (self%owns_lock) call release_lock(self%path)
     self%owns_lock = .false.
   end subroutine writer_discard
-
-  subroutine describe(self, dset, units, description)
-    type(h5_writer_type), intent(inout) :: self
-    integer(hid_t), intent(in) :: dset
-    character(len=*), intent(in) :: units, description
-    call put_str(self, dset, "units", units)
-    call put_str(self, dset, "description", description)
-    call put_str(self, dset, "long_name", description)
-  end subroutine describe
-
-  subroutine put_str(self, oid, name, value)
-    type(h5_writer_type), intent(inout) :: self
-    integer(hid_t), intent(in) :: oid
-    character(len=*), intent(in) :: name, value
-    integer(hid_t) :: atype, space, attr
-    integer(hsize_t), parameter :: dims(1) = [1]
-    integer :: hdferr
-    call h5tcopy_f(H5T_FORTRAN_S1, atype, hdferr)
-    call h5tset_size_f(atype, int(max(1, len(value)), size_t), hdferr)
-    ! UTF-8: netCDF-4, h5netcdf and xarray decode it to text (h5py still gives bytes)
-    call h5tset_cset_f(atype, H5T_CSET_UTF8_F, hdferr)
-    call h5screate_f(H5S_SCALAR_F, space, hdferr)
-    call h5acreate_f(oid, name, atype, space, attr, hdferr)
-    call check(self, hdferr, "attribute "//name)
-    if (hdferr == 0) then
-      if (len(value) == 0) then
-        call h5awrite_f(attr, atype, " ", dims, hdferr)
-      else
-        call h5awrite_f(attr, atype, value, dims, hdferr)
-      end if
-      call check(self, hdferr, "attribute "//name)
-      call h5aclose_f(attr, hdferr)
-    end if
-    call h5sclose_f(space, hdferr)
-    call h5tclose_f(atype, hdferr)
-  end subroutine put_str
-
-  !> Attach each axis of dataset `name` (open as `dset`, Fortran extents `extent`) to the
-  !> scale of its dimension in `dims`; see the module comment. The HDF5 dimension-scale
-  !> attributes are written as H5DS writes them, but each once: DIMENSION_LIST here and the
-  !> scales' REFERENCE_LIST at close (H5DSattach_scale rewrites both at every call, which
-  !> doubled the time to write a sweep summary).
-  subroutine attach_dims(self, name, dset, dims, extent)
-    type(h5_writer_type), intent(inout) :: self
-    character(len=*), intent(in) :: name, dims
-    integer(hid_t), intent(in) :: dset
-    integer(hsize_t), intent(in) :: extent(:)
-    character(len=:), allocatable :: group
-    integer :: k, rank, hdferr, on(size(extent))
-    group = parent_of(name)
-    rank = size(extent)
-    if (word_count(dims) /= rank) then
-      call check(self, 1, name//" (dims '"//dims//"' for rank "//int_to_str(rank)//")")
-      return
-    end if
-    if (rank == 1 .and. group_path(group, word(dims, 1)) == name) then
-      call h5dsset_scale_f(dset, hdferr, word(dims, 1))
-      call check(self, hdferr, "dimension scale "//name)
-      call remember(self, group, word(dims, 1), extent(1))
-      return
-    end if
-    do k = 1, rank
-      on(k) = scale_index(self, group, word(dims, k), extent(k), name)
-      if (on(k) == 0) return
-      ! HDF5 numbers the axes in C order from 0, reversed from the Fortran array's (a
-      ! Fortran (component, time) array is (time, component) there)
-      self%attached = [self%attached, attachment_type(name, on(k), rank - k)]
-    end do
-    call write_dimension_list(self, name, dset, on(rank:1:-1))
-  end subroutine attach_dims
-
-  !> DIMENSION_LIST of `dset`: for each axis (C order) a reference to its scale.
-  subroutine write_dimension_list(self, name, dset, on)
-    type(h5_writer_type), intent(inout) :: self
-    character(len=*), intent(in) :: name
-    integer(hid_t), intent(in) :: dset
-    integer, intent(in) :: on(:)
-    integer(c_int64_t), target :: refs(size(on))
-    type(vlen_type), target :: list(size(on))
-    integer(hid_t) :: vtype, space, attr
-    integer :: c, hdferr, status
-    status = 0
-    do c = 1, size(on)
-      refs(c) = object_ref(self, scale_path(self, on(c)), hdferr)
-      status = max(status, abs(hdferr))
-      list(c) = vlen_type(1, c_loc(refs(c)))
-    end do
-    call h5tvlen_create_f(H5T_STD_REF_OBJ, vtype, hdferr)
-    call h5screate_simple_f(1, [size(on, kind=hsize_t)], space, hdferr)
-    call h5acreate_f(dset, "DIMENSION_LIST", vtype, space, attr, hdferr)
-    status = max(status, abs(hdferr))
-    if (hdferr == 0) then
-      call h5awrite_f(attr, vtype, c_loc(list), hdferr)
-      status = max(status, abs(hdferr))
-      call h5aclose_f(attr, hdferr)
-    end if
-    call h5sclose_f(space, hdferr)
-    call h5tclose_f(vtype, hdferr)
-    call check(self, status, "dimensions of "//name)
-  end subroutine write_dimension_list
-
-  !> REFERENCE_LIST of every scale: (dataset, axis) of each axis attached to it.
-  subroutine write_reference_lists(self)
-    type(h5_writer_type), intent(inout) :: self
-    type(reference_type), allocatable, target :: list(:)
-    integer(hid_t) :: ctype, space, attr, scale
-    integer :: k, j, n, hdferr, status
-    do k = 1, size(self%scales)
-      list = [(reference_type(0, self%attached(j)%axis), j = 1, size(self%attached))]
-      list = pack(list, self%attached(:)%scale == k)
-      if (size(list) == 0) cycle
-      status = 0
-      n = 0
-      do j = 1, size(self%attached)
-        if (self%attached(j)%scale /= k) cycle
-        n = n + 1
-        list(n)%dataset = object_ref(self, self%attached(j)%dataset, hdferr)
-        status = max(status, abs(hdferr))
-      end do
-      call h5tcreate_f(H5T_COMPOUND_F, c_sizeof(list(1)), ctype, hdferr)
-      call h5tinsert_f(ctype, "dataset", 0_size_t, H5T_STD_REF_OBJ, hdferr)
-      call h5tinsert_f(ctype, "dimension", c_sizeof(list(1)%dataset), H5T_NATIVE_INTEGER, &
-                       hdferr)
-      call h5screate_simple_f(1, [size(list, kind=hsize_t)], space, hdferr)
-      call h5dopen_f(self%file, scale_path(self, k), scale, hdferr)
-      status = max(status, abs(hdferr))
-      if (hdferr == 0) then
-        call h5acreate_f(scale, "REFERENCE_LIST", ctype, space, attr, hdferr)
-        status = max(status, abs(hdferr))
-        if (hdferr == 0) call h5awrite_f(attr, ctype, c_loc(list), hdferr)
-        status = max(status, abs(hdferr))
-        call h5aclose_f(attr, hdferr)
-        call h5dclose_f(scale, hdferr)
-      end if
-      call h5sclose_f(space, hdferr)
-      call h5tclose_f(ctype, hdferr)
-      call check(self, status, "dimension "//scale_path(self, k))
-    end do
-  end subroutine write_reference_lists
-
-  !> An HDF5 object reference (hobj_ref_t) to `path`.
-  integer(c_int64_t) function object_ref(self, path, hdferr) result(ref)
-    type(h5_writer_type), intent(in) :: self
-    character(len=*), intent(in) :: path
-    integer, intent(out) :: hdferr
-    type(hobj_ref_t_f) :: r
-    call h5rcreate_f(self%file, path, r, hdferr)
-    ref = int(r%ref, c_int64_t)
-  end function object_ref
-
-  pure function scale_path(self, k) result(path)
-    type(h5_writer_type), intent(in) :: self
-    integer, intent(in) :: k
-    character(len=:), allocatable :: path
-    path = group_path(self%scales(k)%group, self%scales(k)%name)
-  end function scale_path
-
-  !> Index in self%scales of dimension `dim` seen from `group` (its own, else the nearest
-  !> parent's), creating a dimension-only one in `group` if there is none; 0 on failure
-  !> (a length that disagrees with the dimension's fails the write).
-  integer function scale_index(self, group, dim, length, user) result(k)
-    type(h5_writer_type), intent(inout) :: self
-    character(len=*), intent(in) :: group, dim, user
-    integer(hsize_t), intent(in) :: length
-    k = find_scale(self, group, dim)
-    if (k == 0) then
-      call create_dimension(self, group, dim, length)
-      if (.not. self%failed) k = size(self%scales)
-    else if (self%scales(k)%length /= length) then
-      call check(self, 1, user//" (length "//int_to_str(int(length))//" along dimension "// &
-                 dim//" of length "//int_to_str(int(self%scales(k)%length))//")")
-      k = 0
-    end if
-  end function scale_index
-
-  !> Index in self%scales of dimension `dim` as seen from `group`; 0 if none.
-  integer function find_scale(self, group, dim) result(found)
-    type(h5_writer_type), intent(in) :: self
-    character(len=*), intent(in) :: group, dim
-    character(len=:), allocatable :: g
-    integer :: k
-    g = group
-    do
-      found = 0
-      do k = 1, size(self%scales)
-        if (self%scales(k)%name == dim .and. self%scales(k)%group == g) found = k
-      end do
-      if (found > 0 .or. len(g) == 0) return
-      g = parent_of(g)
-    end do
-  end function find_scale
-
-  !> A netCDF-4 dimension-only scale `group/dim`: float, never written (no storage), with
-  !> units and description like every dataset here.
-  subroutine create_dimension(self, group, dim, length)
-    type(h5_writer_type), intent(inout) :: self
-    character(len=*), intent(in) :: group, dim
-    integer(hsize_t), intent(in) :: length
-    integer(hid_t) :: space, scale
-    integer :: hdferr
-    character(len=10) :: digits
-    call h5screate_simple_f(1, [length], space, hdferr)
-    call h5dcreate_f(self%file, group_path(group, dim), H5T_NATIVE_REAL, space, scale, hdferr)
-    call h5sclose_f(space, hdferr)
-    call check(self, hdferr, "dimension "//group_path(group, dim))
-    if (hdferr /= 0) return
-    write (digits, "(i10)") length
-    call h5dsset_scale_f(scale, hdferr, not_a_variable//digits)
-    call check(self, hdferr, "dimension "//group_path(group, dim))
-    call describe(self, scale, "-", "Dimension "//dim//" (its length only; no data)")
-    call h5dclose_f(scale, hdferr)
-    call remember(self, group, dim, length)
-  end subroutine create_dimension
-
-  subroutine remember(self, group, dim, length)
-    type(h5_writer_type), intent(inout) :: self
-    character(len=*), intent(in) :: group, dim
-    integer(hsize_t), intent(in) :: length
-    type(dim_scale_type) :: s
-    s%group = group
-    s%name = dim
-    s%length = length
-    self%scales = [self%scales, s]
-  end subroutine remember
-
-  !> The group holding object `name` ("" for the root; a leading "/" is dropped).
-  pure function parent_of(name) result(group)
-    character(len=*), intent(in) :: name
-    character(len=:), allocatable :: group
-    integer :: i
-    i = index(name, "/", back=.true.)
-    group = name(1:max(i - 1, 0))
-    if (len(group) > 0) then
-      if (group(1:1) == "/") group = group(2:)
-    end if
-  end function parent_of
-
-  pure function group_path(group, name) result(path)
-    character(len=*), intent(in) :: group, name
-    character(len=:), allocatable :: path
-    if (len(group) == 0) then
-      path = name
-    else
-      path = group//"/"//name
-    end if
-  end function group_path
-
-  !> Word k of the blank-separated `text` ("" past its last word).
-  pure function word(text, k) result(w)
-    character(len=*), intent(in) :: text
-    integer, intent(in) :: k
-    character(len=:), allocatable :: w
-    integer :: i, n, first
-    w = ""
-    n = 0
-    first = 0
-    do i = 1, len(text)
-      if (text(i:i) /= " " .and. first == 0) first = i
-      if (first > 0 .and. (text(i:i) == " " .or. i == len(text))) then
-        n = n + 1
-        if (n == k) then
-          w = trim(text(first:i))
-          return
-        end if
-        first = 0
-      end if
-    end do
-  end function word
-
-  pure integer function word_count(text) result(n)
-    character(len=*), intent(in) :: text
-    n = 0
-    do while (len(word(text, n + 1)) > 0)
-      n = n + 1
-    end do
-  end function word_count
-
-  subroutine check(self, hdferr, what)
-    type(h5_writer_type), intent(inout) :: self
-    integer, intent(in) :: hdferr
-    character(len=*), intent(in) :: what
-    if (hdferr /= 0 .and. .not. self%failed) then
-      self%failed = .true.
-      self%failed_what = what
-    end if
-  end subroutine check
 
   !> Remove `path` if it exists (never opened: a FIFO put under that name cannot block).
   subroutine delete_file(path)

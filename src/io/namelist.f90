@@ -11,7 +11,7 @@ module davit_io_namelist
   implicit none
   private
   public :: nml_entry, nml_deck, read_deck, parse_deck, to_lower, int_to_str, find_entry, key_at, &
-            shown
+            shown, int_text, line_end
 
   type :: nml_entry
     character(len=:), allocatable :: group, key, value
@@ -107,12 +107,7 @@ contains
     group = ""
     open_line = 0
     do while (pos <= len(text))
-      eol = index(text(pos:), new_line("a"))
-      if (eol == 0) then
-        eol = len(text) + 1
-      else
-        eol = pos + eol - 1
-      end if
+      eol = line_end(text, pos)
       line = line + 1
       raw = strip_comment(text(pos:eol - 1))
       pos = eol + 1
@@ -181,7 +176,7 @@ contains
       character(len=*), intent(in) :: str
       integer, intent(in) :: lineno
       integer :: i, j, k, h
-      logical :: in_quote
+      logical :: in_quote, outside
       character :: quote
       i = 1
       in_quote = .false.
@@ -227,17 +222,13 @@ contains
           cycle
         end if
         ! inside a group
-        if (in_quote) then
-          if (str(i:i) == quote) in_quote = .false.
-        else if (str(i:i) == "'" .or. str(i:i) == '"') then
-          in_quote = .true.
-          quote = str(i:i)
-        else if (str(i:i) == "/") then
+        call track_quotes(str(i:i), in_quote, quote, outside)
+        if (outside .and. str(i:i) == "/") then
           call close_group()
           if (allocated(error)) return
           i = i + 1
           cycle
-        else if (str(i:i) == "&") then
+        else if (outside .and. str(i:i) == "&") then
           if (to_lower(str(i:min(len(str), i + 3))) == "&end") then
             call close_group()
             if (allocated(error)) return
@@ -277,7 +268,7 @@ contains
       integer, intent(in) :: bline(:)
       integer, allocatable :: eq(:), kstart(:)
       integer :: i, n, ks, ke, vs, ve, pass
-      logical :: in_quote
+      logical :: in_quote, outside
       character :: quote
       character(len=:), allocatable :: key, value
       ! two passes: count the '=' outside quotes, then record them
@@ -288,12 +279,8 @@ contains
         in_quote = .false.
         quote = " "
         do i = 1, len(b)
-          if (in_quote) then
-            if (b(i:i) == quote) in_quote = .false.
-          else if (b(i:i) == "'" .or. b(i:i) == '"') then
-            in_quote = .true.
-            quote = b(i:i)
-          else if (b(i:i) == "=") then
+          call track_quotes(b(i:i), in_quote, quote, outside)
+          if (outside .and. b(i:i) == "=") then
             n = n + 1
             if (pass == 2) eq(n) = i
           end if
@@ -520,23 +507,50 @@ contains
     end do
   end function first_line
 
+  !> Where the line of `text` that starts at pos ends: its newline, or one past the text.
+  pure integer function line_end(text, pos) result(eol)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: pos
+    eol = index(text(pos:), new_line("a"))
+    if (eol == 0) then
+      eol = len(text) + 1
+    else
+      eol = pos + eol - 1
+    end if
+  end function line_end
+
+  !> Advance the quote state (in_quote, and the quote character that opened the string) by
+  !> character c of a deck line; outside: c stands outside any quoted string and is not a
+  !> quote itself (an '=', '!', '/' or '&' there has its namelist meaning).
+  pure subroutine track_quotes(c, in_quote, quote, outside)
+    character, intent(in) :: c
+    logical, intent(inout) :: in_quote
+    character, intent(inout) :: quote
+    logical, intent(out) :: outside
+    outside = .false.
+    if (in_quote) then
+      if (c == quote) in_quote = .false.
+    else if (c == "'" .or. c == '"') then
+      in_quote = .true.
+      quote = c
+    else
+      outside = .true.
+    end if
+  end subroutine track_quotes
+
   !> Remove a trailing `!` comment (outside quotes) and carriage returns.
   pure function strip_comment(str) result(s)
     character(len=*), intent(in) :: str
     character(len=:), allocatable :: s
     integer :: i
-    logical :: in_quote
+    logical :: in_quote, outside
     character :: quote
     in_quote = .false.
     quote = " "
     s = str
     do i = 1, len(str)
-      if (in_quote) then
-        if (str(i:i) == quote) in_quote = .false.
-      else if (str(i:i) == "'" .or. str(i:i) == '"') then
-        in_quote = .true.
-        quote = str(i:i)
-      else if (str(i:i) == "!") then
+      call track_quotes(str(i:i), in_quote, quote, outside)
+      if (outside .and. str(i:i) == "!") then
         s = str(1:i - 1)
         exit
       end if
@@ -560,9 +574,17 @@ contains
   pure function int_to_str(i) result(s)
     integer, intent(in) :: i
     character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, "(i0)") i
-    s = trim(buf)
+    s = int_text(int(i, i8))
   end function int_to_str
+
+  !> An 8-byte integer as text (counts of steps, rows, RHS evaluations; davit_io_text
+  !> passes it on).
+  pure function int_text(n) result(s)
+    integer(i8), intent(in) :: n
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write (buf, "(i0)") n
+    s = trim(buf)
+  end function int_text
 
 end module davit_io_namelist

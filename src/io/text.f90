@@ -2,10 +2,10 @@
 !> lists joined, quotes stripped.
 module davit_io_text
   use davit_kinds, only: wp, i8
-  use davit_io_namelist, only: int_to_str
+  use davit_io_namelist, only: int_to_str, int_text
   implicit none
   private
-  public :: int_text
+  public :: int_text, join_text
   public :: count_range, optional_text, join_ints, join_logicals, is_number, is_integer, unquote, &
             join_reals, fmt_real, fmt_fixed
 
@@ -28,26 +28,32 @@ contains
     end if
   end function optional_text
 
-  pure function join_ints(x) result(s)
-    integer, intent(in) :: x(:)
+  !> The items, each without its trailing blanks, separated by `sep` ("1, 2, 3").
+  pure function join_text(items, sep) result(s)
+    character(len=*), intent(in) :: items(:), sep
     character(len=:), allocatable :: s
     integer :: i
     s = ""
-    do i = 1, size(x)
-      if (i > 1) s = s//", "
-      s = s//int_to_str(x(i))
+    do i = 1, size(items)
+      if (i > 1) s = s//sep
+      s = s//trim(items(i))
     end do
+  end function join_text
+
+  pure function join_ints(x) result(s)
+    integer, intent(in) :: x(:)
+    character(len=:), allocatable :: s
+    character(len=12) :: items(size(x))
+    if (size(x) > 0) write (items, "(i0)") x  ! one record, an item, per value
+    s = join_text(items, ", ")
   end function join_ints
 
   pure function join_logicals(x) result(s)
     logical, intent(in) :: x(:)
     character(len=:), allocatable :: s
-    integer :: i
-    s = ""
-    do i = 1, size(x)
-      if (i > 1) s = s//", "
-      s = s//trim(merge(".true. ", ".false.", x(i)))
-    end do
+    character(len=7) :: items(size(x))
+    items = merge(".true. ", ".false.", x)
+    s = join_text(items, ", ")
   end function join_logicals
 
   !> A real number in one of the forms a person writes: [sign] digits [. [digits]] or
@@ -125,12 +131,12 @@ contains
   pure function join_reals(x) result(s)
     real(wp), intent(in) :: x(:)
     character(len=:), allocatable :: s
+    character(len=40) :: items(size(x))  ! fmt_real's longest
     integer :: i
-    s = ""
     do i = 1, size(x)
-      if (i > 1) s = s//", "
-      s = s//fmt_real(x(i))
+      items(i) = fmt_real(x(i))
     end do
+    s = join_text(items, ", ")
   end function join_reals
 
   !> x with `decimals` digits after the point, a zero before it ("0.0812", "-0.5").
@@ -193,14 +199,5 @@ contains
     if (ios /= 0) n = 0
     s = int_to_str(n)
   end function int_str_exp
-
-  !> An 8-byte integer as text (counts of steps, rows, RHS evaluations).
-  pure function int_text(n) result(s)
-    integer(i8), intent(in) :: n
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write (buf, "(i0)") n
-    s = trim(buf)
-  end function int_text
 
 end module davit_io_text

@@ -53,6 +53,7 @@ module davit_rigging_rigging
   use davit_rigging_block_balance, only: balance_input_type, solve_blocks
   use davit_rigging_wire_damping, only: sling_dashpot, sling_lump_dashpots
   use davit_rigging_block_stop, only: add_stop_forces, stop_energy
+  use davit_rigging_sling_start, only: lay_out_sling, pendulum_velocity, check_start_residual
   implicit none
   private
   public :: rigging_type, new_rigging, max_segments, max_sheaves
@@ -71,14 +72,6 @@ module davit_rigging_rigging
   !> ~200 N of the whole cable's elastic tension (quasi-static sheaves), ~2 kN of a 3 m
   !> part, ~6 kN of a 1 m sling: the loaded rigging (~20 kN per part) never sees it.
   real(wp), parameter :: dashpot_ramp = 1.0e-4_wp
-  !> Largest accepted residual of the initial equilibrium (initial_state): r = |Q - T s|/|Q|,
-  !> the share of a block's needed cable force Q that the fitted tension T along the falls'
-  !> direction s cannot supply; r = sin(angle between Q and s). The decks with &rigging sit
-  !> at 2e-16 (round-off: a head midway above each hook); a boat started heeled by 0.1 rad
-  !> (the order studies in test/python/test_boat_decks.py) at 5.1e-2, a start transient
-  !> those tests want. Beyond 0.2 (Q more than 11.5 deg off the falls) the geometry is
-  !> wrong (heads not above the hooks, drum or lead sheave misplaced), not the start.
-  real(wp), parameter :: residual_max = 0.2_wp
 
   !> The falls (cables, top sling segments, blocks; davit_rigging_block_balance) plus the
   !> lumps, the sheaves' dynamics, the winch and the state layout.
@@ -453,7 +446,7 @@ contains
   !> natural length along the hook force, cable segments at their chord lengths.
   !> residual: max |Q - T (lam_out - lam_in)|/|Q| over the blocks (0 for consistent
   !> geometry, e.g. a head midway above each hook; option A also needs equal hook loads);
-  !> an error if it exceeds residual_max (the start would not be an equilibrium).
+  !> an error if it exceeds 0.2 (davit_rigging_sling_start: not an equilibrium).
   subroutine rigging_initial_state(self, hook_pos, hook_force, ship, y, residual, error, mode, &
                                    hook_vel, heads, head_vel)
     class(rigging_type), intent(inout) :: self
@@ -466,27 +459,25 @@ contains
     !> lumps and block start as points of a rigid pendulum from its head to its hook (a ship
     !> making headway carries the rigging along; a boat pushed sideways swings it).
     real(wp), intent(in), optional :: hook_vel(3, 2), heads(3, 2), head_vel(3, 2)
-    real(wp) :: q(3, 2), br(3, 2)
-    character(len=16) :: text
+    real(wp) :: q(3, 2), br(3, 2), lumps(3, self%nlump)
     logical :: unstretched
-    integer :: a
+    integer :: a, il(2), ib
     unstretched = self%unstretched
     if (present(mode)) unstretched = mode == "unstretched"
     y = 0.0_wp
     do a = 1, 2
-      call place_sling(self, a, hook_pos(:, a), hook_force(:, a), unstretched, y, q(:, a))
+      il = sling_range(self%lumps%q, self%nlump, a)
+      ib = self%block_r(1) + 3*(a - 1)
+      call lay_out_sling(self%sling, self%block_mass, hook_pos(:, a), hook_force(:, a), &
+                         unstretched, lumps, y(ib:ib + 2), q(:, a))
+      y(il(1):il(2)) = reshape(lumps, [3*self%nlump])
     end do
     if (present(hook_vel) .and. present(heads) .and. present(head_vel)) then
       call move_with_hooks(self, hook_pos, hook_vel, heads, head_vel, y)
     end if
     br = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
     call set_cable_lengths(self%falls_type, br, q, ship, unstretched, residual)
-    if (residual > residual_max) then
-      write (text, "(es10.3)") residual
-      call fatal_error(error, "rigging: no initial equilibrium: the falls miss a block's "// &
-                       "load by "//trim(adjustl(text))//" of it (at most 0.2): place the "// &
-                       "davit heads above the hooks")
-    end if
+    call check_start_residual(residual, error)
   end subroutine rigging_initial_state
 
   !> Velocities of the lumps and (massive) blocks as points of a rigid pendulum from each
@@ -502,53 +493,15 @@ contains
       iv = sling_range(self%lumps%u, self%nlump, a)
       do k = 1, self%nlump
         y(iv(1) + 3*(k - 1):iv(1) + 3*k - 1) = &
-          pendulum_velocity(y(il(1) + 3*(k - 1):il(1) + 3*k - 1), a)
+          pendulum_velocity(y(il(1) + 3*(k - 1):il(1) + 3*k - 1), heads(:, a), &
+                            hook_pos(:, a), head_vel(:, a), hook_vel(:, a))
       end do
       ib = self%block_r(1) + 3*(a - 1)
       y(self%block_v(1) + 3*(a - 1):self%block_v(1) + 3*a - 1) = &
-        pendulum_velocity(y(ib:ib + 2), a)
+        pendulum_velocity(y(ib:ib + 2), heads(:, a), hook_pos(:, a), head_vel(:, a), &
+                          hook_vel(:, a))
     end do
-  contains
-    pure function pendulum_velocity(p, a) result(v)
-      real(wp), intent(in) :: p(3)
-      integer, intent(in) :: a
-      real(wp) :: v(3), s
-      s = min(1.0_wp, norm2(p - heads(:, a))/max(norm2(hook_pos(:, a) - heads(:, a)), &
-                                                   tiny(1.0_wp)))
-      v = head_vel(:, a) + s*(hook_vel(:, a) - head_vel(:, a))
-    end function pendulum_velocity
   end subroutine move_with_hooks
-
-  !> Lay out sling a from its hook: segment k carries F_k = F_hook - (k-1) m_p g N3 (lump
-  !> statics), along F_k, stretched by |F_k|/k_seg; returns the cable force Q its block needs.
-  pure subroutine place_sling(self, a, hook, f_hook, unstretched, y, q)
-    type(rigging_type), intent(in) :: self
-    integer, intent(in) :: a
-    real(wp), intent(in) :: hook(3), f_hook(3)
-    logical, intent(in) :: unstretched
-    real(wp), intent(inout) :: y(:)
-    real(wp), intent(out) :: q(3)
-    real(wp) :: node(3), fk(3), up(3), ez(3)
-    integer :: k, n, il(2), ib
-    n = self%nlump
-    ez = [0.0_wp, 0.0_wp, 1.0_wp]
-    up = -ez
-    if (norm2(f_hook) > 0.0_wp) up = f_hook/norm2(f_hook)
-    node = hook
-    il = sling_range(self%lumps%q, n, a)
-    do k = 1, n + 1
-      fk = f_hook - real(k - 1, wp)*self%sling%m_lump*gravity*ez
-      if (unstretched .or. norm2(fk) <= 0.0_wp) then
-        node = node + self%sling%l0_seg*up
-      else
-        node = node + (self%sling%l0_seg + norm2(fk)/self%sling%k_seg)*fk/norm2(fk)
-      end if
-      if (k <= n) y(il(1) + 3*(k - 1):il(1) + 3*k - 1) = node
-    end do
-    ib = self%block_r(1) + 3*(a - 1)
-    y(ib:ib + 2) = node
-    q = fk - self%block_mass*gravity*ez
-  end subroutine place_sling
 
   !> Kinetic (lumps, blocks, sheaves) + gravity (-m g z) + elastic (slings, cables) [J],
   !> with the ship at its pose (its motion plays no part). The drum does work when it pays

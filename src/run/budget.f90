@@ -10,7 +10,7 @@ module davit_run_budget
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
   use davit_io_deck_reader, only: fmt_real
-  use davit_io_namelist, only: to_lower
+  use davit_io_namelist, only: to_lower, line_end
   implicit none
   private
   public :: check_run_budget, run_memory_estimate, memory_limit
@@ -254,12 +254,7 @@ contains
     inside = .false.
     i0 = 1
     do while (i0 <= len(text))
-      i1 = index(text(i0:), new_line("a"))
-      if (i1 == 0) then
-        i1 = len(text) + 1
-      else
-        i1 = i0 + i1 - 1
-      end if
+      i1 = line_end(text, i0)
       lineno = lineno + 1
       s = to_lower(text(i0:i1 - 1))
       k = index(s, "!")

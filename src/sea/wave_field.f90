@@ -225,16 +225,24 @@ contains
   pure real(wp) function wave_elevation(field, t, x, y) result(eta)
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t, x, y
-    real(wp) :: th(chunk), s(chunk), c(chunk), r
-    integer :: i0, m
+    real(wp) :: s(chunk), c(chunk)
     eta = 0.0_wp
     if (field%kind == wave_none) return
-    r = wave_ramp(field, t)
+    call ramped_elevation(field, t, x, y, wave_ramp(field, t), eta, s, c)
+  end function wave_elevation
+
+  !> The elevation at (x, y) at time t: the components' sum of a cos(theta), ramped by r
+  !> (with the second-order Stokes term of a regular 'stokes2' wave); s, c keep the last
+  !> block's sin(theta), cos(theta) (every component's while n <= chunk).
+  pure subroutine ramped_elevation(field, t, x, y, r, eta, s, c)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y, r
+    real(wp), intent(out) :: eta, s(:), c(:)
+    integer :: i0, m
+    eta = 0.0_wp
     do i0 = 1, field%n, chunk
       m = min(chunk, field%n - i0 + 1)
-      th(1:m) = field%omega(i0:i0 + m - 1)*t + field%phase(i0:i0 + m - 1) - &
-                field%kx(i0:i0 + m - 1)*x - field%ky(i0:i0 + m - 1)*y
-      call fast_sincos(th(1:m), s(1:m), c(1:m))
+      call component_phases(field, i0, m, t, x, y, s, c)
       eta = eta + sum(field%amplitude(i0:i0 + m - 1)*c(1:m))
     end do
     if (field%kind == wave_stokes2) then
@@ -242,7 +250,7 @@ contains
     else
       eta = r*eta
     end if
-  end function wave_elevation
+  end subroutine ramped_elevation
 
   !> Second-order Stokes term k a^2/2 cos(2 theta) of the (ramped) regular wave, from the
   !> unramped first-order elevation eta1 = a cos(theta): cos(2 theta) = 2 cos^2 - 1.
@@ -270,16 +278,7 @@ contains
     eta = 0.0_wp
     if (field%kind == wave_none) return
     r = wave_ramp(field, t)
-    do i0 = 1, field%n, chunk
-      m = min(chunk, field%n - i0 + 1)
-      call component_phases(field, i0, m, t, p(1), p(2), s, c)
-      eta = eta + sum(field%amplitude(i0:i0 + m - 1)*c(1:m))
-    end do
-    if (field%kind == wave_stokes2) then
-      eta = r*eta + stokes_correction(field, eta, r)
-    else
-      eta = r*eta
-    end if
+    call ramped_elevation(field, t, p(1), p(2), r, eta, s, c)
     d = p(3) + eta
     if (d < 0.0_wp) return
     ! a exp(-k d) w: the orbital speed of each component at the stretched depth (one block:
@@ -343,13 +342,7 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: t
     real(wp), intent(out) :: ca(:), sa(:)
-    real(wp) :: th(chunk)
-    integer :: i0, i1
-    do i0 = 1, field%n, chunk
-      i1 = min(field%n, i0 + chunk - 1)
-      th(1:i1 - i0 + 1) = field%omega(i0:i1)*t + field%phase(i0:i1)
-      call fast_sincos(th(1:i1 - i0 + 1), sa(i0:i1), ca(i0:i1))
-    end do
+    call phase_sincos(field, t, .true., sa, ca)
     ca = field%amplitude*ca
     sa = field%amplitude*sa
   end subroutine time_phasors
@@ -359,14 +352,27 @@ contains
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: dt
     real(wp), intent(out) :: cr(:), sr(:)
+    call phase_sincos(field, dt, .false., sr, cr)
+  end subroutine rotation_phasors
+
+  !> sin and cos of every component's phase w t (+ eps with with_phase), a chunk at a time.
+  pure subroutine phase_sincos(field, t, with_phase, s, c)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t
+    logical, intent(in) :: with_phase
+    real(wp), intent(out) :: s(:), c(:)
     real(wp) :: th(chunk)
     integer :: i0, i1
     do i0 = 1, field%n, chunk
       i1 = min(field%n, i0 + chunk - 1)
-      th(1:i1 - i0 + 1) = field%omega(i0:i1)*dt
-      call fast_sincos(th(1:i1 - i0 + 1), sr(i0:i1), cr(i0:i1))
+      if (with_phase) then
+        th(1:i1 - i0 + 1) = field%omega(i0:i1)*t + field%phase(i0:i1)
+      else
+        th(1:i1 - i0 + 1) = field%omega(i0:i1)*t
+      end if
+      call fast_sincos(th(1:i1 - i0 + 1), s(i0:i1), c(i0:i1))
     end do
-  end subroutine rotation_phasors
+  end subroutine phase_sincos
 
   !> Advance time phasors by the rotation (cr, sr): angle addition, no trigonometry.
   pure subroutine advance_phasors(ca, sa, cr, sr)

@@ -98,7 +98,7 @@ contains
     end associate
     par%bem_water = .true.
     call par%layout%add("boat_radiation", par%bem%db%nrad + 1, 0, par%radiation_part)
-    call par%layout%couple_modal(par%boat_part%u, par%bem%modes)
+    call par%layout%couple(par%boat_part%u, par%bem%modes, modal=.true.)
   end subroutine new_boat_water
 
   !> The davit rigging in place of the foundation slings, its parts after the boat's.
