@@ -44,9 +44,23 @@ def newcombe_difference(k1, n1, k2, n2, confidence=CONFIDENCE):
             d + math.sqrt((u1 - p1) ** 2 + (p2 - l2) ** 2))
 
 
-def _binom_cdf(k, n, p):
-    """P(X <= k) for X ~ Binomial(n, p)."""
-    return sum(math.comb(n, i) * p ** i * (1 - p) ** (n - i) for i in range(0, k + 1))
+def _binom_cdfs(n, p):
+    """P(X <= k), k = 0..n, for X ~ Binomial(n, p), from the pmf in log space (the exact
+    integer binomial coefficients overflow a float beyond n ~ 1000: a pooled sweep)."""
+    k = np.arange(n + 1)
+    if p <= 0.0 or p >= 1.0:
+        return np.where(k >= (0 if p <= 0.0 else n), 1.0, 0.0)
+    logc = np.array([math.lgamma(n + 1) - math.lgamma(i + 1) - math.lgamma(n - i + 1)
+                     for i in k])
+    return np.cumsum(np.exp(logc + k * math.log(p) + (n - k) * math.log1p(-p)))
+
+
+def _binom_cdf(k, n, p, cdfs=None):
+    """P(X <= k) for X ~ Binomial(n, p) (0 for k < 0)."""
+    if k < 0:
+        return 0.0
+    cdfs = _binom_cdfs(n, p) if cdfs is None else cdfs
+    return float(cdfs[min(k, n)])
 
 
 def quantile_interval(x, q, confidence=CONFIDENCE):
@@ -56,11 +70,12 @@ def quantile_interval(x, q, confidence=CONFIDENCE):
     x = np.sort(np.asarray(x, dtype=float))
     n = x.size
     centre = int(math.floor(n * q))
+    cdfs = _binom_cdfs(n, q)
     for width in range(0, n + 1):
         lo, hi = max(centre - width, 1), min(centre + width + 1, n)
         # the q-quantile lies in [x_(lo), x_(hi)] unless fewer than lo or at least hi of
         # the n draws fall below it
-        cover = _binom_cdf(hi - 1, n, q) - _binom_cdf(lo - 1, n, q)
+        cover = _binom_cdf(hi - 1, n, q, cdfs) - _binom_cdf(lo - 1, n, q, cdfs)
         if cover >= confidence:
             return float(x[lo - 1]), float(x[hi - 1])
         if lo == 1 and hi == n:
