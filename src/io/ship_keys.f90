@@ -155,7 +155,8 @@ contains
                   [character(len=8) :: "kijima", "mmg"], &
                   "Horizontal-plane forces: linear Kijima hull derivatives, cross-flow "// &
                   "drag and a constant thrust ('kijima'), or the standard MMG model with "// &
-                  "propeller and rudder of group &mmg ('mmg', box ship only).")
+                  "propeller and rudder of group &mmg ('mmg'; on the BEM ship the seakeeping "// &
+                  "frame moves with the headway: encounter frequencies).")
     call read_mmg(r, s%mmg, s%rps, s%rudder)
   end subroutine read_ship_model
 
