@@ -37,7 +37,8 @@ module davit_ship_ship_model
   use davit_ship_wind_load, only: ship_wind_load
   use davit_ship_mmg, only: mmg_type, mmg_self_propulsion
   use davit_ship_mmg_loads, only: mmg_body_load
-  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch
+  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
+                               autopilot_integral_rate
   use davit_ship_wave_drift, only: drift_none, drift_coefficients, drift_load
   implicit none
   private
@@ -103,7 +104,8 @@ module davit_ship_ship_model
     type(mmg_type) :: mmg
     real(wp) :: rps = 0.0_wp
     type(rudder_type) :: steer
-    type(state_part_type) :: rudder
+    !> The autopilot's integral of the heading error: part "ship_autopilot" (ki > 0 only).
+    type(state_part_type) :: rudder, autopilot
     !> The BEM ship's wave drift (davit_ship_wave_drift: drift_none, drift_mean, drift_newman)
     !> and its coefficients a_i sqrt(|D_i|) sign(D_i) (surge, sway, yaw) at heading psi_ref.
     integer :: drift = drift_none
@@ -267,6 +269,8 @@ contains
     self%frame_speed = headway
     self%frame_velocity = headway*[cos(self%psi_ref), sin(self%psi_ref)]
     call self%layout%add("ship_rudder", 1, 0, self%rudder)
+    if (steer%mode == "autopilot" .and. steer%ki > 0.0_wp) &
+      call self%layout%add("ship_autopilot", 1, 0, self%autopilot)
   end subroutine set_mmg
 
   subroutine ship_after_step(self, t, y)
@@ -381,8 +385,7 @@ contains
         load = ship_loads(self, t, q, u, c)
         dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
         dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
-        if (self%mmg_on) call mmg_blocks(self, t, q, u, c, y(self%rudder%q(1)), load, &
-                                         dydt(self%rudder%q(1)))
+        if (self%mmg_on) call mmg_blocks(self, t, q, u, c, y, load, dydt)
         if (self%control%q(2) >= self%control%q(1)) then
           call integral_control(self, q, c, y(self%control%q(1):self%control%q(2)), load, &
                                 dydt(self%control%q(1):self%control%q(2)))
@@ -405,20 +408,30 @@ contains
     end associate
   end subroutine ship_kane_blocks
 
-  !> The MMG loads at rudder angle delta, added to `load`, and the steering gear's rate.
-  pure subroutine mmg_blocks(self, t, q, u, c, delta, load, delta_dot)
+  !> The MMG loads at the rudder angle of state y, added to `load`, and the rates of the
+  !> steering gear and of the autopilot's integral (into dydt).
+  pure subroutine mmg_blocks(self, t, q, u, c, y, load, dydt)
     type(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: t, q(6), u(6), c(3, 3), delta
-    real(wp), intent(inout) :: load(6)
-    real(wp), intent(out) :: delta_dot
-    real(wp) :: a(2)
+    real(wp), intent(in) :: t, q(6), u(6), c(3, 3), y(:)
+    real(wp), intent(inout) :: load(6), dydt(:)
+    real(wp) :: a(2), order
+    integer :: k
     ! the horizontal added masses that the ship's mass matrix holds: the MMG set's on the
     ! box (davit_ship_hull), the BEM ship's A(inf) (its memory adds the rest at low frequency)
     a = self%hull%added_mass(1:2)
     if (self%bem) a = [self%hydro%db%added_mass_inf(1, 1), self%hydro%db%added_mass_inf(2, 2)]
-    load = load + mmg_body_load(self%mmg, self%hull%cg_x, a(1), a(2), level_to_body(q(3), c), &
-                                u, delta, self%rps)
-    delta_dot = rudder_rate(self%steer, delta, rudder_order(self%steer, t, q(3), u(3)))
+    associate (delta => y(self%rudder%q(1)))
+      load = load + mmg_body_load(self%mmg, self%hull%cg_x, a(1), a(2), &
+                                  level_to_body(q(3), c), u, delta, self%rps)
+      if (self%autopilot%q(2) >= self%autopilot%q(1)) then
+        k = self%autopilot%q(1)
+        order = rudder_order(self%steer, t, q(3), u(3), y(k))
+        dydt(k) = autopilot_integral_rate(self%steer, q(3), y(k))
+      else
+        order = rudder_order(self%steer, t, q(3), u(3))
+      end if
+      dydt(self%rudder%q(1)) = rudder_rate(self%steer, delta, order)
+    end associate
   end subroutine mmg_blocks
 
   !> The integral term of the heading and station keeping: its states z integrate the
