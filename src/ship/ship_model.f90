@@ -269,8 +269,9 @@ contains
     self%frame_speed = headway
     self%frame_velocity = headway*[cos(self%psi_ref), sin(self%psi_ref)]
     call self%layout%add("ship_rudder", 1, 0, self%rudder)
-    if (steer%mode == "autopilot" .and. steer%ki > 0.0_wp) &
+    if (steer%mode == "autopilot" .and. steer%ki > 0.0_wp) then
       call self%layout%add("ship_autopilot", 1, 0, self%autopilot)
+    end if
   end subroutine set_mmg
 
   subroutine ship_after_step(self, t, y)
