@@ -19,7 +19,8 @@ and the ship alone:
 
 Level 5 at 45 deg (stern-quartering sea and 10 m/s wind from the port quarter) is not held
 within 2 deg by this rudder at 5 kn (2.58 deg measured; doc/howto/manoeuvres.md), so it is
-not asserted here.
+not asserted here; nor is the heading beyond the launch: run longer, the rate-limited
+rudder falls into a growing oscillation after 100-200 s (doc/howto/manoeuvres.md).
 """
 import re
 
