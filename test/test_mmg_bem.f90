@@ -10,7 +10,8 @@ module test_mmg_bem
   use davit_io_config, only: config_type, parse_config
   use davit_core_rotation, only: rotation_matrix
   use davit_ship_ship_model, only: ship_system_type, ship_loads
-  use davit_ship_rudder, only: rudder_type, rudder_order, autopilot_integral_rate
+  use davit_ship_rudder, only: rudder_type, rudder_order, autopilot_integral_rate, &
+                               autopilot_order, autopilot_states
   use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -31,7 +32,8 @@ contains
     suite%cases = [new_case("encounter_frequency_head_and_following", encounter), &
                    new_case("encounter_rate_in_the_wave_clock", wave_clock), &
                    new_case("calm_water_speed_held_at_self_propulsion", calm_speed), &
-                   new_case("autopilot_integral_by_hand", integral_orders)]
+                   new_case("autopilot_integral_by_hand", integral_orders), &
+                   new_case("autopilot_wave_filter_by_hand", wave_filter)]
   end function collect_mmg_bem
 
   !> The SOLAS headway deck as the ship alone ('ship' scene), its text with each
@@ -238,5 +240,44 @@ contains
     call check(state, autopilot_integral_rate(s, 0.07_wp, 7.0_wp), -0.03_wp, &
                "free when the error turns", abs_tol=1e-14_wp)
   end subroutine integral_orders
+
+  !> The autopilot's wave filter by hand (time constant T = 5 s): states x = (z, e_f, r_f)
+  !> with rates ((e_f), (psi - psi_0 - e_f)/T, (r - r_f)/T), the order -kp e_f - kd r_f -
+  !> ki z on the filtered error and rate; unfiltered (T = 0) the order takes psi and r and
+  !> the filter states rest; a PD keeps no states, a PID or a filtered PD three.
+  subroutine wave_filter(state)
+    type(case_state), intent(inout) :: state
+    type(rudder_type) :: s
+    real(wp) :: order, xdot(3), x(3)
+    s%mode = "autopilot"
+    s%kp = 10.0_wp
+    s%kd = 20.0_wp
+    s%ki = 0.1_wp
+    s%max_angle = 35.0_wp*deg
+    s%heading = 0.1_wp
+    s%filter = 5.0_wp
+    x = [0.2_wp, 0.01_wp, -0.002_wp]
+    call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
+    call check(state, order, -10.0_wp*0.01_wp - 20.0_wp*(-0.002_wp) - 0.1_wp*0.2_wp, &
+               "order on the filtered error and rate", abs_tol=1e-14_wp)
+    call check(state, xdot(1), 0.01_wp, "integral of the filtered error", abs_tol=1e-14_wp)
+    call check(state, xdot(2), (0.03_wp - 0.01_wp)/5.0_wp, "error filter rate", &
+               abs_tol=1e-14_wp)
+    call check(state, xdot(3), (0.004_wp + 0.002_wp)/5.0_wp, "yaw-rate filter rate", &
+               abs_tol=1e-14_wp)
+    s%filter = 0.0_wp
+    call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
+    call check(state, order, -10.0_wp*0.03_wp - 20.0_wp*0.004_wp - 0.1_wp*0.2_wp, &
+               "unfiltered order", abs_tol=1e-14_wp)
+    call check(state, abs(xdot(2)) + abs(xdot(3)), 0.0_wp, "filter states rest", &
+               abs_tol=0.0_wp)
+    call check(state, real(autopilot_states(s), wp), 3.0_wp, "PID: three states", &
+               abs_tol=0.0_wp)
+    s%ki = 0.0_wp
+    call check(state, real(autopilot_states(s), wp), 0.0_wp, "PD: none", abs_tol=0.0_wp)
+    s%filter = 5.0_wp
+    call check(state, real(autopilot_states(s), wp), 3.0_wp, "filtered PD: three", &
+               abs_tol=0.0_wp)
+  end subroutine wave_filter
 
 end module test_mmg_bem

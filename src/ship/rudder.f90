@@ -7,7 +7,7 @@ module davit_ship_rudder
   implicit none
   private
   public :: rudder_type, rudder_order, rudder_rate, rudder_switch, rudder_servo_time, &
-            autopilot_integral_rate
+            autopilot_integral_rate, autopilot_order, autopilot_states
 
   !> Time constant [s] of the servo inside the rate limit: delta' = (order - delta)/tau,
   !> clipped to the rudder rate. Small against every manoeuvre (the rate limit governs a
@@ -26,6 +26,9 @@ module davit_ship_rudder
     !> Autopilot gains: rudder per heading error [-], per yaw rate [s] and per time
     !> integral of the heading error [1/s] (0: a PD autopilot, no integral state).
     real(wp) :: kp = 0.0_wp, kd = 0.0_wp, ki = 0.0_wp
+    !> Time constant [s] of the autopilot's wave filter: the heading error and yaw rate it
+    !> acts on pass a first-order low-pass filter (0: unfiltered).
+    real(wp) :: filter = 0.0_wp
     !> Heading held by the autopilot and from which zig-zags are counted [rad].
     real(wp) :: heading = 0.0_wp
     !> Zig-zag side, +1 while the order is to starboard, -1 to port (rudder_switch).
@@ -65,6 +68,36 @@ contains
     zdot = psi - self%heading
     if (self%ki*abs(z) >= self%max_angle .and. zdot*z > 0.0_wp) zdot = 0.0_wp
   end function autopilot_integral_rate
+
+  !> How many states the autopilot keeps (part "ship_autopilot"): its integral z and the
+  !> filtered heading error and yaw rate, or none for a plain PD.
+  pure integer function autopilot_states(self) result(n)
+    type(rudder_type), intent(in) :: self
+    n = 0
+    if (self%mode == "autopilot" .and. (self%ki > 0.0_wp .or. self%filter > 0.0_wp)) n = 3
+  end function autopilot_states
+
+  !> The autopilot's order at time t for heading psi and yaw rate r with its states
+  !> x = (z, e_f, r_f) and their rates: the wave filter e_f' = (psi - psi_0 - e_f)/T,
+  !> r_f' = (r - r_f)/T (T = filter; off: e_f, r_f unused), the PID on the filtered
+  !> error and rate, the integral of the filtered error.
+  pure subroutine autopilot_order(self, t, psi, r, x, order, xdot)
+    type(rudder_type), intent(in) :: self
+    real(wp), intent(in) :: t, psi, r, x(3)
+    real(wp), intent(out) :: order, xdot(3)
+    real(wp) :: pf, rf
+    pf = psi
+    rf = r
+    xdot(2:3) = 0.0_wp
+    if (self%filter > 0.0_wp) then
+      pf = self%heading + x(2)
+      rf = x(3)
+      xdot(2) = (psi - self%heading - x(2))/self%filter
+      xdot(3) = (r - x(3))/self%filter
+    end if
+    order = rudder_order(self, t, pf, rf, x(1))
+    xdot(1) = autopilot_integral_rate(self, pf, x(1))
+  end subroutine autopilot_order
 
   !> The steering gear: delta' = (order - delta)/tau within +-rate.
   pure real(wp) function rudder_rate(self, delta, order) result(rate)

@@ -38,7 +38,7 @@ module davit_ship_ship_model
   use davit_ship_mmg, only: mmg_type, mmg_self_propulsion
   use davit_ship_mmg_loads, only: mmg_body_load
   use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
-                               autopilot_integral_rate
+                               autopilot_order, autopilot_states
   use davit_ship_wave_drift, only: drift_none, drift_coefficients, drift_load
   implicit none
   private
@@ -104,7 +104,7 @@ module davit_ship_ship_model
     type(mmg_type) :: mmg
     real(wp) :: rps = 0.0_wp
     type(rudder_type) :: steer
-    !> The autopilot's integral of the heading error: part "ship_autopilot" (ki > 0 only).
+    !> The autopilot's states (integral, wave filter): part "ship_autopilot" (PID only).
     type(state_part_type) :: rudder, autopilot
     !> The BEM ship's wave drift (davit_ship_wave_drift: drift_none, drift_mean, drift_newman)
     !> and its coefficients a_i sqrt(|D_i|) sign(D_i) (surge, sway, yaw) at heading psi_ref.
@@ -269,8 +269,8 @@ contains
     self%frame_speed = headway
     self%frame_velocity = headway*[cos(self%psi_ref), sin(self%psi_ref)]
     call self%layout%add("ship_rudder", 1, 0, self%rudder)
-    if (steer%mode == "autopilot" .and. steer%ki > 0.0_wp) then
-      call self%layout%add("ship_autopilot", 1, 0, self%autopilot)
+    if (autopilot_states(steer) > 0) then
+      call self%layout%add("ship_autopilot", autopilot_states(steer), 0, self%autopilot)
     end if
   end subroutine set_mmg
 
@@ -426,8 +426,7 @@ contains
                                   level_to_body(q(3), c), u, delta, self%rps)
       if (self%autopilot%q(2) >= self%autopilot%q(1)) then
         k = self%autopilot%q(1)
-        order = rudder_order(self%steer, t, q(3), u(3), y(k))
-        dydt(k) = autopilot_integral_rate(self%steer, q(3), y(k))
+        call autopilot_order(self%steer, t, q(3), u(3), y(k:k + 2), order, dydt(k:k + 2))
       else
         order = rudder_order(self%steer, t, q(3), u(3))
       end if
