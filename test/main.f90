@@ -31,6 +31,7 @@ program main
   use test_multirate, only: collect_multirate
   use test_capi, only: collect_capi
   use test_mmg, only: collect_mmg
+  use test_mmg_bem, only: collect_mmg_bem
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -57,7 +58,7 @@ program main
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
             collect_assess(), collect_adaptive(), collect_core(), &
             collect_wave_grid(), collect_multirate(), collect_block_balance(), &
-            collect_capi(), collect_mmg()]
+            collect_capi(), collect_mmg(), collect_mmg_bem()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

@@ -155,6 +155,13 @@ contains
                 "Autopilot: rudder angle per heading error.")
     call r%real(g, "autopilot_derivative", s%kd, 10.0_wp, 0.0_wp, 1000.0_wp, "s", &
                 "Autopilot: rudder angle per yaw rate (the D of the PD).")
+    call r%real(g, "autopilot_integral", s%ki, 0.0_wp, 0.0_wp, 10.0_wp, "1/s", &
+                "Autopilot: rudder angle per time integral of the heading error (the I "// &
+                "of a PID, against steady yaw moments such as the wind's); 0 = PD only.")
+    call r%real(g, "autopilot_filter", s%filter, 0.0_wp, 0.0_wp, 100.0_wp, "s", &
+                "Autopilot: time constant of its wave filter, a first-order low-pass on "// &
+                "the heading error and yaw rate it steers by, so that the rudder does not "// &
+                "chase the wave-frequency yaw; 0 = unfiltered.")
   end subroutine read_steering
 
 end module davit_io_mmg_keys

@@ -106,7 +106,8 @@ contains
     s%heading = s%heading*deg
     call r%real(g, "headway", s%headway, 0.0_wp, 0.0_wp, 15.0_wp, "m/s", &
                 "Initial forward speed, held by a constant thrust equal to the resistance "// &
-                "(manoeuvring = 'kijima') or by the propeller (manoeuvring = 'mmg'); "// &
+                "(manoeuvring = 'kijima') or by the propeller (manoeuvring = 'mmg', "// &
+                "whose seakeeping frame moves at it: encounter frequencies); "// &
                 "SOLAS/LSA launching with headway up to 5 kn = 2.57 m/s.")
     call r%logical(g, "frozen", s%frozen, .false., &
                    "Hold the ship fixed (III.A's fixed platform; or to isolate the boat).")
@@ -155,7 +156,8 @@ contains
                   [character(len=8) :: "kijima", "mmg"], &
                   "Horizontal-plane forces: linear Kijima hull derivatives, cross-flow "// &
                   "drag and a constant thrust ('kijima'), or the standard MMG model with "// &
-                  "propeller and rudder of group &mmg ('mmg', box ship only).")
+                  "propeller and rudder of group &mmg ('mmg'; on the BEM ship the seakeeping "// &
+                  "frame moves with the headway: encounter frequencies).")
     call read_mmg(r, s%mmg, s%rps, s%rudder)
   end subroutine read_ship_model
 

@@ -140,16 +140,20 @@ contains
   end function mmg_total
 
   !> The propeller revolutions [1/s] that hold the speed u in straight running with the
-  !> rudder amidships: (1 - t_P) T(n) = R_0, a quadratic in n (the rudder's normal force
-  !> vanishes there, alpha_R = 0).
-  pure real(wp) function mmg_self_propulsion(p, u) result(n)
+  !> rudder amidships: (1 - t_P) T(n) = R_0 (+ `extra` [N], a further resistance such as
+  !> the windage in still air), a quadratic in n (the rudder's normal force vanishes
+  !> there, alpha_R = 0).
+  pure real(wp) function mmg_self_propulsion(p, u, extra) result(n)
     type(mmg_type), intent(in) :: p
     real(wp), intent(in) :: u
-    real(wp) :: up, a, b, c
+    real(wp), intent(in), optional :: extra
+    real(wp) :: up, a, b, c, r
     up = u*(1.0_wp - p%wp0)
     a = p%k0*p%dp**4
     b = p%k1*p%dp**3*up
-    c = p%k2*p%dp**2*up**2 - 0.5_wp*p%lpp*p%draught*u**2*p%r0/(1.0_wp - p%tp)
+    r = 0.5_wp*p%lpp*p%draught*u**2*p%r0
+    if (present(extra)) r = r + extra/rho_water
+    c = p%k2*p%dp**2*up**2 - r/(1.0_wp - p%tp)
     n = (-b + sqrt(max(b*b - 4.0_wp*a*c, 0.0_wp)))/(2.0_wp*a)
   end function mmg_self_propulsion
 

@@ -14,14 +14,20 @@
 !> BEM ship ('bem', davit_ship_bem_loads: Cummins' equation from a Capytaine database,
 !> whose radiation memory adds a second part "ship_radiation" of states to the layout).
 !> The manoeuvring, cross-flow, resistance, wind and heading-keeping loads serve both.
+!> With the MMG model (set_mmg) the ship making way is split in two time scales: the
+!> manoeuvring forces in the horizontal-body frame, the linear seakeeping (wave loads,
+!> radiation memory) about a frame moving at the headway along the initial heading, so
+!> the waves are met at their encounter frequencies and the memory (zero-speed kernels)
+!> sees only the motions about the steady forward speed.
 module davit_ship_ship_model
-  use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
-  use davit_kinds, only: wp, pi, gravity, rho_water
-  use davit_core_rotation, only: rotation_matrix, euler_rates, cross
-  use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates, kane_at_rest
+  use davit_kinds, only: wp, pi, rho_water
+  use davit_core_rotation, only: rotation_matrix, euler_rates
+  use davit_core_kane, only: kane_rates, kane_at_rest
   use davit_core_layout, only: state_layout_type, state_part_type
   use davit_ship_bem_loads, only: bem_ship_type, bem_wave_coefficients, bem_restoring, &
-                                  bem_memory, seakeeping_mass, turn_to_body, solve_small
+                                  bem_memory, turn_to_body
+  use davit_ship_ship_blocks, only: box_blocks, bem_blocks
+  use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_solve_integrator, only: ode_problem
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp, wave_chunk, &
                                   component_phases
@@ -31,7 +37,8 @@ module davit_ship_ship_model
   use davit_ship_wind_load, only: ship_wind_load
   use davit_ship_mmg, only: mmg_type, mmg_self_propulsion
   use davit_ship_mmg_loads, only: mmg_body_load
-  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch
+  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
+                               autopilot_order, autopilot_states
   use davit_ship_wave_drift, only: drift_none, drift_coefficients, drift_load
   implicit none
   private
@@ -60,6 +67,12 @@ module davit_ship_ship_model
     !> gains a second-order mean part and the ship drifts at ~1 m/s in 2 m beam waves.
     logical :: phase_at_initial = .true.
     real(wp) :: origin(2) = 0.0_wp
+    !> The seakeeping frame of a ship making way (set_mmg): it moves at the headway U along
+    !> the initial heading, frame_velocity = U (cos psi_0, sin psi_0) [m/s], so the linear
+    !> wave loads see the phase at origin + frame_velocity t, hence the encounter
+    !> frequency omega_e = omega - k U cos(beta); the radiation memory is fed the speeds
+    !> relative to it, (u - U, v, w) (frame_speed = U). Zero: the frame at rest.
+    real(wp) :: frame_velocity(2) = 0.0_wp, frame_speed = 0.0_wp
     !> Optional soft mooring of surge, sway and yaw (stiffness and damping), used by the RAO
     !> runs to hold the mean position and heading as a frequency-domain RAO assumes, and as
     !> the heading (and station) keeping of the 'launch' scene, where an integral term
@@ -91,7 +104,8 @@ module davit_ship_ship_model
     type(mmg_type) :: mmg
     real(wp) :: rps = 0.0_wp
     type(rudder_type) :: steer
-    type(state_part_type) :: rudder
+    !> The autopilot's states (integral, wave filter): part "ship_autopilot" (PID only).
+    type(state_part_type) :: rudder, autopilot
     !> The BEM ship's wave drift (davit_ship_wave_drift: drift_none, drift_mean, drift_newman)
     !> and its coefficients a_i sqrt(|D_i|) sign(D_i) (surge, sway, yaw) at heading psi_ref.
     integer :: drift = drift_none
@@ -230,19 +244,34 @@ contains
 
   !> Switch to the MMG manoeuvring model p with the steering `steer` (its heading: the
   !> initial one) and the propeller at `rps` (0: the self-propulsion point at `headway`);
-  !> the rudder angle joins the state as part "ship_rudder".
+  !> the rudder angle joins the state as part "ship_rudder". The seakeeping frame then
+  !> moves at `headway` along the initial heading (the two-time-scale split: manoeuvring
+  !> in the horizontal-body frame, seakeeping about this steady motion).
   subroutine set_mmg(self, p, steer, rps, headway)
     class(ship_system_type), intent(inout) :: self
     type(mmg_type), intent(in) :: p
     type(rudder_type), intent(in) :: steer
     real(wp), intent(in) :: rps, headway
+    real(wp) :: air(6), extra
     self%mmg_on = .true.
     self%mmg = p
     self%steer = steer
     self%steer%heading = self%psi_ref
     self%rps = rps
-    if (rps <= 0.0_wp) self%rps = mmg_self_propulsion(p, headway)
+    ! the self-propulsion point overcomes the hull's R_0 and the windage in still air
+    extra = 0.0_wp
+    if (self%hull%empirical) then
+      air = ship_wind_load(self%hull%wind, [-headway, 0.0_wp, 0.0_wp])
+      extra = -air(1)
+    end if
+    if (rps <= 0.0_wp) self%rps = mmg_self_propulsion(p, headway, extra)
+    ! the seakeeping frame moves with the ship's mean heading and speed
+    self%frame_speed = headway
+    self%frame_velocity = headway*[cos(self%psi_ref), sin(self%psi_ref)]
     call self%layout%add("ship_rudder", 1, 0, self%rudder)
+    if (autopilot_states(steer) > 0) then
+      call self%layout%add("ship_autopilot", autopilot_states(steer), 0, self%autopilot)
+    end if
   end subroutine set_mmg
 
   subroutine ship_after_step(self, t, y)
@@ -287,20 +316,24 @@ contains
     type(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t
     real(wp), intent(out) :: load(6), rate(6)
-    real(wp) :: s(wave_chunk), cs(wave_chunk)
+    real(wp) :: s(wave_chunk), cs(wave_chunk), o(2), we(wave_chunk)
     integer :: j, i0, i1, m
     load = 0.0_wp
     rate = 0.0_wp
+    o = phase_origin(self, t)
     associate (sea => self%sea)
       do i0 = 1, sea%n, wave_chunk
         m = min(wave_chunk, sea%n - i0 + 1)
         i1 = i0 + m - 1
-        call component_phases(sea, i0, m, t, self%origin(1), self%origin(2), s, cs)
+        call component_phases(sea, i0, m, t, o(1), o(2), s, cs)
+        ! the phase's rate: the encounter frequency in the moving frame
+        we(1:m) = sea%omega(i0:i1) - sea%kx(i0:i1)*self%frame_velocity(1) - &
+                  sea%ky(i0:i1)*self%frame_velocity(2)
         do j = 1, 6
           load(j) = load(j) + sum(self%fk_sin(j, i0:i1)*s(1:m)) + &
                     sum(self%fk_cos(j, i0:i1)*cs(1:m))
-          rate(j) = rate(j) + sum(sea%omega(i0:i1)*(self%fk_sin(j, i0:i1)*cs(1:m) - &
-                                                    self%fk_cos(j, i0:i1)*s(1:m)))
+          rate(j) = rate(j) + sum(we(1:m)*(self%fk_sin(j, i0:i1)*cs(1:m) - &
+                                           self%fk_cos(j, i0:i1)*s(1:m)))
         end do
       end do
     end associate
@@ -342,7 +375,7 @@ contains
     class(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(inout) :: dydt(:), kane(:, :)
-    real(wp) :: c(3, 3), m(3, 3), load(6), mu(6)
+    real(wp) :: c(3, 3), m(3, 3), load(6), mu(6), vh(3)
     if (self%frozen) then
       call kane_at_rest(dydt, kane)
       return
@@ -353,38 +386,52 @@ contains
         load = ship_loads(self, t, q, u, c)
         dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
         dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
-        if (self%mmg_on) call mmg_blocks(self, t, q, u, c, y(self%rudder%q(1)), load, &
-                                         dydt(self%rudder%q(1)))
+        if (self%mmg_on) call mmg_blocks(self, t, q, u, c, y, load, dydt)
         if (self%control%q(2) >= self%control%q(1)) then
           call integral_control(self, q, c, y(self%control%q(1):self%control%q(2)), load, &
                                 dydt(self%control%q(1):self%control%q(2)))
         end if
         if (self%bem) then
           ! the memory of Cummins' equation in the seakeeping frame (bem_loads): fed the
-          ! speeds resolved there, its load turned into ship axes
+          ! speeds resolved there relative to the frame's own (u - U: zero-speed memory
+          ! functions about the steady forward motion), its load turned into ship axes
           m = level_to_body(q(3), c)
-          call bem_memory(self%hydro%db, y(r%q(1):r%q(2)), &
-                          [matmul(transpose(m), u(4:6)), matmul(transpose(m), u(1:3))], &
+          vh = matmul(transpose(m), u(4:6))
+          if (self%frame_speed /= 0.0_wp) vh(1) = vh(1) - self%frame_speed
+          call bem_memory(self%hydro%db, y(r%q(1):r%q(2)), [vh, matmul(transpose(m), u(1:3))], &
                           dydt(r%q(1):r%q(2)), mu)
-          call bem_blocks(self, u, m, load - turn_to_body(m, mu), kane(:, b%u(1):b%u(2)))
+          call bem_blocks(self%hydro, self%hull%restrained, u, m, load - turn_to_body(m, mu), &
+                          kane(:, b%u(1):b%u(2)))
         else
-          call box_blocks(self, u, level_to_body(q(3), c), load, kane(:, b%u(1):b%u(2)))
+          call box_blocks(self%hull, u, level_to_body(q(3), c), load, kane(:, b%u(1):b%u(2)))
         end if
       end associate
     end associate
   end subroutine ship_kane_blocks
 
-  !> The MMG loads at rudder angle delta, added to `load`, and the steering gear's rate.
-  pure subroutine mmg_blocks(self, t, q, u, c, delta, load, delta_dot)
+  !> The MMG loads at the rudder angle of state y, added to `load`, and the rates of the
+  !> steering gear and of the autopilot's integral (into dydt).
+  pure subroutine mmg_blocks(self, t, q, u, c, y, load, dydt)
     type(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: t, q(6), u(6), c(3, 3), delta
-    real(wp), intent(inout) :: load(6)
-    real(wp), intent(out) :: delta_dot
-    associate (h => self%hull)
-      load = load + mmg_body_load(self%mmg, h%cg_x, h%added_mass(1), h%added_mass(2), &
+    real(wp), intent(in) :: t, q(6), u(6), c(3, 3), y(:)
+    real(wp), intent(inout) :: load(6), dydt(:)
+    real(wp) :: a(2), order
+    integer :: k
+    ! the horizontal added masses that the ship's mass matrix holds: the MMG set's on the
+    ! box (davit_ship_hull), the BEM ship's A(inf) (its memory adds the rest at low frequency)
+    a = self%hull%added_mass(1:2)
+    if (self%bem) a = [self%hydro%db%added_mass_inf(1, 1), self%hydro%db%added_mass_inf(2, 2)]
+    associate (delta => y(self%rudder%q(1)))
+      load = load + mmg_body_load(self%mmg, self%hull%cg_x, a(1), a(2), &
                                   level_to_body(q(3), c), u, delta, self%rps)
+      if (self%autopilot%q(2) >= self%autopilot%q(1)) then
+        k = self%autopilot%q(1)
+        call autopilot_order(self%steer, t, q(3), u(3), y(k:k + 2), order, dydt(k:k + 2))
+      else
+        order = rudder_order(self%steer, t, q(3), u(3))
+      end if
+      dydt(self%rudder%q(1)) = rudder_rate(self%steer, delta, order)
     end associate
-    delta_dot = rudder_rate(self%steer, delta, rudder_order(self%steer, t, q(3), u(3)))
   end subroutine mmg_blocks
 
   !> The integral term of the heading and station keeping: its states z integrate the
@@ -399,102 +446,13 @@ contains
     load(6) = load(6) - self%moor_i(3)*z(3)
   end subroutine integral_control
 
-  !> V, W phi, F of the box ship at speeds u (omega, v) under the loads `load`, with its
-  !> constant strip-theory added masses in the seakeeping frame as the BEM ship's (see
-  !> bem_blocks): M_h (u' + (0, omega x v)) = F - omega x (I_g omega), M_h = M_rb + m6 A m6^T,
-  !> A = diag(added inertias, added masses); V = M + A (diagonal) and M_h - V in W phi. In
-  !> ship axes the heave added mass leaned with the roll: a mean sway force
-  !> -<phi (a33 - a22) z''> up-wave (a 14 m drift in 100 s of Level 5 beam seas without
-  !> drag).
-  pure subroutine box_blocks(self, u, m, load, kane)
-    type(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: u(6), m(3, 3), load(6)
-    real(wp), intent(out) :: kane(3, 6)
-    real(wp) :: mt(3), it(3), ig(3), a(6, 6), mh(6, 6), transport(6), gyro(6), ud(6), rhs(6)
-    integer :: k
-    mt = self%hull%mass + self%hull%added_mass
-    it = self%hull%inertia + self%hull%added_inertia
-    ! Gyroscopic term with the rigid-body inertia plus only the manoeuvring yaw added
-    ! inertia: the strip-theory roll and pitch added inertias are frequency-domain
-    ! quantities, not rigid-body ones, and in omega x (I omega) their product p q (A55 - A44)
-    ! made a spurious mean yaw moment of MN m that turned the ship 19 deg in 135 deg seas.
-    ig = self%hull%inertia + [0.0_wp, 0.0_wp, self%hull%added_inertia(3)]
-    a = 0.0_wp
-    do k = 1, 3
-      a(k, k) = self%hull%added_inertia(k)
-      a(k + 3, k + 3) = self%hull%added_mass(k)
-    end do
-    a(3, 5) = self%hull%added_sway_yaw
-    a(5, 3) = self%hull%added_sway_yaw
-    mh = seakeeping_mass(a, self%hull%inertia, self%hull%mass, m)
-    transport = [0.0_wp, 0.0_wp, 0.0_wp, cross(u(1:3), u(4:6))]
-    gyro = [cross(u(1:3), ig*u(1:3)), 0.0_wp, 0.0_wp, 0.0_wp]
-    ud = [load(4:6), load(1:3)] - gyro - matmul(mh, transport)
-    rhs = ud
-    call solve_restrained(self%hull%restrained, mh, ud)
-    kane(kane_v, :) = [it, mt]
-    ! + the restraint's reaction rhs - mh ud (zero in the free rows)
-    kane(kane_w_phi, :) = gyro + matmul(mh, transport + ud) - kane(kane_v, :)*ud + &
-                          rhs - matmul(mh, ud)
-    kane(kane_f, 1:3) = load(4:6)
-    kane(kane_f, 4:6) = load(1:3)
-  end subroutine box_blocks
-
-  !> The BEM ship's blocks (V = 1: M + A(inf) is the layout's coupled block, which takes
-  !> V u' = F - W phi). Rigid body in ship axes (eq. 35: omega x (I omega), m omega x v);
-  !> Cummins' added-mass force in the seakeeping frame, -m6 A m6^T (u' + (0, omega x v))
-  !> (bem_loads' seakeeping_mass), so the ship's speeds obey M_h (u' + (0, omega x v)) =
-  !> F - (omega x (I omega), 0) with M_h = M_rb + m6 A m6^T. Solved here for u', the
-  !> difference M_h - (M + A(inf)) goes into W phi with that u'. Applied in ship axes as
-  !> (M + A) u' alone, the added mass lost its transport A (omega x v) and did not turn
-  !> with the roll: a second-order mean sway force of -A(inf) with the rolled heave
-  !> acceleration, ~3.6e4 N up-wave in Level 5 beam seas.
-  pure subroutine bem_blocks(self, u, m, load, kane)
-    type(ship_system_type), intent(in) :: self
-    real(wp), intent(in) :: u(6), m(3, 3), load(6)
-    real(wp), intent(out) :: kane(3, 6)
-    real(wp) :: mh(6, 6), transport(6), gyro(6), ud(6), rhs(6)
-    mh = seakeeping_mass(self%hydro%a_kane, self%hydro%inertia, self%hydro%mass, m)
-    transport = [0.0_wp, 0.0_wp, 0.0_wp, cross(u(1:3), u(4:6))]
-    gyro = [cross(u(1:3), self%hydro%inertia*u(1:3)), 0.0_wp, 0.0_wp, 0.0_wp]
-    ud = [load(4:6), load(1:3)] - gyro - matmul(mh, transport)
-    rhs = ud
-    call solve_restrained(self%hull%restrained, mh, ud)
-    kane(kane_v, :) = 1.0_wp
-    ! + the restraint's reaction rhs - mh ud (zero in the free rows)
-    kane(kane_w_phi, :) = gyro + matmul(mh, transport + ud) - matmul(self%hydro%m_kane, ud) + &
-                          rhs - matmul(mh, ud)
-    kane(kane_f, 1:3) = load(4:6)
-    kane(kane_f, 4:6) = load(1:3)
-  end subroutine bem_blocks
-
-  !> Solve mh ud = rhs (ud holds rhs on entry; order roll, pitch, yaw, surge, sway, heave)
-  !> with the restrained DOFs (fixed: surge .. yaw) held at zero acceleration: their rows
-  !> and columns replaced by the identity, so the free ones obey their own block of mh.
-  pure subroutine solve_restrained(fixed, mh, ud)
-    logical, intent(in) :: fixed(6)
-    real(wp), intent(in) :: mh(6, 6)
-    real(wp), intent(inout) :: ud(6)
-    integer, parameter :: slot(6) = [4, 5, 6, 1, 2, 3]
-    real(wp) :: a(6, 6)
-    integer :: k
-    a = mh
-    do k = 1, 6
-      if (.not. fixed(k)) cycle
-      a(slot(k), :) = 0.0_wp
-      a(:, slot(k)) = 0.0_wp
-      a(slot(k), slot(k)) = 1.0_wp
-      ud(slot(k)) = 0.0_wp
-    end do
-    call solve_small(a, ud)
-  end subroutine solve_restrained
 
   !> All external loads (X, Y, Z, K, M, N) in ship axes about G.
   function ship_loads(self, t, q, u, c) result(load)
     class(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t, q(6), u(6), c(3, 3)
     real(wp) :: load(6)
-    real(wp) :: fz, wz, p, vrel(3)
+    real(wp) :: fz, wz, p, vrel(3), o(2)
     associate (h => self%hull, om => u(1:3), v => u(4:6))
       p = om(1)
       if (self%bem) then
@@ -524,8 +482,9 @@ contains
       if (self%sea%kind /= wave_none) load = load + heading_to_body(wave_loads(self, t, q, c), &
                                                                     q(1:3), c)
       if (self%drift /= drift_none .and. self%sea%kind /= wave_none) then
+        o = phase_origin(self, t)
         load = load + heading_to_body(drift_load(self%drift, self%sea, self%drift_coef, t, &
-                                                 self%origin(1), self%origin(2)), q(1:3), c)
+                                                 o(1), o(2)), q(1:3), c)
       end if
       if (any(self%moor_k > 0.0_wp)) load = load + mooring(self, q, u, c)
     end associate
@@ -560,6 +519,16 @@ contains
     real(wp) :: m(3, 3)
     m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, psi]))
   end function level_to_body
+
+
+  !> Where the linear wave loads take the waves' phase at time t: the CG's (box: O''s)
+  !> initial horizontal position carried along by the seakeeping frame.
+  pure function phase_origin(self, t) result(o)
+    type(ship_system_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    real(wp) :: o(2)
+    o = self%origin + self%frame_velocity*t
+  end function phase_origin
 
   !> Zero-speed cross-flow drag for sway and yaw, -1/2 rho d C_D |v + x r| (v + x r) along
   !> the hull, and surge resistance -1/2 rho S C_T |u| u (review G12).
@@ -608,7 +577,7 @@ contains
         return
       end if
       if (self%phase_at_initial) then
-        o(1:2) = self%origin
+        o(1:2) = phase_origin(self, t)
       else
         o = q(4:6) - matmul(c, [self%hull%cg_x, 0.0_wp, self%hull%cg_z])
       end if

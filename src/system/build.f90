@@ -177,24 +177,17 @@ contains
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
                              s%wave_phase == "initial", s%headway)
       end if
-      if (s%manoeuvring == "mmg") call new_mmg(ship, cfg, error)
+      if (s%manoeuvring == "mmg") call new_mmg(ship, cfg)
     end associate
     ship%wave_dt = cfg%simulation%wave_update
   end subroutine new_ship
 
-  !> The MMG manoeuvring model of group &mmg on the box ship, with its dimensions.
-  subroutine new_mmg(ship, cfg, error)
+  !> The MMG manoeuvring model of group &mmg on the box or BEM ship, with its dimensions.
+  subroutine new_mmg(ship, cfg)
     type(ship_system_type), intent(inout) :: ship
     type(config_type), intent(in) :: cfg
-    type(error_type), allocatable, intent(out) :: error
     type(mmg_type) :: p
     associate (s => cfg%ship)
-      if (s%model == "bem") then
-        call fatal_error(error, cfg%filename//": &ship: manoeuvring = 'mmg' needs "// &
-                         "model = 'fk_box' (the MMG added masses on the BEM ship's A(inf) "// &
-                         "are not implemented)")
-        return
-      end if
       p = s%mmg
       p%lpp = s%lpp
       p%draught = s%draught

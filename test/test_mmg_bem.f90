@@ -1,0 +1,283 @@
+!> The MMG ship with BEM seakeeping at headway (input/solas_headway.nml's ship, 5 kn):
+!> the waves met at the encounter frequency omega_e = omega - k U cos(beta) in the
+!> excitation (box and BEM ship; direct and through the Hermite wave clock), the speed
+!> held in calm water at the self-propulsion revolutions (the radiation memory fed the
+!> speeds about the steady forward motion; the propeller overcoming hull resistance and
+!> still-air windage), and the autopilot's integral term by hand.
+module test_mmg_bem
+  use davit_kinds, only: wp, pi, gravity
+  use davit_error, only: error_type
+  use davit_io_config, only: config_type, parse_config
+  use davit_core_rotation, only: rotation_matrix
+  use davit_ship_ship_model, only: ship_system_type, ship_loads
+  use davit_ship_rudder, only: rudder_type, rudder_order, autopilot_integral_rate, &
+                               autopilot_order, autopilot_states
+  use davit_run_ship_scene, only: build_ship_scene
+  use davit_solve_rk4, only: rk4_type
+  use harness, only: suite_type, case_state, new_case, check, check_true, note
+  implicit none
+  private
+  public :: collect_mmg_bem
+
+  real(wp), parameter :: deg = pi/180.0_wp
+  !> The deck's headway [m/s] and the test wave's period [s] (Level 5's peak period).
+  real(wp), parameter :: headway = 2.57_wp, period = 12.72_wp
+  character(len=*), parameter :: deck = "input/solas_headway.nml"
+
+contains
+
+  function collect_mmg_bem() result(suite)
+    type(suite_type) :: suite
+    suite%name = "mmg_bem"
+    suite%cases = [new_case("encounter_frequency_head_and_following", encounter), &
+                   new_case("encounter_rate_in_the_wave_clock", wave_clock), &
+                   new_case("calm_water_speed_held_at_self_propulsion", calm_speed), &
+                   new_case("autopilot_integral_by_hand", integral_orders), &
+                   new_case("autopilot_wave_filter_by_hand", wave_filter)]
+  end function collect_mmg_bem
+
+  !> The SOLAS headway deck as the ship alone ('ship' scene), its text with each
+  !> (old, new) pair of `edits` replaced.
+  subroutine headway_ship(edits, ship, y)
+    character(len=*), intent(in) :: edits(:, :)
+    type(ship_system_type), intent(out) :: ship
+    real(wp), allocatable, intent(out) :: y(:)
+    type(config_type) :: cfg
+    type(error_type), allocatable :: error
+    character(len=:), allocatable :: text
+    integer :: unit, length, k, j
+    open (newunit=unit, file=deck, access="stream", form="unformatted", action="read")
+    inquire (unit=unit, size=length)
+    allocate (character(len=length) :: text)
+    read (unit) text
+    close (unit)
+    text = edited(text, "scene = 'launch'", "scene = 'ship'")
+    do j = 1, size(edits, 2)
+      k = index(text, trim(edits(1, j)))
+      if (k == 0) error stop "test_mmg_bem: deck edit not found"
+      text = edited(text, trim(edits(1, j)), trim(edits(2, j)))
+    end do
+    call parse_config(deck, text, cfg, error)
+    if (allocated(error)) error stop "test_mmg_bem: deck"
+    call build_ship_scene(cfg, ship, y, error)
+    if (allocated(error)) error stop "test_mmg_bem: ship"
+  end subroutine headway_ship
+
+  pure function edited(text, old, new) result(out)
+    character(len=*), intent(in) :: text, old, new
+    character(len=:), allocatable :: out
+    integer :: k
+    k = index(text, old)
+    out = text
+    if (k > 0) out = text(1:k - 1)//new//text(k + len(old):)
+  end function edited
+
+  !> The deck's &sea as a regular Airy wave of 2 m, `period`, travelling towards
+  !> `direction_deg`, without start-up ramp; with `model` as the ship's level of detail.
+  function wave_edits(direction_deg, model, extra) result(e)
+    real(wp), intent(in) :: direction_deg
+    character(len=*), intent(in) :: model, extra
+    character(len=160) :: e(2, 3)
+    character(len=16) :: a
+    write (a, "(f0.1)") direction_deg
+    e(:, 1) = [character(len=160) :: "wave_type = 'calm'", "wave_type = 'airy', "// &
+               "height = 2.0, period = 12.72, ramp_periods = 0.0, direction_deg = "//trim(a)]
+    e(:, 2) = [character(len=160) :: "model = 'bem'", "model = '"//model//"'"]
+    e(:, 3) = [character(len=160) :: "t_end = 0.0", "t_end = 0.0"//extra]
+  end function wave_edits
+
+  !> Mean period [s] between the upward zero crossings of f - mean(f) sampled every dt.
+  pure real(wp) function crossing_period(f, dt) result(tp)
+    real(wp), intent(in) :: f(:), dt
+    real(wp) :: g(size(f)), first, last, tc
+    integer :: i, n
+    g = f - sum(f)/size(f)
+    n = 0
+    first = 0.0_wp
+    last = 0.0_wp
+    do i = 1, size(g) - 1
+      if (g(i) < 0.0_wp .and. g(i + 1) >= 0.0_wp) then
+        tc = dt*(i - 1 + g(i)/(g(i) - g(i + 1)))
+        if (n == 0) first = tc
+        last = tc
+        n = n + 1
+      end if
+    end do
+    tp = (last - first)/max(n - 1, 1)
+  end function crossing_period
+
+  !> The ship making 5 kn (heading 0) in a regular 12.72 s Airy wave (omega = 0.494 rad/s,
+  !> k = omega^2/g) from ahead (travelling towards 180 deg) and from astern (0 deg): its
+  !> wave heave force at the initial pose is periodic with 2 pi/omega_e, omega_e = omega -
+  !> k U cos(beta) (head 11.26 s, following 14.58 s), within 1 %, on the BEM and on the box
+  !> ship; with U left out of the phase it would be 12.72 s (checked > 5 % away).
+  subroutine encounter(state)
+    type(case_state), intent(inout) :: state
+    character(len=6), parameter :: models(2) = [character(len=6) :: "bem", "fk_box"]
+    real(wp), parameter :: directions(2) = [180.0_wp, 0.0_wp], dt = 0.02_wp
+    type(ship_system_type) :: ship
+    real(wp), allocatable :: y(:)
+    real(wp) :: f(10000), omega, k, we, tp, c(3, 3), q(6), u(6), load(6)
+    integer :: i, j, m
+    omega = 2.0_wp*pi/period
+    k = omega**2/gravity
+    do m = 1, 2
+      do j = 1, 2
+        call headway_ship(wave_edits(directions(j), trim(models(m)), ""), ship, y)
+        q = y(ship%body%q(1):ship%body%q(2))
+        u = y(ship%body%u(1):ship%body%u(2))
+        c = rotation_matrix(q(1:3))
+        do i = 1, size(f)
+          load = ship_loads(ship, dt*(i - 1), q, u, c)
+          f(i) = load(3)
+        end do
+        we = omega - k*headway*cos(directions(j)*deg)
+        tp = crossing_period(f, dt)
+        call note(state, trim(models(m))//" heave-force period [s]", tp)
+        call check(state, tp, 2.0_wp*pi/we, trim(models(m))//": period 2 pi/omega_e", &
+                   rel_tol=0.01_wp)
+        call check_true(state, abs(tp/period - 1.0_wp) > 0.05_wp, &
+                        "encounter period apart from the wave's")
+      end do
+    end do
+  end subroutine encounter
+
+  !> With `&simulation wave_update = 0.1` the BEM ship's wave loads come from cubic Hermite
+  !> interpolation of samples and their rates; the rates are those of the encounter phase
+  !> (omega_e), so the interpolated heave force in a head sea at 5 kn equals the direct one
+  !> within 1e-6 of its amplitude (Hermite error (omega_e h)^4/384 = 2.5e-8; with omega
+  !> in place of omega_e ~1e-3).
+  subroutine wave_clock(state)
+    type(case_state), intent(inout) :: state
+    type(ship_system_type) :: cached, direct
+    real(wp), allocatable :: y(:), y2(:)
+    real(wp) :: c(3, 3), q(6), u(6), t, worst, amp, a(6), b(6), b0(6)
+    integer :: i
+    call headway_ship(wave_edits(180.0_wp, "bem", ", wave_update = 0.1"), cached, y)
+    call headway_ship(wave_edits(180.0_wp, "bem", ""), direct, y2)
+    q = y(cached%body%q(1):cached%body%q(2))
+    u = y(cached%body%u(1):cached%body%u(2))
+    c = rotation_matrix(q(1:3))
+    worst = 0.0_wp
+    amp = 0.0_wp
+    b0 = ship_loads(direct, 0.0_wp, q, u, c)
+    do i = 0, 400
+      t = 0.1_wp*i
+      call cached%after_step(t, y)
+      t = t + 0.037_wp
+      a = ship_loads(cached, t, q, u, c)
+      b = ship_loads(direct, t, q, u, c)
+      worst = max(worst, abs(a(3) - b(3)))
+      amp = max(amp, abs(b(3) - b0(3)))
+    end do
+    call note(state, "largest interpolation error / amplitude", worst/amp)
+    call check_true(state, cached%wave_cached, "the wave clock is on")
+    call check_true(state, worst < 1.0e-6_wp*amp, "interpolated = direct loads")
+  end subroutine wave_clock
+
+  !> input/solas_headway.nml's BEM/MMG ship alone in calm water and still air, the
+  !> propeller at its self-propulsion revolutions (hull R_0 plus windage at 5 kn): 200 s
+  !> of RK4 at 0.01 s keep the speed within 1 % of 2.57 m/s at every step (the memory,
+  !> fed u - U, adds nothing at the steady speed; fed u, it costs 6.5 %), in fact to
+  !> rounding (without the windage in the balance: 0.6 %), the ship straight, the rudder
+  !> amidships.
+  subroutine calm_speed(state)
+    type(case_state), intent(inout) :: state
+    character(len=1), parameter :: none(2, 0) = reshape([character(len=1) ::], [2, 0])
+    type(ship_system_type) :: ship
+    type(rk4_type) :: rk
+    real(wp), allocatable :: y(:)
+    real(wp) :: t, worst, side
+    integer :: i
+    call headway_ship(none, ship, y)
+    call rk%init(size(y))
+    t = 0.0_wp
+    worst = 0.0_wp
+    side = 0.0_wp
+    do i = 1, 20000
+      call rk%step(ship, t, y, 0.01_wp)
+      call ship%after_step(t, y)
+      associate (u => y(ship%body%u(1):ship%body%u(2)), q => y(ship%body%q(1):ship%body%q(2)))
+        worst = max(worst, abs(hypot(u(4), u(5))/headway - 1.0_wp))
+        side = max(side, abs(q(3)) + abs(q(5)) + abs(y(ship%rudder%q(1))))
+      end associate
+    end do
+    call note(state, "self-propulsion rps", ship%rps)
+    call note(state, "largest relative speed error", worst)
+    call check_true(state, ship%bem .and. ship%mmg_on, "the BEM/MMG ship")
+    call check(state, worst, 0.0_wp, "speed held within 1 %", abs_tol=0.01_wp)
+    ! the self-propulsion point balances exactly: a load left out of it (the windage:
+    ! 0.6 % in 200 s) shows at once
+    call check(state, worst, 0.0_wp, "speed held to rounding", abs_tol=1e-6_wp)
+    call check(state, y(ship%body%q(1) + 3), 200.0_wp*headway, "distance in 200 s", &
+               rel_tol=0.01_wp)
+    call check(state, side, 0.0_wp, "straight, rudder amidships", abs_tol=1e-9_wp)
+  end subroutine calm_speed
+
+  !> The PID autopilot by hand: order -kp e - kd r - ki z (e = psi - psi_0, clipped to the
+  !> angle limit); the integral's rate is e, held at zero while ki |z| alone passes the
+  !> limit in the error's sense (anti-windup), free again when the error turns.
+  subroutine integral_orders(state)
+    type(case_state), intent(inout) :: state
+    type(rudder_type) :: s
+    s%mode = "autopilot"
+    s%kp = 20.0_wp
+    s%kd = 100.0_wp
+    s%ki = 0.1_wp
+    s%max_angle = 35.0_wp*deg
+    s%heading = 0.1_wp
+    call check(state, rudder_order(s, 5.0_wp, 0.1_wp + 0.002_wp, 1e-4_wp, 0.5_wp), &
+               -20.0_wp*0.002_wp - 100.0_wp*1e-4_wp - 0.1_wp*0.5_wp, "PID order", &
+               abs_tol=1e-14_wp)
+    call check(state, rudder_order(s, 5.0_wp, 0.1_wp, 0.0_wp, -8.0_wp), 35.0_wp*deg, &
+               "PID order clipped", abs_tol=1e-14_wp)
+    call check(state, rudder_order(s, 5.0_wp, 0.1_wp + 0.002_wp, 1e-4_wp), &
+               -20.0_wp*0.002_wp - 100.0_wp*1e-4_wp, "PD without z", abs_tol=1e-14_wp)
+    call check(state, autopilot_integral_rate(s, 0.13_wp, 1.0_wp), 0.03_wp, &
+               "integral rate = heading error", abs_tol=1e-14_wp)
+    call check(state, autopilot_integral_rate(s, 0.13_wp, 7.0_wp), 0.0_wp, &
+               "held past the limit", abs_tol=0.0_wp)
+    call check(state, autopilot_integral_rate(s, 0.07_wp, 7.0_wp), -0.03_wp, &
+               "free when the error turns", abs_tol=1e-14_wp)
+  end subroutine integral_orders
+
+  !> The autopilot's wave filter by hand (time constant T = 5 s): states x = (z, e_f, r_f)
+  !> with rates ((e_f), (psi - psi_0 - e_f)/T, (r - r_f)/T), the order -kp e_f - kd r_f -
+  !> ki z on the filtered error and rate; unfiltered (T = 0) the order takes psi and r and
+  !> the filter states rest; a PD keeps no states, a PID or a filtered PD three.
+  subroutine wave_filter(state)
+    type(case_state), intent(inout) :: state
+    type(rudder_type) :: s
+    real(wp) :: order, xdot(3), x(3)
+    s%mode = "autopilot"
+    s%kp = 10.0_wp
+    s%kd = 20.0_wp
+    s%ki = 0.1_wp
+    s%max_angle = 35.0_wp*deg
+    s%heading = 0.1_wp
+    s%filter = 5.0_wp
+    x = [0.2_wp, 0.01_wp, -0.002_wp]
+    call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
+    call check(state, order, -10.0_wp*0.01_wp - 20.0_wp*(-0.002_wp) - 0.1_wp*0.2_wp, &
+               "order on the filtered error and rate", abs_tol=1e-14_wp)
+    call check(state, xdot(1), 0.01_wp, "integral of the filtered error", abs_tol=1e-14_wp)
+    call check(state, xdot(2), (0.03_wp - 0.01_wp)/5.0_wp, "error filter rate", &
+               abs_tol=1e-14_wp)
+    call check(state, xdot(3), (0.004_wp + 0.002_wp)/5.0_wp, "yaw-rate filter rate", &
+               abs_tol=1e-14_wp)
+    s%filter = 0.0_wp
+    call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
+    call check(state, order, -10.0_wp*0.03_wp - 20.0_wp*0.004_wp - 0.1_wp*0.2_wp, &
+               "unfiltered order", abs_tol=1e-14_wp)
+    call check(state, abs(xdot(2)) + abs(xdot(3)), 0.0_wp, "filter states rest", &
+               abs_tol=0.0_wp)
+    call check(state, real(autopilot_states(s), wp), 3.0_wp, "PID: three states", &
+               abs_tol=0.0_wp)
+    s%ki = 0.0_wp
+    call check(state, real(autopilot_states(s), wp), 0.0_wp, "PD: none", abs_tol=0.0_wp)
+    s%filter = 5.0_wp
+    call check(state, real(autopilot_states(s), wp), 3.0_wp, "filtered PD: three", &
+               abs_tol=0.0_wp)
+  end subroutine wave_filter
+
+end module test_mmg_bem
