@@ -43,7 +43,7 @@ module davit_boat_contact
     procedure :: force => elastoplastic_force
   end type hertz_elastoplastic_law_type
 
-  !> Lankarani-Nikravesh: Hertz with a hysteresis damping term, clipped at zero.
+  !> The Lankarani-Nikravesh law, Hertz with a hysteresis damping term, clipped at zero.
   type, extends(hertz_law_type) :: lankarani_nikravesh_law_type
   contains
     procedure :: force => lankarani_nikravesh_force
