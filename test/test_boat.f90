@@ -6,8 +6,8 @@ module test_boat
                                 hertz_stiffness, hertz_peak
   use davit_solve_integrator, only: ode_problem
   use davit_solve_rk4, only: rk4_type
-  use davit_boat_wind_loads, only: boat_wind_type, boat_wind_force, lift_literal, &
-                                   lift_symmetric
+  use davit_boat_wind_loads, only: symmetric_lift_wind_type, literal_lift_wind_type, &
+                                   boat_wind_force
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -140,14 +140,14 @@ contains
   !> half of each force.
   subroutine wind_drag_lift(state)
     type(case_state), intent(inout) :: state
-    type(boat_wind_type) :: w
+    type(symmetric_lift_wind_type) :: w
+    type(literal_lift_wind_type) :: literal
     real(wp) :: f(3)
     w%areas = [5.0_wp, 20.0_wp, 30.0_wp]
     w%cd = 0.5_wp
     w%cl = 1.2_wp
     w%diameter = 3.0_wp
     w%length = 10.0_wp
-    w%lift_form = lift_symmetric
     f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
     call check(state, f(1), 0.0_wp, "beam wind: no surge force", abs_tol=1.0e-12_wp)
     call check(state, f(2), -612.5_wp, "beam wind drag (eq. 15)", rel_tol=1.0e-12_wp)
@@ -163,10 +163,10 @@ contains
                rel_tol=1.0e-12_wp)
     call check(state, f(2), -0.5_wp*1.225_wp*0.5_wp*95.0_wp*4.0_wp, "oblique drag b2", &
                rel_tol=1.0e-12_wp)
-    w%lift_form = lift_literal
-    f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
+    literal = literal_lift_wind_type(w%areas, w%cd, w%cl, w%diameter, w%length)
+    f = boat_wind_force(literal, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
     call check(state, f(3), -2205.0_wp, "literal lift, wind to +b2: upward", rel_tol=1.0e-12_wp)
-    f = boat_wind_force(w, [0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
+    f = boat_wind_force(literal, [0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
     call check(state, f(3), 2205.0_wp, "literal lift, wind to -b2: downward (eq. 16 as printed)", &
                rel_tol=1.0e-12_wp)
   end subroutine wind_drag_lift

@@ -1,16 +1,19 @@
 !> The fender contact laws as extensions of contact_law_type: the factory builds each from
 !> its deck name and refuses an unknown one; each law's force against its closed form, so
 !> that a changed coefficient, exponent or sign fails (eqs. 27-28, review §1.7, README
-!> "### Fenders").
+!> "### Fenders"). The same factory for the boat's wind lift forms (eq. 16; their forces
+!> against eqs. 15-16 by hand are test_boat's wind_drag_and_lift_eqs_15_16).
 module test_contact_laws
   use davit_kinds, only: wp
   use davit_error, only: error_type
-  use davit_io_config, only: contact_config
+  use davit_io_config, only: contact_config, boat_config
   use davit_boat_contact_law, only: contact_law_type, fender_state_type, phase_free, &
                                     phase_compression, phase_restitution, phase_separated
   use davit_boat_contact, only: hertz_elastoplastic_law_type, lankarani_nikravesh_law_type
   use davit_boat_rubber_fender_law, only: rubber_fender_law_type
-  use davit_system_contact_factory, only: new_contact_law
+  use davit_boat_wind_loads, only: boat_wind_type, symmetric_lift_wind_type, &
+                                   literal_lift_wind_type
+  use davit_system_law_factory, only: new_contact_law, new_boat_wind
   use harness, only: suite_type, case_state, new_case, check, check_true
   implicit none
   private
@@ -30,7 +33,9 @@ contains
                    new_case("factory_refuses_an_unknown_law", factory_unknown), &
                    new_case("hertz_elastoplastic_force_closed_form", elastoplastic), &
                    new_case("lankarani_nikravesh_force_closed_form", lankarani), &
-                   new_case("rubber_fender_force_closed_form", rubber)]
+                   new_case("rubber_fender_force_closed_form", rubber), &
+                   new_case("factory_builds_each_lift_form", factory_lift), &
+                   new_case("factory_refuses_an_unknown_lift_form", factory_lift_unknown)]
   end function collect_contact_laws
 
   !> A &contact group as the deck reader leaves it, with the law `name`.
@@ -184,5 +189,64 @@ contains
     call check(state, law%force(s, -0.01_wp, 0.5_wp), 0.0_wp, "out of contact", &
                abs_tol=0.0_wp)
   end subroutine rubber
+
+  !> A &boat group with the wind data and the lift form `name`.
+  function deck_boat(name) result(b)
+    character(len=*), intent(in) :: name
+    type(boat_config) :: b
+    b%lift_form = name
+    b%wind_areas = [5.0_wp, 20.0_wp, 30.0_wp]
+    b%wind_drag_coefficient = 0.5_wp
+    b%lift_coefficient = 1.2_wp
+    b%lift_diameter = 3.0_wp
+    b%length = 10.0_wp
+  end function deck_boat
+
+  !> Each lift form's name gives its extension with the deck's data; a beam wind of 10 m/s
+  !> from the other side (v2 = -10 m/s) tells them apart: eq. 16's lift
+  !> 1/2 rho D l C_L v2^2 = 0.5*1.225*3*10*1.2*100 = 2205 N, upward (f3 < 0, b3 down) for
+  !> 'symmetric', downward for 'literal'.
+  subroutine factory_lift(state)
+    type(case_state), intent(inout) :: state
+    class(boat_wind_type), allocatable :: air
+    type(error_type), allocatable :: error
+    real(wp) :: f(3)
+    logical :: ok
+    call new_boat_wind(deck_boat("symmetric"), air, error)
+    ok = .false.
+    select type (air)
+    type is (symmetric_lift_wind_type)
+      ok = .true.
+    end select
+    call check_true(state, ok .and. .not. allocated(error), "symmetric -> symmetric lift")
+    call check(state, air%length, 10.0_wp, "l_b from &boat length", rel_tol=1e-15_wp)
+    call check(state, air%diameter, 3.0_wp, "D_b from &boat lift_diameter", rel_tol=1e-15_wp)
+    f = air%force([0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(3), -2205.0_wp, "symmetric: upward", rel_tol=1e-12_wp)
+    call new_boat_wind(deck_boat("literal"), air, error)
+    ok = .false.
+    select type (air)
+    type is (literal_lift_wind_type)
+      ok = .true.
+    end select
+    call check_true(state, ok .and. .not. allocated(error), "literal -> eq. 16 lift")
+    f = air%force([0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
+    call check(state, f(3), 2205.0_wp, "literal: downward", rel_tol=1e-12_wp)
+  end subroutine factory_lift
+
+  !> An unknown lift form is an error naming the group, key, value and allowed forms.
+  subroutine factory_lift_unknown(state)
+    type(case_state), intent(inout) :: state
+    class(boat_wind_type), allocatable :: air
+    type(error_type), allocatable :: error
+    call new_boat_wind(deck_boat("kutta"), air, error)
+    call check_true(state, allocated(error), "an error")
+    if (.not. allocated(error)) return
+    call check_true(state, .not. allocated(air), "no wind loads")
+    call check_true(state, index(error%message, "&boat lift_form") > 0 .and. &
+                    index(error%message, "'kutta'") > 0, "names key and value: "//error%message)
+    call check_true(state, index(error%message, "symmetric") > 0 .and. &
+                    index(error%message, "literal") > 0, "lists the allowed forms")
+  end subroutine factory_lift_unknown
 
 end module test_contact_laws

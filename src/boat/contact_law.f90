@@ -3,7 +3,7 @@
 !> (history), advances the phase after an accepted step, and says which phase it would
 !> switch to (what event location asks). One extension per law: the rubber fender
 !> (davit_boat_rubber_fender_law) and the Hertz laws (davit_boat_contact); the law is built
-!> once from the deck (davit_system_contact_factory) and the right-hand side, the events
+!> once from the deck (davit_system_law_factory) and the right-hand side, the events
 !> and the step policy call its bindings without knowing which law it is.
 !>
 !> The phase of each fender is history, not a function of the state: the force reads it,

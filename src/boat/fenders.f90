@@ -25,7 +25,7 @@ module davit_boat_fenders
     integer :: nf = 0, nd = 0
     !> Fender points in the boat frame, (3, nd, nf) [m].
     real(wp), allocatable :: points(:, :, :)
-    !> The contact law, chosen once at build (davit_system_contact_factory).
+    !> The contact law, chosen once at build (davit_system_law_factory).
     class(contact_law_type), allocatable :: law
   end type fender_set_type
 

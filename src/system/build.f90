@@ -14,9 +14,8 @@ module davit_system_build
   use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
-  use davit_boat_wind_loads, only: boat_wind_type, lift_symmetric, lift_literal
   use davit_boat_contact_law, only: contact_law_type
-  use davit_system_contact_factory, only: new_contact_law
+  use davit_system_law_factory, only: new_contact_law, new_boat_wind
   use davit_boat_fenders, only: new_fender_set
   use davit_boat_strip_waves, only: new_strip_wave_cache
   use davit_boat_surface_watch, only: new_surface_watch
@@ -61,7 +60,8 @@ contains
       par%on_davit = cfg%simulation%scene == "lowering" .or. cfg%simulation%scene == "launch"
       par%slings_attached = s%attached .and. .not. par%on_davit
     end associate
-    call new_boat_environment(self, cfg)
+    call new_boat_environment(self, cfg, error)
+    if (allocated(error)) return
     if (cfg%boat%water_model == "bem") then
       call new_boat_water(self%par, cfg, error)
       if (allocated(error)) return
@@ -214,9 +214,10 @@ contains
   end function beside
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
-  subroutine new_boat_environment(self, cfg)
+  subroutine new_boat_environment(self, cfg, error)
     type(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
     associate (b => cfg%boat, par => self%par)
       par%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
                                                 b%breadth_exponent, b%strips), &
@@ -225,9 +226,11 @@ contains
                                   merge(strip_level_paper, strip_level_pressure, &
                                         b%water_model == "paper"), b%roll_restoring == "paper")
       par%hull_volume = sum(par%water%hull%breadth)*par%water%hull%thickness*b%height
-      par%air = boat_wind_type(b%wind_areas, b%wind_drag_coefficient, b%lift_coefficient, &
-                               b%lift_diameter, b%length, &
-                               merge(lift_literal, lift_symmetric, b%lift_form == "literal"))
+      call new_boat_wind(b, par%air, error)
+      if (allocated(error)) then
+        error%message = cfg%filename//": "//error%message
+        return
+      end if
       call build_wave_field(cfg%sea, cfg%simulation%seed, 0, par%sea)
       par%wind = build_wind(cfg%wind)
       self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, surface_watch_interval)
