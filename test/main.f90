@@ -9,6 +9,7 @@ program main
   use test_ship, only: collect_ship
   use test_boat, only: collect_boat
   use test_fenders, only: collect_fenders
+  use test_contact_laws, only: collect_contact_laws
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
   use test_rigging_static, only: collect_rigging_static
@@ -50,7 +51,8 @@ program main
   filter = ""
   if (command_argument_count() > 0) call get_command_argument(1, filter)
   suites = [collect_rotation(), collect_deck(), collect_hanging(), collect_sea(), &
-            collect_ship(), collect_boat(), collect_fenders(), collect_boat_water(), &
+            collect_ship(), collect_boat(), collect_fenders(), collect_contact_laws(), &
+            collect_boat_water(), &
             collect_rigging(), collect_rigging_static(), collect_slack(), &
             collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_ship_drift(), &

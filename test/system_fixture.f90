@@ -8,9 +8,10 @@ module system_fixture
   use davit_system_build, only: new_system, initial_state
   use davit_solve_rk4, only: rk4_type
   use davit_core_rotation, only: rotation_matrix
+  use davit_boat_contact, only: hertz_law_type, hertz_peak
   implicit none
   private
-  public :: new_test_system, nstate, deck_config, drop_cg
+  public :: new_test_system, nstate, deck_config, drop_cg, system_hertz_peak
 
   !> State length of a boat on foundation slings (the boat's part alone, eqs. 3-4).
   integer, parameter :: nstate = 12
@@ -55,5 +56,19 @@ contains
     end do
     cg = matmul(rotation_matrix(y(1:3)), y(4:6))
   end function drop_cg
+
+  !> Hertz impact peak (hertz_peak) of the system's fender law; a law that is not a Hertz
+  !> law gives huge values, so that a check against them fails.
+  subroutine system_hertz_peak(sys, mass, v0, delta_m, f_m)
+    type(system_type), intent(in) :: sys
+    real(wp), intent(in) :: mass, v0
+    real(wp), intent(out) :: delta_m, f_m
+    delta_m = huge(1.0_wp)
+    f_m = huge(1.0_wp)
+    select type (law => sys%par%fenders%law)
+    class is (hertz_law_type)
+      call hertz_peak(law, mass, v0, delta_m, f_m)
+    end select
+  end subroutine system_hertz_peak
 
 end module system_fixture

@@ -1,13 +1,13 @@
 !> Lifeboat: fender contact (review §1.7, A4).
 module test_boat
   use davit_kinds, only: wp
-  use davit_boat_contact, only: contact_law_type, fender_state_type, new_contact_law, &
-                                contact_force, fender_update, hertz_peak, &
-                                law_hertz_elastoplastic, law_lankarani_nikravesh, phase_free
+  use davit_boat_contact_law, only: contact_law_type, fender_state_type
+  use davit_boat_contact, only: hertz_elastoplastic_law_type, lankarani_nikravesh_law_type, &
+                                hertz_stiffness, hertz_peak
   use davit_solve_integrator, only: ode_problem
   use davit_solve_rk4, only: rk4_type
-  use davit_boat_wind_loads, only: boat_wind_type, boat_wind_force, lift_literal, &
-                                   lift_symmetric
+  use davit_boat_wind_loads, only: symmetric_lift_wind_type, literal_lift_wind_type, &
+                                   boat_wind_force
   use harness, only: suite_type, case_state, new_case, check, note
   implicit none
   private
@@ -15,7 +15,7 @@ module test_boat
 
   !> A mass m moving along +x onto a wall at x = 0 (indentation delta = x).
   type, extends(ode_problem) :: impact_problem
-    type(contact_law_type) :: law
+    class(contact_law_type), allocatable :: law
     type(fender_state_type) :: fender
     real(wp) :: mass = 8490.0_wp
   contains
@@ -39,25 +39,25 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(out) :: dydt(:)
     dydt(1) = y(2)
-    dydt(2) = -contact_force(self%law, self%fender, y(1), y(2))/self%mass
+    dydt(2) = -self%law%force(self%fender, y(1), y(2))/self%mass
   end subroutine impact_rhs
 
   subroutine impact_after(self, t, y)
     class(impact_problem), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
-    call fender_update(self%law, self%fender, y(1), y(2))
+    call self%law%update(self%fender, y(1), y(2))
   end subroutine impact_after
 
   !> One impact at v0; returns rebound speed, maximum indentation and force.
   subroutine impact(law, v0, rebound, delta_max, f_max)
-    type(contact_law_type), intent(in) :: law
+    class(contact_law_type), intent(in) :: law
     real(wp), intent(in) :: v0
     real(wp), intent(out) :: rebound, delta_max, f_max
     type(impact_problem) :: p
     type(rk4_type) :: rk
     real(wp) :: y(2), t, dt
     integer :: i
-    p%law = law
+    allocate (p%law, source=law)
     call rk%init(2)
     y = [-1.0e-4_wp, v0]
     t = 0.0_wp
@@ -68,7 +68,7 @@ contains
       call rk%step(p, t, y, dt)
       call p%after_step(t, y)
       delta_max = max(delta_max, y(1))
-      f_max = max(f_max, contact_force(p%law, p%fender, y(1), y(2)))
+      f_max = max(f_max, p%law%force(p%fender, y(1), y(2)))
       if (y(1) < -1.0e-4_wp .and. y(2) < 0.0_wp) exit
     end do
     rebound = -y(2)
@@ -78,11 +78,11 @@ contains
   subroutine impact_hertz(state)
     type(case_state), intent(inout) :: state
     real(wp), parameter :: speeds(5) = [0.2_wp, 0.5_wp, 1.0_wp, 2.0_wp, 3.5_wp]
-    type(contact_law_type) :: law
+    type(hertz_elastoplastic_law_type) :: law
     real(wp) :: rebound, dmax, fmax, dm, fm
     integer :: i
-    law = new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.45_wp, 200.0e9_wp, 0.3_wp, &
-                          0.25_wp, 0.0_wp, 0.8_wp)
+    law = hertz_elastoplastic_law_type(restitution=0.8_wp, k=hertz_stiffness(55.0e9_wp, &
+                                       0.45_wp, 200.0e9_wp, 0.3_wp, 0.25_wp, 0.0_wp))
     do i = 1, size(speeds)
       call impact(law, speeds(i), rebound, dmax, fmax)
       call hertz_peak(law, 8490.0_wp, speeds(i), dm, fm)
@@ -97,15 +97,15 @@ contains
   !> R 0.25 m at 1 m/s: 2.47 mm, 4.30 MN; R 0.1 m at 0.5 m/s: 1.70 mm, 1.56 MN.
   subroutine impact_table(state)
     type(case_state), intent(inout) :: state
-    type(contact_law_type) :: law
+    type(hertz_elastoplastic_law_type) :: law
     real(wp) :: dm, fm
-    law = new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.45_wp, 200.0e9_wp, 0.3_wp, &
-                          0.25_wp, 0.0_wp, 0.8_wp)
+    law = hertz_elastoplastic_law_type(restitution=0.8_wp, k=hertz_stiffness(55.0e9_wp, &
+                                       0.45_wp, 200.0e9_wp, 0.3_wp, 0.25_wp, 0.0_wp))
     call hertz_peak(law, 8490.0_wp, 1.0_wp, dm, fm)
     call check(state, dm, 2.47e-3_wp, "delta_m (0.25 m, 1 m/s)", rel_tol=5e-3_wp)
     call check(state, fm, 4.30e6_wp, "f_m (0.25 m, 1 m/s)", rel_tol=5e-3_wp)
-    law = new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.45_wp, 200.0e9_wp, 0.3_wp, &
-                          0.10_wp, 0.0_wp, 0.8_wp)
+    law = hertz_elastoplastic_law_type(restitution=0.8_wp, k=hertz_stiffness(55.0e9_wp, &
+                                       0.45_wp, 200.0e9_wp, 0.3_wp, 0.10_wp, 0.0_wp))
     call hertz_peak(law, 8490.0_wp, 0.5_wp, dm, fm)
     call check(state, dm, 1.70e-3_wp, "delta_m (0.1 m, 0.5 m/s)", rel_tol=5e-3_wp)
     call check(state, fm, 1.56e6_wp, "f_m (0.1 m, 0.5 m/s)", rel_tol=5e-3_wp)
@@ -117,10 +117,10 @@ contains
   !> where the model claims validity: within 0.5 % at e_r = 0.95, and within 6 % at 0.8.
   subroutine impact_ln(state)
     type(case_state), intent(inout) :: state
-    type(contact_law_type) :: law
+    type(lankarani_nikravesh_law_type) :: law
     real(wp) :: rebound, dmax, fmax
-    law = new_contact_law(law_lankarani_nikravesh, 55.0e9_wp, 0.45_wp, 200.0e9_wp, 0.3_wp, &
-                          0.25_wp, 0.0_wp, 0.95_wp)
+    law = lankarani_nikravesh_law_type(restitution=0.95_wp, k=hertz_stiffness(55.0e9_wp, &
+                                       0.45_wp, 200.0e9_wp, 0.3_wp, 0.25_wp, 0.0_wp))
     call impact(law, 1.0_wp, rebound, dmax, fmax)
     call note(state, "LN rebound/approach at e_r 0.95", rebound)
     call check(state, rebound, 0.95_wp, "LN restitution (0.95)", rel_tol=0.005_wp)
@@ -140,14 +140,14 @@ contains
   !> half of each force.
   subroutine wind_drag_lift(state)
     type(case_state), intent(inout) :: state
-    type(boat_wind_type) :: w
+    type(symmetric_lift_wind_type) :: w
+    type(literal_lift_wind_type) :: literal
     real(wp) :: f(3)
     w%areas = [5.0_wp, 20.0_wp, 30.0_wp]
     w%cd = 0.5_wp
     w%cl = 1.2_wp
     w%diameter = 3.0_wp
     w%length = 10.0_wp
-    w%lift_form = lift_symmetric
     f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
     call check(state, f(1), 0.0_wp, "beam wind: no surge force", abs_tol=1.0e-12_wp)
     call check(state, f(2), -612.5_wp, "beam wind drag (eq. 15)", rel_tol=1.0e-12_wp)
@@ -163,10 +163,10 @@ contains
                rel_tol=1.0e-12_wp)
     call check(state, f(2), -0.5_wp*1.225_wp*0.5_wp*95.0_wp*4.0_wp, "oblique drag b2", &
                rel_tol=1.0e-12_wp)
-    w%lift_form = lift_literal
-    f = boat_wind_force(w, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
+    literal = literal_lift_wind_type(w%areas, w%cd, w%cl, w%diameter, w%length)
+    f = boat_wind_force(literal, [0.0_wp, 10.0_wp, 0.0_wp], 1.0_wp)
     call check(state, f(3), -2205.0_wp, "literal lift, wind to +b2: upward", rel_tol=1.0e-12_wp)
-    f = boat_wind_force(w, [0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
+    f = boat_wind_force(literal, [0.0_wp, -10.0_wp, 0.0_wp], 1.0_wp)
     call check(state, f(3), 2205.0_wp, "literal lift, wind to -b2: downward (eq. 16 as printed)", &
                rel_tol=1.0e-12_wp)
   end subroutine wind_drag_lift

@@ -9,11 +9,11 @@ module test_boat_water
   use davit_core_body, only: body_qdot
   use davit_boat_strip_loads, only: strip_velocity, strip_partial_velocities, strip_loads
   use davit_boat_surface_watch, only: watch_refresh, surely_dry
-  use davit_boat_contact, only: hertz_peak, new_contact_law, law_hertz_elastoplastic
+  use davit_boat_contact, only: hertz_elastoplastic_law_type, hertz_stiffness
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, fender_probe
   use davit_core_rotation, only: cross
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system, nstate, deck_config
+  use system_fixture, only: new_test_system, nstate, deck_config, system_hertz_peak
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -284,7 +284,7 @@ contains
       call sys%contact_state(y, clearance, force)
       fpeak = max(fpeak, maxval(force))
     end do
-    call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call system_hertz_peak(sys, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
     call note(state, "rebound speed (m/s)", y(11))
     call note(state, "peak force per fender (N)", fpeak)
     call note(state, "first contact (s)", sys%hist%first_contact_time)
@@ -329,7 +329,7 @@ contains
         fpeak = max(fpeak, maxval(force))
         if (t > 0.03_wp) exit
       end do
-      call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+      call system_hertz_peak(sys, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
       call note(state, rule(j)//": steps before contact", real(before, wp))
       call check(state, sys%hist%first_contact_time, 0.01_wp, rule(j)//": first contact", &
                  abs_tol=2.0_wp*2.0e-6_wp)
@@ -353,8 +353,9 @@ contains
     real(wp) :: dm(2), dp(2), d(2), rate(2), unused(2)
     integer :: deepest(2)
     fs = new_fender_set([3.0_wp, -3.0_wp], -1.4_wp, [-0.8_wp, 0.2_wp], 1, &
-                        new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.45_wp, &
-                                        200.0e9_wp, 0.3_wp, 0.15_wp, 0.0_wp, 0.8_wp))
+                        hertz_elastoplastic_law_type(restitution=0.8_wp, &
+                                                     k=hertz_stiffness(55.0e9_wp, 0.45_wp, &
+                                                     200.0e9_wp, 0.3_wp, 0.15_wp, 0.0_wp)))
     plane%origin = [1.0_wp, 0.5_wp, 2.0_wp]
     plane%velocity = [0.3_wp, 0.7_wp, -0.2_wp]
     plane%angular_velocity = [0.02_wp, -0.04_wp, 0.05_wp]

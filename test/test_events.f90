@@ -12,11 +12,11 @@ module test_events
   use davit_solve_event_location, only: event_stepper_type
   use davit_error, only: error_type
   use davit_io_config, only: config_type
-  use davit_boat_contact, only: hertz_peak, contact_law_type, fender_state_type, &
-                                fender_update, fender_next_phase, new_contact_law, &
-                                new_rubber_fender_law, law_hertz_elastoplastic
+  use davit_boat_contact_law, only: contact_law_type, fender_state_type
+  use davit_boat_contact, only: hertz_elastoplastic_law_type, hertz_stiffness
+  use davit_boat_rubber_fender_law, only: new_rubber_fender_law
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system, deck_config
+  use system_fixture, only: new_test_system, deck_config, system_hertz_peak
   use davit_system_events, only: advance_history
   use davit_core_rotation, only: rotation_matrix
   use davit_io_hdf5_writer, only: h5_writer_type
@@ -430,7 +430,7 @@ contains
                       "&boat position = 0.0, 11.91, -100.0, velocity = 0.0, -1.0, 0.0, "// &
                       "wind_drag_coefficient = 0.0, lift_coefficient = 0.0 /")
     y = new_test_system(sys, cfg)
-    call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call system_hertz_peak(sys, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
     call new_integrator("rk4", size(y), integ, error)
     call stepper%init(size(y), sys%n_modes())
     t = 0.0_wp
@@ -456,16 +456,20 @@ contains
   !> rates, the two agree.
   subroutine next_phase(state)
     type(case_state), intent(inout) :: state
-    type(contact_law_type) :: laws(2)
+    class(contact_law_type), allocatable :: law
     type(fender_state_type) :: s, u
     real(wp) :: delta, rate
     integer :: l, p, i, j, bad, tried
-    laws(1) = new_contact_law(law_hertz_elastoplastic, 55.0e9_wp, 0.3_wp, 200.0e9_wp, &
-                              0.3_wp, 0.5_wp, 0.0_wp, 0.8_wp)
-    laws(2) = new_rubber_fender_law(1.0_wp, 182.0e3_wp, 0.8_wp)
     bad = 0
     tried = 0
     do l = 1, 2
+      if (allocated(law)) deallocate (law)
+      if (l == 1) then
+        allocate (law, source=hertz_elastoplastic_law_type(restitution=0.8_wp, &
+                  k=hertz_stiffness(55.0e9_wp, 0.3_wp, 200.0e9_wp, 0.3_wp, 0.5_wp, 0.0_wp)))
+      else
+        allocate (law, source=new_rubber_fender_law(1.0_wp, 182.0e3_wp, 0.8_wp))
+      end if
       do p = 0, 3
         do i = -4, 40
           do j = -1, 1
@@ -474,9 +478,9 @@ contains
             delta = 0.01_wp*real(i, wp)
             rate = real(j, wp)
             u = s
-            call fender_update(laws(l), u, delta, rate)
+            call law%update(u, delta, rate)
             tried = tried + 1
-            if (u%phase /= fender_next_phase(laws(l), s, delta, rate)) bad = bad + 1
+            if (u%phase /= law%next_phase(s, delta, rate)) bad = bad + 1
           end do
         end do
       end do

@@ -4,8 +4,8 @@ module test_fenders
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
                                            ieee_negative_inf, ieee_is_nan, ieee_is_finite
   use davit_kinds, only: wp
-  use davit_boat_contact, only: contact_law_type, fender_state_type, new_rubber_fender_law, &
-                                contact_force, fender_update, phase_restitution
+  use davit_boat_contact_law, only: contact_law_type, fender_state_type, phase_restitution
+  use davit_boat_rubber_fender_law, only: rubber_fender_law_type, new_rubber_fender_law
   use davit_boat_rubber_fender, only: rubber_loading, rubber_unloading
   use davit_solve_integrator, only: ode_problem
   use davit_solve_rk4, only: rk4_type
@@ -27,7 +27,7 @@ module test_fenders
 
   !> A mass moving along +x onto a fender at x = 0 (deflection delta = x).
   type, extends(ode_problem) :: fender_problem
-    type(contact_law_type) :: law
+    class(contact_law_type), allocatable :: law
     type(fender_state_type) :: fender
   contains
     procedure :: rhs => fender_rhs
@@ -59,13 +59,13 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp), intent(out) :: dydt(:)
     dydt(1) = y(2)
-    dydt(2) = -contact_force(self%law, self%fender, y(1), y(2))/mass
+    dydt(2) = -self%law%force(self%fender, y(1), y(2))/mass
   end subroutine fender_rhs
 
   subroutine fender_after(self, t, y)
     class(fender_problem), intent(inout) :: self
     real(wp), intent(in) :: t, y(:)
-    call fender_update(self%law, self%fender, y(1), y(2))
+    call self%law%update(self%fender, y(1), y(2))
   end subroutine fender_after
 
   !> The table's reaction [N] at deflection delta, linear between its points (test side).
@@ -80,7 +80,7 @@ contains
 
   !> RK4 at 1e-5 s from 1 mm before the fender at speed v0 until the mass is 1 mm out again.
   function impact(law, v0) result(rec)
-    type(contact_law_type), intent(in) :: law
+    class(contact_law_type), intent(in) :: law
     real(wp), intent(in) :: v0
     type(impact_record) :: rec
     integer, parameter :: nmax = 400000
@@ -88,7 +88,7 @@ contains
     type(rk4_type) :: rk
     real(wp) :: y(2), t
     integer :: i
-    p%law = law
+    allocate (p%law, source=law)
     call rk%init(2)
     allocate (rec%delta(nmax), rec%rate(nmax), rec%force(nmax), rec%unloading(nmax))
     y = [-1.0e-3_wp, v0]
@@ -99,7 +99,7 @@ contains
       rec%n = i
       rec%delta(i) = y(1)
       rec%rate(i) = y(2)
-      rec%force(i) = contact_force(p%law, p%fender, y(1), y(2))
+      rec%force(i) = p%law%force(p%fender, y(1), y(2))
       rec%unloading(i) = p%fender%phase == phase_restitution
       if (y(1) < -1.0e-3_wp .and. y(2) < 0.0_wp) exit
     end do
@@ -120,24 +120,24 @@ contains
   !> pulls and has no jumps (continuous) from -0.1 to 0.8 m.
   subroutine curve_table(state)
     type(case_state), intent(inout) :: state
-    type(contact_law_type) :: law
+    type(rubber_fender_law_type) :: law
     type(fender_state_type) :: s
     real(wp) :: f, f_prev, w, jump
     character(len=32) :: label
     integer :: i
     law = new_rubber_fender_law(diameter, rated_reaction, 0.8_wp)
     do i = 0, 12
-      f = contact_force(law, s, 0.05_wp*i*diameter, 1.0_wp)
+      f = law%force(s, 0.05_wp*i*diameter, 1.0_wp)
       write (label, "(a,i0,a)") "R at ", 5*i, " % of D = table"
       call check(state, f, table(i + 1)*rated_reaction, trim(label), abs_tol=1e-6_wp)
     end do
-    call check(state, contact_force(law, s, 0.6_wp*diameter, 1.0_wp), 182.0e3_wp, &
+    call check(state, law%force(s, 0.6_wp*diameter, 1.0_wp), 182.0e3_wp, &
                "rated reaction (ISO 17357-1)", rel_tol=1e-12_wp)
     w = 0.0_wp
     f_prev = 0.0_wp
     jump = 0.0_wp
     do i = -100, 800
-      f = contact_force(law, s, 1.0e-3_wp*i, 1.0_wp)
+      f = law%force(s, 1.0e-3_wp*i, 1.0_wp)
       call check_true(state, f >= 0.0_wp, "never pulls")
       if (i > 0 .and. i <= 600) w = w + 0.5_wp*(f + f_prev)*1.0e-3_wp
       jump = max(jump, abs(f - f_prev))
@@ -240,7 +240,7 @@ contains
   subroutine trial_deflections(state)
     type(case_state), intent(inout) :: state
     real(wp) :: nan, trials(7), f(3)
-    type(contact_law_type) :: law
+    type(rubber_fender_law_type) :: law
     type(fender_state_type) :: unloading
     integer :: k
     character(len=24) :: label
@@ -255,7 +255,7 @@ contains
     do k = 1, size(trials)
       write (label, "(es24.16)") trials(k)
       f = [rubber_loading(diameter, rated_reaction, trials(k)), &
-           contact_force(law, fender_state_type(), trials(k), 1.0_wp), &
+           law%force(fender_state_type(), trials(k), 1.0_wp), &
            rubber_unloading(diameter, rated_reaction, unloading%f_max, unloading%exponent, &
                             trials(k))]
       if (ieee_is_nan(trials(k))) then

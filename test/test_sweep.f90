@@ -6,9 +6,8 @@ module test_sweep
   use davit_kinds, only: wp, i8, pi, gravity
   use davit_error, only: error_type
   use davit_io_config, only: config_type
-  use davit_boat_contact, only: hertz_peak
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system, deck_config
+  use system_fixture, only: new_test_system, deck_config, system_hertz_peak
   use davit_run_recorders, only: boat_recorder
   use davit_run_run_summary, only: run_summary
   use davit_run_driver, only: integrate
@@ -280,7 +279,7 @@ contains
     metrics%log = new_launch_log(cfg, sys)
     call integrate(cfg%simulation, sys, y, rec, summary, run_error, error, metrics)
     r = metrics%result(sys)
-    call hertz_peak(sys%par%fenders%law, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
+    call system_hertz_peak(sys, 0.5_wp*cfg%boat%mass, 1.0_wp, dm, fm)
     call note(state, "peak horizontal acceleration (m/s^2)", r%peak_horizontal_acceleration)
     call note(state, "min clearance (m)", r%min_clearance)
     call check_true(state, .not. allocated(run_error), "run completes")

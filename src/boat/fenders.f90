@@ -10,7 +10,7 @@ module davit_boat_fenders
   use davit_kinds, only: wp
   use davit_core_rotation, only: cross
   use davit_core_body, only: body_point_velocity, body_point_force
-  use davit_boat_contact, only: contact_law_type, fender_state_type, contact_force
+  use davit_boat_contact_law, only: contact_law_type, fender_state_type
   implicit none
   private
   public :: side_plane_type, fender_set_type, new_fender_set, fender_probe, fender_loads
@@ -25,7 +25,8 @@ module davit_boat_fenders
     integer :: nf = 0, nd = 0
     !> Fender points in the boat frame, (3, nd, nf) [m].
     real(wp), allocatable :: points(:, :, :)
-    type(contact_law_type) :: law
+    !> The contact law, chosen once at build (davit_system_law_factory).
+    class(contact_law_type), allocatable :: law
   end type fender_set_type
 
 contains
@@ -35,13 +36,13 @@ contains
   pure function new_fender_set(xs, y0, z_range, nd, law) result(fs)
     real(wp), intent(in) :: xs(:), y0, z_range(2)
     integer, intent(in) :: nd
-    type(contact_law_type), intent(in) :: law
+    class(contact_law_type), intent(in) :: law
     type(fender_set_type) :: fs
     integer :: i, j
     real(wp) :: z
     fs%nf = size(xs)
     fs%nd = nd
-    fs%law = law
+    allocate (fs%law, source=law)
     allocate (fs%points(3, nd, fs%nf))
     do j = 1, fs%nf
       do i = 1, nd
@@ -93,7 +94,7 @@ contains
     call fender_probe(fs, plane, c, r, u, deepest, delta, delta_dot)
     f = 0.0_wp
     do j = 1, fs%nf
-      force(j) = contact_force(fs%law, states(j), delta(j), delta_dot(j))
+      force(j) = fs%law%force(states(j), delta(j), delta_dot(j))
       if (force(j) > 0.0_wp) then
         f = f + body_point_force(fs%points(:, deepest(j), j), &
                                  matmul(force(j)*plane%normal, c))

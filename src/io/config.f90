@@ -3,6 +3,7 @@
 module davit_io_config
   use davit_kinds, only: wp, pi
   use davit_sea_spectrum, only: spectrum_peak_omega
+  use davit_boat_wind_loads, only: lift_form_names
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
@@ -343,7 +344,7 @@ contains
     call r%real(g, "lift_diameter", b%lift_diameter, 3.29_wp, 0.0_wp, 50.0_wp, "m", &
                 "Lift cylinder diameter D_b (the circle of the frontal area).")
     call r%choice(g, "lift_form", b%lift_form, "symmetric", &
-                  [character(len=9) :: "symmetric", "literal"], "Wind lift: 'symmetric' "// &
+                  lift_form_names, "Wind lift: 'symmetric' "// &
                   "(upward, from the lateral cross-flow) or eq. 16 'literal'.")
     call read_boat_water(r, b)
   end subroutine read_boat

@@ -4,6 +4,7 @@
 module davit_io_contact_keys
   use davit_kinds, only: wp
   use davit_io_deck_reader, only: deck_reader_type
+  use davit_boat_contact_law, only: contact_law_names
   implicit none
   private
   public :: contact_config, read_contact
@@ -31,8 +32,7 @@ contains
     character(len=*), parameter :: g = "contact"
     call r%logical(g, "enabled", s%enabled, .true., &
                    "Fender contact with the ship's side plane (eqs. 27-34).")
-    call r%choice(g, "law", s%law, "rubber_fender", [character(len=20) :: "rubber_fender", &
-                  "hertz_elastoplastic", "lankarani_nikravesh"], "A rubber fender's "// &
+    call r%choice(g, "law", s%law, "rubber_fender", contact_law_names, "A rubber fender's "// &
                   "published reaction-deflection curve with hysteresis returning e_r^2 of the "// &
                   "work (README Fenders); or the paper's Hertz compression with the corrected "// &
                   "elastoplastic restitution (eqs. 27-28); or the smooth "// &

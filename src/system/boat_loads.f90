@@ -13,7 +13,6 @@ module davit_system_boat_loads
   use davit_rigging_elastic_sling, only: sling_hook_force
   use davit_sea_wind, only: wind_velocity
   use davit_boat_strip_loads, only: strip_loads
-  use davit_boat_wind_loads, only: boat_wind_force
   use davit_boat_fenders, only: side_plane_type, fender_loads
   use davit_boat_surface_watch, only: surely_dry
   use davit_boat_bem_water, only: boat_bem_loads, boat_bem_immersion
@@ -125,8 +124,8 @@ contains
                           fw, v)
       f = f + fw
     end if
-    f(4:6) = f(4:6) + boat_wind_force(par%air, u(4:6) - matmul(wind_velocity(par%wind), c), &
-                                      max(0.0_wp, 1.0_wp - volume/par%hull_volume))
+    f(4:6) = f(4:6) + par%air%force(u(4:6) - matmul(wind_velocity(par%wind), c), &
+                                    max(0.0_wp, 1.0_wp - volume/par%hull_volume))
   end subroutine slow_forces
 
   !> The fenders' contact loads (eq. 34) added to f.

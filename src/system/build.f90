@@ -5,7 +5,7 @@ module davit_system_build
   use davit_error, only: error_type, fatal_error
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type, pose_point, pose_point_velocity
-  use davit_io_config, only: config_type, contact_config
+  use davit_io_config, only: config_type
   use davit_io_search_path, only: find_file, folder_of
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
@@ -14,9 +14,8 @@ module davit_system_build
   use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
-  use davit_boat_wind_loads, only: boat_wind_type, lift_symmetric, lift_literal
-  use davit_boat_contact, only: contact_law_type, new_contact_law, new_rubber_fender_law, &
-                                law_hertz_elastoplastic, law_lankarani_nikravesh
+  use davit_boat_contact_law, only: contact_law_type
+  use davit_system_law_factory, only: new_contact_law, new_boat_wind
   use davit_boat_fenders, only: new_fender_set
   use davit_boat_strip_waves, only: new_strip_wave_cache
   use davit_boat_surface_watch, only: new_surface_watch
@@ -61,12 +60,14 @@ contains
       par%on_davit = cfg%simulation%scene == "lowering" .or. cfg%simulation%scene == "launch"
       par%slings_attached = s%attached .and. .not. par%on_davit
     end associate
-    call new_boat_environment(self, cfg)
+    call new_boat_environment(self, cfg, error)
+    if (allocated(error)) return
     if (cfg%boat%water_model == "bem") then
       call new_boat_water(self%par, cfg, error)
       if (allocated(error)) return
     end if
-    call new_side_contact(self, cfg)
+    call new_side_contact(self, cfg, error)
+    if (allocated(error)) return
     if (self%par%on_davit) then
       call new_davit(self%par, cfg, error)
       if (allocated(error)) return
@@ -206,9 +207,10 @@ contains
   end function beside
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
-  subroutine new_boat_environment(self, cfg)
+  subroutine new_boat_environment(self, cfg, error)
     type(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
     associate (b => cfg%boat, par => self%par)
       par%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
                                                 b%breadth_exponent, b%strips), &
@@ -217,9 +219,11 @@ contains
                                   merge(strip_level_paper, strip_level_pressure, &
                                         b%water_model == "paper"), b%roll_restoring == "paper")
       par%hull_volume = sum(par%water%hull%breadth)*par%water%hull%thickness*b%height
-      par%air = boat_wind_type(b%wind_areas, b%wind_drag_coefficient, b%lift_coefficient, &
-                               b%lift_diameter, b%length, &
-                               merge(lift_literal, lift_symmetric, b%lift_form == "literal"))
+      call new_boat_wind(b, par%air, error)
+      if (allocated(error)) then
+        error%message = cfg%filename//": "//error%message
+        return
+      end if
       call build_wave_field(cfg%sea, cfg%simulation%seed, 0, par%sea)
       par%wind = build_wind(cfg%wind)
       self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, surface_watch_interval)
@@ -240,10 +244,12 @@ contains
   !> The ship's side plane at ship-frame y = side_y, normal +s2, for the ship at rest in its
   !> deck attitude (list, trim, heading) and position; the fenders, their contact law and
   !> the contact step policy.
-  subroutine new_side_contact(self, cfg)
+  subroutine new_side_contact(self, cfg, error)
     type(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
+    type(error_type), allocatable, intent(out) :: error
     real(wp) :: cs(3, 3)
+    class(contact_law_type), allocatable :: law
     self%par%contact = cfg%contact%enabled
     self%policy%dt_contact = cfg%simulation%dt_contact
     self%policy%graded = cfg%simulation%contact_approach == "graded"
@@ -252,27 +258,16 @@ contains
     self%par%ship_rest = pose_type(cfg%ship%position, cs, &
                                    matmul(cs, [cfg%ship%headway, 0.0_wp, 0.0_wp]), 0.0_wp)
     self%par%side_y = cfg%contact%side_y
+    call new_contact_law(cfg%contact, law, error)
+    if (allocated(error)) then
+      error%message = cfg%filename//": "//error%message
+      return
+    end if
     associate (k => cfg%contact)
-      self%par%fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, &
-                                        contact_law(k))
+      self%par%fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, law)
       allocate (self%hist%fender_states(size(k%fender_x)))
     end associate
   end subroutine new_side_contact
-
-  !> The &contact law: the rubber fender's curve, or Hertz from the two materials.
-  pure function contact_law(k) result(c)
-    type(contact_config), intent(in) :: k
-    type(contact_law_type) :: c
-    integer :: law
-    if (k%law == "rubber_fender") then
-      c = new_rubber_fender_law(k%fender_diameter, k%fender_reaction, k%restitution)
-      return
-    end if
-    law = merge(law_lankarani_nikravesh, law_hertz_elastoplastic, &
-                k%law == "lankarani_nikravesh")
-    c = new_contact_law(law, k%youngs_boat, k%poisson_boat, k%youngs_ship, k%poisson_ship, &
-                        k%radius_boat, k%radius_ship, k%restitution)
-  end function contact_law
 
   !> Initial y from inertial position/velocity and Euler angles / body rates; on the davit,
   !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as

@@ -12,7 +12,7 @@
 !> event (davit_solve_event_location): the step is cut exactly at it.
 module davit_system_contact_policy
   use davit_kinds, only: wp
-  use davit_boat_contact, only: phase_free
+  use davit_boat_contact_law, only: phase_free
   use davit_system_parameters, only: system_params_type, fender_gaps
   use davit_system_history, only: system_history_type
   implicit none

@@ -5,7 +5,7 @@
 module davit_system_events
   use davit_kinds, only: wp, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix
-  use davit_boat_contact, only: fender_update, phase_compression
+  use davit_boat_contact_law, only: phase_compression
   use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh
   use davit_boat_surface_watch, only: watch_refresh, strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
@@ -113,7 +113,7 @@ contains
     integer :: j
     call fender_gaps(par, y, delta, delta_dot)
     do j = 1, par%fenders%nf
-      call fender_update(par%fenders%law, hist%fender_states(j), delta(j), delta_dot(j))
+      call par%fenders%law%update(hist%fender_states(j), delta(j), delta_dot(j))
       if (hist%fender_states(j)%phase == phase_compression .and. &
           hist%first_contact_time < 0.0_wp) hist%first_contact_time = t
     end do

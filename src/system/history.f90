@@ -4,7 +4,7 @@
 module davit_system_history
   use davit_kinds, only: wp
   use davit_core_pose, only: pose_type
-  use davit_boat_contact, only: fender_state_type
+  use davit_boat_contact_law, only: fender_state_type
   use davit_boat_surface_watch, only: surface_watch_type
   use davit_boat_strip_waves, only: strip_wave_cache_type
   use davit_boat_bem_water, only: diffraction_cache_type

@@ -21,7 +21,6 @@ module davit_system_model
   use davit_system_contact_policy, only: contact_policy_type, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks, loads_all, loads_slow, loads_fast
   use davit_system_events, only: advance_history
-  use davit_boat_contact, only: fender_next_phase
   use davit_system_observables, only: boat_kinematics, rigging_state, sling_tensions, &
                                       contact_state, energy
   implicit none
@@ -221,8 +220,8 @@ contains
     if (self%par%contact) then
       call fender_gaps(self%par, y, delta, delta_dot)
       do j = 1, self%par%fenders%nf
-        m(j) = fender_next_phase(self%par%fenders%law, self%hist%fender_states(j), &
-                                 delta(j), delta_dot(j))
+        m(j) = self%par%fenders%law%next_phase(self%hist%fender_states(j), delta(j), &
+                                               delta_dot(j))
       end do
       n = self%par%fenders%nf
     end if

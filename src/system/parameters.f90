@@ -46,7 +46,8 @@ module davit_system_parameters
     !> top of the strips (&boat water_model = 'bem').
     logical :: bem_water = .false.
     type(boat_bem_type) :: bem
-    type(boat_wind_type) :: air
+    !> Wind drag and lift on the boat, the lift form chosen at build.
+    class(boat_wind_type), allocatable :: air
     type(wave_field_type) :: sea
     type(wind_type) :: wind
     !> Hull volume (dry fraction of the wind loads) [m^3].

@@ -1,0 +1,85 @@
+!> The one place a force law is chosen by its name in the deck: the &contact group's `law`
+!> becomes an extension of contact_law_type, the &boat group's `lift_form` one of
+!> boat_wind_type, once, at build; everything after calls their bindings (force, update,
+!> next_phase; force) without asking which law it is.
+module davit_system_law_factory
+  use davit_kinds, only: wp
+  use davit_error, only: error_type, fatal_error
+  use davit_io_config, only: contact_config, boat_config
+  use davit_boat_contact_law, only: contact_law_type, contact_law_names
+  use davit_boat_contact, only: hertz_elastoplastic_law_type, lankarani_nikravesh_law_type, &
+                                hertz_stiffness
+  use davit_boat_rubber_fender_law, only: new_rubber_fender_law
+  use davit_boat_wind_loads, only: boat_wind_type, symmetric_lift_wind_type, &
+                                   literal_lift_wind_type, lift_form_names
+  implicit none
+  private
+  public :: new_contact_law, new_boat_wind
+
+contains
+
+  !> The &contact law: the rubber fender's curve, or a Hertz law from the two materials
+  !> (eq. 27's K); an unknown name is an error naming the key and the allowed values.
+  subroutine new_contact_law(k, law, error)
+    !> The &contact group as read from the deck.
+    type(contact_config), intent(in) :: k
+    !> The law, allocated to its extension.
+    class(contact_law_type), allocatable, intent(out) :: law
+    type(error_type), allocatable, intent(out) :: error
+    select case (k%law)
+    case ("rubber_fender")
+      allocate (law, source=new_rubber_fender_law(k%fender_diameter, k%fender_reaction, &
+                                                  k%restitution))
+    case ("hertz_elastoplastic")
+      allocate (law, source=hertz_elastoplastic_law_type(restitution=k%restitution, &
+                                                         k=stiffness(k)))
+    case ("lankarani_nikravesh")
+      allocate (law, source=lankarani_nikravesh_law_type(restitution=k%restitution, &
+                                                         k=stiffness(k)))
+    case default
+      call fatal_error(error, "&contact law = '"//k%law//"': no such contact law; allowed: "// &
+                       listed(contact_law_names))
+    end select
+  end subroutine new_contact_law
+
+  pure real(wp) function stiffness(k)
+    type(contact_config), intent(in) :: k
+    stiffness = hertz_stiffness(k%youngs_boat, k%poisson_boat, k%youngs_ship, k%poisson_ship, &
+                                k%radius_boat, k%radius_ship)
+  end function stiffness
+
+  !> Wind drag (eq. 15) and the &boat lift_form's lift (eq. 16) on the boat; an unknown
+  !> form is an error naming the key and the allowed values.
+  subroutine new_boat_wind(b, air, error)
+    !> The &boat group as read from the deck.
+    type(boat_config), intent(in) :: b
+    !> The wind loads, allocated to the lift form's extension.
+    class(boat_wind_type), allocatable, intent(out) :: air
+    type(error_type), allocatable, intent(out) :: error
+    select case (b%lift_form)
+    case ("symmetric")
+      allocate (air, source=symmetric_lift_wind_type(b%wind_areas, b%wind_drag_coefficient, &
+                                                     b%lift_coefficient, b%lift_diameter, &
+                                                     b%length))
+    case ("literal")
+      allocate (air, source=literal_lift_wind_type(b%wind_areas, b%wind_drag_coefficient, &
+                                                   b%lift_coefficient, b%lift_diameter, &
+                                                   b%length))
+    case default
+      call fatal_error(error, "&boat lift_form = '"//b%lift_form//"': no such lift form; "// &
+                       "allowed: "//listed(lift_form_names))
+    end select
+  end subroutine new_boat_wind
+
+  !> The names, comma-separated: "rubber_fender, hertz_elastoplastic, ...".
+  pure function listed(names) result(list)
+    character(len=*), intent(in) :: names(:)
+    character(len=:), allocatable :: list
+    integer :: i
+    list = trim(names(1))
+    do i = 2, size(names)
+      list = list//", "//trim(names(i))
+    end do
+  end function listed
+
+end module davit_system_law_factory
