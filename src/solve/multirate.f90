@@ -92,14 +92,9 @@ contains
       nsub = max(1, nint(self%c(i)*real(self%substeps, wp)))
       y = self%y0
       call fast_stage(self, problem, t, y, self%c(i)*dt, nsub)
-      self%slow_evaluations = self%slow_evaluations + 1
-      self%fast_evaluations = self%fast_evaluations + 4*nsub
       c_prev = self%c(i)
     end do
-    t = t + dt
-    self%steps = self%steps + 1
-    self%rhs_evaluations = int(self%slow_evaluations + self%fast_evaluations, &
-                               kind(self%rhs_evaluations))
+    call finish_step(self, t, dt)
   end subroutine multirate_step
 
   !> One MRI-GARK macro step: stage i from Y_i over dc_i H, Y_(s+1) = y_(n+1). The
@@ -124,17 +119,24 @@ contains
       end do
       nsub = max(1, nint(dc*real(self%substeps, wp)))
       call fast_stage(self, problem, t + c_prev*dt, y, dc*dt, nsub)
-      self%slow_evaluations = self%slow_evaluations + 1
-      self%fast_evaluations = self%fast_evaluations + 4*nsub
       c_prev = self%c(i)
     end do
+    call finish_step(self, t, dt)
+  end subroutine chained_step
+
+  !> The end of a macro step: the clock and the counters (slow plus fast evaluations).
+  subroutine finish_step(self, t, dt)
+    type(multirate_type), intent(inout) :: self
+    real(wp), intent(inout) :: t
+    real(wp), intent(in) :: dt
     t = t + dt
     self%steps = self%steps + 1
     self%rhs_evaluations = int(self%slow_evaluations + self%fast_evaluations, &
                                kind(self%rhs_evaluations))
-  end subroutine chained_step
+  end subroutine finish_step
 
-  !> v' = f_fast(t0 + tau, v) + slow over tau in [0, span], RK4 in nsub equal substeps.
+  !> v' = f_fast(t0 + tau, v) + slow over tau in [0, span], RK4 in nsub equal substeps: a
+  !> stage, counted as one slow evaluation (its forcing's) and 4 nsub fast ones.
   subroutine fast_stage(self, problem, t0, v, span, nsub)
     type(multirate_type), intent(inout) :: self
     class(ode_problem), intent(in) :: problem
@@ -143,6 +145,8 @@ contains
     integer, intent(in) :: nsub
     real(wp) :: h, half, ts
     integer :: k
+    self%slow_evaluations = self%slow_evaluations + 1
+    self%fast_evaluations = self%fast_evaluations + 4*nsub
     h = span/real(nsub, wp)
     half = 0.5_wp*h
     do k = 0, nsub - 1
