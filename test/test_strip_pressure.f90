@@ -40,7 +40,8 @@ contains
                    new_case("undamped_free_boat_conserves_energy", energy), &
                    new_case("first_contact_is_continuous", first_contact), &
                    new_case("drop_from_1m_entry_depth_vs_energy", drop_test), &
-                   new_case("irregular_section_load_vs_edge_quadrature", irregular_section)]
+                   new_case("irregular_section_load_vs_edge_quadrature", irregular_section), &
+                   new_case("calm_horizontal_drag_is_morison", calm_drag)]
   end function collect_strip_pressure
 
   !> The III.B hull (G25) as strips: 11.5 x 2.8 m, H = 3.1 m, keel 1.1 m below G.
@@ -403,5 +404,40 @@ contains
       end do
     end do
   end subroutine quadrature_load
+
+  !> Quadratic drag (eq. 22) on the upright boat at its equilibrium draught T in calm
+  !> water, moving at (vx, vy) with no rotation: every other load is vertical or cancels
+  !> (tangent-plane pressure along n3, no dynamic pressure, heave damping on a zero
+  !> relative heave, the symmetric hull's yaw moment), so the horizontal force is Morison's
+  !> -rho C_D A v|v|/2 per direction with the review's areas: surge on the largest wet
+  !> section b_max T, sway on the wet side L_wet T (each strip's t_s T). Distinct C_D per
+  !> direction and both signs of v, so a changed factor, sign, area or index fails.
+  subroutine calm_drag(state)
+    type(case_state), intent(inout) :: state
+    type(strip_model_type) :: s
+    type(wave_field_type) :: calm
+    real(wp), parameter :: cd(3) = [1.1_wp, 0.9_wp, 1.3_wp]
+    real(wp) :: f(6), v, t0, vx, vy, fx, fy, side
+    integer :: j
+    s = new_strip_model(paper_hull(20), cd, 2.0_wp, [0.0_wp, 0.0_wp, 0.0_wp], mass, inertia)
+    call new_calm_sea(calm)
+    t0 = (mass/rho_water)/hull_waterplane_area(s%hull)
+    side = s%hull%thickness*t0*real(count(s%hull%breadth > 0.0_wp), wp)
+    do j = 1, 2
+      vx = merge(0.7_wp, -1.3_wp, j == 1)
+      vy = merge(-0.4_wp, 0.25_wp, j == 1)
+      call strip_loads(s, calm, 0.0_wp, rotation_matrix([0.0_wp, 0.0_wp, 0.0_wp]), &
+                       [0.0_wp, 0.0_wp, t0 - 1.1_wp], [0.0_wp, 0.0_wp, 0.0_wp, vx, vy, &
+                                                       0.0_wp], f, v)
+      fx = -0.5_wp*rho_water*cd(1)*maxval(s%hull%breadth)*t0*abs(vx)*vx
+      fy = -0.5_wp*rho_water*cd(2)*side*abs(vy)*vy
+      call note(state, "surge drag (N)", f(4))
+      call note(state, "sway drag (N)", f(5))
+      call check(state, f(4), fx, "surge: -rho C_D1 b_max T vx|vx|/2", rel_tol=1e-9_wp)
+      call check(state, f(5), fy, "sway: -rho C_D2 L_wet T vy|vy|/2", rel_tol=1e-9_wp)
+      call check(state, f(3), 0.0_wp, "no yaw moment on the symmetric hull", &
+                 abs_tol=1e-9_wp*abs(fy))
+    end do
+  end subroutine calm_drag
 
 end module test_strip_pressure
