@@ -36,8 +36,10 @@ APT_PACKAGES=(gfortran libhdf5-dev liblapack-dev libopenblas-dev pkg-config pyth
 # capytaine (with xarray, scipy, pandas) and h5netcdf: the ship's BEM database
 # (python -m postproc.bem build writes netCDF4/HDF5 through xarray's h5netcdf engine)
 # ford: the documentation site (bash make.sh docs; test_docs builds it)
+# fmpy: the FMI headers the FMU is compiled against, and the co-simulation master its test
+# steps it with (python3 -m davit.fmu, test_fmu.py)
 PY_PACKAGES=(fpm numpy h5py matplotlib pytest capytaine h5netcdf meshio imageio imageio-ffmpeg
-             hypothesis fortitude-lint ford)
+             hypothesis fortitude-lint ford fmpy)
 # netCDF's own tools (ncdump, nccopy): the tests read every kind of davit output with them
 TEST_APT_PACKAGES=(netcdf-bin)
 DEFAULT_DECK=input/iiib_level5_090.nml
