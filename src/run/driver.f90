@@ -210,7 +210,7 @@ contains
         call fatal_error(run_error, "run diverged at t = "//fmt_real(t)//" s: "// &
                          rec%state_name(problem, bad)//" = "//fmt_real(y(bad))//" is not finite"// &
                          " or beyond "//fmt_real(speed_limit)//" (step size "// &
-                         fmt_real(h)//" s may exceed the stability limit)")
+                         fmt_real(integ%stiff_step(h))//" s may exceed the stability limit)")
         exit
       end if
       call problem%after_step(t, y)

@@ -62,6 +62,7 @@ module davit_solve_integrator
     procedure(init_interface), deferred :: init
     procedure(step_interface), deferred :: step
     procedure(name_interface), deferred :: name
+    procedure :: stiff_step => whole_step
   end type integrator_type
 
   abstract interface
@@ -138,5 +139,13 @@ contains
     real(wp), intent(in) :: t, y(:), dt
     h = dt
   end function no_max_step
+
+  !> The step the stiffest explicit stage takes when the macro step is h (what a
+  !> divergence message names): h itself, but for the multirate methods' fast substeps.
+  pure real(wp) function whole_step(self, h) result(hs)
+    class(integrator_type), intent(in) :: self
+    real(wp), intent(in) :: h
+    hs = h
+  end function whole_step
 
 end module davit_solve_integrator

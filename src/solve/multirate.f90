@@ -51,6 +51,7 @@ module davit_solve_multirate
     procedure :: init => multirate_init
     procedure :: step => multirate_step
     procedure :: name => multirate_name
+    procedure :: stiff_step => substep
   end type multirate_type
 
 contains
@@ -177,5 +178,12 @@ contains
       name = "multirate"
     end if
   end function multirate_name
+
+  !> The fast part's RK4 substep of a macro step h (the stability limit applies to it).
+  pure real(wp) function substep(self, h) result(hs)
+    class(multirate_type), intent(in) :: self
+    real(wp), intent(in) :: h
+    hs = h/real(self%substeps, wp)
+  end function substep
 
 end module davit_solve_multirate

@@ -177,6 +177,25 @@ def test_lowering_divergence_is_caught_with_partial_output(davit, tmp_path):
     assert not run.complete and 0 < run.time[-1] < 5.0
 
 
+def test_multirate_divergence_names_the_fast_substep(davit, tmp_path):
+    """mri2 at 0.02 s steps with 4 substeps puts the rigging's RK4 substep at 5e-3 s, past
+    the block's limit (~2.2e-3 s) while the macro step is not the culprit: the run stops
+    with the diagnostic, names the 0.005 s substep as the step that may exceed the limit,
+    and keeps its partial output."""
+    text = (ROOT / "input" / "iiib_level5_090.nml").read_text().replace(
+        "t_end = 0.0 ", "t_end = 5.0 ").replace(
+        "dt = 1.0e-3", "dt = 0.02, integrator = 'mri2', substeps = 4")
+    deck = tmp_path / "mri2_diverge.nml"
+    deck.write_text(text)
+    out = tmp_path / "mri2_diverge.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 1
+    assert re.search(r"diverged at t = [0-9.]+ s: .*step size 0\.005 s may exceed the "
+                     r"stability limit", result.stderr), result.stderr
+    run = layout.load(out)
+    assert not run.complete and 0 < run.time[-1] < 5.0
+
+
 def test_rk4_fourth_order_on_coupled_launch(davit, tmp_path):
     """Self-convergence of RK4 on the coupled launch (iiib_level5_090, first 2 s: ship in
     the ramping waves, boat on the falls, no contact): halving dt divides the change of the
