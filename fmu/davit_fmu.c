@@ -10,7 +10,7 @@
  *   6    hook release time [s] (-1 before)                                 output
  *   10   drum speed set-point [m/s] (pay-out > 0)                          input
  *   11   release the hooks (Boolean)                                       input
- * No FMU state get/set (the C ABI's save/restore is a replay: see doc/howto/library.md).
+ * The FMU state is the C ABI's snapshot: a restore replays the run (doc/howto/library.md).
  * The FMI headers are those FMPy ships (fmpy/c-code), included at build time only. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -229,22 +229,103 @@ fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind k, fmi2Stri
   return fmi2Discard;
 }
 
-/* not supported (canGetAndSetFMUstate = false, no directional derivatives) */
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *s) { (void)c; (void)s; return fmi2Error; }
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate s) { (void)c; (void)s; return fmi2Error; }
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *s) { (void)c; (void)s; return fmi2Error; }
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate s, size_t *n) {
-  (void)c; (void)s; (void)n;
-  return fmi2Error;
+/* The FMU state: the C ABI's snapshot (deck, controls, steps, state: restored by a replay
+ * of the run, so a restore costs the replayed time) behind the inputs' bookkeeping. */
+typedef struct {
+  double winch, winch_set;
+  int release, released;
+  size_t n;
+  uint8_t *bytes;
+} fmu_state_t;
+
+static void free_state(fmu_state_t *s) {
+  if (!s) return;
+  free(s->bytes);
+  free(s);
 }
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate s, fmi2Byte b[], size_t n) {
-  (void)c; (void)s; (void)b; (void)n;
-  return fmi2Error;
+
+fmi2Status fmi2GetFMUstate(fmi2Component comp, fmi2FMUstate *state) {
+  instance_t *c = comp;
+  if (!c->h) return fmi2Error;
+  fmu_state_t *s = *state ? (fmu_state_t *)*state : calloc(1, sizeof *s);
+  if (!s) return fmi2Error;
+  size_t n = davit_save_size(c->h);
+  uint8_t *b = realloc(s->bytes, n);
+  if (!b) return fmi2Error;
+  s->bytes = b;
+  s->n = n;
+  if (davit_save(c->h, s->bytes, n) != DAVIT_OK) return fail(c, "save");
+  s->winch = c->winch;
+  s->winch_set = c->winch_set;
+  s->release = c->release;
+  s->released = c->released;
+  *state = s;
+  return fmi2OK;
 }
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *s) {
-  (void)c; (void)b; (void)n; (void)s;
-  return fmi2Error;
+
+fmi2Status fmi2SetFMUstate(fmi2Component comp, fmi2FMUstate state) {
+  instance_t *c = comp;
+  fmu_state_t *s = state;
+  if (!c->h || !s) return fmi2Error;
+  if (davit_restore(c->h, s->bytes, s->n) != DAVIT_OK) return fail(c, "restore");
+  c->winch = s->winch;
+  c->winch_set = s->winch_set;
+  c->release = s->release;
+  c->released = s->released;
+  return fmi2OK;
 }
+
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state) {
+  (void)c;
+  if (state && *state) free_state(*state);
+  if (state) *state = NULL;
+  return fmi2OK;
+}
+
+/* serialized: the four bookkeeping fields, then the snapshot's bytes */
+#define HEAD (2 * sizeof(double) + 2 * sizeof(int))
+
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *n) {
+  (void)c;
+  fmu_state_t *s = state;
+  if (!s) return fmi2Error;
+  *n = HEAD + s->n;
+  return fmi2OK;
+}
+
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte b[], size_t n) {
+  (void)c;
+  fmu_state_t *s = state;
+  if (!s || n < HEAD + s->n) return fmi2Error;
+  memcpy(b, &s->winch, sizeof(double));
+  memcpy(b + sizeof(double), &s->winch_set, sizeof(double));
+  memcpy(b + 2 * sizeof(double), &s->release, sizeof(int));
+  memcpy(b + 2 * sizeof(double) + sizeof(int), &s->released, sizeof(int));
+  memcpy(b + HEAD, s->bytes, s->n);
+  return fmi2OK;
+}
+
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte b[], size_t n, fmi2FMUstate *state) {
+  (void)c;
+  if (n < HEAD) return fmi2Error;
+  fmu_state_t *s = calloc(1, sizeof *s);
+  if (!s) return fmi2Error;
+  s->n = n - HEAD;
+  s->bytes = malloc(s->n ? s->n : 1);
+  if (!s->bytes) {
+    free(s);
+    return fmi2Error;
+  }
+  memcpy(&s->winch, b, sizeof(double));
+  memcpy(&s->winch_set, b + sizeof(double), sizeof(double));
+  memcpy(&s->release, b + 2 * sizeof(double), sizeof(int));
+  memcpy(&s->released, b + 2 * sizeof(double) + sizeof(int), sizeof(int));
+  memcpy(s->bytes, b + HEAD, s->n);
+  *state = s;
+  return fmi2OK;
+}
+
+/* not supported: directional derivatives, input and output derivatives */
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference u[], size_t nu,
                                         const fmi2ValueReference z[], size_t nz,
                                         const fmi2Real dv[], fmi2Real dz[]) {

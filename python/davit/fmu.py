@@ -52,7 +52,8 @@ def model_description(guid, stop_time):
     description="lifeboat launch from a ship's davit (davit, C ABI)" generationTool="davit.fmu"
     variableNamingConvention="flat" numberOfEventIndicators="0">
   <CoSimulation modelIdentifier="davit" canHandleVariableCommunicationStepSize="true"
-      canBeInstantiatedOnlyOncePerProcess="false" needsExecutionTool="false"/>
+      canBeInstantiatedOnlyOncePerProcess="false" needsExecutionTool="false"
+      canGetAndSetFMUstate="true" canSerializeFMUstate="true"/>
   <UnitDefinitions>
     <Unit name="m"><BaseUnit m="1"/></Unit>
     <Unit name="N"><BaseUnit kg="1" m="1" s="-2"/></Unit>
