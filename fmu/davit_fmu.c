@@ -33,6 +33,12 @@ static void logmsg(instance_t *c, fmi2Status s, const char *msg) {
 
 static fmi2Status fail(instance_t *c, const char *what) {
   char buf[1024];
+  if (!c->h) {
+    char msg[256];
+    snprintf(msg, sizeof msg, "%s: no run (call fmi2EnterInitializationMode first)", what);
+    logmsg(c, fmi2Error, msg);
+    return fmi2Error;
+  }
   size_t n = davit_error_message(c->h, buf, sizeof buf);
   if (n >= sizeof buf) n = sizeof buf - 1;
   buf[n] = '\0';
@@ -101,7 +107,12 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean tol_defined, fmi2Rea
 fmi2Status fmi2EnterInitializationMode(fmi2Component comp) {
   instance_t *c = comp;
   if (c->h) return fmi2OK;
-  if (davit_create_file(c->deck, &c->h) != DAVIT_OK) return fail(c, c->deck);
+  if (davit_create_file(c->deck, &c->h) != DAVIT_OK) {
+    fail(c, c->deck);  /* the failed handle carries the message; then it goes */
+    davit_destroy(c->h);
+    c->h = NULL;
+    return fmi2Error;
+  }
   return fmi2OK;
 }
 
@@ -188,7 +199,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real t, fmi2Real h, fmi2Boolean no_set_prior) {
   instance_t *c = comp;
   (void)no_set_prior;
-  if (!c->h) return fmi2Error;
+  if (!c->h) return fail(c, "fmi2DoStep");
   if (c->winch_set >= 0.0 && c->winch_set != c->winch) {
     if (davit_set_winch_speed(c->h, c->winch_set, 0.0) != DAVIT_OK) return fail(c, "winch speed");
     c->winch = c->winch_set;

@@ -111,3 +111,26 @@ def test_fmu_state_get_set_and_serialize(fmu, tmp_path):
     slave.freeFMUstate(restored)
     slave.terminate()
     slave.freeInstance()
+
+
+def test_fmu_with_a_bad_deck_fails_with_the_message(tmp_path, capfd):
+    """An FMU whose deck has an out-of-range key: instantiation succeeds, initialisation
+    fails with fmi2Error, and the logger receives davit's message naming the key."""
+    from davit import fmu as davit_fmu
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+    if shutil.which("cc") is None or not (ROOT / "build" / "libdavit.so").is_file():
+        pytest.skip("no C compiler or no build/libdavit.so")
+    bad = tmp_path / "bad.nml"
+    bad.write_text(DECK.read_text().replace("output_interval = 0.02", "output_interval = -1.0"))
+    path = davit_fmu.build(bad, tmp_path / "bad.fmu")
+    md = read_model_description(str(path))
+    slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(path), str(tmp_path / "x")),
+                      modelIdentifier="davit", instanceName="bad")
+    slave.instantiate(loggingOn=True)
+    slave.setupExperiment(startTime=0.0)
+    with pytest.raises(Exception):
+        slave.enterInitializationMode()
+    slave.freeInstance()
+    logged = capfd.readouterr()
+    assert "output_interval" in logged.out + logged.err, logged
