@@ -15,6 +15,7 @@ module davit_core_blas_threads
     function dlsym(handle, symbol) bind(c, name="dlsym") result(address)
       import :: c_ptr, c_funptr, c_char
       type(c_ptr), value :: handle
+      !> Name of the C symbol looked up, NUL-terminated.
       character(kind=c_char), intent(in) :: symbol(*)
       type(c_funptr) :: address
     end function dlsym

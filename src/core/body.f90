@@ -14,7 +14,9 @@ module davit_core_body
 
   !> Inertial parameters; I(1:3) are principal moments about the CG [kg m^2].
   type :: rigid_body_type
+    !> Mass of the body [kg].
     real(wp) :: mass = 0.0_wp
+    !> Principal moments of inertia about the CG, body axes 1-3 [kg m^2].
     real(wp) :: inertia(3) = 0.0_wp
   end type rigid_body_type
 
@@ -22,6 +24,7 @@ contains
 
   !> Diagonal of [V] in eq. (12): (I1, I2, I3, m, m, m).
   pure function body_mass_diagonal(body) result(v)
+    !> The body's mass and principal inertia.
     type(rigid_body_type), intent(in) :: body
     real(wp) :: v(6)
     v = [body%inertia, body%mass, body%mass, body%mass]
@@ -29,7 +32,9 @@ contains
 
   !> [W]{phi} of eq. (12), i.e. omega x (I omega) and m omega x v (eq. 11).
   pure function body_w_phi(body, u) result(wphi)
+    !> The body's mass and principal inertia.
     type(rigid_body_type), intent(in) :: body
+    !> Generalized speeds (omega_b [rad/s], v_b [m/s]), body components.
     real(wp), intent(in) :: u(6)
     real(wp) :: wphi(6)
     associate (i => body%inertia)
@@ -42,6 +47,8 @@ contains
 
   !> Kinematic relations, eqs. (5) and (6).
   pure function body_qdot(q, u) result(qdot)
+    !> Coordinates q = (theta1..3 [rad], CG position in body components [m]) and speeds
+    !> u = (omega_b [rad/s], v_b [m/s]), body components.
     real(wp), intent(in) :: q(6), u(6)
     real(wp) :: qdot(6)
     qdot(1:3) = euler_rates(q(1:3), u(1:3))
@@ -50,6 +57,7 @@ contains
 
   !> CG position in the inertial frame, r_N = C q(4:6).
   pure function body_inertial_position(q) result(r)
+    !> Coordinates (theta1..3 [rad], CG position in body components [m]).
     real(wp), intent(in) :: q(6)
     real(wp) :: r(3)
     r = matmul(rotation_matrix(q(1:3)), q(4:6))
@@ -57,6 +65,8 @@ contains
 
   !> Velocity (body components) of the body point a_b: v + omega x a.
   pure function body_point_velocity(u, a_b) result(v)
+    !> Speeds u = (omega_b [rad/s], v_b [m/s]) and the body point a_b from the CG [m], all
+    !> in body components.
     real(wp), intent(in) :: u(6), a_b(3)
     real(wp) :: v(3)
     v = u(4:6) + cross(u(1:3), a_b)
@@ -65,7 +75,9 @@ contains
   !> Eq. (13): generalized gravity force, m g N3 . v_r. N3 in body components is the third
   !> row of C (review §1.3): m g (-s2, s1 c2, c1 c2).
   pure function body_gravity_force(body, c) result(f)
+    !> The body's mass and principal inertia.
     type(rigid_body_type), intent(in) :: body
+    !> Rotation matrix C (body -> inertial components, eq. 2).
     real(wp), intent(in) :: c(3, 3)
     real(wp) :: f(6)
     f(1:3) = 0.0_wp
@@ -75,6 +87,7 @@ contains
   !> Eq. (26) in general form: generalized force of a force f_b (body components) acting at
   !> the body point a_b; the partial angular velocities give the moment a x f.
   pure function body_point_force(a_b, f_b) result(f)
+    !> Point of application a_b from the CG [m] and force f_b [N], body components.
     real(wp), intent(in) :: a_b(3), f_b(3)
     real(wp) :: f(6)
     f(1:3) = cross(a_b, f_b)
@@ -82,7 +95,9 @@ contains
   end function body_point_force
 
   pure function body_kinetic_energy(body, u) result(e)
+    !> The body's mass and principal inertia.
     type(rigid_body_type), intent(in) :: body
+    !> Speeds (omega_b [rad/s], v_b [m/s]), body components.
     real(wp), intent(in) :: u(6)
     real(wp) :: e
     e = 0.5_wp*(sum(body%inertia*u(1:3)**2) + body%mass*sum(u(4:6)**2))

@@ -31,7 +31,9 @@ contains
 
   !> s = sin(x), c = cos(x).
   pure subroutine sincos_scalar(x, s, c)
+    !> Angle [rad].
     real(wp), intent(in) :: x
+    !> Its sine s and cosine c.
     real(wp), intent(out) :: s, c
     real(wp) :: xs(1), ss(1), cs(1)
     xs(1) = x
@@ -41,7 +43,9 @@ contains
   end subroutine sincos_scalar
 
   pure subroutine sincos_array(x, s, c)
+    !> Angles [rad].
     real(wp), intent(in) :: x(:)
+    !> Their sines s and cosines c, of the size of x.
     real(wp), intent(out) :: s(:), c(:)
     real(wp) :: fn, r, z, ps, pc, sw, cw, odd, high
     integer :: i

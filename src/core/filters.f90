@@ -14,6 +14,7 @@ contains
   !> x filtered with -3 dB at fc [Hz], sampled every dt [s]; the ends are padded with their
   !> first and last value so a signal at rest starts and ends without a transient.
   pure function phaseless_lowpass(x, dt, fc) result(y)
+    !> Signal x sampled every dt [s]; fc the -3 dB frequency of the filter [Hz].
     real(wp), intent(in) :: x(:), dt, fc
     ! on the heap: the signal is as long as the run (a 1 kHz seat trace of t_end)
     real(wp), allocatable :: y(:)
@@ -24,7 +25,9 @@ contains
   !> phaseless_lowpass of y in place: no copy of a signal as long as the run (y may be a
   !> strided row of a component table).
   pure subroutine lowpass_in_place(y, dt, fc)
+    !> Signal, filtered in place.
     real(wp), intent(inout) :: y(:)
+    !> Sampling interval dt [s] and -3 dB frequency fc [Hz].
     real(wp), intent(in) :: dt, fc
     real(wp) :: a(3), b(2)
     call butterworth2(dt, fc/(sqrt(2.0_wp) - 1.0_wp)**0.25_wp, a, b)
@@ -35,7 +38,9 @@ contains
   !> Coefficients of the 2-pole Butterworth low-pass with corner f0 (prewarped bilinear
   !> transform): y_n = a1 x_n + a2 x_n-1 + a3 x_n-2 + b1 y_n-1 + b2 y_n-2.
   pure subroutine butterworth2(dt, f0, a, b)
+    !> Sampling interval dt [s] and the pass's corner frequency f0 [Hz].
     real(wp), intent(in) :: dt, f0
+    !> Feed-forward a and feedback b coefficients of the recursion.
     real(wp), intent(out) :: a(3), b(2)
     real(wp) :: wa, den
     wa = tan(pi*f0*dt)
@@ -47,8 +52,11 @@ contains
   !> One causal pass in place, forward (or backward in time: from the last value to the
   !> first), started at rest at the first value it meets.
   pure subroutine one_pass(y, a, b, forward)
+    !> Signal, filtered in place.
     real(wp), intent(inout) :: y(:)
+    !> Feed-forward a and feedback b coefficients (butterworth2).
     real(wp), intent(in) :: a(3), b(2)
+    !> True for a pass forward in time, false for one backward.
     logical, intent(in) :: forward
     real(wp) :: x0, x1, x2, y1, y2
     integer :: n, first, last, stride

@@ -11,6 +11,7 @@ contains
 
   !> Weights (h00, h10 h, h01, h11 h) at s = (t - t1)/h, h = t2 - t1.
   pure function hermite_weights(window, t) result(hw)
+    !> Window [t1, t2] of the two samples and the time t [s] to weigh for.
     real(wp), intent(in) :: window(2), t
     real(wp) :: hw(4), h, s
     h = window(2) - window(1)

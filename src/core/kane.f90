@@ -27,9 +27,13 @@ contains
   !> caller set at rest, its u_dot = 0: the ship in the multirate method's fast part) are
   !> left as they are.
   pure subroutine kane_rates(layout, kane, dydt, at_rest)
+    !> The state layout: the parts' speed ranges and the coupled blocks.
     type(state_layout_type), intent(in) :: layout
+    !> Kane blocks, rows kane_v, kane_w_phi, kane_f, one column per state index.
     real(wp), intent(in) :: kane(:, :)
+    !> State rates; u_dot is written at the speeds, q_dot left as the bodies filled it.
     real(wp), intent(inout) :: dydt(:)
+    !> State index range [first, last] of speeds left as they are (a part at rest).
     integer, intent(in), optional :: at_rest(2)
     integer :: k, skip(2)
     skip = [1, 0]
@@ -57,7 +61,9 @@ contains
 
   !> x = v_inv x.
   pure subroutine apply_inverse(v_inv, x)
+    !> Inverse of the block's mass matrix, V^-1.
     real(wp), intent(in) :: v_inv(:, :)
+    !> Right-hand side F - W phi on entry, u_dot on return.
     real(wp), intent(inout) :: x(:)
     real(wp) :: b(size(x))
     b = x
@@ -66,7 +72,9 @@ contains
 
   !> u_dot = P diag(1/V) P^T (F - W phi) of a modal block (V: the modal masses).
   pure subroutine apply_modal(p, kane, u_dot)
+    !> Constant modal matrix P of the block, and its Kane blocks (V the modal masses).
     real(wp), intent(in) :: p(:, :), kane(:, :)
+    !> Rates u_dot of the block's speeds.
     real(wp), intent(out) :: u_dot(:)
     real(wp) :: b(size(u_dot))
     b = matmul(kane(kane_f, :) - kane(kane_w_phi, :), p)/kane(kane_v, :)
@@ -76,6 +84,7 @@ contains
   !> A part that does not move (a frozen ship, the falls after hook release): q_dot = 0 and
   !> blocks V = 1, W phi = F = 0, so eq. 89 gives u_dot = 0 too.
   pure subroutine kane_at_rest(qdot, kane)
+    !> The part's q_dot (set to 0) and its Kane blocks (V = 1, W phi = F = 0).
     real(wp), intent(out) :: qdot(:), kane(:, :)
     qdot = 0.0_wp
     kane(kane_v, :) = 1.0_wp

@@ -26,7 +26,9 @@ module davit_core_layout
   !> Index ranges [first, last] in y of a part's coordinates and speeds (last = first - 1
   !> when empty).
   type :: state_part_type
+    !> Name the part is registered and looked up by.
     character(len=16) :: name = ""
+    !> Index ranges [first, last] in y of the part's coordinates q and speeds u.
     integer :: q(2) = [1, 0], u(2) = [1, 0]
   end type state_part_type
 
@@ -34,15 +36,20 @@ module davit_core_layout
   !> constant modal matrix P of a time-varying block, V^-1 = P diag(1/V_k) P^T with the
   !> body's V_k.
   type :: coupled_block_type
+    !> Index range [first, last] in y of the block's speeds.
     integer :: u(2) = [1, 0]
+    !> Inverse mass matrix V^-1 of the block, or (modal) the constant modal matrix P.
     real(wp), allocatable :: v_inv(:, :)
+    !> True where the block is time-varying and stored in modal form.
     logical :: modal = .false.
   end type coupled_block_type
 
   type :: state_layout_type
     !> State length and number of speeds.
     integer :: n = 0, nu = 0, nparts = 0
+    !> The registered parts, in state order (the first nparts are used).
     type(state_part_type) :: parts(max_parts)
+    !> The coupled mass blocks (absent when V is diagonal everywhere).
     type(coupled_block_type), allocatable :: coupled(:)
   contains
     procedure :: add => layout_add
@@ -55,9 +62,13 @@ contains
 
   !> Register a part of nq coordinates followed by nu speeds; returns its ranges.
   subroutine layout_add(self, name, nq, nu, part)
+    !> The layout the part is appended to.
     class(state_layout_type), intent(inout) :: self
+    !> Name of the part (at most 16 characters are kept).
     character(len=*), intent(in) :: name
+    !> Number of coordinates nq and of speeds nu of the part.
     integer, intent(in) :: nq, nu
+    !> The part's index ranges in y.
     type(state_part_type), intent(out), optional :: part
     type(state_part_type) :: p
     p%name = name
@@ -73,8 +84,11 @@ contains
   !> Append every part of a subsystem's own layout; returns the offset of its first state
   !> (its y(1) is this layout's y(offset + 1)).
   subroutine layout_append(self, sub, offset)
+    !> The layout the subsystem is appended to.
     class(state_layout_type), intent(inout) :: self
+    !> The subsystem's own layout (its indices start at 1).
     type(state_layout_type), intent(in) :: sub
+    !> Offset of the subsystem's first state in this layout.
     integer, intent(out) :: offset
     integer :: i
     offset = self%n
@@ -93,9 +107,13 @@ contains
   !> modal, time-varying of constant modal matrix `matrix` (P): V^-1 = P diag(1/V_k) P^T
   !> with the V_k the body fills.
   subroutine layout_couple(self, u, matrix, modal)
+    !> The layout the block is registered in.
     class(state_layout_type), intent(inout) :: self
+    !> Index range [first, last] in y of the block's speeds.
     integer, intent(in) :: u(2)
+    !> V^-1 of the block, or with modal the constant modal matrix P.
     real(wp), intent(in) :: matrix(:, :)
+    !> True for a time-varying block given in modal form (default false).
     logical, intent(in), optional :: modal
     logical :: is_modal
     is_modal = .false.
@@ -106,7 +124,9 @@ contains
 
   !> The part registered as name (an empty part if there is none).
   pure function layout_part(self, name) result(p)
+    !> The layout searched.
     class(state_layout_type), intent(in) :: self
+    !> Name of the part.
     character(len=*), intent(in) :: name
     type(state_part_type) :: p
     integer :: i

@@ -14,7 +14,9 @@ module davit_core_random
   integer(i8), parameter :: a21 = 527612_i8, a23n = 1370589_i8
 
   type :: rng_type
+    !> State words of the first MRG32k3a component (modulus m1).
     integer(i8) :: s1(3) = [12345_i8, 12345_i8, 12345_i8]
+    !> State words of the second MRG32k3a component (modulus m2).
     integer(i8) :: s2(3) = [12345_i8, 12345_i8, 12345_i8]
   end type rng_type
 
@@ -25,7 +27,9 @@ contains
   !> and streams give unrelated sequences (a plain LCG fill left measurable correlations
   !> between the phase vectors of neighbouring seeds).
   function new_rng(seed, stream) result(rng)
+    !> Seed of the generator.
     integer, intent(in) :: seed
+    !> Stream index (e.g. a sweep case); none gives the seed's own stream.
     integer, intent(in), optional :: stream
     type(rng_type) :: rng
     integer(i8) :: key
@@ -45,6 +49,7 @@ contains
   !> A 32-bit integer hash (xor-shift-multiply, multiplier 0x45d9f3b); all products stay
   !> below 2^59, so int64 arithmetic never overflows.
   pure integer(i8) function hash32(x) result(h)
+    !> Value hashed (its low 32 bits are used).
     integer(i8), intent(in) :: x
     h = modulo(x, two32)
     h = modulo(ieor(ishft(h, -16), h)*73244475_i8, two32)
@@ -54,7 +59,9 @@ contains
 
   !> Uniform in (0, 1).
   pure subroutine rng_uniform(rng, u)
+    !> The generator, advanced by one draw.
     type(rng_type), intent(inout) :: rng
+    !> The uniform deviate in (0, 1).
     real(wp), intent(out) :: u
     integer(i8) :: p1, p2
     p1 = modulo(a12*rng%s1(2) - a13n*rng%s1(1), m1)

@@ -13,6 +13,7 @@ contains
 
   !> Eq. (2): C = Rz(theta3) Ry(theta2) Rx(theta1).
   pure function rotation_matrix(theta) result(c)
+    !> Euler angles (roll, pitch, yaw) [rad].
     real(wp), intent(in) :: theta(3)
     real(wp) :: c(3, 3)
     real(wp) :: s1, s2, s3, c1, c2, c3
@@ -27,6 +28,8 @@ contains
   !> Eq. (5): Euler-angle rates from the body angular velocity omega (body components).
   !> Singular at theta2 = +-90 deg, which a hanging or floating lifeboat never reaches.
   pure function euler_rates(theta, omega) result(rates)
+    !> Euler angles theta (roll, pitch, yaw) [rad] and angular velocity omega, body
+    !> components [rad/s].
     real(wp), intent(in) :: theta(3), omega(3)
     real(wp) :: rates(3)
     real(wp) :: s1, c1, c2, t
@@ -38,6 +41,7 @@ contains
   end function euler_rates
 
   pure function cross(a, b) result(c)
+    !> The two vectors of the cross product a x b.
     real(wp), intent(in) :: a(3), b(3)
     real(wp) :: c(3)
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
@@ -45,6 +49,7 @@ contains
 
   !> Skew matrix: skew(a) b = a x b.
   pure function skew(a) result(s)
+    !> Vector a of a x b.
     real(wp), intent(in) :: a(3)
     real(wp) :: s(3, 3)
     s(1, :) = [0.0_wp, -a(3), a(2)]

@@ -12,12 +12,14 @@ contains
 
   !> The spectrum's velocity scale U = 6.28 sqrt(H) [m/s] (not the force wind speed).
   elemental real(wp) function spectrum_u(height)
+    !> Sea-state height H of the spectrum [m].
     real(wp), intent(in) :: height
     spectrum_u = 6.28_wp*sqrt(height)
   end function spectrum_u
 
   !> S(omega) [m^2 s] for the height H.
   elemental real(wp) function spectrum_density(omega, height) result(s)
+    !> Wave frequency omega [rad/s] and sea-state height H [m].
     real(wp), intent(in) :: omega, height
     real(wp) :: a
     a = (gravity/spectrum_u(height))**2
@@ -30,12 +32,14 @@ contains
 
   !> Analytic zeroth moment m0 = 0.37 U^4/g^4 [m^2].
   elemental real(wp) function spectrum_m0(height)
+    !> Sea-state height H of the spectrum [m].
     real(wp), intent(in) :: height
     spectrum_m0 = 0.37_wp*(spectrum_u(height)/gravity)**4
   end function spectrum_m0
 
   !> Peak frequency sqrt(2a/5) = 0.6325 g/U [rad/s].
   elemental real(wp) function spectrum_peak_omega(height)
+    !> Sea-state height H of the spectrum [m].
     real(wp), intent(in) :: height
     spectrum_peak_omega = sqrt(0.4_wp)*gravity/spectrum_u(height)
   end function spectrum_peak_omega
@@ -43,6 +47,7 @@ contains
   !> Fraction of m0 between w1 and w2: with t = a/w^2 the integral is
   !> (1 + t2) e^-t2 - (1 + t1) e^-t1.
   elemental real(wp) function spectrum_band_fraction(w1, w2, height) result(f)
+    !> Band limits w1 < w2 [rad/s] and sea-state height H [m].
     real(wp), intent(in) :: w1, w2, height
     real(wp) :: a, t1, t2
     a = (gravity/spectrum_u(height))**2

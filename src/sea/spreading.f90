@@ -10,7 +10,9 @@ module davit_sea_spreading
 contains
 
   elemental real(wp) function spreading_density(gamma, s) result(d)
+    !> Direction relative to the mean direction [rad].
     real(wp), intent(in) :: gamma
+    !> Spreading exponent s (integer, >= 1).
     integer, intent(in) :: s
     real(wp) :: c
     if (abs(gamma) >= 0.5_wp*pi) then
@@ -27,8 +29,11 @@ contains
   !> renormalised to sum to one: the truncated window keeps the requested variance
   !> (review G20). n = 1 gives a long-crested sea.
   pure subroutine spreading_weights(n, window, s, gamma, weight)
+    !> Number of directions n and spreading exponent s (integer, >= 1).
     integer, intent(in) :: n, s
+    !> Half-width of the direction window about the mean [rad].
     real(wp), intent(in) :: window
+    !> Directions relative to the mean [rad] and their weights (summing to one).
     real(wp), intent(out) :: gamma(n), weight(n)
     integer :: j
     if (n == 1) then
@@ -49,8 +54,11 @@ contains
   !> from this inverse distribution. The CDF is integrated by the trapezoid rule on a
   !> fine grid (nq intervals: error ~ 1e-7 rad for s <= 30) and inverted linearly.
   pure subroutine spreading_quantiles(p, window, s, gamma)
+    !> Probabilities p in [0, 1] and half-width of the direction window [rad].
     real(wp), intent(in) :: p(:), window
+    !> Spreading exponent s (integer, >= 1).
     integer, intent(in) :: s
+    !> Directions relative to the mean [rad], one per probability.
     real(wp), intent(out) :: gamma(:)
     integer, parameter :: nq = 4000
     real(wp) :: g(0:nq), cdf(0:nq), d(0:nq), f
@@ -73,6 +81,7 @@ contains
 
   !> The index i in 1..n with cdf(i - 1) <= x <= cdf(i) of a non-decreasing table cdf(0:n).
   pure integer function bracket(cdf, x) result(i)
+    !> Non-decreasing table cdf(0:n) and the value x looked up in it.
     real(wp), intent(in) :: cdf(0:), x
     integer :: lo, hi, mid
     lo = 0

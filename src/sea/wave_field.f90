@@ -44,8 +44,12 @@ module davit_sea_wave_field
   integer, parameter :: wave_chunk = chunk
 
   type :: wave_field_type
+    !> Wave model: wave_none, wave_airy, wave_stokes2 or wave_irregular.
     integer :: kind = wave_none
+    !> Number of wave components.
     integer :: n = 0
+    !> Per component: frequency omega [rad/s], wave number k [1/m] and its components
+    !> kx, ky along N1, N2 [1/m], amplitude [m] and phase eps [rad].
     real(wp), allocatable :: omega(:), k(:), kx(:), ky(:), amplitude(:), phase(:)
     !> Propagation direction of each component [rad], and its cosine and sine.
     real(wp), allocatable :: direction(:), cos_dir(:), sin_dir(:)
@@ -56,6 +60,7 @@ module davit_sea_wave_field
 contains
 
   pure subroutine new_calm_sea(field)
+    !> The field, made calm (no components).
     type(wave_field_type), intent(out) :: field
     field%kind = wave_none
     call allocate_components(field, 0)
@@ -63,8 +68,12 @@ contains
 
   !> Regular wave of height H = 2a (exact at second order, review §1.9) and period T.
   pure subroutine new_regular_wave(field, kind, height, period, direction, phase, ramp_time)
+    !> The field made.
     type(wave_field_type), intent(out) :: field
+    !> Wave model, wave_airy or wave_stokes2.
     integer, intent(in) :: kind
+    !> Height H [m], period T [s], propagation direction from N1 towards N2 [rad], phase
+    !> [rad] and ramp time [s] of the smooth start.
     real(wp), intent(in) :: height, period, direction, phase, ramp_time
     call allocate_components(field, 1)
     field%kind = kind
@@ -87,10 +96,16 @@ contains
   !> independent), then for each direction its jitter (if independent) and its phase.
   subroutine new_irregular_sea(field, height, direction, s, window, nf, nd, w_min, w_max, &
                                jitter, independent, rng, ramp_time)
+    !> The field made.
     type(wave_field_type), intent(out) :: field
+    !> Height H [m], mean propagation direction from N1 towards N2 [rad], half-width of
+    !> the direction window [rad], band limits w_min, w_max [rad/s] and ramp time [s].
     real(wp), intent(in) :: height, direction, window, w_min, w_max, ramp_time
+    !> Spreading exponent s, number of frequency bins nf and of directions nd.
     integer, intent(in) :: s, nf, nd
+    !> Frequencies drawn inside their bins (jitter), one per component (independent).
     logical, intent(in) :: jitter, independent
+    !> The random-number generator the frequencies and phases are drawn from.
     type(rng_type), intent(inout) :: rng
     real(wp) :: dw, u, w, gam(nd), weight(nd), bin_m0
     integer :: i, j, c
@@ -132,10 +147,17 @@ contains
   !> for each bin: its jitter (if jitter), its direction (random), its phase.
   subroutine new_single_sum_sea(field, height, direction, s, window, nf, nd, w_min, w_max, &
                                 jitter, mode, rng, ramp_time)
+    !> The field made.
     type(wave_field_type), intent(out) :: field
+    !> Height H [m], mean propagation direction from N1 towards N2 [rad], half-width of
+    !> the direction window [rad], band limits w_min, w_max [rad/s] and ramp time [s].
     real(wp), intent(in) :: height, direction, window, w_min, w_max, ramp_time
+    !> Spreading exponent s, number of frequency bins nf, number of sectors nd and the
+    !> direction mode (single_random or single_equal_energy).
     integer, intent(in) :: s, nf, nd, mode
+    !> Frequencies drawn inside their bins when true.
     logical, intent(in) :: jitter
+    !> The random-number generator the order, frequencies, directions and phases come from.
     type(rng_type), intent(inout) :: rng
     real(wp) :: dw, u, w, sector(nd), gam(1)
     integer :: i, order(nd)
@@ -167,7 +189,9 @@ contains
 
   !> A random permutation of 1..n (Fisher-Yates, n - 1 draws).
   subroutine shuffle(rng, order)
+    !> The random-number generator (n - 1 draws).
     type(rng_type), intent(inout) :: rng
+    !> The permutation of 1..n, n its size.
     integer, intent(out) :: order(:)
     integer :: i, j, tmp
     real(wp) :: u
@@ -183,8 +207,11 @@ contains
 
   !> Uniform frequency inside bin i of width dw starting at w_min.
   real(wp) function draw_in_bin(rng, w_min, dw, i) result(w)
+    !> The random-number generator (one draw).
     type(rng_type), intent(inout) :: rng
+    !> Lower end of the band [rad/s] and width of a bin [rad/s].
     real(wp), intent(in) :: w_min, dw
+    !> Index of the bin, from 1.
     integer, intent(in) :: i
     real(wp) :: u
     call rng_uniform(rng, u)
@@ -192,7 +219,9 @@ contains
   end function draw_in_bin
 
   pure subroutine allocate_components(field, n)
+    !> The field whose component arrays are allocated.
     type(wave_field_type), intent(inout) :: field
+    !> Number of components.
     integer, intent(in) :: n
     field%n = n
     allocate (field%omega(n), field%k(n), field%kx(n), field%ky(n), field%amplitude(n), &
@@ -201,6 +230,7 @@ contains
 
   !> Deep-water dispersion k = w^2/g and wave-number components.
   pure subroutine finish_components(field)
+    !> The field whose wave numbers and direction cosines are filled.
     type(wave_field_type), intent(inout) :: field
     field%k = field%omega**2/gravity
     field%cos_dir = cos(field%direction)
@@ -211,7 +241,9 @@ contains
 
   !> Ramp factor (1 - cos(pi t/T))/2 for t < T, then 1.
   pure real(wp) function wave_ramp(field, t) result(r)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time [s].
     real(wp), intent(in) :: t
     r = 1.0_wp
     if (t <= 0.0_wp .and. field%ramp_time > 0.0_wp) then
@@ -223,7 +255,9 @@ contains
 
   !> Surface elevation eta(x, y, t) [m], positive up.
   pure real(wp) function wave_elevation(field, t, x, y) result(eta)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time t [s] and horizontal position x, y in the inertial frame N [m].
     real(wp), intent(in) :: t, x, y
     real(wp) :: s(chunk), c(chunk)
     eta = 0.0_wp
@@ -235,8 +269,11 @@ contains
   !> (with the second-order Stokes term of a regular 'stokes2' wave); s, c keep the last
   !> block's sin(theta), cos(theta) (every component's while n <= chunk).
   pure subroutine ramped_elevation(field, t, x, y, r, eta, s, c)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time t [s], horizontal position x, y in the inertial frame N [m], ramp factor r.
     real(wp), intent(in) :: t, x, y, r
+    !> Elevation eta [m], positive up; s, c the last block's sin and cos of the phases.
     real(wp), intent(out) :: eta, s(:), c(:)
     integer :: i0, m
     eta = 0.0_wp
@@ -255,7 +292,9 @@ contains
   !> Second-order Stokes term k a^2/2 cos(2 theta) of the (ramped) regular wave, from the
   !> unramped first-order elevation eta1 = a cos(theta): cos(2 theta) = 2 cos^2 - 1.
   pure real(wp) function stokes_correction(field, eta1, r) result(e2)
+    !> The regular wave field.
     type(wave_field_type), intent(in) :: field
+    !> Unramped first-order elevation eta1 [m] and ramp factor r.
     real(wp), intent(in) :: eta1, r
     real(wp) :: a, ct
     a = field%amplitude(1)
@@ -267,8 +306,12 @@ contains
   !> the point p = (x, y, z). The phases are evaluated once: the elevation (needed first for
   !> the stretched depth) and the kinematics share them.
   pure subroutine wave_kinematics(field, t, p, eta, velocity, acceleration, pressure)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time t [s] and point p in the inertial frame N, z down [m].
     real(wp), intent(in) :: t, p(3)
+    !> Elevation eta [m] (positive up), water velocity [m/s] and acceleration [m/s^2]
+    !> (inertial, z down) and dynamic pressure [Pa] at p.
     real(wp), intent(out) :: eta, velocity(3), acceleration(3), pressure
     real(wp) :: s(chunk), c(chunk), e(chunk), r, d
     integer :: i0, m
@@ -309,9 +352,13 @@ contains
   !> sin and cos of the phases theta_i = w_i t + eps_i - kx_i x - ky_i y of the m components
   !> from i0 on, into s(1:m), c(1:m) (m <= wave_chunk: no scratch sized by the sea).
   pure subroutine component_phases(field, i0, m, t, x, y, s, c)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> First component i0 and number m of components (m <= wave_chunk).
     integer, intent(in) :: i0, m
+    !> Time t [s] and horizontal position x, y in the inertial frame N [m].
     real(wp), intent(in) :: t, x, y
+    !> sin and cos of the m phases, in s(1:m) and c(1:m).
     real(wp), intent(out) :: s(:), c(:)
     real(wp) :: th(chunk)
     integer :: i1
@@ -323,8 +370,11 @@ contains
 
   !> Spatial phasors of fixed points: cb = cos(k . x), sb = sin(k . x), shape (n, np).
   pure subroutine point_phasors(field, x, y, cb, sb)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Horizontal positions x, y of the fixed points in the inertial frame N [m].
     real(wp), intent(in) :: x(:), y(:)
+    !> cos(k . x) and sin(k . x), shape (components, points).
     real(wp), intent(out) :: cb(:, :), sb(:, :)
     real(wp) :: th(chunk)
     integer :: j, i0, i1
@@ -339,8 +389,11 @@ contains
 
   !> Time phasors a cos(w t + eps), a sin(w t + eps).
   pure subroutine time_phasors(field, t, ca, sa)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> Time phasors a cos(w t + eps) and a sin(w t + eps) [m], one per component.
     real(wp), intent(out) :: ca(:), sa(:)
     call phase_sincos(field, t, .true., sa, ca)
     ca = field%amplitude*ca
@@ -349,17 +402,24 @@ contains
 
   !> Rotation factors cos(w dt), sin(w dt) for advancing time phasors by dt.
   pure subroutine rotation_phasors(field, dt, cr, sr)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time step dt the phasors are advanced by [s].
     real(wp), intent(in) :: dt
+    !> cos(w dt) and sin(w dt), one per component.
     real(wp), intent(out) :: cr(:), sr(:)
     call phase_sincos(field, dt, .false., sr, cr)
   end subroutine rotation_phasors
 
   !> sin and cos of every component's phase w t (+ eps with with_phase), a chunk at a time.
   pure subroutine phase_sincos(field, t, with_phase, s, c)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> True to add each component's phase eps to w t.
     logical, intent(in) :: with_phase
+    !> sin and cos of the phases, one per component.
     real(wp), intent(out) :: s(:), c(:)
     real(wp) :: th(chunk)
     integer :: i0, i1
@@ -376,7 +436,9 @@ contains
 
   !> Advance time phasors by the rotation (cr, sr): angle addition, no trigonometry.
   pure subroutine advance_phasors(ca, sa, cr, sr)
+    !> Time phasors a cos(w t + eps), a sin(w t + eps) [m], advanced in place.
     real(wp), intent(inout) :: ca(:), sa(:)
+    !> Rotation factors cos(w dt), sin(w dt).
     real(wp), intent(in) :: cr(:), sr(:)
     real(wp) :: tmp
     integer :: i
@@ -389,8 +451,11 @@ contains
 
   !> eta at fixed points from phasors: cos(A - B) = cos A cos B + sin A sin B.
   pure subroutine elevation_from_phasors(field, t, ca, sa, cb, sb, eta)
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Time t [s], time phasors ca, sa [m] and spatial phasors cb, sb (point_phasors).
     real(wp), intent(in) :: t, ca(:), sa(:), cb(:, :), sb(:, :)
+    !> Elevation eta [m] at each fixed point, positive up.
     real(wp), intent(out) :: eta(:)
     real(wp) :: r, eta1
     integer :: j

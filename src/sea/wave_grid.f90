@@ -48,15 +48,18 @@ module davit_sea_wave_grid
   integer, parameter :: pad = 0
 
   type :: wave_grid_type
+    !> Grid in use (irregular seas only); nodes placed; water velocity held too.
     logical :: enabled = .false., placed = .false., velocity = .false.
     !> Node spacing [m] (also the depth levels'), time step [s], margin [m], deepest
     !> stretched depth covered [m].
     real(wp) :: h = 1.0_wp, dt = 0.1_wp, margin = 3.0_wp, depth = 3.0_wp
     !> Node (1, 1) at (x0, y0); nx x ny nodes; nl depth levels; nfld fields per node.
     real(wp) :: x0 = 0.0_wp, y0 = 0.0_wp
+    !> Nodes nx along N1 and ny along N2, depth levels nl, fields per node nfld.
     integer :: nx = 0, ny = 0, nl = 0, nfld = ne
     !> Samples per block; global index of the block's first sample (time s0 dt); samples held.
     integer :: nb = 16, nt = 0
+    !> Global index s0 of the block's first sample (time s0 dt).
     integer(i8) :: s0 = 0
     !> Blocks started, node time series built, placements (for the report).
     integer :: builds = 0, node_builds = 0, placements = 0
@@ -76,9 +79,13 @@ module davit_sea_wave_grid
   interface
     subroutine dgemm(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc)
       import :: wp
+      !> BLAS transposition flags of a and b ('N' or 'T').
       character, intent(in) :: transa, transb
+      !> BLAS sizes: c is m x n, the inner dimension k; the leading dimensions of a, b, c.
       integer, intent(in) :: m, n, k, lda, ldb, ldc
+      !> BLAS factors alpha, beta and the operands a, b of c = alpha op(a) op(b) + beta c.
       real(wp), intent(in) :: alpha, beta, a(lda, *), b(ldb, *)
+      !> The BLAS product c, overwritten.
       real(wp), intent(inout) :: c(ldc, *)
     end subroutine dgemm
   end interface
@@ -88,8 +95,12 @@ contains
   !> A grid of spacing h [m], time step dt [s] and margin [m] around the boat; with
   !> `velocity`, also the water velocity down to `depth` [m]. Enabled for irregular seas.
   pure function new_wave_grid(field, h, dt, margin, depth, velocity) result(g)
+    !> The wave field the grid samples.
     type(wave_field_type), intent(in) :: field
+    !> Node spacing h [m], time step dt [s], margin around the footprint [m] and deepest
+    !> stretched depth of the velocity levels [m].
     real(wp), intent(in) :: h, dt, margin, depth
+    !> True to hold the water velocity at depth levels too.
     logical, intent(in) :: velocity
     type(wave_grid_type) :: g
     integer :: l
@@ -112,8 +123,11 @@ contains
   !> Place the nodes over the horizontal points xy(2, :) (the boat's footprint) plus the
   !> margin; the spatial phasors of every node.
   pure subroutine grid_place(g, field, xy)
+    !> The grid, placed anew (the nodes both boxes share are kept).
     type(wave_grid_type), intent(inout) :: g
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Horizontal points xy(2, :) of the boat's footprint, inertial frame N [m].
     real(wp), intent(in) :: xy(:, :)
     real(wp) :: lo(2), hi(2)
     real(wp), allocatable :: sp(:, :), f(:, :, :)
@@ -168,8 +182,12 @@ contains
   !> footprint's interpolation stencils (plus one node) reach, built if not yet. Nodes
   !> are built lazily: only those near the boat cost anything.
   subroutine grid_prepare(g, field, t_lo, t_hi, xy)
+    !> The grid, made to hold the points and times.
     type(wave_grid_type), intent(inout) :: g
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Times [t_lo, t_hi] [s] and horizontal points xy(2, :) of the boat's footprint,
+    !> inertial frame N [m].
     real(wp), intent(in) :: t_lo, t_hi, xy(:, :)
     integer :: need, j, i0(2), i1(2), ix, iy, m
     integer, allocatable :: list(:)
@@ -216,7 +234,9 @@ contains
   !> start). a cos(A - B) = (a cos A) cos B + (a sin A) sin B and a sin(A - B) = (a sin A)
   !> cos B - (a cos A) sin B: rows 1..n multiply cos B, n+1..2n sin B.
   subroutine block_phasors(g, field)
+    !> The grid, its time phasors tp filled for the block from sample s0.
     type(wave_grid_type), intent(inout) :: g
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
     real(wp), allocatable :: ca(:), sa(:), cr(:), sr(:)
     integer :: n, j, l, r
@@ -255,8 +275,11 @@ contains
   !> The block's time series of the nodes in `list` (their spatial phasors first, if not
   !> yet): one matrix product, (fields x samples) x nodes.
   subroutine build_nodes(g, field, list)
+    !> The grid, the nodes' time series filled.
     type(wave_grid_type), intent(inout) :: g
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Node indices (ix + nx (iy - 1)) to build.
     integer, intent(in) :: list(:)
     real(wp), allocatable :: spc(:, :), out(:, :)
     integer :: m, c, rows_all
@@ -278,8 +301,11 @@ contains
 
   !> cos(k . x), sin(k . x) of node j.
   pure subroutine node_phasors(g, field, j)
+    !> The grid, node j's spatial phasors filled.
     type(wave_grid_type), intent(inout) :: g
+    !> The wave field.
     type(wave_field_type), intent(in) :: field
+    !> Node index (ix + nx (iy - 1)).
     integer, intent(in) :: j
     real(wp) :: x, y, b(wave_chunk), sn(wave_chunk), cs(wave_chunk)
     integer :: i0, m
@@ -297,7 +323,9 @@ contains
 
   !> True when time t can be interpolated from the block in memory.
   pure logical function time_inside(g, t)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> Time [s].
     real(wp), intent(in) :: t
     real(wp) :: s
     time_inside = .false.
@@ -308,7 +336,9 @@ contains
 
   !> True when the nodes hold (x, y) (the interpolation stencil inside the box).
   pure logical function space_inside(g, x, y)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> Horizontal position x, y in the inertial frame N [m].
     real(wp), intent(in) :: x, y
     real(wp) :: sx, sy
     sx = (x - g%x0)/g%h
@@ -319,7 +349,9 @@ contains
 
   !> True when the 4 x 4 nodes of the stencil at (x, y) are built.
   pure logical function stencil_ready(g, x, y)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> Horizontal position x, y in the inertial frame N [m].
     real(wp), intent(in) :: x, y
     integer :: ix, iy, b
     ix = min(int((x - g%x0)/g%h), g%nx - 3)
@@ -333,8 +365,11 @@ contains
 
   !> True when the grid holds (t, x, y) (and depth d, with velocity).
   pure logical function grid_covers(g, t, x, y, d)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> Time t [s] and horizontal position x, y in the inertial frame N [m].
     real(wp), intent(in) :: t, x, y
+    !> Stretched depth below the instantaneous surface [m], for a velocity query.
     real(wp), intent(in), optional :: d
     grid_covers = .false.
     if (.not. (g%enabled .and. g%placed)) return
@@ -355,7 +390,9 @@ contains
   !> in x, y, t compounds them with the factor 1.25 per dimension (1.5625 for three); the
   !> slope is a field of its own (a k sin), so its bound carries a factor k.
   pure function grid_error_bounds(g, field) result(b)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> The wave field the grid samples.
     type(wave_field_type), intent(in) :: field
     real(wp) :: b(2)
     real(wp) :: ex, ey, et
@@ -372,6 +409,7 @@ contains
   end function grid_error_bounds
 
   pure real(wp) function cubic_error(z)
+    !> Product k h (or w dt) of a component's wave number and the sampling step.
     real(wp), intent(in) :: z
     cubic_error = min(0.034_wp*z**3, 2.25_wp)
   end function cubic_error
@@ -379,7 +417,9 @@ contains
   !> Catmull-Rom weights of the stencil i-1..i+2 at fraction u of interval [i, i+1], and
   !> their derivatives d/du.
   pure subroutine catmull_rom(u, w, dw)
+    !> Fraction u in [0, 1] of the interval [i, i+1].
     real(wp), intent(in) :: u
+    !> Weights w of nodes i-1..i+2 and their derivatives dw = d w/du.
     real(wp), intent(out) :: w(4), dw(4)
     real(wp) :: u2, u3
     u2 = u*u
@@ -393,9 +433,13 @@ contains
   !> Stencil start (1-based index of node i-1) and weights for coordinate s (0-based
   !> position in node units) on n nodes; s in [1, n - 2].
   pure subroutine stencil(s, n, i1, w, dw)
+    !> Coordinate s, 0-based position in node units.
     real(wp), intent(in) :: s
+    !> Number of nodes.
     integer, intent(in) :: n
+    !> Stencil start, the 1-based index of node i-1.
     integer, intent(out) :: i1
+    !> Weights w of the stencil's nodes and their derivatives dw = d w/ds.
     real(wp), intent(out) :: w(4), dw(4)
     integer :: i
     i = min(int(s), n - 3)
@@ -406,8 +450,11 @@ contains
   !> Unramped elevation terms at (x, y, t), as elevation_sums gives them: e = (eta,
   !> d eta/dt, d eta/dx, d eta/dy). The caller checks grid_covers first.
   pure subroutine grid_elevation(g, t, x, y, e)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> Time t [s] and horizontal position x, y in the inertial frame N [m].
     real(wp), intent(in) :: t, x, y
+    !> Unramped (eta [m], d eta/dt [m/s], d eta/dx, d eta/dy [-]).
     real(wp), intent(out) :: e(4)
     real(wp) :: wx(4), dwx(4), wy(4), dwy(4), wt(4), dwt(4)
     integer :: ix, iy, it, a, b, node
@@ -427,8 +474,13 @@ contains
   !> depth d and time t with its derivatives, as kinematic_sums gives them: v(:, 1) value,
   !> v(:, 2:5) d/dt, d/dx, d/dy, d/dd. The caller checks grid_covers(..., d) first.
   pure subroutine grid_kinematics(g, t, x, y, d, e, v)
+    !> The grid.
     type(wave_grid_type), intent(in) :: g
+    !> Time t [s], horizontal position x, y in the inertial frame N [m] and stretched
+    !> depth d below the instantaneous surface [m].
     real(wp), intent(in) :: t, x, y, d
+    !> Unramped elevation terms e (as grid_elevation) and water velocity v [m/s]
+    !> (inertial, z down): v(:, 1) value, v(:, 2:5) d/dt, d/dx, d/dy, d/dd.
     real(wp), intent(out) :: e(4), v(3, 5)
     real(wp) :: wx(4), dwx(4), wy(4), dwy(4), wt(4), dwt(4), wd(4), dwd(4)
     real(wp) :: q(3, 4), qt(3, 4), val(3), dep(3), wab

@@ -9,12 +9,14 @@ module davit_sea_wind
   type :: wind_type
     !> Speed [m/s] and the direction the wind blows towards, from N1 to N2 [rad].
     real(wp) :: speed = 0.0_wp
+    !> Direction the wind blows towards, from N1 to N2 [rad].
     real(wp) :: direction = 0.0_wp
   end type wind_type
 
 contains
 
   pure function new_wind(speed, direction) result(wind)
+    !> Wind speed [m/s] and the direction it blows towards, from N1 to N2 [rad].
     real(wp), intent(in) :: speed, direction
     type(wind_type) :: wind
     wind%speed = speed
@@ -23,6 +25,7 @@ contains
 
   !> Wind velocity in the inertial frame [m/s] (horizontal).
   pure function wind_velocity(wind) result(v)
+    !> The wind.
     type(wind_type), intent(in) :: wind
     real(wp) :: v(3)
     v = wind%speed*[cos(wind%direction), sin(wind%direction), 0.0_wp]

@@ -22,6 +22,7 @@ module davit_solve_adaptive
   type, abstract, extends(integrator_type) :: adaptive_integrator
     !> Mixed error tolerance: |e_i| <= atol + rtol |y_i| in the RMS sense.
     real(wp) :: rtol = 1.0e-6_wp
+    !> Absolute tolerance atol (in the units of each state).
     real(wp) :: atol = 1.0e-9_wp
     !> Relative step floor: h < h_min max(1, |t|) is a step-size collapse (failure).
     real(wp) :: h_min = 1.0e-12_wp
@@ -31,7 +32,9 @@ module davit_solve_adaptive
     logical :: fixed_step = .false.
     !> The controller: safety factor and shrink/growth limits of h_new/h.
     real(wp) :: safety = 0.9_wp
+    !> Smallest factor h_new/h.
     real(wp) :: fac_min = 0.2_wp
+    !> Largest factor h_new/h.
     real(wp) :: fac_max = 6.0_wp
     !> Proposed internal step (0: choose by the starting heuristic on the next call).
     real(wp) :: h = 0.0_wp
@@ -56,6 +59,7 @@ module davit_solve_adaptive
   abstract interface
     pure integer function order_interface(self)
       import :: adaptive_integrator
+      !> The integrator.
       class(adaptive_integrator), intent(in) :: self
     end function order_interface
 
@@ -63,9 +67,13 @@ module davit_solve_adaptive
     !> and, when with_error, the error vector yerr.
     subroutine attempt_interface(self, problem, t, y, h, with_error)
       import :: adaptive_integrator, ode_problem, wp
+      !> The integrator; ynew (and yerr) written.
       class(adaptive_integrator), intent(inout) :: self
+      !> The problem y' = f(t, y).
       class(ode_problem), intent(in) :: problem
+      !> Time t [s] and state y at the trial's start, and the trial step h [s].
       real(wp), intent(in) :: t, y(:), h
+      !> True to form the error vector yerr too.
       logical, intent(in) :: with_error
     end subroutine attempt_interface
 
@@ -74,9 +82,13 @@ module davit_solve_adaptive
     !> (after_step), so nothing carried from it (FSAL) is valid.
     subroutine start_interface(self, problem, t, y, first)
       import :: adaptive_integrator, ode_problem, wp
+      !> The integrator; f0 written.
       class(adaptive_integrator), intent(inout) :: self
+      !> The problem y' = f(t, y).
       class(ode_problem), intent(in) :: problem
+      !> Time t [s] and state y of the new point.
       real(wp), intent(in) :: t, y(:)
+      !> True at the call's first point (nothing carried from the last call is valid).
       logical, intent(in) :: first
     end subroutine start_interface
   end interface
@@ -86,7 +98,9 @@ contains
   !> Allocate the shared work arrays for a state of size n and reset the statistics, the
   !> failure and the proposed step (each method's init calls it first).
   subroutine init_work(self, n)
+    !> The integrator whose work arrays are allocated.
     class(adaptive_integrator), intent(inout) :: self
+    !> Size of the state vector.
     integer, intent(in) :: n
     if (allocated(self%f0)) deallocate (self%f0, self%ynew, self%yerr, self%ytmp, self%fcn)
     allocate (self%f0(n), self%ynew(n), self%yerr(n), self%ytmp(n), self%fcn(n))
@@ -103,10 +117,15 @@ contains
   !> failure (see substep_allowed, or a singular matrix with fixed_step) y stays at the
   !> last accepted state and t at its time.
   subroutine adaptive_step(self, problem, t, y, dt)
+    !> The integrator (work arrays, statistics, proposed step, failure record).
     class(adaptive_integrator), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time [s], advanced.
     real(wp), intent(inout) :: t
+    !> State vector, advanced.
     real(wp), intent(inout) :: y(:)
+    !> Macro step [s] (with single_step, the largest step).
     real(wp), intent(in) :: dt
     real(wp) :: t_end, tc, h, h_new
     integer :: tries
@@ -158,10 +177,15 @@ contains
   !> whether this one is: then self%h is the step to retry with; else ynew is the new
   !> state and h_new the next step, not above h right after a rejection.
   subroutine trial(self, problem, t, y, h, rejected, h_new)
+    !> The integrator; on a rejection self%h is the step to retry with.
     class(adaptive_integrator), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> In, the previous trial was rejected; out, this one is.
     logical, intent(inout) :: rejected
+    !> The next step after an accepted trial [s].
     real(wp), intent(out) :: h_new
     real(wp) :: err
     logical :: ok
@@ -194,7 +218,9 @@ contains
 
   !> Book a rejected trial (self%h already set to the retry step) and tell the method.
   subroutine reject(self, rejected)
+    !> The integrator, its rejection count advanced.
     class(adaptive_integrator), intent(inout) :: self
+    !> Set true.
     logical, intent(out) :: rejected
     self%rejections = self%rejections + 1
     call self%on_rejection()
@@ -203,10 +229,15 @@ contains
 
   !> One step of dt without error control (fixed_step).
   subroutine fixed(self, problem, t, y, dt)
+    !> The integrator.
     class(adaptive_integrator), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time [s], advanced by dt.
     real(wp), intent(inout) :: t
+    !> State vector, advanced by one step.
     real(wp), intent(inout) :: y(:)
+    !> Step [s].
     real(wp), intent(in) :: dt
     logical :: ok
     call self%prepare(problem, t, y, dt, ok)
@@ -224,9 +255,13 @@ contains
   !> with. ok = .false. (the matrix is singular) with self%h set to the step to retry
   !> with. Explicit methods have nothing to prepare.
   subroutine no_prepare(self, problem, t, y, h, ok)
+    !> The integrator.
     class(adaptive_integrator), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> False when the iteration matrix is singular.
     logical, intent(out) :: ok
     ok = .true.
   end subroutine no_prepare
@@ -234,8 +269,11 @@ contains
   !> The next step after a trial step h with error err (accepted: err <= 1): HNW I,
   !> eq. 4.13 with q + 1 = p.
   pure function i_controller(self, h, err, accepted) result(h_new)
+    !> The integrator (its controller factors and order).
     class(adaptive_integrator), intent(in) :: self
+    !> Trial step h [s] and its error norm err.
     real(wp), intent(in) :: h, err
+    !> True when the trial was accepted.
     logical, intent(in) :: accepted
     real(wp) :: h_new
     h_new = h*min(self%fac_max, max(self%fac_min, self%safety/max(err, 1.0e-10_wp)** &
@@ -244,12 +282,15 @@ contains
 
   !> After an accepted trial step with error err (y = ynew already).
   subroutine no_acceptance(self, err)
+    !> The integrator.
     class(adaptive_integrator), intent(inout) :: self
+    !> Error norm of the accepted step.
     real(wp), intent(in) :: err
   end subroutine no_acceptance
 
   !> After a rejected trial step (the new self%h already set), whatever the reason.
   subroutine no_rejection(self)
+    !> The integrator.
     class(adaptive_integrator), intent(inout) :: self
   end subroutine no_rejection
 

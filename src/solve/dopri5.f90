@@ -37,6 +37,7 @@ module davit_solve_dopri5
     real(wp) :: beta = 0.04_wp
     !> Previous accepted error (the PI controller's memory).
     real(wp) :: err_old = 1.0e-4_wp
+    !> Stage derivatives k2..k7 (k1 is f0), of the state's size.
     real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:)
   contains
     procedure :: init => dopri5_init
@@ -51,7 +52,9 @@ module davit_solve_dopri5
 contains
 
   subroutine dopri5_init(self, n)
+    !> The integrator whose work arrays are allocated.
     class(dopri5_type), intent(inout) :: self
+    !> Size of the state vector.
     integer, intent(in) :: n
     call self%init_work(n)
     if (allocated(self%k2)) deallocate (self%k2, self%k3, self%k4, self%k5, self%k6, self%k7)
@@ -63,6 +66,7 @@ contains
   end subroutine dopri5_init
 
   pure integer function dopri5_order(self)
+    !> The integrator.
     class(dopri5_type), intent(in) :: self
     dopri5_order = 5
   end function dopri5_order
@@ -70,9 +74,13 @@ contains
   !> k1 = f0 = f(t, y); inside a macro step the last stage of the accepted step (FSAL,
   !> copied by dopri5_accepted) already is.
   subroutine dopri5_start(self, problem, t, y, first)
+    !> The integrator; f0 written.
     class(dopri5_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y of the new point.
     real(wp), intent(in) :: t, y(:)
+    !> True at the call's first point (FSAL's k7 not valid then).
     logical, intent(in) :: first
     if (.not. first) return
     call problem%rhs(t, y, self%f0)
@@ -82,9 +90,13 @@ contains
   !> One trial step of size h from (t, y) with k1 = f0 = f(t, y): ynew, and (when
   !> `with_error`) k7 = f(t + h, ynew) and the error vector yerr.
   subroutine dopri5_attempt(self, problem, t, y, h, with_error)
+    !> The integrator; ynew, the stages (and k7, yerr) written.
     class(dopri5_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> True to form k7 and the error vector yerr too.
     logical, intent(in) :: with_error
     self%ytmp = y + h*a21*self%f0
     call problem%rhs(t + c2*h, self%ytmp, self%k2)
@@ -108,8 +120,11 @@ contains
   !> PI step control (Gustafsson's, HNW II, sec. IV.2, as in HNW's DOPRI5): on acceptance
   !> err^(1/5 - 0.75 beta) / err_old^beta; a rejection uses err alone and only shrinks.
   pure function pi_controller(self, h, err, accepted) result(h_new)
+    !> The integrator (its controller factors and err_old).
     class(dopri5_type), intent(in) :: self
+    !> Trial step h [s] and its error norm err.
     real(wp), intent(in) :: h, err
+    !> True when the trial was accepted.
     logical, intent(in) :: accepted
     real(wp) :: h_new, fac
     fac = err**(0.2_wp - 0.75_wp*self%beta)
@@ -125,13 +140,16 @@ contains
   !> The PI controller's memory, and FSAL: the accepted step's k7 = f(t + h, ynew) is the
   !> next step's k1.
   subroutine dopri5_accepted(self, err)
+    !> The integrator; err_old and f0 updated.
     class(dopri5_type), intent(inout) :: self
+    !> Error norm of the accepted step.
     real(wp), intent(in) :: err
     self%err_old = max(err, 1.0e-4_wp)
     self%f0 = self%k7
   end subroutine dopri5_accepted
 
   pure function dopri5_name(self) result(name)
+    !> The integrator.
     class(dopri5_type), intent(in) :: self
     character(len=:), allocatable :: name
     name = "dopri5"

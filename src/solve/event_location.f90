@@ -30,18 +30,23 @@ module davit_solve_event_location
 
   !> Work arrays of the located step and what it found.
   type :: event_stepper_type
+    !> The step's start state y0, the slopes f0, f1 at its ends, an interpolated state ym.
     real(wp), allocatable :: y0(:), f0(:), f1(:), ym(:)
+    !> The modes at the step's start m0, at its end m1, at a bisection point mm.
     integer, allocatable :: m0(:), m1(:), mm(:)
     !> The modes at the end of the last step taken without an event, and that state: the
     !> next step starts from them unless the caller moved (t, y) since. (The after-step
     !> hook may still switch a history mode there; a start whose modes are then stale is
     !> a switch at the start, located as any other, and the next step takes fresh ones.)
     real(wp), allocatable :: y_last(:)
+    !> Time of the cached state y_last [s].
     real(wp) :: t_last = -huge(1.0_wp)
+    !> True while m1 and (t_last, y_last) hold the last event-free step's end.
     logical :: cached = .false.
     !> Events located so far (steps cut at an event); the last one's time, how many came
     !> in a row within chatter_gap of each other, and steps taken whole because of it.
     integer :: located = 0, chatter = 0, unlocated = 0
+    !> Time of the last located event [s].
     real(wp) :: t_event = -huge(1.0_wp)
   contains
     procedure :: init => stepper_init
@@ -51,7 +56,9 @@ module davit_solve_event_location
 contains
 
   subroutine stepper_init(self, n, n_modes)
+    !> The stepper whose work arrays are allocated.
     class(event_stepper_type), intent(inout) :: self
+    !> Size of the state vector n and number of discrete modes n_modes.
     integer, intent(in) :: n, n_modes
     allocate (self%y0(n), self%f0(n), self%f1(n), self%ym(n), self%y_last(n))
     self%cached = .false.
@@ -67,11 +74,17 @@ contains
   !> stop just past their first change instead (event = .true.). A failed integrator step
   !> returns at once (integ%failed).
   subroutine located_step(self, integ, problem, t, y, t_new, event)
+    !> The stepper (work arrays, cached modes, event counts).
     class(event_stepper_type), intent(inout) :: self
+    !> The integrator that takes the steps.
     class(integrator_type), intent(inout) :: integ
+    !> The problem, with its discrete modes.
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y, advanced.
     real(wp), intent(inout) :: t, y(:)
+    !> Time to reach [s].
     real(wp), intent(in) :: t_new
+    !> True when the step stopped just past a mode change before t_new.
     logical, intent(out) :: event
     real(wp) :: t0, t1
     event = .false.
@@ -114,9 +127,13 @@ contains
   !> One step of `integ` towards t_new; t lands exactly on t_new when the step reached
   !> it (t0 + (t_new - t0) may round an ulp away), else where a single step ended.
   subroutine advance(integ, problem, t, y, t_new)
+    !> The integrator that takes the step.
     class(integrator_type), intent(inout) :: integ
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y, advanced.
     real(wp), intent(inout) :: t, y(:)
+    !> Time to reach [s].
     real(wp), intent(in) :: t_new
     call integ%step(problem, t, y, t_new - t)
     if (abs(t - t_new) <= 4.0_wp*epsilon(1.0_wp)*max(1.0_wp, abs(t_new))) t = t_new
@@ -133,10 +150,15 @@ contains
   !> again inside it. A single-step integrator redoes each part as one step (it is
   !> given exactly that span, within its proposed step or not).
   subroutine refine(self, integ, problem, t0, t, y)
+    !> The stepper (y0, f0 and m0 of the step's start).
     class(event_stepper_type), intent(inout) :: self
+    !> The integrator that redoes the step.
     class(integrator_type), intent(inout) :: integ
+    !> The problem, with its discrete modes.
     class(ode_problem), intent(in) :: problem
+    !> Start of the step [s].
     real(wp), intent(in) :: t0
+    !> End of the step t [s] and its state y on entry; just past the switch on return.
     real(wp), intent(inout) :: t, y(:)
     real(wp) :: ta, tb, t1
     integer :: pass
@@ -169,9 +191,13 @@ contains
 
   !> The bracket [ta, tb] of the first mode change on the interpolant over [t0, t1].
   subroutine bisect(self, problem, t0, t1, y1, ta, tb)
+    !> The stepper (y0, f0, f1, m0; ym, mm used as work).
     class(event_stepper_type), intent(inout) :: self
+    !> The problem, with its discrete modes.
     class(ode_problem), intent(in) :: problem
+    !> Ends t0, t1 of the step [s] and the state y1 at t1.
     real(wp), intent(in) :: t0, t1, y1(:)
+    !> The bracket [ta, tb] of the first mode change [s].
     real(wp), intent(out) :: ta, tb
     real(wp) :: tm
     integer :: it
@@ -192,7 +218,9 @@ contains
 
   !> Cubic Hermite interpolant at t in [t0, t1] (values and slopes at both ends).
   pure subroutine hermite(t0, t1, y0, f0, y1, f1, t, y)
+    !> Ends t0, t1 [s], states y0, y1 and slopes f0, f1 there, and the time t [s].
     real(wp), intent(in) :: t0, t1, y0(:), f0(:), y1(:), f1(:), t
+    !> Interpolated state at t.
     real(wp), intent(out) :: y(:)
     real(wp) :: h, s, h00, h10, h01, h11
     h = t1 - t0

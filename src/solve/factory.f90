@@ -24,12 +24,19 @@ contains
   !> davit_solve_multirate, with `substeps` RK4 substeps of the fast part per macro step dt
   !> (default 10); "mri2" its chained MRI-GARK-ERK22a variant (one fast sweep per step).
   subroutine new_integrator(name, n, integrator, error, rtol, atol, fixed_step, substeps)
+    !> Integrator name: rk4, dopri5, rosenbrock, rosw, multirate, multirate2 or mri2.
     character(len=*), intent(in) :: name
+    !> Size of the state vector.
     integer, intent(in) :: n
+    !> The integrator made, initialised for n states.
     class(integrator_type), allocatable, intent(out) :: integrator
+    !> Allocated on bad input (an unknown name, a tolerance or substeps out of range).
     type(error_type), allocatable, intent(out) :: error
+    !> Relative (> 0) and absolute (>= 0) tolerances of the adaptive methods.
     real(wp), intent(in), optional :: rtol, atol
+    !> True for one step per macro step, without error control (adaptive methods).
     logical, intent(in), optional :: fixed_step
+    !> RK4 substeps of the fast part per macro step (multirate methods, >= 1).
     integer, intent(in), optional :: substeps
     if (present(substeps)) then
       if (substeps < 1) then

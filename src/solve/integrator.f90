@@ -39,20 +39,27 @@ module davit_solve_integrator
   abstract interface
     subroutine rhs_interface(self, t, y, dydt)
       import :: ode_problem, wp
+      !> The problem.
       class(ode_problem), intent(in) :: self
+      !> Time [s].
       real(wp), intent(in) :: t
+      !> State vector (the problem's layout).
       real(wp), intent(in) :: y(:)
+      !> Its time derivative y' = f(t, y).
       real(wp), intent(out) :: dydt(:)
     end subroutine rhs_interface
   end interface
 
   !> Base of every integrator: statistics and the step contract.
   type, abstract :: integrator_type
+    !> Accepted steps taken.
     integer(i8) :: steps = 0
+    !> Right-hand side evaluations made.
     integer(i8) :: rhs_evaluations = 0
     !> Set (and `failure` explained: time, step size, reason) when an adaptive integrator
     !> cannot complete a step; y is then left at the last accepted state. Never stops.
     logical :: failed = .false.
+    !> What made the integrator fail (time, step size, reason); allocated once failed.
     character(len=:), allocatable :: failure
     !> Adaptive integrators: return after ONE accepted internal step (t < t + dt possible)
     !> instead of reaching t + dt, so that the time loop's after-step hook, its monitors
@@ -69,7 +76,9 @@ module davit_solve_integrator
     !> Allocate the work arrays for a state of size n (the only allocation).
     subroutine init_interface(self, n)
       import :: integrator_type
+      !> The integrator whose work arrays are allocated.
       class(integrator_type), intent(inout) :: self
+      !> Size of the state vector.
       integer, intent(in) :: n
     end subroutine init_interface
 
@@ -77,15 +86,21 @@ module davit_solve_integrator
     !> dt); t is updated.
     subroutine step_interface(self, problem, t, y, dt)
       import :: integrator_type, ode_problem, wp
+      !> The integrator (work arrays, statistics, failure record).
       class(integrator_type), intent(inout) :: self
+      !> The problem y' = f(t, y).
       class(ode_problem), intent(in) :: problem
+      !> Time [s], advanced.
       real(wp), intent(inout) :: t
+      !> State vector, advanced from t to the new t.
       real(wp), intent(inout) :: y(:)
+      !> Step to take [s] (with single_step, the largest step).
       real(wp), intent(in) :: dt
     end subroutine step_interface
 
     pure function name_interface(self) result(name)
       import :: integrator_type
+      !> The integrator.
       class(integrator_type), intent(in) :: self
       character(len=:), allocatable :: name
     end function name_interface
@@ -94,33 +109,45 @@ module davit_solve_integrator
 contains
 
   subroutine no_rhs_slow(self, t, y, dydt)
+    !> The problem.
     class(ode_problem), intent(in) :: self
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> State vector.
     real(wp), intent(in) :: y(:)
+    !> Slow part of y' (zero here).
     real(wp), intent(out) :: dydt(:)
     dydt = 0.0_wp
   end subroutine no_rhs_slow
 
   subroutine all_rhs_fast(self, t, y, dydt)
+    !> The problem.
     class(ode_problem), intent(in) :: self
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> State vector.
     real(wp), intent(in) :: y(:)
+    !> Fast part of y' (the whole right-hand side here).
     real(wp), intent(out) :: dydt(:)
     call self%rhs(t, y, dydt)
   end subroutine all_rhs_fast
 
   subroutine no_after_step(self, t, y)
+    !> The problem, its history updated after the step.
     class(ode_problem), intent(inout) :: self
+    !> Time [s] and state vector at the end of the accepted step.
     real(wp), intent(in) :: t, y(:)
   end subroutine no_after_step
 
   pure function no_stiff_states(self) result(idx)
+    !> The problem.
     class(ode_problem), intent(in) :: self
     integer, allocatable :: idx(:)
     allocate (idx(0))
   end function no_stiff_states
 
   pure integer function no_n_modes(self)
+    !> The problem.
     class(ode_problem), intent(in) :: self
     no_n_modes = 0
   end function no_n_modes
@@ -128,14 +155,19 @@ contains
   !> The mode of each of the n_modes discrete switches at (t, y), as the after-step hook
   !> would set them from the current history.
   subroutine no_modes(self, t, y, m)
+    !> The problem.
     class(ode_problem), intent(in) :: self
+    !> Time [s] and state vector.
     real(wp), intent(in) :: t, y(:)
+    !> Mode of each discrete switch.
     integer, intent(out) :: m(:)
     m = 0
   end subroutine no_modes
 
   pure real(wp) function no_max_step(self, t, y, dt) result(h)
+    !> The problem.
     class(ode_problem), intent(in) :: self
+    !> Time [s], state vector and the deck's step dt [s].
     real(wp), intent(in) :: t, y(:), dt
     h = dt
   end function no_max_step

@@ -12,10 +12,15 @@ module davit_solve_modes
   interface
     subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
       import :: wp
+      !> LAPACK dgeev: 'N' for no left and no right eigenvectors.
       character, intent(in) :: jobvl, jobvr
+      !> LAPACK dgeev: order n, leading dimensions, length of work.
       integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+      !> LAPACK dgeev: the matrix (overwritten).
       real(wp), intent(inout) :: a(lda, *)
+      !> LAPACK dgeev: real and imaginary parts of the eigenvalues, eigenvectors, work.
       real(wp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+      !> LAPACK dgeev: 0 on success.
       integer, intent(out) :: info
     end subroutine dgeev
   end interface
@@ -26,9 +31,13 @@ contains
   !> (t, y), by central differences (error O(del^2), so the stiff springs' eigenvalues come
   !> out to ~1e-8 relative) and LAPACK dgeev; info /= 0 if dgeev failed.
   subroutine jacobian_spectrum(problem, t, y, rate_max, omega_max, info)
+    !> The problem whose right-hand side is linearised.
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y of the linearisation.
     real(wp), intent(in) :: t, y(:)
+    !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s] of df/dy.
     real(wp), intent(out) :: rate_max, omega_max
+    !> 0 on success, dgeev's code otherwise.
     integer, intent(out) :: info
     real(wp), parameter :: cbrt_eps = epsilon(1.0_wp)**(1.0_wp/3.0_wp)
     real(wp) :: jac(size(y), size(y)), yp(size(y)), fp(size(y)), fm(size(y)), del

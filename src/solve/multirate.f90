@@ -40,12 +40,16 @@ module davit_solve_multirate
     !> Chained stages (MRI-GARK, 'mri2'): stage i starts from Y_i and is forced by the
     !> combination gamma(i, :) of the slow tendencies of Y_1 .. Y_i.
     logical :: chained = .false.
+    !> Coupling coefficients gamma(i, j) of the chained stages (lower triangular).
     real(wp), allocatable :: gamma(:, :)
+    !> Slow tendencies f_slow(Y_j) of the chained stages, one column per stage.
     real(wp), allocatable :: fs(:, :)
     !> RK4 substeps of the fast part over a whole macro step.
     integer :: substeps = 10
     !> Evaluations of each part (rhs_evaluations counts both).
     integer :: slow_evaluations = 0, fast_evaluations = 0
+    !> Macro step's start y_n, the stage's slow forcing, the RK4 substep's stage
+    !> derivatives k1..k4 and stage state, all of the state's size.
     real(wp), allocatable :: y0(:), slow(:), k1(:), k2(:), k3(:), k4(:), ytmp(:)
   contains
     procedure :: init => multirate_init
@@ -57,7 +61,9 @@ module davit_solve_multirate
 contains
 
   subroutine multirate_init(self, n)
+    !> The integrator whose work arrays are allocated.
     class(multirate_type), intent(inout) :: self
+    !> Size of the state vector.
     integer, intent(in) :: n
     if (allocated(self%y0)) deallocate (self%y0, self%slow, self%k1, self%k2, self%k3, &
                                          self%k4, self%ytmp)
@@ -74,10 +80,15 @@ contains
 
   !> One macro step of size dt (always the whole of it: there is no error control).
   subroutine multirate_step(self, problem, t, y, dt)
+    !> The integrator (work arrays, counters).
     class(multirate_type), intent(inout) :: self
+    !> The problem, split into f_slow and f_fast.
     class(ode_problem), intent(in) :: problem
+    !> Time [s], advanced by dt.
     real(wp), intent(inout) :: t
+    !> State vector, advanced by one macro step.
     real(wp), intent(inout) :: y(:)
+    !> Macro step H [s].
     real(wp), intent(in) :: dt
     real(wp) :: c_prev
     integer :: i, nsub
@@ -101,10 +112,15 @@ contains
   !> One MRI-GARK macro step: stage i from Y_i over dc_i H, Y_(s+1) = y_(n+1). The
   !> tableau's c here are the stage ends, as for MIS (c = 1/2, 1 for ERK22a).
   subroutine chained_step(self, problem, t, y, dt)
+    !> The integrator (chained, with its gamma and fs).
     type(multirate_type), intent(inout) :: self
+    !> The problem, split into f_slow and f_fast.
     class(ode_problem), intent(in) :: problem
+    !> Time [s], advanced by dt.
     real(wp), intent(inout) :: t
+    !> State vector, advanced by one macro step.
     real(wp), intent(inout) :: y(:)
+    !> Macro step H [s].
     real(wp), intent(in) :: dt
     real(wp) :: c_prev, dc
     integer :: i, j, nsub
@@ -127,8 +143,11 @@ contains
 
   !> The end of a macro step: the clock and the counters (slow plus fast evaluations).
   subroutine finish_step(self, t, dt)
+    !> The integrator, its counters updated.
     type(multirate_type), intent(inout) :: self
+    !> Time [s], advanced by dt.
     real(wp), intent(inout) :: t
+    !> Macro step H [s].
     real(wp), intent(in) :: dt
     t = t + dt
     self%steps = self%steps + 1
@@ -139,10 +158,15 @@ contains
   !> v' = f_fast(t0 + tau, v) + slow over tau in [0, span], RK4 in nsub equal substeps: a
   !> stage, counted as one slow evaluation (its forcing's) and 4 nsub fast ones.
   subroutine fast_stage(self, problem, t0, v, span, nsub)
+    !> The integrator (its slow forcing, stage work arrays and counters).
     type(multirate_type), intent(inout) :: self
+    !> The problem, split into f_slow and f_fast.
     class(ode_problem), intent(in) :: problem
+    !> Time t0 at the stage's start [s] and the span integrated over [s].
     real(wp), intent(in) :: t0, span
+    !> State v, advanced over the span.
     real(wp), intent(inout) :: v(:)
+    !> Number of RK4 substeps.
     integer, intent(in) :: nsub
     real(wp) :: h, half, ts
     integer :: k
@@ -168,6 +192,7 @@ contains
   end subroutine fast_stage
 
   pure function multirate_name(self) result(name)
+    !> The integrator.
     class(multirate_type), intent(in) :: self
     character(len=:), allocatable :: name
     if (self%chained) then

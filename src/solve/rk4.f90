@@ -8,6 +8,7 @@ module davit_solve_rk4
   public :: rk4_type
 
   type, extends(integrator_type) :: rk4_type
+    !> Stage derivatives k1..k4 and the stage state, of the state's size.
     real(wp), allocatable :: k1(:), k2(:), k3(:), k4(:), ytmp(:)
   contains
     procedure :: init => rk4_init
@@ -18,7 +19,9 @@ module davit_solve_rk4
 contains
 
   subroutine rk4_init(self, n)
+    !> The integrator.
     class(rk4_type), intent(inout) :: self
+    !> Size of the state vector.
     integer, intent(in) :: n
     if (allocated(self%k1)) deallocate (self%k1, self%k2, self%k3, self%k4, self%ytmp)
     allocate (self%k1(n), self%k2(n), self%k3(n), self%k4(n), self%ytmp(n))
@@ -27,10 +30,15 @@ contains
   end subroutine rk4_init
 
   subroutine rk4_step(self, problem, t, y, dt)
+    !> The integrator (stages, statistics).
     class(rk4_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time [s], advanced by dt.
     real(wp), intent(inout) :: t
+    !> State vector, advanced by one step.
     real(wp), intent(inout) :: y(:)
+    !> Step [s].
     real(wp), intent(in) :: dt
     real(wp) :: half
     half = 0.5_wp*dt
@@ -48,6 +56,7 @@ contains
   end subroutine rk4_step
 
   pure function rk4_name(self) result(name)
+    !> The integrator.
     class(rk4_type), intent(in) :: self
     character(len=:), allocatable :: name
     name = "rk4"

@@ -47,18 +47,28 @@ module davit_solve_rosenbrock
   interface
     subroutine dgetrf(m, n, a, lda, ipiv, info)
       import :: wp
+      !> LAPACK dgetrf: rows m, columns n and leading dimension lda of a.
       integer, intent(in) :: m, n, lda
+      !> LAPACK dgetrf: the matrix, overwritten by its LU factors.
       real(wp), intent(inout) :: a(lda, *)
+      !> LAPACK dgetrf: the row pivots.
       integer, intent(out) :: ipiv(*)
+      !> LAPACK dgetrf: 0 on success, > 0 for a singular factor.
       integer, intent(out) :: info
     end subroutine dgetrf
     subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
       import :: wp
+      !> LAPACK dgetrs: 'N' to solve A x = b.
       character(len=1), intent(in) :: trans
+      !> LAPACK dgetrs: order n, right-hand sides nrhs, leading dimensions of a and b.
       integer, intent(in) :: n, nrhs, lda, ldb
+      !> LAPACK dgetrs: the LU factors from dgetrf.
       real(wp), intent(in) :: a(lda, *)
+      !> LAPACK dgetrs: the row pivots from dgetrf.
       integer, intent(in) :: ipiv(*)
+      !> LAPACK dgetrs: right-hand sides, overwritten by the solutions.
       real(wp), intent(inout) :: b(ldb, *)
+      !> LAPACK dgetrs: 0 on success.
       integer, intent(out) :: info
     end subroutine dgetrs
   end interface
@@ -68,8 +78,11 @@ module davit_solve_rosenbrock
     logical :: autonomous = .false.
     !> Accepted-point Jacobians formed and LU factorisations done (statistics).
     integer :: jacobians = 0, decompositions = 0
+    !> Stage vectors K_i (n, ns) and the time derivative df/dt at the point.
     real(wp), allocatable :: k(:, :), dfdt(:)
+    !> Jacobian J = df/dy at the point and the LU factors of I/(h gamma) - J.
     real(wp), allocatable :: jac(:, :), lu(:, :)
+    !> Row pivots of the LU factors.
     integer, allocatable :: ipiv(:)
   contains
     procedure :: init => rosenbrock_init
@@ -84,7 +97,9 @@ module davit_solve_rosenbrock
 contains
 
   subroutine rosenbrock_init(self, n)
+    !> The integrator whose work arrays are allocated.
     class(rosenbrock_type), intent(inout) :: self
+    !> Size of the state vector.
     integer, intent(in) :: n
     call self%init_work(n)
     if (allocated(self%k)) deallocate (self%k, self%dfdt, self%jac, self%lu, self%ipiv)
@@ -94,16 +109,22 @@ contains
   end subroutine rosenbrock_init
 
   pure integer function rosenbrock_order(self)
+    !> The integrator.
     class(rosenbrock_type), intent(in) :: self
     rosenbrock_order = 3
   end function rosenbrock_order
 
   !> The shared driver, but each call runs to t + dt: single_step is not honoured.
   subroutine rosenbrock_step(self, problem, t, y, dt)
+    !> The integrator (work arrays, statistics, proposed step, failure record).
     class(rosenbrock_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time [s], advanced by dt.
     real(wp), intent(inout) :: t
+    !> State vector, advanced.
     real(wp), intent(inout) :: y(:)
+    !> Macro step [s].
     real(wp), intent(in) :: dt
     logical :: single
     single = self%single_step
@@ -115,9 +136,13 @@ contains
   !> f0 = f(t, y), J = df/dy by one forward difference per column, and df/dt: at every
   !> accepted point (`first` or not).
   subroutine linearise(self, problem, t, y, first)
+    !> The integrator; f0, jac and dfdt written.
     class(rosenbrock_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y of the accepted point.
     real(wp), intent(in) :: t, y(:)
+    !> True at the call's first point (unused: J is formed at every point).
     logical, intent(in) :: first
     real(wp), parameter :: sqrt_eps = sqrt(epsilon(1.0_wp))
     real(wp) :: del
@@ -150,9 +175,13 @@ contains
   !> rejection at the same point); ok = .false. when singular, with half the step to
   !> retry.
   subroutine factor(self, problem, t, y, h, ok)
+    !> The integrator; lu and ipiv written (self%h on a singular matrix).
     class(rosenbrock_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> False when I/(h gamma) - J is singular.
     logical, intent(out) :: ok
     integer :: i, n, info
     n = size(self%jac, 1)
@@ -169,9 +198,13 @@ contains
   !> The four stages from (t, y) with step h (LU ready): ynew and the error vector yerr
   !> (formed with_error or not: it costs no RHS).
   subroutine stages(self, problem, t, y, h, with_error)
+    !> The integrator; the stages, ynew and yerr written.
     class(rosenbrock_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> Whether the error vector is wanted (it is formed either way).
     logical, intent(in) :: with_error
     integer :: i, j, n, info
     n = size(y)
@@ -201,6 +234,7 @@ contains
   end subroutine stages
 
   pure function rosenbrock_name(self) result(name)
+    !> The integrator.
     class(rosenbrock_type), intent(in) :: self
     character(len=:), allocatable :: name
     name = "rosenbrock"

@@ -60,13 +60,19 @@ module davit_solve_rosenbrock_w
     integer :: max_age = 200
     !> Ws formed and factorisations (statistics).
     integer :: jacobians = 0, decompositions = 0
+    !> Transformed coefficients a = alpha Gamma^-1, c = diag(1/gamma) - Gamma^-1 (diagonal
+    !> zeroed), m = b Gamma^-1 and the error weights e = m - bhat Gamma^-1.
     real(wp) :: a(ns, ns) = 0.0_wp, c(ns, ns) = 0.0_wp, m(ns) = 0.0_wp, e(ns) = 0.0_wp
+    !> Stage times alpha_i (fractions of the step).
     real(wp) :: alpha(ns) = 0.0_wp
+    !> The problem's stiff states, the states they are coupled to, and the LU's row pivots.
     integer, allocatable :: stiff(:), coupled(:), piv(:)
+    !> W_SS and W_SC, the LU factors of I/(h gamma) - W_SS, and the stages u (n, ns).
     real(wp), allocatable :: w(:, :), wc(:, :), lu(:, :), u(:, :)
     !> Accepted steps since W was formed (-1: form one before the next trial step), and
     !> the step its LU is for (-1: none).
     integer :: age = -1
+    !> Step h the LU is for [s] (-1: none).
     real(wp) :: h_lu = -1.0_wp
   contains
     procedure :: init => rosw_init
@@ -84,7 +90,9 @@ module davit_solve_rosenbrock_w
 contains
 
   subroutine rosw_init(self, n)
+    !> The integrator whose work arrays and coefficients are set.
     class(rosenbrock_w_type), intent(inout) :: self
+    !> Size of the state vector.
     integer, intent(in) :: n
     real(wp) :: ginv(ns, ns)
     integer :: i
@@ -110,6 +118,7 @@ contains
   end subroutine rosw_init
 
   pure integer function rosw_order(self)
+    !> The integrator.
     class(rosenbrock_w_type), intent(in) :: self
     rosw_order = 3
   end function rosw_order
@@ -117,9 +126,13 @@ contains
   !> f0 = f(t, y) at every new point; on the first call, the problem's stiff and coupled
   !> states (W's rows and columns) are taken.
   subroutine rosw_start(self, problem, t, y, first)
+    !> The integrator; f0 written (and the stiff sets taken on the first call).
     class(rosenbrock_w_type), intent(inout) :: self
+    !> The problem y' = f(t, y), with its stiff and coupled states.
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y of the new point.
     real(wp), intent(in) :: t, y(:)
+    !> True at the call's first point.
     logical, intent(in) :: first
     if (.not. allocated(self%stiff)) then
       self%stiff = problem%stiff_states()
@@ -136,9 +149,13 @@ contains
   !> step; refactored only when h changes. A singular I/(h gamma) - W: retry with a fresh
   !> W at a fac_min times smaller step.
   subroutine rosw_prepare(self, problem, t, y, h, ok)
+    !> The integrator; W and its LU formed as needed (self%h on a singular matrix).
     class(rosenbrock_w_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> False when I/(h gamma) - W is singular.
     logical, intent(out) :: ok
     ok = .true.
     if (self%fixed_step .or. self%age < 0 .or. self%age >= self%max_age) then
@@ -155,8 +172,11 @@ contains
   !> default's safety / err^(1/3) but for rounding: kept so that results do not change).
   !> A rejection (err > 1) gives a factor below safety, so fac_max does not bind there.
   pure function rosw_controller(self, h, err, accepted) result(h_new)
+    !> The integrator (its controller factors).
     class(rosenbrock_w_type), intent(in) :: self
+    !> Trial step h [s] and its error norm err.
     real(wp), intent(in) :: h, err
+    !> True when the trial was accepted.
     logical, intent(in) :: accepted
     real(wp) :: h_new
     h_new = h*min(self%fac_max, max(self%fac_min, &
@@ -165,19 +185,23 @@ contains
   end function rosw_controller
 
   subroutine rosw_accepted(self, err)
+    !> The integrator; W's age advanced.
     class(rosenbrock_w_type), intent(inout) :: self
+    !> Error norm of the accepted step.
     real(wp), intent(in) :: err
     self%age = self%age + 1
   end subroutine rosw_accepted
 
   !> After a rejection a fresh W, unless this one is young (<= 10 accepted steps).
   subroutine rosw_rejected(self)
+    !> The integrator; W marked stale when old.
     class(rosenbrock_w_type), intent(inout) :: self
     if (self%age > 10) self%age = -1
   end subroutine rosw_rejected
 
   !> Inverse of a lower-triangular matrix with nonzero diagonal (forward substitution).
   pure function lower_inverse(l) result(x)
+    !> Lower-triangular matrix with a nonzero diagonal.
     real(wp), intent(in) :: l(:, :)
     real(wp) :: x(size(l, 1), size(l, 1))
     integer :: i, j, n
@@ -194,8 +218,11 @@ contains
   !> W_SS = df_S/dy_S and W_SC = df_S/dy_C by one forward difference per column, at
   !> (t, y) with f0 = f(t, y).
   subroutine form_w(self, problem, t, y)
+    !> The integrator; w and wc formed, its age reset.
     class(rosenbrock_w_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y of the point (f0 = f(t, y) there).
     real(wp), intent(in) :: t, y(:)
     integer :: j
     do j = 1, size(self%stiff)
@@ -212,10 +239,15 @@ contains
 
   !> Column js of the stiff rows' Jacobian by a forward difference (ytmp = y on return).
   subroutine difference(self, problem, t, y, js, col)
+    !> The integrator (f0, the stiff set; ytmp and fcn used as work).
     class(rosenbrock_w_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y of the point.
     real(wp), intent(in) :: t, y(:)
+    !> Index of the state the column is for.
     integer, intent(in) :: js
+    !> The column: d f_S/d y_js at the stiff rows.
     real(wp), intent(out) :: col(:)
     real(wp), parameter :: sqrt_eps = sqrt(epsilon(1.0_wp))
     real(wp) :: del
@@ -230,8 +262,11 @@ contains
 
   !> LU (partial pivoting) of I/(h gamma) - W on the stiff block; ok = .false. if singular.
   subroutine factor(self, h, ok)
+    !> The integrator; lu and piv written.
     class(rosenbrock_w_type), intent(inout) :: self
+    !> Step h [s].
     real(wp), intent(in) :: h
+    !> False when a pivot is zero (singular matrix).
     logical, intent(out) :: ok
     integer :: i, k, p, n
     real(wp) :: row(size(self%stiff))
@@ -268,8 +303,11 @@ contains
   !> Solve (I/(h gamma) - W) x = r in place: the explicit rows by the diagonal h gamma,
   !> then the stiff rows by the LU with the coupled rows' part W_SC x_C moved right.
   pure subroutine solve_stage(stiff, coupled, wc, lu, piv, h, r)
+    !> Stiff states, coupled states and the LU's row pivots.
     integer, intent(in) :: stiff(:), coupled(:), piv(:)
+    !> W_SC, the LU factors of I/(h gamma) - W_SS, and the step h [s].
     real(wp), intent(in) :: wc(:, :), lu(:, :), h
+    !> Right-hand side r on entry, the solution x on return.
     real(wp), intent(inout) :: r(:)
     real(wp) :: x(size(stiff)), rs(size(stiff))
     integer :: i, n
@@ -290,9 +328,13 @@ contains
   !> The four stages from (t, y) with step h (f0 = f(t, y), LU ready): ynew and yerr
   !> (formed with_error or not: it costs no RHS).
   subroutine stages(self, problem, t, y, h, with_error)
+    !> The integrator; the stages, ynew and yerr written.
     class(rosenbrock_w_type), intent(inout) :: self
+    !> The problem y' = f(t, y).
     class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
     real(wp), intent(in) :: t, y(:), h
+    !> Whether the error vector is wanted (it is formed either way).
     logical, intent(in) :: with_error
     integer :: i, j
     do i = 1, ns
@@ -322,6 +364,7 @@ contains
   end subroutine stages
 
   pure function rosw_name(self) result(name)
+    !> The integrator.
     class(rosenbrock_w_type), intent(in) :: self
     character(len=:), allocatable :: name
     name = "rosw"

@@ -15,7 +15,9 @@ contains
   !> sqrt(1/n sum (e_i / (atol + rtol max(|y0_i|, |y1_i|)))^2); a step is accepted when
   !> this is <= 1. Non-finite components give a non-finite norm (a rejection).
   pure function error_norm(e, y0, y1, atol, rtol) result(err)
+    !> Error estimate e, the step's start y0 and end y1 (state vectors).
     real(wp), intent(in) :: e(:), y0(:), y1(:)
+    !> Absolute and relative tolerances.
     real(wp), intent(in) :: atol, rtol
     real(wp) :: err
     integer :: i
@@ -30,11 +32,13 @@ contains
   !> time, the end of a macro step) by less than 1 % of h is stretched to land on it,
   !> rather than leave a sliver step after it.
   pure logical function stretch_to(h, remaining)
+    !> Step h [s] and the time remaining to the target [s].
     real(wp), intent(in) :: h, remaining
     stretch_to = 1.01_wp*h >= remaining
   end function stretch_to
 
   pure logical function is_finite_real(x)
+    !> Value checked.
     real(wp), intent(in) :: x
     is_finite_real = ieee_is_finite(x)
   end function is_finite_real
@@ -42,10 +46,15 @@ contains
   !> Starting step for a method of order `order` (HNW I, sec. II.4): an explicit Euler
   !> probe of size h0 estimates the second derivative; one extra RHS evaluation, f1 is work.
   function initial_step(problem, t, y, f0, order, atol, rtol, h_cap, ywork, f1) result(h)
+    !> The problem.
     class(ode_problem), intent(in) :: problem
+    !> Time t [s], state y and its derivative f0 = f(t, y).
     real(wp), intent(in) :: t, y(:), f0(:)
+    !> Order of the method.
     integer, intent(in) :: order
+    !> Absolute and relative tolerances, and the largest step allowed h_cap [s].
     real(wp), intent(in) :: atol, rtol, h_cap
+    !> Work arrays of the state's size (overwritten).
     real(wp), intent(inout) :: ywork(:), f1(:)
     real(wp) :: h, d0, d1, d2, h0, h1
     d0 = error_norm(y, y, y, atol, rtol)
@@ -71,8 +80,11 @@ contains
 
   !> Mark the integrator failed with a message naming the method, time, step and reason.
   subroutine record_failure(self, t, h, reason)
+    !> The integrator, marked failed.
     class(integrator_type), intent(inout) :: self
+    !> Time t [s] and step h [s] where it failed.
     real(wp), intent(in) :: t, h
+    !> Why it failed.
     character(len=*), intent(in) :: reason
     character(len=64) :: buf
     self%failed = .true.
@@ -85,8 +97,11 @@ contains
   !> than max_substeps tries in one macro step or when h has collapsed below
   !> h_min max(1, |t|).
   logical function substep_allowed(self, tries, max_substeps, t, h, h_min) result(ok)
+    !> The integrator, marked failed when the step is not allowed.
     class(integrator_type), intent(inout) :: self
+    !> Tries so far in this macro step and the most allowed.
     integer, intent(in) :: tries, max_substeps
+    !> Time t [s], step h [s], and the relative smallest step h_min.
     real(wp), intent(in) :: t, h, h_min
     ok = .false.
     if (tries > max_substeps) then
