@@ -22,7 +22,9 @@ contains
 
   !> The bytes of row `row` of case `c` (c = 0 with a default row is a worker's "ready").
   function encode_row(c, row) result(buf)
+    !> Case index (0 with a default row for a worker's "ready").
     integer, intent(in) :: c
+    !> The summary row to encode.
     type(case_result), intent(in) :: row
     character(len=:), allocatable :: buf
     character(len=int_bytes) :: ints
@@ -38,9 +40,13 @@ contains
 
   !> Case index and row back from `buf`; an error if the bytes are not a whole row.
   subroutine decode_row(buf, c, row, error)
+    !> The bytes of one encoded row.
     character(len=*), intent(in) :: buf
+    !> Case index decoded from the bytes (0 on error).
     integer, intent(out) :: c
+    !> The summary row decoded from the bytes.
     type(case_result), intent(out) :: row
+    !> Set when the bytes are not a whole row.
     type(error_type), allocatable, intent(out) :: error
     integer(i8) :: header(nint_fields)
     real(wp) :: x(nreal_fields)
@@ -71,6 +77,7 @@ contains
   end subroutine decode_row
 
   pure function real_fields(row) result(x)
+    !> The summary row whose reals are listed.
     type(case_result), intent(in) :: row
     real(wp) :: x(nreal_fields)
     x = [row%min_clearance, row%peak_horizontal_acceleration, &
@@ -82,7 +89,9 @@ contains
   end function real_fields
 
   pure subroutine set_reals(row, x)
+    !> The summary row whose reals are set.
     type(case_result), intent(inout) :: row
+    !> The row's reals in declaration order, then the checks' values, limits and margins.
     real(wp), intent(in) :: x(nreal_fields)
     row%min_clearance = x(1)
     row%peak_horizontal_acceleration = x(2)
@@ -105,12 +114,14 @@ contains
   end subroutine set_reals
 
   pure integer(i8) function text_length(s) result(n)
+    !> Text, possibly unallocated.
     character(len=:), allocatable, intent(in) :: s
     n = -1
     if (allocated(s)) n = len(s, i8)
   end function text_length
 
   pure function text(s) result(t)
+    !> Text, possibly unallocated (then "").
     character(len=:), allocatable, intent(in) :: s
     character(len=:), allocatable :: t
     t = ""

@@ -15,6 +15,7 @@ module davit_sweep_shards
 
   !> Shard `index` of `count`; count = 0 is the whole sweep (no --shard).
   type :: shard_spec
+    !> Shard number (1-based) and number of shards; count = 0 is the whole sweep.
     integer :: index = 0, count = 0
   end type shard_spec
 
@@ -22,8 +23,11 @@ contains
 
   !> "K/N" with 1 <= K <= N (digits only).
   subroutine parse_shard(text, shard, error)
+    !> The "K/N" text of --shard.
     character(len=*), intent(in) :: text
+    !> The parsed shard.
     type(shard_spec), intent(out) :: shard
+    !> Set when the text is not "K/N" with 1 <= K <= N.
     type(error_type), allocatable, intent(out) :: error
     integer :: slash, ios_k, ios_n
     slash = index(text, "/")
@@ -49,6 +53,7 @@ contains
 
   !> "K/N", or "whole" for the whole sweep.
   function shard_text(shard) result(text)
+    !> The shard to describe.
     type(shard_spec), intent(in) :: shard
     character(len=:), allocatable :: text
     if (shard%count == 0) then
@@ -62,8 +67,11 @@ contains
   !> starting at the index-th (all of them for the whole sweep). Arrays as long as the
   !> sweep are allocatable (heap), never automatic (the stack under -fstack-arrays).
   function shard_mask(s, cases, shard) result(mine)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> All the sweep's cases.
     type(sweep_case), intent(in) :: cases(:)
+    !> The shard whose cases are selected.
     type(shard_spec), intent(in) :: shard
     logical, allocatable :: mine(:)
     integer, allocatable :: order(:)
@@ -90,8 +98,11 @@ contains
   !> index, so the summary is the same in any order. A merge sort: n log n for any case
   !> list up to the sweep's cap (an insertion sort was n^2: hours for 10^6 cases).
   subroutine longest_first(s, cases, pending)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> All the sweep's cases.
     type(sweep_case), intent(in) :: cases(:)
+    !> Pending case indices, reordered longest expected run first.
     integer, intent(inout) :: pending(:)
     real(wp), allocatable :: cost(:), cost_work(:)
     integer, allocatable :: work(:)
@@ -113,8 +124,11 @@ contains
   !> Merge the sorted runs lo..mid and mid+1..hi (dearest first; ties from the left run
   !> first, which keeps the sort stable).
   pure subroutine merge_runs(cost, pending, lo, mid, hi, cost_work, work)
+    !> Expected costs of the pending cases and their merge work array.
     real(wp), intent(inout) :: cost(:), cost_work(:)
+    !> Pending case indices and their merge work array, reordered with the costs.
     integer, intent(inout) :: pending(:), work(:)
+    !> Start, end of the left run and end of the right run (indices into pending).
     integer, intent(in) :: lo, mid, hi
     integer :: i, j, k
     logical :: left
@@ -142,7 +156,9 @@ contains
   !> an irregular sea's components (n_frequencies x n_directions) dominate (README
   !> Benchmark: ~1 RHS of the default scene per 100 components).
   pure real(wp) function expected_cost(s, c) result(cost)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The case whose cost is estimated.
     type(sweep_case), intent(in) :: c
     real(wp) :: dt, components
     dt = merge(c%dt, s%base%simulation%dt, c%dt > 0.0_wp)
