@@ -29,14 +29,18 @@ module davit_sweep_adaptive
   !> Where the rounds stand: realisations scheduled per cell (the first scheduled(j) of
   !> cell j), which cells are still open, and the rounds closed so far.
   type :: adaptive_plan
+    !> Realisation slots per cell (max_realisations) and rounds closed so far.
     integer :: slots = 1, rounds = 0
+    !> Realisations scheduled per cell: the first scheduled(j) slots of cell j.
     integer, allocatable :: scheduled(:)
+    !> Whether each cell is still open (not yet stopped by the rule).
     logical, allocatable :: open(:)
   end type adaptive_plan
 
 contains
 
   pure logical function adaptive(s)
+    !> The sweep's settings (adaptive when target_halfwidth > 0).
     type(sweep_config), intent(in) :: s
     adaptive = s%target_halfwidth > 0.0_wp
   end function adaptive
@@ -45,7 +49,9 @@ contains
   !> those collided. Stop at the cap, or when the 95 % Wilson half-width of k/n is at most
   !> the target (n = 0 gives 0.5: nothing is known yet).
   pure logical function cell_converged(k, n, runs, target, cap) result(done)
+    !> Collided cases k, ok cases n, realisations run, and the cap max_realisations.
     integer, intent(in) :: k, n, runs, cap
+    !> Target 95 % Wilson half-width of the collision probability.
     real(wp), intent(in) :: target
     done = runs >= cap .or. wilson_halfwidth(k, n) <= target
   end function cell_converged
@@ -53,8 +59,11 @@ contains
   !> An adaptive sweep cannot be split (`how`: "--shard K/N", "MPI ranks"): a cell's next
   !> round depends on all of its results.
   subroutine refuse_adaptive(s, how, error)
+    !> The sweep's settings (its target_halfwidth and realisations go into the message).
     type(sweep_config), intent(in) :: s
+    !> How the sweep would be split ("--shard K/N", "MPI ranks").
     character(len=*), intent(in) :: how
+    !> The refusal.
     type(error_type), allocatable, intent(out) :: error
     if (.not. adaptive(s)) return
     call fatal_error(error, "'"//s%filename//"': &sweep target_halfwidth > 0 (adaptive "// &
@@ -65,7 +74,9 @@ contains
 
   !> The first round: every cell open with `realisations` scheduled.
   function new_plan(s, ncase) result(plan)
+    !> The sweep's settings (realisations, max_realisations).
     type(sweep_config), intent(in) :: s
+    !> Number of case slots of the sweep (cells times max_realisations).
     integer, intent(in) :: ncase
     type(adaptive_plan) :: plan
     plan%slots = s%max_realisations
@@ -77,7 +88,9 @@ contains
   !> The cases this round still has to run: the scheduled slots of open cells that are not
   !> done (a stray status 3 among them, e.g. from an edited file, runs again).
   function round_cases(plan, results) result(pending)
+    !> Where the rounds stand.
     type(adaptive_plan), intent(in) :: plan
+    !> The sweep's rows, one per case slot.
     type(case_result), intent(in) :: results(:)
     integer, allocatable :: pending(:)
     ! as long as the sweep: allocatable (heap), not automatic (the stack)
@@ -102,8 +115,11 @@ contains
   !> After a round whose cases all ran: close the cells the rule stops, give the others
   !> the next batch (up to the cap).
   subroutine close_round(s, results, plan)
+    !> The sweep's settings (target, cap, batch).
     type(sweep_config), intent(in) :: s
+    !> The sweep's rows, one per case slot.
     type(case_result), intent(in) :: results(:)
+    !> Where the rounds stand, advanced by one round.
     type(adaptive_plan), intent(inout) :: plan
     integer :: j, k, n, runs
     plan%rounds = plan%rounds + 1
@@ -120,9 +136,13 @@ contains
 
   !> Collisions k among the n ok cases of the `runs` scheduled (and run) slots of cell j.
   pure subroutine cell_counts(plan, results, j, k, n, runs)
+    !> Where the rounds stand.
     type(adaptive_plan), intent(in) :: plan
+    !> The sweep's rows, one per case slot.
     type(case_result), intent(in) :: results(:)
+    !> The cell's index.
     integer, intent(in) :: j
+    !> Collided cases k, ok cases n, and scheduled slots that ran (ok or failed).
     integer, intent(out) :: k, n, runs
     integer :: first, last
     first = (j - 1)*plan%slots + 1
@@ -135,8 +155,11 @@ contains
 
   !> Status 3 and the reason for the slots a closed cell did not need.
   subroutine mark_not_needed(s, plan, results)
+    !> The sweep's settings (target, cap) for the reason text.
     type(sweep_config), intent(in) :: s
+    !> Where the rounds stand.
     type(adaptive_plan), intent(in) :: plan
+    !> The sweep's rows; the unneeded slots of closed cells get status 3 and the reason.
     type(case_result), intent(inout) :: results(:)
     integer :: j, k, n, runs, c
     character(len=:), allocatable :: why
@@ -159,8 +182,11 @@ contains
   !> "round 2: 3 of 4 cells stopped (2 at 95 % half-width <= 0.1, 1 at max_realisations
   !> 40), 1 open (widest 0.1312); next round 4 cases" for the progress line.
   function plan_text(s, plan, results) result(text)
+    !> The sweep's settings (target, cap).
     type(sweep_config), intent(in) :: s
+    !> Where the rounds stand.
     type(adaptive_plan), intent(in) :: plan
+    !> The sweep's rows, one per case slot.
     type(case_result), intent(in) :: results(:)
     character(len=:), allocatable :: text
     integer :: j, k, n, runs, capped
@@ -185,6 +211,7 @@ contains
 
   !> A half-width with 4 decimals ("0.0812").
   function fmt_width(x) result(text)
+    !> Half-width to format.
     real(wp), intent(in) :: x
     character(len=:), allocatable :: text
     text = fmt_fixed(x, 4)

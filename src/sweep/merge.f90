@@ -20,9 +20,11 @@ module davit_sweep_merge
   public :: merge_outcome, merge_shards
 
   type :: merge_outcome
+    !> Cases in the merged summary, and how many of them are ok, failed and not run.
     integer :: ncase = 0, ok = 0, failed = 0, not_run = 0
     !> N of the shards, and the shards (K) that were not given.
     integer :: count = 0
+    !> The shards (K) that were not given.
     integer, allocatable :: missing(:)
     !> The sweep deck as the shards name it (to tell how to resume the merged summary).
     character(len=:), allocatable :: sweep_file
@@ -30,11 +32,17 @@ module davit_sweep_merge
 
   !> One shard summary as read.
   type :: shard_file
+    !> The sweep's settings and identity (file names and deck texts) as stored.
     type(sweep_config) :: s
+    !> The sweep's cases.
     type(sweep_case), allocatable :: cases(:)
+    !> The shard's rows, one per case (cases of other shards not run).
     type(case_result), allocatable :: results(:)
+    !> Which shard (K/N) the file holds.
     type(shard_spec) :: shard
+    !> OpenMP threads the shard ran with.
     integer :: threads = 1
+    !> Directory of the per-case series files, as stored.
     character(len=:), allocatable :: series_dir
   end type shard_file
 
@@ -42,8 +50,11 @@ contains
 
   !> Merge shard summaries `inputs` (trailing blanks ignored) into `out_path`.
   subroutine merge_shards(out_path, inputs, outcome, error)
+    !> Path of the merged summary, and the shard summaries (trailing blanks ignored).
     character(len=*), intent(in) :: out_path, inputs(:)
+    !> Case counts of the merged summary and the missing shards.
     type(merge_outcome), intent(out) :: outcome
+    !> Set when an input is unreadable or incompatible, or the output cannot be written.
     type(error_type), allocatable, intent(out) :: error
     type(shard_file) :: first, next
     logical, allocatable :: given(:)
@@ -91,6 +102,7 @@ contains
   !> Whether `out_path` names one of `inputs`: by text, or as the same file (device and
   !> inode: `./a1.h5` and `a1.h5`, `$PWD/a1.h5`, links), which the merge would overwrite.
   logical function is_an_input(out_path, inputs)
+    !> Path of the merged summary, and the shard summaries.
     character(len=*), intent(in) :: out_path, inputs(:)
     integer :: i
     is_an_input = .true.
@@ -102,8 +114,11 @@ contains
 
   !> A shard summary; a whole-sweep summary is refused (it has no slice to merge).
   subroutine read_shard_file(path, f, error)
+    !> Path of the shard summary.
     character(len=*), intent(in) :: path
+    !> The shard summary as read.
     type(shard_file), intent(out) :: f
+    !> Set when the file cannot be read or is a whole-sweep summary.
     type(error_type), allocatable, intent(out) :: error
     call read_summary(path, f%s, f%cases, f%results, f%shard, f%threads, f%series_dir, error)
     if (allocated(error)) then
@@ -116,8 +131,11 @@ contains
 
   !> Shard `b` must come from the sweep deck, base deck, case count and N of shard `a`.
   subroutine check_compatible(a, a_path, b, b_path, error)
+    !> The two shard summaries compared.
     type(shard_file), intent(in) :: a, b
+    !> Their paths, for the message.
     character(len=*), intent(in) :: a_path, b_path
+    !> Set when b's sweep deck, base deck, case count or N differ from a's.
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: why
     why = ""
@@ -138,12 +156,19 @@ contains
   !> Copy the finished rows of input i into `results`; a shard given twice or a case
   !> finished in two inputs is an overlap.
   subroutine take_rows(f, i, inputs, given, owner, results, error)
+    !> The shard summary whose rows are taken.
     type(shard_file), intent(in) :: f
+    !> Its index in inputs.
     integer, intent(in) :: i
+    !> The shard summary paths, for the messages.
     character(len=*), intent(in) :: inputs(:)
+    !> Which shards (K) have been given so far.
     logical, intent(inout) :: given(:)
+    !> Per case, the index of the input that finished it (0 = none yet).
     integer, intent(inout) :: owner(:)
+    !> The merged rows, receiving the finished rows of this input.
     type(case_result), intent(inout) :: results(:)
+    !> Set on an overlap (a shard given twice or a case finished twice).
     type(error_type), allocatable, intent(out) :: error
     integer :: c
     if (given(f%shard%index)) then
