@@ -27,9 +27,14 @@ module davit_sweep_cases
 
   !> The inputs of one case, as recorded in the summary.
   type :: sweep_case
+    !> Case index (1-based), realisation, seed, sea-state level and wave type (0-based index
+    !> into wave_type_names).
     integer :: index = 0, realisation = 0, seed = 0, level = 0, wave_type = 0
+    !> Whether the wind is on.
     logical :: wind = .false.
+    !> Significant (or regular) wave height [m], wave period [s] and wave direction [deg].
     real(wp) :: wave_height = 0.0_wp, wave_period = 0.0_wp, angle_deg = 0.0_wp
+    !> Wind speed [m/s], initial clearance in boat beams, and time step [s].
     real(wp) :: wind_speed = 0.0_wp, clearance_b = 0.0_wp, dt = 0.0_wp
     !> Regular-wave phase epsilon [deg] (that of the base deck unless drawn).
     real(wp) :: phase_deg = 0.0_wp
@@ -47,8 +52,11 @@ contains
   !> `clearance0` is the base
   !> deck's initial clearance [m] (recorded when clearances are not swept).
   subroutine build_cases(s, clearance0, cases)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The base deck's initial clearance [m].
     real(wp), intent(in) :: clearance0
+    !> All the sweep's cases, in index order.
     type(sweep_case), allocatable, intent(out) :: cases(:)
     integer :: sizes(9), digit(9), k, d, rest
     sizes = [size(s%wave_types), size(s%levels), size(s%heights), size(s%periods), &
@@ -68,8 +76,11 @@ contains
 
   !> Case k from the positions of its values in each list (the order of build_cases).
   function one_case(s, k, digit, clearance0) result(c)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> Case index k, and its value's position in each list (the mixed-radix digits).
     integer, intent(in) :: k, digit(9)
+    !> The base deck's initial clearance [m].
     real(wp), intent(in) :: clearance0
     type(sweep_case) :: c
     type(rng_type) :: rng
@@ -103,7 +114,9 @@ contains
   !> Wind speed of a case with the wind on: the level preset when levels are swept, else the
   !> base deck's speed (or its level's preset if the base deck has no wind).
   pure real(wp) function wind_on_speed(s, level) result(speed)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> Sea-state level of the case.
     integer, intent(in) :: level
     speed = s%base%wind%speed
     if (s%has_levels .or. speed <= 0.0_wp) speed = level_wind_speed(level)
@@ -112,9 +125,13 @@ contains
   !> The run configuration of case c: the base deck with the case's sea, wind, seed, step and
   !> clearance. `clearance0` is the base deck's initial clearance [m].
   subroutine case_config(s, c, clearance0, cfg)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The case.
     type(sweep_case), intent(in) :: c
+    !> The base deck's initial clearance [m].
     real(wp), intent(in) :: clearance0
+    !> The case's run configuration.
     type(config_type), intent(out) :: cfg
     real(wp) :: ramp_periods
     cfg = s%base
@@ -139,8 +156,11 @@ contains
   !> Where case c's height, period and wind came from (stored with each series file's
   !> scenario): the sweep's lists and presets, or the base deck's sources.
   subroutine case_sources(s, c, cfg)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The case.
     type(sweep_case), intent(in) :: c
+    !> The case's run configuration, whose sources are set.
     type(config_type), intent(inout) :: cfg
     character(len=:), allocatable :: preset
     preset = "sweep: level "//achar(iachar("0") + modulo(c%level, 10))//" preset"
@@ -165,7 +185,9 @@ contains
   !> Move the boat and the points it hangs from by d [m] along the ship's s2 axis (the
   !> side plane's normal), which changes the initial clearance by exactly d.
   subroutine move_outboard(cfg, d)
+    !> The configuration whose boat and hanging points are moved.
     type(config_type), intent(inout) :: cfg
+    !> Distance d [m] along the ship's s2 axis.
     real(wp), intent(in) :: d
     real(wp) :: s2(3)
     s2 = matmul(rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading]), &
@@ -180,8 +202,11 @@ contains
 
   !> The initial fender-to-side clearance [m] of a configuration (the system at t = 0).
   subroutine initial_clearance(cfg, clearance, error)
+    !> The configuration at t = 0.
     type(config_type), intent(in) :: cfg
+    !> Initial fender-to-side clearance [m].
     real(wp), intent(out) :: clearance
+    !> Set when the system cannot be built from the configuration.
     type(error_type), allocatable, intent(out) :: error
     type(system_type) :: sys
     real(wp), allocatable :: y(:), force(:)
@@ -197,6 +222,7 @@ contains
   !> Seed of case `index` (1-based): the top 31 bits of SplitMix64's index-th output from
   !> state `base`, in 0 .. 2^31 - 1.
   pure integer function case_seed(base, index)
+    !> Base seed and case index (1-based).
     integer, intent(in) :: base, index
     integer(i8) :: z
     z = splitmix64(int(base, i8), int(index, i8))
@@ -207,6 +233,7 @@ contains
   !> z = seed + n*0x9E3779B97F4A7C15 (mod 2^64), then the variant-13 finaliser. Unsigned
   !> 64-bit products are formed from 16-bit limbs, so no signed integer ever overflows.
   pure integer(i8) function splitmix64(seed, n) result(z)
+    !> Seed (the generator's state) and the output's number n >= 1.
     integer(i8), intent(in) :: seed, n
     integer(i8), parameter :: golden(4) = [int(z'7C15', i8), int(z'7F4A', i8), &
                                            int(z'79B9', i8), int(z'9E37', i8)]
@@ -222,6 +249,7 @@ contains
 
   !> The four 16-bit limbs of a 64-bit pattern, least significant first.
   pure function limbs(x) result(l)
+    !> A 64-bit pattern.
     integer(i8), intent(in) :: x
     integer(i8) :: l(4)
     integer :: k
@@ -232,6 +260,7 @@ contains
 
   !> The 64-bit pattern of four 16-bit limbs (carries above bit 63 dropped).
   pure integer(i8) function pattern(l) result(x)
+    !> Four 16-bit limbs, least significant first.
     integer(i8), intent(in) :: l(4)
     integer :: k
     x = 0
@@ -242,6 +271,7 @@ contains
 
   !> a * b mod 2^64 from limbs; every partial sum stays below 2^36.
   pure integer(i8) function mul64(a, b) result(x)
+    !> Limbs of the two factors a and b.
     integer(i8), intent(in) :: a(4), b(4)
     integer(i8) :: r(4), carry
     integer :: i, k
@@ -259,6 +289,7 @@ contains
 
   !> a + b mod 2^64 for 64-bit patterns.
   pure integer(i8) function add64(a, b) result(x)
+    !> The two 64-bit patterns added.
     integer(i8), intent(in) :: a, b
     integer(i8) :: la(4), lb(4), r(4), carry
     integer :: k
