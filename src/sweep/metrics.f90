@@ -41,36 +41,57 @@ module davit_sweep_metrics
   !> and the integers -1, except wall time, steps and RHS evaluations of a failed case.
   !> Event times are -1 when the event did not happen.
   type :: case_result
+    !> Case status (not run, ok, failed, not needed).
     integer :: status = status_not_run
+    !> Why the case failed or was not needed.
     character(len=:), allocatable :: message
+    !> Smallest fender-to-side clearance [m] (negative = indentation) and peak horizontal CG
+    !> acceleration [m/s^2] (inertial frame).
     real(wp) :: min_clearance = 0.0_wp, peak_horizontal_acceleration = 0.0_wp
+    !> Peak vertical CG acceleration [m/s^2] (inertial frame) and largest segment tension [N].
     real(wp) :: peak_vertical_acceleration = 0.0_wp, peak_segment_tension = 0.0_wp
+    !> Times of the first fender contact and of the boat becoming waterborne [s] (-1 = never).
     real(wp) :: first_contact_time = -1.0_wp, waterborne_time = -1.0_wp
+    !> Simulated time at the lowering's end [s] and the case's wall-clock time [s].
     real(wp) :: end_time = 0.0_wp, wall_time = 0.0_wp
     !> From the launch log: peak sling and fall tensions [N], fastest impact [m/s], filtered
     !> seat peak [m/s^2], first times beyond the safe working load, the breaking load and
     !> the impact speed limit [s] (-1 = never), and the outcome in words.
     real(wp) :: peak_sling_tension = 0.0_wp, peak_fall_tension = 0.0_wp
+    !> Fastest impact [m/s] and the seat's filtered peak acceleration [m/s^2].
     real(wp) :: max_impact_speed = 0.0_wp, peak_seat_acceleration = 0.0_wp
+    !> First times beyond the safe working load and the breaking load [s] (-1 = never).
     real(wp) :: swl_exceeded_time = -1.0_wp, mbl_exceeded_time = -1.0_wp
+    !> First time beyond the impact speed limit [s] (-1 = never).
     real(wp) :: impact_speed_exceeded_time = -1.0_wp
+    !> How the launch ended, in words.
     character(len=:), allocatable :: outcome
     !> The rule checks (davit_assess_rules): value, limit and relative margin (>= 0 passes,
     !> NaN: does not apply).
     real(wp) :: check_value(n_checks) = 0.0_wp, check_limit(n_checks) = 0.0_wp
+    !> Relative margins of the rule checks (>= 0 passes, NaN when a check does not apply).
     real(wp) :: check_margin(n_checks) = 0.0_wp
+    !> Whether the boat collided (1 if the clearance went negative, else 0) and the number of
+    !> contact episodes.
     integer :: collided = -1, impacts = -1
+    !> Accepted steps and right-hand-side evaluations of the run.
     integer(i8) :: steps = 0, rhs_evaluations = 0
   end type case_result
 
   type, extends(step_monitor) :: launch_metrics
+    !> Whether the lowering ends at hook release (else when the boat is waterborne).
     logical :: stop_at_release = .true.
     !> False once the lowering is over: later steps change nothing.
     logical :: open = .true.
+    !> Smallest fender-to-side clearance [m] and peak horizontal CG acceleration [m/s^2].
     real(wp) :: min_clearance = huge(1.0_wp), peak_horizontal = 0.0_wp
+    !> Peak vertical CG acceleration [m/s^2] and largest segment tension [N].
     real(wp) :: peak_vertical = 0.0_wp, peak_tension = 0.0_wp
+    !> First contact time, lowering's end time and waterborne time [s] (-1 = not yet).
     real(wp) :: first_contact_time = -1.0_wp, end_time = 0.0_wp, waterborne_time = -1.0_wp
+    !> Contact episodes so far.
     integer :: impacts = 0
+    !> Whether a fender touched (compression or restitution) after the previous step.
     logical :: touching = .false.
     !> Inertial CG velocity and time of the previous step.
     real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp
@@ -116,9 +137,13 @@ contains
   !> The integrated launch system's state after a step (its fender phases and events are
   !> read, never changed).
   subroutine metrics_watch(self, problem, t, y, done)
+    !> The monitor, updated with the step.
     class(launch_metrics), intent(inout) :: self
+    !> The integrated problem (the launch system).
     class(ode_problem), intent(in) :: problem
+    !> Time [s] and state vector after the step.
     real(wp), intent(in) :: t, y(:)
+    !> Whether the integration should stop (lowering over and stop_at_release).
     logical, intent(out) :: done
     logical :: log_done
     call self%log%watch(problem, t, y, log_done)
@@ -143,8 +168,11 @@ contains
 
   !> Clearance and contact episodes (fender phases are advanced before the monitor).
   subroutine watch_contact(self, sys, t, y)
+    !> The monitor, updated with the clearance and contact episodes.
     type(launch_metrics), intent(inout) :: self
+    !> The launch system.
     type(system_type), intent(in) :: sys
+    !> Time [s] and state vector after the step.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: clearance, force(sys%par%fenders%nf)
     logical :: touching
@@ -161,8 +189,11 @@ contains
 
   !> Mean CG acceleration over the last step, Delta v/Delta t (inertial frame).
   subroutine watch_acceleration(self, sys, t, y)
+    !> The monitor, updated with the peak accelerations.
     type(launch_metrics), intent(inout) :: self
+    !> The launch system.
     type(system_type), intent(in) :: sys
+    !> Time [s] and state vector after the step.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: v(3), a(3)
     associate (q => y(sys%par%boat_part%q(1):sys%par%boat_part%q(2)), &
@@ -180,7 +211,9 @@ contains
 
   !> Largest tension of any cable or sling segment at state y [N].
   real(wp) function largest_tension(sys, t, y) result(tension)
+    !> The launch system.
     type(system_type), intent(in) :: sys
+    !> Time [s] and state vector.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: seg(sys%par%rig%nseg), sling(sys%par%rig%nlump + 1, 2), paid
     real(wp) :: lumps(3, sys%par%rig%nlump, 2)
@@ -199,6 +232,7 @@ contains
   !> The lowering is over once the hooks are released (or, with release off, once the
   !> boat is waterborne).
   pure logical function lowering_over(sys)
+    !> The launch system.
     type(system_type), intent(in) :: sys
     lowering_over = sys%par%on_davit .and. (sys%hist%release_time >= 0.0_wp .or. &
                                             (.not. sys%par%release .and. &
@@ -207,7 +241,9 @@ contains
 
   !> The measured quantities as a summary row of status ok (`sys`: the system integrated).
   function metrics_result(self, sys) result(r)
+    !> The monitor after the run.
     class(launch_metrics), intent(in) :: self
+    !> The system integrated.
     type(system_type), intent(in) :: sys
     type(case_result) :: r
     type(impact_tracker) :: impacts
