@@ -60,11 +60,17 @@ contains
   !> than one rank, else with OpenMP alone. `report` is true on the process that wrote the
   !> summary (the coordinator): only it has an outcome to print.
   subroutine sweep_anywhere(s, opts, out_path, outcome, report, error)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> Command-line options (threads, resume, progress, series folder).
     type(sweep_options), intent(in) :: opts
+    !> Path of the summary file.
     character(len=*), intent(in) :: out_path
+    !> Case counts and timings of the sweep (on the coordinator).
     type(sweep_outcome), intent(out) :: outcome
+    !> True on the process that wrote the summary.
     logical, intent(out) :: report
+    !> Set on a set-up or run error.
     type(error_type), allocatable, intent(out) :: error
 #ifdef DAVIT_MPI
     integer :: rank, nranks, provided
@@ -90,11 +96,17 @@ contains
   !> Rank 0: learn how many worker threads will ask, set the sweep up, serve them, write
   !> the summary. On a set-up error the workers are still answered (with "stop").
   subroutine coordinate(s, opts, out_path, nranks, outcome, error)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> Command-line options.
     type(sweep_options), intent(in) :: opts
+    !> Path of the summary file.
     character(len=*), intent(in) :: out_path
+    !> Number of MPI ranks (the coordinator and its workers).
     integer, intent(in) :: nranks
+    !> Case counts and timings of the sweep.
     type(sweep_outcome), intent(out) :: outcome
+    !> Set on a set-up or summary error.
     type(error_type), allocatable, intent(out) :: error
     type(sweep_run) :: run
     integer :: counts(nranks), requesters
@@ -125,10 +137,15 @@ contains
   !> stop (or has left): a request carries the row of the requester's last case (none on
   !> its first), which is stored, and is answered with the next case, dearest first, or 0.
   subroutine serve(s, opts, out_path, run, requesters)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> Command-line options.
     type(sweep_options), intent(in) :: opts
+    !> Path of the summary file.
     character(len=*), intent(in) :: out_path
+    !> The sweep's state (cases, rows, pending list), updated with each row received.
     type(sweep_run), intent(inout) :: run
+    !> Worker threads that will ask for cases.
     integer, intent(in) :: requesters
     type(MPI_Status) :: status
     type(case_result) :: row
@@ -170,6 +187,7 @@ contains
 
   !> Until a request is waiting (its envelope in `status`), napping between polls.
   subroutine wait_for_request(status)
+    !> Envelope (source and tag) of the waiting request.
     type(MPI_Status), intent(out) :: status
     logical :: waiting
     integer(c_int) :: nap
@@ -186,9 +204,13 @@ contains
   !> Its own errors (the set-up) are reported here and make its threads leave, so the
   !> other ranks finish the sweep.
   subroutine work(s, opts, rank, threads_ok)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> Command-line options (threads).
     type(sweep_options), intent(in) :: opts
+    !> This worker's rank.
     integer, intent(in) :: rank
+    !> Whether the MPI library can serialise calls from threads (else one thread).
     logical, intent(in) :: threads_ok
     type(sweep_case), allocatable :: cases(:)
     type(error_type), allocatable :: error
@@ -213,9 +235,13 @@ contains
 
   !> One worker thread: ask (with the last row), run the case received, until case 0.
   subroutine work_thread(s, cases, clearance0, ready)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> All the sweep's cases.
     type(sweep_case), intent(in) :: cases(:)
+    !> The base deck's initial clearance [m].
     real(wp), intent(in) :: clearance0
+    !> Whether the rank's set-up succeeded (else the thread tells the coordinator and leaves).
     logical, intent(in) :: ready
     type(config_type) :: cfg
     type(system_type) :: sys
