@@ -45,23 +45,35 @@ module davit_sweep_keys
     !> The base deck as written in the sweep deck, and as opened (relative to the sweep
     !> deck's folder unless absolute).
     character(len=:), allocatable :: base_deck, base_path
+    !> The base deck's run configuration.
     type(config_type) :: base
     !> Swept values; `has_*` tells whether the deck lists them (else the base deck's).
     integer, allocatable :: levels(:)
+    !> Wave heights [m], periods [s], directions [deg] (0 from port), initial clearances in
+    !> boat beams, and time steps [s].
     real(wp), allocatable :: heights(:), periods(:), angles_deg(:), clearances_b(:), dts(:)
+    !> Wind on or off.
     logical, allocatable :: winds(:)
+    !> Wave types (names from wave_type_names).
     character(len=9), allocatable :: wave_types(:)
+    !> Whether the deck lists levels, heights and periods.
     logical :: has_levels = .false., has_heights = .false., has_periods = .false.
+    !> Whether the deck lists wave directions and clearances.
     logical :: has_angles = .false., has_clearances = .false.
+    !> Realisations per cell (the first round when adaptive), and the seed from which each
+    !> case's seed derives.
     integer :: realisations = 1, base_seed = 0
     !> Adaptive realisations: target 95 % half-width of a cell's collision probability
     !> (0 = off: every cell runs `realisations`), the cap per cell and the batch per round.
     !> The case list always holds max_realisations per cell (= realisations when off).
     real(wp) :: target_halfwidth = 0.0_wp
+    !> Realisations per cell at most, and realisations added per open cell each round.
     integer :: max_realisations = 1, realisation_batch = 1
+    !> Draw each regular wave's phase from the case seed; end each run when the lowering is over.
     logical :: random_phase = .true., stop_at_release = .true.
     !> The time integrator and its fast substeps of every case (default: the base deck's).
     character(len=:), allocatable :: integrator
+    !> Fast substeps per macro step of the multirate integrators.
     integer :: substeps = 10
   end type sweep_config
 
@@ -69,8 +81,11 @@ contains
 
   !> Read and validate sweep deck `filename` and its base deck.
   subroutine read_sweep(filename, sweep, error)
+    !> Path of the sweep deck.
     character(len=*), intent(in) :: filename
+    !> The sweep's settings, with its base deck.
     type(sweep_config), intent(out) :: sweep
+    !> Set when a deck cannot be read or a key is out of range.
     type(error_type), allocatable, intent(out) :: error
     type(nml_deck) :: deck
     call read_deck(filename, deck, error)
@@ -80,8 +95,11 @@ contains
 
   !> Same as read_sweep for sweep deck text in memory (tests); the base deck is a file.
   subroutine parse_sweep(filename, text, sweep, error)
+    !> Name of the sweep deck (for messages and the base deck's folder), and its text.
     character(len=*), intent(in) :: filename, text
+    !> The sweep's settings, with its base deck.
     type(sweep_config), intent(out) :: sweep
+    !> Set when a deck cannot be parsed or a key is out of range.
     type(error_type), allocatable, intent(out) :: error
     type(nml_deck) :: deck
     call parse_deck(filename, text, deck, error)
@@ -91,6 +109,7 @@ contains
 
   !> The documentation of every &sweep key (`davit keys`, README).
   subroutine document_sweep_keys(docs)
+    !> One entry per &sweep key.
     type(key_doc), allocatable, intent(out) :: docs(:)
     type(nml_deck) :: deck
     type(deck_reader_type) :: reader
@@ -103,8 +122,11 @@ contains
   end subroutine document_sweep_keys
 
   subroutine sweep_from_deck(deck, sweep, error)
+    !> The parsed sweep deck.
     type(nml_deck), intent(in) :: deck
+    !> The sweep's settings, read from the deck.
     type(sweep_config), intent(inout) :: sweep
+    !> Set when a key is out of range or the base deck cannot be read.
     type(error_type), allocatable, intent(out) :: error
     type(deck_reader_type) :: reader
     call reader%init(deck)
@@ -128,7 +150,9 @@ contains
   end subroutine sweep_from_deck
 
   subroutine read_keys(r, s)
+    !> The deck reader, recording each key read.
     type(deck_reader_type), intent(inout) :: r
+    !> The sweep's settings, read from the reader.
     type(sweep_config), intent(inout) :: s
     character(len=*), parameter :: g = "sweep"
     call r%string(g, "base_deck", s%base_deck, "", "Run deck every case starts from "// &
@@ -198,7 +222,9 @@ contains
 
   !> Defaults that depend on the base deck, for the keys the sweep deck leaves out.
   subroutine complete_defaults(r, s)
+    !> The deck reader (which keys the deck gave).
     type(deck_reader_type), intent(in) :: r
+    !> The sweep's settings, completed with the base deck's values.
     type(sweep_config), intent(inout) :: s
     character(len=*), parameter :: g = "sweep"
     s%has_levels = r%has(g, "levels")
@@ -224,8 +250,11 @@ contains
   !> Checks across the sweep and its base deck.
   !> Each message names the line of the &sweep key involved.
   subroutine check_sweep(s, deck, error)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The parsed sweep deck (for the keys' lines).
     type(nml_deck), intent(in) :: deck
+    !> Set when the sweep and its base deck disagree.
     type(error_type), allocatable, intent(out) :: error
     integer :: i
     select case (s%base%simulation%scene)
@@ -262,8 +291,11 @@ contains
   !> The adaptive keys agree: the cap holds the first round, and without a target the cap
   !> and batch would be silently ignored.
   subroutine check_adaptive(s, deck, error)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The parsed sweep deck (for the keys' lines).
     type(nml_deck), intent(in) :: deck
+    !> Set when the adaptive keys disagree.
     type(error_type), allocatable, intent(out) :: error
     if (s%target_halfwidth <= 0.0_wp .and. s%max_realisations /= s%realisations) then
       call fatal_error(error, key_at(deck, "sweep", ["max_realisations"])// &
@@ -283,6 +315,7 @@ contains
   !> The number of cases: the product of the lists' lengths (realisations: the cap per
   !> cell), in 64 bits and saturating at huge(1_i8) (the product reaches 8e21).
   pure integer(i8) function case_count(s) result(n)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
     integer(i8) :: sizes(9)
     integer :: k
@@ -299,6 +332,7 @@ contains
 
   !> The lengths of the swept lists, in the mixed radix of the case order (davit_sweep_cases).
   pure function list_sizes(s) result(sizes)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
     integer(i8) :: sizes(9)
     sizes = int([size(s%wave_types), size(s%levels), size(s%heights), size(s%periods), &
@@ -309,8 +343,11 @@ contains
   !> Refuse a case list beyond max_cases or the memory limit (the base deck's
   !> &simulation max_memory), before anything of its size is made.
   subroutine check_case_count(s, deck, error)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The parsed sweep deck (for the keys' lines).
     type(nml_deck), intent(in) :: deck
+    !> Set when the sweep has too many cases or needs too much memory.
     type(error_type), allocatable, intent(out) :: error
     character(len=*), parameter :: keys(9) = [character(len=16) :: "wave_types", "levels", &
       "heights", "periods", "wind", "angles_deg", "clearances_b", "dts", "max_realisations"]
@@ -336,7 +373,9 @@ contains
 
   !> "N cases (a x b x ...)": the count and the lengths of the lists longer than one.
   function count_text(s, n) result(text)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The number of cases.
     integer(i8), intent(in) :: n
     character(len=:), allocatable :: text, factors
     character(len=*), parameter :: names(9) = [character(len=12) :: "wave types", "levels", &
@@ -358,8 +397,11 @@ contains
   !> The base deck: in the sweep deck's folder, else in a DAVIT_PATH folder
   !> (davit_io_search_path); a miss names the sweep deck's line and every folder searched.
   subroutine find_base_deck(deck, sweep, error)
+    !> The parsed sweep deck (for the line of the base key).
     type(nml_deck), intent(in) :: deck
+    !> The sweep's settings, receiving the base deck's path.
     type(sweep_config), intent(inout) :: sweep
+    !> Set when the base deck is found in no folder searched.
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: searched
     logical :: found
