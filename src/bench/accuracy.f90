@@ -28,7 +28,10 @@ contains
   !> of scene `name` in `path`; unknown (known = .false.) when the file or the scene is
   !> missing or unreadable.
   function scene_accuracy(path, name, time, position, sling, segment) result(acc)
+    !> Reference file, and the scene's name (its group in the file).
     character(len=*), intent(in) :: path, name
+    !> The run's sample times [s], CG positions (3, n) [m] (inertial frame), and resolved peak
+    !> sling and cable-segment tensions [N].
     real(wp), intent(in) :: time(:), position(:, :), sling(:), segment(:)
     type(accuracy_type) :: acc
     type(h5_reader_type) :: h5
@@ -71,6 +74,7 @@ contains
 
   !> max |a/b - 1| over the entries with b > 0.
   pure real(wp) function worst_relative(a, b) result(e)
+    !> Values a and references b.
     real(wp), intent(in) :: a(:), b(:)
     integer :: i
     e = 0.0_wp
