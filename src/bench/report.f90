@@ -15,6 +15,7 @@ module davit_bench_report
 
   !> Everything one `davit bench` measured.
   type :: bench_record
+    !> Whether this is the quick bench (shorter runs).
     logical :: quick = .false.
     !> Folder of the decks, CPU model, compiler and its options.
     character(len=:), allocatable :: decks, cpu, compiler, options
@@ -24,6 +25,7 @@ module davit_bench_report
     type(timed_run), allocatable :: runs(:)
     !> The sweep row: cases, and wall time on 1 thread / wall time on 2 threads.
     integer :: sweep_cases = 0
+    !> Wall time of the sweep on 1 thread over that on 2 threads.
     real(wp) :: speed_up = 0.0_wp
     !> Paper-literal scene: |lambda|max at t = 0 [1/s], RK4 limit [s], safety factor.
     real(wp) :: rate_max = 0.0_wp, rk4_limit = 0.0_wp, safety = 0.0_wp
@@ -37,7 +39,9 @@ contains
 
   !> An empty record of the conditions this bench runs under.
   function new_bench_record(quick, decks) result(rec)
+    !> Whether this is the quick bench.
     logical, intent(in) :: quick
+    !> Folder of the decks.
     character(len=*), intent(in) :: decks
     type(bench_record) :: rec
     rec%quick = quick
@@ -84,7 +88,9 @@ contains
   !> The tables: runs (rates and real-time factors), the sweep's speed-up, the
   !> paper-literal step, the sea module.
   subroutine print_report(unit, rec)
+    !> Output unit of the tables.
     integer, intent(in) :: unit
+    !> What the bench measured.
     type(bench_record), intent(in) :: rec
     integer :: i
     write (unit, "(a)") "davit bench ("//trim(merge("quick", "full ", rec%quick))//"): "// &
@@ -124,6 +130,7 @@ contains
   !> "0.031 | 0.85 / 2.1": set-up [s] and worst step / output interval [ms] of a scene;
   !> n/a for a sweep (timed as a whole).
   function worst_text(r) result(s)
+    !> A timed run.
     type(timed_run), intent(in) :: r
     character(len=:), allocatable :: s
     if (r%cases > 1 .or. r%worst_step <= 0.0_wp) then
@@ -135,6 +142,7 @@ contains
 
   !> "2.1e-05 / 3.4e-03 | 0.2 % / 12 %", or n/a.
   function accuracy_text(r) result(s)
+    !> A timed run, with its accuracy.
     type(timed_run), intent(in) :: r
     character(len=:), allocatable :: s
     if (.not. r%accuracy%known) then
@@ -147,7 +155,9 @@ contains
 
   !> "davit bench: regular, 1 thread: 100 s simulated in 2.31 s (43.3x real time)"
   subroutine print_progress(unit, run)
+    !> Output unit of the progress line.
     integer, intent(in) :: unit
+    !> The run just timed.
     type(timed_run), intent(in) :: run
     write (unit, "(a)") "davit bench: "//run%name//", "//int_text(int(run%threads, i8))// &
       " thread(s): "//sig(run%simulated)//" s simulated in "//sig(run%wall)//" s ("// &
@@ -158,7 +168,9 @@ contains
   !> Write `rec` under /bench (runs, sweep, paper_literal, sea) of the open file `w`, with
   !> the conditions as root attributes.
   subroutine write_report(w, rec)
+    !> The open HDF5 file written.
     type(h5_writer_type), intent(inout) :: w
+    !> What the bench measured.
     type(bench_record), intent(in) :: rec
     call w%group("bench")
     call write_runs(w, rec%runs)
@@ -184,7 +196,9 @@ contains
   end subroutine write_report
 
   subroutine write_runs(w, runs)
+    !> The open HDF5 file written.
     type(h5_writer_type), intent(inout) :: w
+    !> The timed runs.
     type(timed_run), intent(in) :: runs(:)
     character(len=:), allocatable :: names(:), decks(:)
     integer :: i
@@ -248,7 +262,9 @@ contains
   end subroutine write_runs
 
   subroutine write_sea(w, sea)
+    !> The open HDF5 file written.
     type(h5_writer_type), intent(inout) :: w
+    !> The sea module's timings.
     type(bench_result), intent(in) :: sea(:)
     character(len=64) :: names(size(sea)), units(size(sea))
     integer :: i
@@ -263,7 +279,9 @@ contains
   end subroutine write_sea
 
   subroutine write_attributes(w, rec)
+    !> The open HDF5 file written.
     type(h5_writer_type), intent(inout) :: w
+    !> What the bench measured (its conditions).
     type(bench_record), intent(in) :: rec
     call w%attr_str("/", "davit_version", davit_version)
     call w%attr_int("/", "quick", merge(1_i8, 0_i8, rec%quick))
@@ -277,6 +295,7 @@ contains
 
   !> Three significant digits: fixed-point from 0.01 to 1e6, else scientific.
   function sig(x) result(s)
+    !> Value to format.
     real(wp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=32) :: buf

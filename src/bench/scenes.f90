@@ -35,13 +35,22 @@ contains
   !> fast substeps when `substeps` > 0.
   subroutine time_deck(name, path, t_end, at_limit, reference, group, integrator, rtol, &
                        atol, dt, run, rate_max, error, substeps)
+    !> Scene name, deck path, reference file, its group for the scene, and the integrator
+    !> replacing the deck's (blank = the deck's).
     character(len=*), intent(in) :: name, path, reference, group, integrator
+    !> Relative and absolute tolerances and largest step dt [s] of that integrator.
     real(wp), intent(in) :: rtol, atol, dt
+    !> Simulated time [s] (<= 0: the deck's t_end).
     real(wp), intent(in) :: t_end
+    !> Whether to run at the step of step_limit.
     logical, intent(in) :: at_limit
+    !> The run's timings and counts.
     type(timed_run), intent(out) :: run
+    !> Largest |eigenvalue| of the system at t = 0 [1/s] (0 unless at_limit).
     real(wp), intent(out) :: rate_max
+    !> Set when the deck cannot be read or the run fails.
     type(error_type), allocatable, intent(out) :: error
+    !> Fast substeps of the integrator (used when > 0).
     integer, intent(in), optional :: substeps
     type(config_type) :: cfg
     rate_max = 0.0_wp
@@ -70,8 +79,11 @@ contains
   !> system at t = 0, rounded down to a whole fraction of the output interval (so that
   !> landing on every sample costs no extra short step).
   subroutine step_limit(cfg, rate_max, error)
+    !> The deck's configuration, whose step is set.
     type(config_type), intent(inout) :: cfg
+    !> Largest |eigenvalue| of the linearised system at t = 0 [1/s].
     real(wp), intent(out) :: rate_max
+    !> Set when the system cannot be built or linearised.
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: omega_max, h
     call linear_modes(cfg, rate_max, omega_max, error)
@@ -91,9 +103,13 @@ contains
   !> the run would (after_release past the hook release). A run that diverges is an
   !> error: its rates would mean nothing.
   subroutine time_config(cfg, reference, group, run, error)
+    !> The configuration run.
     type(config_type), intent(in) :: cfg
+    !> Reference file and its group for the scene.
     character(len=*), intent(in) :: reference, group
+    !> The run's timings and counts (its name set by the caller).
     type(timed_run), intent(inout) :: run
+    !> Set when the system cannot be built or the run diverges.
     type(error_type), allocatable, intent(out) :: error
     type(system_type) :: sys
     type(boat_recorder) :: rec
