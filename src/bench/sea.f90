@@ -17,7 +17,9 @@ module davit_bench_sea
 
   !> One timing: what was timed, its cost and the unit of the cost.
   type :: bench_result
+    !> What was timed, and the unit of its cost.
     character(len=:), allocatable :: name, unit
+    !> The cost, in that unit.
     real(wp) :: value = 0.0_wp
   end type bench_result
 
@@ -26,7 +28,9 @@ contains
   !> Each timing repeats its kernel for about `budget` seconds (after a 10-repetition
   !> probe that sets the count), so quick and full runs differ only in noise.
   subroutine bench_sea(budget, results)
+    !> Seconds each timing repeats its kernel.
     real(wp), intent(in) :: budget
+    !> The timings.
     type(bench_result), allocatable, intent(out) :: results(:)
     integer, parameter :: np = 20
     type(wave_field_type) :: field
@@ -82,11 +86,13 @@ contains
 
     !> Repetitions that fill `seconds` given the time of one repetition.
     integer(i8) function scaled(seconds, one) result(n)
+      !> Seconds to fill, and the time of one repetition [s].
       real(wp), intent(in) :: seconds, one
       n = max(1_i8, int(seconds/max(one, 1.0e-12_wp), i8))
     end function scaled
 
     real(wp) function timed_ns(n) result(ns)
+      !> Repetitions timed.
       integer(i8), intent(in) :: n
       integer(i8) :: c0, c1, rate
       call system_clock(c0, rate)
@@ -100,6 +106,7 @@ contains
     end function timed_ns
 
     real(wp) function timed_kin_ns(n) result(ns)
+      !> Repetitions timed.
       integer(i8), intent(in) :: n
       integer(i8) :: c0, c1, rate
       real(wp) :: e
@@ -115,6 +122,7 @@ contains
     end function timed_kin_ns
 
     real(wp) function timed_probe_ns(n) result(ns)
+      !> Repetitions timed.
       integer(i8), intent(in) :: n
       integer(i8) :: c0, c1, rate
       call system_clock(c0, rate)
@@ -128,6 +136,7 @@ contains
     end function timed_probe_ns
 
     real(wp) function timed_libm_ns(n) result(ns)
+      !> Repetitions timed.
       integer(i8), intent(in) :: n
       integer(i8) :: c0, c1, rate
       call system_clock(c0, rate)
@@ -145,9 +154,14 @@ contains
   !> The grid's build [ns per node and sample, all fields] and its per-point queries
   !> against the exact sums of the slow clock (davit_boat_strip_waves) [ns per point].
   subroutine bench_grid(budget, field, x, y, results, sink)
+    !> Seconds each timing repeats its kernel, and the points' horizontal coordinates x, y [m]
+    !> (inertial frame).
     real(wp), intent(in) :: budget, x(:), y(:)
+    !> The irregular sea whose grid is built.
     type(wave_field_type), intent(in) :: field
+    !> The timings, extended with the grid's.
     type(bench_result), allocatable, intent(inout) :: results(:)
+    !> Sum of the results, kept so the compiler cannot drop the timed work.
     real(wp), intent(inout) :: sink
     type(wave_grid_type) :: g
     real(wp) :: xy(2, 2), e(4), v(3, 5), seconds, t
@@ -219,8 +233,11 @@ contains
   end subroutine bench_grid
 
   subroutine add(results, name, unit, value)
+    !> The timings, extended with one.
     type(bench_result), allocatable, intent(inout) :: results(:)
+    !> What was timed, and the unit of its cost.
     character(len=*), intent(in) :: name, unit
+    !> The cost, in that unit.
     real(wp), intent(in) :: value
     type(bench_result) :: r
     r%name = name

@@ -33,11 +33,17 @@ contains
   !> `study` the cells' verdicts. A failed launch is an error: its cell's verdict would mean
   !> nothing.
   subroutine time_study(name, s, threads, scratch, run, study, error)
+    !> Label of the row, and the scratch summary's path (removed afterwards).
     character(len=*), intent(in) :: name, scratch
+    !> The adaptive sweep.
     type(sweep_config), intent(in) :: s
+    !> OpenMP threads.
     integer, intent(in) :: threads
+    !> Totals of the whole sweep (wall time, launches, steps).
     type(timed_run), intent(out) :: run
+    !> The cells' verdicts.
     type(study_result), intent(out) :: study
+    !> Set when the sweep fails or a launch fails.
     type(error_type), allocatable, intent(out) :: error
     type(sweep_options) :: opts
     type(sweep_outcome) :: outcome
@@ -62,9 +68,13 @@ contains
 
   !> The cells' verdicts, simulated time, steps and RHS evaluations from the summary.
   subroutine read_verdicts(path, study, run, error)
+    !> Path of the sweep's summary.
     character(len=*), intent(in) :: path
+    !> The cells' verdicts.
     type(study_result), intent(inout) :: study
+    !> The totals, receiving simulated time, steps and RHS evaluations.
     type(timed_run), intent(inout) :: run
+    !> Set when the summary cannot be read.
     type(error_type), allocatable, intent(out) :: error
     type(h5_reader_type) :: h5
     real(wp), allocatable :: angle(:), clearance(:), end_time(:)
@@ -94,8 +104,11 @@ contains
   !> are decided at the risk level: Wilson 95 % upper bound <= risk or lower bound > risk
   !> of the share of `hit` cases. A cell with no finished case is undecided.
   pure subroutine cell_verdicts(done, hit, key, cells, decided)
+    !> Which cases finished, and which of them collided.
     logical, intent(in) :: done(:), hit(:)
+    !> The cell key of each case (equal within a cell).
     real(wp), intent(in) :: key(:)
+    !> Number of cells and how many are decided.
     integer, intent(out) :: cells, decided
     logical :: seen(size(key))
     real(wp) :: bounds(2)
@@ -117,6 +130,7 @@ contains
 
   !> Delete `path` if it exists (the scratch summary and its lock).
   subroutine remove(path)
+    !> Path of the file to delete.
     character(len=*), intent(in) :: path
     integer :: unit, ios
     logical :: exists

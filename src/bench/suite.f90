@@ -34,12 +34,19 @@ module davit_bench_suite
   !> (bench_reference.h5) and an integrator override ("" keeps the deck's; with rtol,
   !> atol and the largest step dt).
   type :: scene_spec
+    !> Label of the scene.
     character(len=32) :: name
+    !> Deck file name in the decks folder.
     character(len=48) :: deck
+    !> Simulated time of the full and of the quick bench [s] (0: the deck's own).
     real(wp) :: t_full, t_quick
+    !> Whether to run at the RK4 stability limit.
     logical :: at_limit
+    !> Group of the converged reference (bench_reference.h5).
     character(len=16) :: reference
+    !> Integrator override ("" keeps the deck's).
     character(len=16) :: integrator = ""
+    !> Relative and absolute tolerances and largest step dt [s] of the override.
     real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, dt = 0.0_wp
     !> Fast substeps of a multirate scene (0: the deck's).
     integer :: substeps = 0
@@ -113,8 +120,11 @@ contains
   !> Run every benchmark, print the tables on stdout (progress on stderr) and write
   !> `out_path`. The file is created first, so an unwritable path fails before any run.
   subroutine run_bench(opts, out_path, error)
+    !> Bench options (quick, decks folder).
     type(bench_options), intent(in) :: opts
+    !> Path of the HDF5 file written.
     character(len=*), intent(in) :: out_path
+    !> Set when the file cannot be written or a benchmark fails.
     type(error_type), allocatable, intent(out) :: error
     type(bench_record) :: rec
     type(h5_writer_type) :: w
@@ -136,8 +146,11 @@ contains
   end subroutine run_bench
 
   subroutine bench_scenes(opts, rec, error)
+    !> Bench options.
     type(bench_options), intent(in) :: opts
+    !> What the bench measured, extended with the scenes' rows.
     type(bench_record), intent(inout) :: rec
+    !> Set when a scene fails.
     type(error_type), allocatable, intent(out) :: error
     type(timed_run) :: run
     type(scene_spec) :: sc
@@ -165,8 +178,11 @@ contains
   end subroutine bench_scenes
 
   subroutine bench_sweep(opts, rec, error)
+    !> Bench options.
     type(bench_options), intent(in) :: opts
+    !> What the bench measured, extended with the sweep's rows and speed-up.
     type(bench_record), intent(inout) :: rec
+    !> Set when the sweep fails.
     type(error_type), allocatable, intent(out) :: error
     type(sweep_config) :: s
     type(timed_run) :: runs(size(sweep_threads))
@@ -186,9 +202,13 @@ contains
 
   !> The operability study: its wall time to converge and how many cells it decided.
   subroutine bench_study(opts, out_path, rec, error)
+    !> Bench options.
     type(bench_options), intent(in) :: opts
+    !> Path of the HDF5 file written (the scratch summary is this path + ".study.h5").
     character(len=*), intent(in) :: out_path
+    !> What the bench measured, extended with the study's row.
     type(bench_record), intent(inout) :: rec
+    !> Set when the study fails.
     type(error_type), allocatable, intent(out) :: error
     type(sweep_config) :: s
     type(timed_run) :: run

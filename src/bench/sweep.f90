@@ -23,9 +23,13 @@ contains
   !> Read sweep deck `path`, every case cut to `t_end` seconds (the base deck's t_end when
   !> t_end <= 0; a case still ends at the hook release when the deck says so).
   subroutine read_bench_sweep(path, t_end, s, error)
+    !> Path of the sweep deck.
     character(len=*), intent(in) :: path
+    !> Simulated time of every case [s] (<= 0: the base deck's t_end).
     real(wp), intent(in) :: t_end
+    !> The sweep's settings, every case cut to t_end.
     type(sweep_config), intent(out) :: s
+    !> Set when the deck cannot be read.
     type(error_type), allocatable, intent(out) :: error
     call read_sweep(path, s, error)
     if (allocated(error)) return
@@ -36,10 +40,15 @@ contains
   !> time, steps and RHS evaluations are summed over the cases (the same on any number of
   !> threads: a case does not depend on where it runs). A failed case is an error.
   subroutine time_sweep(name, s, threads, run, error)
+    !> Label of the row.
     character(len=*), intent(in) :: name
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> OpenMP threads.
     integer, intent(in) :: threads
+    !> The sweep's timings and counts, summed over the cases.
     type(timed_run), intent(out) :: run
+    !> Set when a case fails.
     type(error_type), allocatable, intent(out) :: error
     type(sweep_case), allocatable :: cases(:)
     type(case_result), allocatable :: rows(:)
@@ -79,9 +88,13 @@ contains
 
   !> One case with its own configuration, system and recorder (locals of this thread).
   subroutine run_one(s, c, clearance0, row)
+    !> The sweep's settings.
     type(sweep_config), intent(in) :: s
+    !> The case.
     type(sweep_case), intent(in) :: c
+    !> The base deck's initial clearance [m].
     real(wp), intent(in) :: clearance0
+    !> The case's summary row.
     type(case_result), intent(out) :: row
     type(config_type) :: cfg
     type(system_type), target :: sys

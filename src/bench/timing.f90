@@ -40,24 +40,28 @@ contains
 
   !> Right-hand-side evaluations per wall second.
   pure real(wp) function rhs_rate(run)
+    !> A timed run.
     type(timed_run), intent(in) :: run
     rhs_rate = real(run%rhs_evaluations, wp)/positive(run%wall)
   end function rhs_rate
 
   !> Integrator steps per wall second.
   pure real(wp) function step_rate(run)
+    !> A timed run.
     type(timed_run), intent(in) :: run
     step_rate = real(run%steps, wp)/positive(run%wall)
   end function step_rate
 
   !> Simulated seconds per wall second.
   pure real(wp) function real_time_factor(run)
+    !> A timed run.
     type(timed_run), intent(in) :: run
     real_time_factor = run%simulated/positive(run%wall)
   end function real_time_factor
 
   !> A wall time below the clock's tick still divides (a rate, not a division by zero).
   pure real(wp) function positive(seconds)
+    !> Wall time [s].
     real(wp), intent(in) :: seconds
     positive = max(seconds, 1.0e-9_wp)
   end function positive
