@@ -35,22 +35,33 @@ module davit_capi_session
   type :: session_type
     !> The deck as read (its name only for messages) and its configuration.
     character(len=:), allocatable :: deck_name, deck_text
+    !> The deck's run configuration.
     type(config_type) :: cfg
+    !> The launch system integrated.
     type(system_type) :: sys
+    !> The deck's time integrator.
     class(integrator_type), allocatable :: integ
+    !> Event-locating stepper around the integrator (fender contacts).
     type(event_stepper_type) :: stepper
+    !> The launch log (peaks, limits, outcome), watching every step.
     type(launch_log) :: log
+    !> State vector at time t.
     real(wp), allocatable :: y(:)
+    !> Time reached [s].
     real(wp) :: t = 0.0_wp
     !> Next output sample k (its time k output_interval cuts the steps) and their number.
     integer(i8) :: k = 1, nsamples = 0
     !> Passes of the loop so far; the end of the run (t_end, or the log's end after release).
     integer(i8) :: passes = 0
+    !> Whether the run has ended.
     logical :: done = .false.
     !> The control log: before pass ctrl_pass(i), control ctrl_kind(i) with ctrl_value(:, i).
     integer :: n_ctrl = 0
+    !> Pass before which each control came.
     integer(i8), allocatable :: ctrl_pass(:)
+    !> Kind of each control (ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading).
     integer, allocatable :: ctrl_kind(:)
+    !> Values of each control (2, n): see the control kinds.
     real(wp), allocatable :: ctrl_value(:, :)
   end type session_type
 
@@ -58,9 +69,13 @@ contains
 
   !> A session of deck `text` (named `name` in messages) at t = 0, as `davit run` starts it.
   subroutine session_open(s, cfg, name, text, error)
+    !> The new session.
     type(session_type), intent(out) :: s
+    !> The deck's run configuration.
     type(config_type), intent(in) :: cfg
+    !> The deck's name (for messages) and its text.
     character(len=*), intent(in) :: name, text
+    !> Set when the deck is not a boat scene, exceeds the run budget or its system fails.
     type(error_type), allocatable, intent(out) :: error
     ! as davit does at its start: OpenBLAS's threads would split its sums differently from
     ! davit run's (and only compete for the cores on the small matrices davit solves)
@@ -101,8 +116,11 @@ contains
   !> a sample), the end of the run, or a failure (then `error`, the state kept at the last
   !> good step).
   subroutine session_advance_to(s, t_stop, error)
+    !> The session, advanced.
     type(session_type), intent(inout) :: s
+    !> Time to step to [s].
     real(wp), intent(in) :: t_stop
+    !> Set when a step fails (the state kept at the last good step).
     type(error_type), allocatable, intent(out) :: error
     real(wp), parameter :: slack = 1.0e-9_wp
     do while (s%t < t_stop - slack .and. .not. finished(s))
@@ -114,10 +132,15 @@ contains
   !> Replay `passes` passes with the logged controls (a snapshot's) applied
   !> before the passes they came before: the state those passes and controls led to.
   subroutine session_replay(s, passes, ctrl_pass, ctrl_kind, ctrl_value, error)
+    !> The session, replayed from its start.
     type(session_type), intent(inout) :: s
+    !> Passes to replay, and the pass before which each logged control came.
     integer(i8), intent(in) :: passes, ctrl_pass(:)
+    !> Kind of each logged control.
     integer, intent(in) :: ctrl_kind(:)
+    !> Values of each logged control (2, n).
     real(wp), intent(in) :: ctrl_value(:, :)
+    !> Set when a pass or a control fails.
     type(error_type), allocatable, intent(out) :: error
     integer :: i
     do i = 1, size(ctrl_kind)
@@ -136,13 +159,16 @@ contains
 
   !> The run has reached t_end, or the launch log has ended it after the release.
   pure logical function finished(s)
+    !> The session.
     type(session_type), intent(in) :: s
     finished = s%done .or. .not. s%t < s%cfg%simulation%t_end
   end function finished
 
   !> One pass of davit_run_driver's time loop, without recording.
   subroutine one_pass(s, error)
+    !> The session, advanced by one pass.
     type(session_type), intent(inout) :: s
+    !> Set when the step fails.
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: t_next, t_new, h, y_keep(size(s%y)), t_keep
     integer :: bad
@@ -178,9 +204,13 @@ contains
 
   !> Apply control `kind` with `value` now (before the next pass) and log it.
   subroutine session_control(s, kind, value, error)
+    !> The session, whose control log grows by one.
     type(session_type), intent(inout) :: s
+    !> Control kind (ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading).
     integer, intent(in) :: kind
+    !> Control values (see the control kinds).
     real(wp), intent(in) :: value(2)
+    !> Set when a value is out of range or the deck has nothing the control can act on.
     type(error_type), allocatable, intent(out) :: error
     call apply_control(s, kind, value, error)
     if (allocated(error)) return
@@ -192,9 +222,13 @@ contains
   end subroutine session_control
 
   subroutine apply_control(s, kind, value, error)
+    !> The session the control acts on.
     type(session_type), intent(inout) :: s
+    !> Control kind (ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading).
     integer, intent(in) :: kind
+    !> Control values (see the control kinds).
     real(wp), intent(in) :: value(2)
+    !> Set when a value is out of range or the deck has nothing the control can act on.
     type(error_type), allocatable, intent(out) :: error
     if (kind /= ctrl_heading .and. .not. s%sys%par%on_davit) then
       call fatal_error(error, "deck '"//s%deck_name//"': the boat hangs on no davit "// &
@@ -236,6 +270,7 @@ contains
   end subroutine apply_control
 
   subroutine grow_log(s)
+    !> The session whose control log is enlarged.
     type(session_type), intent(inout) :: s
     integer(i8), allocatable :: p(:)
     integer, allocatable :: kd(:)

@@ -25,6 +25,7 @@ contains
 
   !> The bytes of session `s`.
   function snapshot_bytes(s) result(b)
+    !> The session whose state is written.
     type(session_type), intent(in) :: s
     integer(int8), allocatable :: b(:)
     integer :: n
@@ -41,8 +42,12 @@ contains
 
   !> The session the bytes `b` describe, replayed from its deck.
   subroutine snapshot_restore(b, s, error)
+    !> The snapshot's bytes.
     integer(int8), intent(in) :: b(:)
+    !> The session rebuilt from the deck and replayed.
     type(session_type), intent(out) :: s
+    !> Set when the bytes are not a snapshot, the deck fails, or the replay differs from the
+    !> stored check.
     type(error_type), allocatable, intent(out) :: error
     integer(i8) :: head(n_head), pos, need, n, ny
     integer(i8), allocatable :: ctrl_pass(:), kinds(:)
