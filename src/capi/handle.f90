@@ -28,9 +28,13 @@ module davit_capi_handle
   integer(c_int), parameter :: e_ok = 0, e_input = 1, e_run = 2, e_arg = 3, e_snapshot = 4
 
   type :: capi_handle
+    !> Whether the session opened (a failed handle only carries its error).
     logical :: ready = .false.
+    !> The session the handle owns.
     type(session_type) :: s
+    !> Last error code (e_ok ... e_snapshot).
     integer(c_int) :: code = e_ok
+    !> Last error message ("" when none).
     character(len=:), allocatable :: message
   end type capi_handle
 
@@ -41,6 +45,7 @@ contains
 
   !> The handle behind `h`, or null.
   function handle_of(h) result(p)
+    !> The C handle (may be null).
     type(c_ptr), intent(in) :: h
     type(capi_handle), pointer :: p
     p => null()
@@ -49,7 +54,9 @@ contains
 
   !> The NUL-terminated C string at `s` (at most `cap` characters).
   function c_string(s, cap) result(text)
+    !> The C string.
     character(kind=c_char), intent(in) :: s(*)
+    !> Most characters read.
     integer(i8), intent(in) :: cap
     character(len=:), allocatable :: text
     integer(i8) :: n, i
@@ -66,8 +73,11 @@ contains
 
   !> `text` into the C buffer `buf` of `len` bytes, NUL-terminated, cut to len - 1.
   subroutine copy_c_string(text, buf, len)
+    !> Text to copy.
     character(len=*), intent(in) :: text
+    !> The C buffer.
     type(c_ptr), intent(in) :: buf
+    !> Size of the buffer [bytes].
     integer(c_size_t), intent(in) :: len
     character(kind=c_char, len=1), pointer :: out(:)
     integer(c_size_t) :: i, k
@@ -82,8 +92,11 @@ contains
 
   !> Note `code` and `message` in the handle; returns the code.
   integer(c_int) function fail(p, code, message) result(rc)
+    !> The handle.
     type(capi_handle), intent(inout) :: p
+    !> Error code (e_ok ... e_snapshot).
     integer(c_int), intent(in) :: code
+    !> Error message.
     character(len=*), intent(in) :: message
     p%code = code
     p%message = message
@@ -92,9 +105,13 @@ contains
 
   !> A new handle in `out` (always, unless out of memory: a failed one carries the error).
   integer(c_int) function new_handle(cfg, name, text, error, out) result(rc)
+    !> The deck's run configuration.
     type(config_type), intent(in) :: cfg
+    !> The deck's name (for messages) and its text.
     character(len=*), intent(in) :: name, text
+    !> An error from reading the deck, if any (then the handle carries it).
     type(error_type), allocatable, intent(inout) :: error
+    !> The new handle.
     type(c_ptr), intent(out) :: out
     type(capi_handle), pointer :: p
     allocate (p)
@@ -114,7 +131,9 @@ contains
   end function new_handle
 
   integer(c_int) function davit_create_file(path, out) bind(c) result(rc)
+    !> Path of the deck file (NUL-terminated).
     character(kind=c_char), intent(in) :: path(*)
+    !> The new handle (set even on failure: destroy it either way).
     type(c_ptr), intent(out) :: out
     type(config_type) :: cfg
     type(error_type), allocatable :: error
@@ -127,7 +146,9 @@ contains
   end function davit_create_file
 
   integer(c_int) function davit_create_text(name, text, out) bind(c) result(rc)
+    !> The deck's name (for messages) and its text (NUL-terminated).
     character(kind=c_char), intent(in) :: name(*), text(*)
+    !> The new handle (set even on failure: destroy it either way).
     type(c_ptr), intent(out) :: out
     type(config_type) :: cfg
     type(error_type), allocatable :: error
@@ -139,6 +160,7 @@ contains
   end function davit_create_text
 
   subroutine davit_destroy(h) bind(c)
+    !> The handle to destroy (null is ignored).
     type(c_ptr), value, intent(in) :: h
     type(capi_handle), pointer :: p
     p => handle_of(h)
@@ -146,6 +168,7 @@ contains
   end subroutine davit_destroy
 
   integer(c_int) function davit_error_code(h) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
     type(capi_handle), pointer :: p
     p => handle_of(h)
@@ -155,7 +178,9 @@ contains
 
   !> Copies the last message (NUL-terminated, cut to len - 1); returns its full length.
   integer(c_size_t) function davit_error_message(h, buf, len) bind(c) result(n)
+    !> The handle, and the C buffer receiving the message.
     type(c_ptr), value, intent(in) :: h, buf
+    !> Size of the buffer [bytes].
     integer(c_size_t), value, intent(in) :: len
     type(capi_handle), pointer :: p
     character(len=:), allocatable :: m
@@ -168,7 +193,9 @@ contains
 
   !> The handle ready to run, or null with the code set.
   function ready_handle(h, rc) result(p)
+    !> The C handle.
     type(c_ptr), intent(in) :: h
+    !> Error code (e_ok, or e_arg for a null handle, or the failed handle's code).
     integer(c_int), intent(out) :: rc
     type(capi_handle), pointer :: p
     p => handle_of(h)
@@ -186,7 +213,9 @@ contains
   end function ready_handle
 
   integer(c_int) function davit_advance_to(h, t) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Time to step to [s].
     real(c_double), value, intent(in) :: t
     type(capi_handle), pointer :: p
     type(error_type), allocatable :: error
@@ -201,7 +230,9 @@ contains
   end function davit_advance_to
 
   integer(c_int) function davit_advance(h, dt) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Time to step by [s].
     real(c_double), value, intent(in) :: dt
     type(capi_handle), pointer :: p
     p => ready_handle(h, rc)
@@ -215,8 +246,11 @@ contains
 
   !> Control `kind` with `v1`, `v2` on handle `h`.
   integer(c_int) function control(h, kind, v1, v2) result(rc)
+    !> The handle.
     type(c_ptr), intent(in) :: h
+    !> Control kind (ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading).
     integer, intent(in) :: kind
+    !> Control values (see the control kinds).
     real(c_double), intent(in) :: v1, v2
     type(capi_handle), pointer :: p
     type(error_type), allocatable :: error
@@ -227,30 +261,38 @@ contains
   end function control
 
   integer(c_int) function davit_set_winch_speed(h, speed, ramp) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Drum speed set-point [m/s] in [-10, 10] (pay-out > 0), reached over ramp [s].
     real(c_double), value, intent(in) :: speed, ramp
     rc = control(h, ctrl_winch, speed, ramp)
   end function davit_set_winch_speed
 
   integer(c_int) function davit_brake(h, time) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Time for the drum to come to rest [s].
     real(c_double), value, intent(in) :: time
     rc = control(h, ctrl_brake, time, 0.0_c_double)
   end function davit_brake
 
   integer(c_int) function davit_release(h) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
     rc = control(h, ctrl_release, 0.0_c_double, 0.0_c_double)
   end function davit_release
 
   integer(c_int) function davit_set_heading(h, heading) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Heading set-point of the ship [rad].
     real(c_double), value, intent(in) :: heading
     rc = control(h, ctrl_heading, heading, 0.0_c_double)
   end function davit_set_heading
 
   !> Bytes davit_save writes (0 for a handle without session).
   integer(c_size_t) function davit_save_size(h) bind(c) result(n)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
     type(capi_handle), pointer :: p
     integer(c_int) :: rc
@@ -260,8 +302,11 @@ contains
   end function davit_save_size
 
   integer(c_int) function davit_save(h, buf, len) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Buffer receiving the snapshot's bytes.
     integer(c_int8_t), intent(out) :: buf(*)
+    !> Size of the buffer [bytes] (at least davit_save_size).
     integer(c_size_t), value, intent(in) :: len
     type(capi_handle), pointer :: p
     integer(int8), allocatable :: b(:)
@@ -277,8 +322,11 @@ contains
 
   !> Replace the handle's session by the one saved in `buf`; on failure it stays as it was.
   integer(c_int) function davit_restore(h, buf, len) bind(c) result(rc)
+    !> The handle whose session is replaced.
     type(c_ptr), value, intent(in) :: h
+    !> The snapshot's bytes.
     integer(c_int8_t), intent(in) :: buf(*)
+    !> Number of bytes.
     integer(c_size_t), value, intent(in) :: len
     type(capi_handle), pointer :: p
     type(session_type), allocatable :: s
