@@ -19,6 +19,7 @@ module davit_capi_getters
 contains
 
   real(c_double) function davit_time(h) bind(c) result(t)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
     type(capi_handle), pointer :: p
     integer(c_int) :: rc
@@ -29,6 +30,7 @@ contains
 
   !> 1 once the run has ended (t_end, or the deck's time after release), else 0.
   integer(c_int) function davit_finished(h) bind(c) result(f)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
     type(capi_handle), pointer :: p
     integer(c_int) :: rc
@@ -40,7 +42,9 @@ contains
 
   !> n(1:4) = state components, fall (cable) segments, fenders, rule checks.
   integer(c_int) function davit_sizes(h, n) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Sizes of the state, fall segments, fenders and rule checks.
     integer(c_int), intent(out) :: n(4)
     type(capi_handle), pointer :: p
     n = 0
@@ -54,10 +58,15 @@ contains
 
   !> `len` values into `out`, or the error for a short buffer.
   integer(c_int) function put(p, what, v, out, len) result(rc)
+    !> The handle (its error set for a short buffer).
     type(capi_handle), intent(inout) :: p
+    !> What is copied (for the message).
     character(len=*), intent(in) :: what
+    !> The values.
     real(wp), intent(in) :: v(:)
+    !> The caller's buffer.
     real(c_double), intent(out) :: out(*)
+    !> Length of the buffer.
     integer(c_int), intent(in) :: len
     if (len < size(v)) then
       rc = fail(p, e_arg, what//": the buffer is shorter than davit_sizes says")
@@ -68,8 +77,11 @@ contains
   end function put
 
   integer(c_int) function davit_state(h, y, len) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Buffer receiving the state vector.
     real(c_double), intent(out) :: y(*)
+    !> Length of the buffer.
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     p => ready_handle(h, rc)
@@ -79,7 +91,10 @@ contains
   !> CG position, Euler angles, CG velocity (inertial), angular velocity (boat axes):
   !> /boat/position, euler, velocity and angular_velocity of `davit run`.
   integer(c_int) function davit_boat_pose(h, out) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> CG position [m], Euler angles [rad], CG velocity [m/s] (inertial) and angular velocity
+    !> [rad/s] (boat axes).
     real(c_double), intent(out) :: out(12)
     type(capi_handle), pointer :: p
     real(wp) :: acc(3)
@@ -91,7 +106,9 @@ contains
   !> The ship's CG position and Euler angles (/ship/position, /ship/euler); a ship that
   !> does not move: its fixed pose (position, Euler angles zero but the heading's).
   integer(c_int) function davit_ship_pose(h, out) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Ship's CG position [m] and Euler angles [rad] (inertial).
     real(c_double), intent(out) :: out(6)
     type(capi_handle), pointer :: p
     type(pose_type) :: pose
@@ -112,7 +129,9 @@ contains
 
   !> The movable blocks' positions (3 x 2, inertial; zero without the full rigging).
   integer(c_int) function davit_blocks(h, out) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> The movable blocks' positions [m] (inertial).
     real(c_double), intent(out) :: out(3, 2)
     type(capi_handle), pointer :: p
     p => ready_handle(h, rc)
@@ -126,7 +145,9 @@ contains
 
   !> The hooks' positions (3 x 2, inertial).
   integer(c_int) function davit_hooks(h, out) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> The hooks' positions [m] (inertial).
     real(c_double), intent(out) :: out(3, nslings)
     type(capi_handle), pointer :: p
     real(wp) :: vel(3, nslings)
@@ -138,8 +159,11 @@ contains
   !> Fall segment tensions (seg; none with the boat not on the davit) and the slings'
   !> hook-end tensions, as the recorder.
   subroutine tensions(p, seg, sling)
+    !> The handle (its session).
     type(capi_handle), intent(in) :: p
+    !> Fall segment tensions [N].
     real(wp), allocatable, intent(out) :: seg(:)
+    !> Each sling's tension at its hook [N].
     real(wp), intent(out) :: sling(nslings)
     real(wp) :: sl(p%s%sys%par%rig%nlump + 1, nslings), lumps(3, p%s%sys%par%rig%nlump, nslings)
     real(wp) :: paid
@@ -155,7 +179,9 @@ contains
 
   !> /slings/tension: each sling's tension at its hook [N].
   integer(c_int) function davit_sling_tensions(h, out) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Each sling's tension at its hook [N].
     real(c_double), intent(out) :: out(nslings)
     type(capi_handle), pointer :: p
     real(wp), allocatable :: seg(:)
@@ -165,8 +191,11 @@ contains
 
   !> The falls' cable segment tensions [N] (/rigging/segment_tension).
   integer(c_int) function davit_fall_tensions(h, out, len) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Buffer receiving the segment tensions [N].
     real(c_double), intent(out) :: out(*)
+    !> Length of the buffer.
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     real(wp) :: sling(nslings)
@@ -179,8 +208,11 @@ contains
 
   !> Each fender's contact force [N] (/contact/force).
   integer(c_int) function davit_fender_forces(h, out, len) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Buffer receiving the fender forces [N].
     real(c_double), intent(out) :: out(*)
+    !> Length of the buffer.
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     real(wp) :: clearance
@@ -196,7 +228,9 @@ contains
   !> Times [s] of the first fender contact, waterborne and hook release (-1: not yet),
   !> and the number of fender impacts so far.
   integer(c_int) function davit_events(h, out) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> First contact, waterborne and hook release times [s] (-1: not yet), impact count.
     real(c_double), intent(out) :: out(4)
     type(capi_handle), pointer :: p
     p => ready_handle(h, rc)
@@ -210,8 +244,11 @@ contains
   !> The impacts so far, 4 values each: onset [s], fender (1-based), normal impact speed
   !> [m/s], peak force [N]; `len` values at most (4 x davit_events' count).
   integer(c_int) function davit_impacts(h, out, len) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Buffer receiving 4 values per impact.
     real(c_double), intent(out) :: out(*)
+    !> Length of the buffer.
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     integer :: i
@@ -232,8 +269,11 @@ contains
   !> The rule checks so far (davit_assess_rules' order): value, limit and margin of each
   !> (NaN where a check does not apply yet).
   integer(c_int) function davit_rule_checks(h, value, limit, margin, len) bind(c) result(rc)
+    !> The handle.
     type(c_ptr), value, intent(in) :: h
+    !> Buffers receiving each check's value, limit and relative margin.
     real(c_double), intent(out) :: value(*), limit(*), margin(*)
+    !> Length of each buffer.
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     type(rule_check) :: c(n_checks)
@@ -252,8 +292,11 @@ contains
   !> The identifier of rule check i (1-based) into buf (NUL-terminated); its length, or
   !> -1 for no such check.
   integer(c_int) function davit_check_name(i, buf, len) bind(c) result(n)
+    !> Index of the rule check (1-based).
     integer(c_int), value, intent(in) :: i
+    !> The C buffer receiving the name.
     type(c_ptr), value, intent(in) :: buf
+    !> Size of the buffer [bytes].
     integer(c_size_t), value, intent(in) :: len
     n = -1
     if (i < 1 .or. i > n_checks) return
