@@ -4,6 +4,7 @@ module davit_io_config
   use davit_kinds, only: wp, pi
   use davit_sea_spectrum, only: spectrum_peak_omega
   use davit_boat_wind_loads, only: lift_form_names
+  use davit_solve_factory, only: integrator_names
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
@@ -246,8 +247,7 @@ contains
                   "in the &sea and &wind), 'sea' (the wave field alone, recorded at &sea "// &
                   "probes) or 'ship' (the ship alone in the sea and wind).")
     call r%choice(g, "integrator", s%integrator, "rk4", &
-                  [character(len=10) :: "rk4", "dopri5", "rosenbrock", "rosw", "multirate", &
-                                        "multirate2", "mri2"], &
+                  integrator_names, &
                   "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's), "// &
                   "adaptive Dormand-Prince 5(4), the linearly implicit, L-stable "// &
                   "Rosenbrock RODAS3 (full finite-difference Jacobian every step), the "// &

@@ -11,7 +11,12 @@ module davit_solve_factory
   use davit_solve_multirate, only: multirate_type
   implicit none
   private
-  public :: new_integrator
+  public :: new_integrator, integrator_names
+
+  !> The integrators `new_integrator` builds, by the name the decks give them (the
+  !> `&simulation integrator` and `&sweep integrator` choices read this list).
+  character(len=*), parameter :: integrator_names(7) = [character(len=10) :: "rk4", &
+    "dopri5", "rosenbrock", "rosw", "multirate", "multirate2", "mri2"]
 
 contains
 

@@ -18,6 +18,7 @@ module davit_sweep_keys
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at, int_to_str
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_config, only: config_type, read_config
+  use davit_solve_factory, only: integrator_names
   use davit_io_text, only: int_text, fmt_fixed
   use davit_run_budget, only: memory_limit
   use davit_io_search_path, only: find_file, folder_of
@@ -186,8 +187,7 @@ contains
                      "Time steps (&simulation dt), e.g. a step-size study.", 1, max_values, &
                      default_text="base deck", lo_open=.true.)
     call r%choice(g, "integrator", s%integrator, "rk4", &
-                  [character(len=10) :: "rk4", "dopri5", "rosenbrock", "rosw", "multirate", &
-                                        "multirate2", "mri2"], &
+                  integrator_names, &
                   "Time integrator of every case (&simulation integrator), e.g. 'mri2' "// &
                   "with dts = 0.01 and substeps = 5 for long sweeps (Benchmarks, "// &
                   "Multirate).", default_text="base deck")

@@ -6,6 +6,7 @@ module davit_system_law_factory
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: contact_config, boat_config
+  use davit_io_text, only: join_text
   use davit_boat_contact_law, only: contact_law_type, contact_law_names
   use davit_boat_contact, only: hertz_elastoplastic_law_type, lankarani_nikravesh_law_type, &
                                 hertz_stiffness
@@ -38,7 +39,7 @@ contains
                                                          k=stiffness(k)))
     case default
       call fatal_error(error, "&contact law = '"//k%law//"': no such contact law; allowed: "// &
-                       listed(contact_law_names))
+                       join_text(contact_law_names, ", "))
     end select
   end subroutine new_contact_law
 
@@ -67,19 +68,8 @@ contains
                                                    b%length))
     case default
       call fatal_error(error, "&boat lift_form = '"//b%lift_form//"': no such lift form; "// &
-                       "allowed: "//listed(lift_form_names))
+                       "allowed: "//join_text(lift_form_names, ", "))
     end select
   end subroutine new_boat_wind
-
-  !> The names, comma-separated: "rubber_fender, hertz_elastoplastic, ...".
-  pure function listed(names) result(list)
-    character(len=*), intent(in) :: names(:)
-    character(len=:), allocatable :: list
-    integer :: i
-    list = trim(names(1))
-    do i = 2, size(names)
-      list = list//", "//trim(names(i))
-    end do
-  end function listed
 
 end module davit_system_law_factory
