@@ -22,7 +22,7 @@ program davit
   use davit_sweep_merge, only: merge_outcome, merge_shards
   use davit_sweep_mpi_sweep, only: sweep_anywhere
   use davit_run_linear_modes, only: linear_modes
-  use davit_core_blas_threads, only: single_threaded_blas
+  use davit_core_blas_threads, only: single_threaded_blas, stop_idle_blas_workers
   use davit_io_text, only: join_ints
   implicit none
 
@@ -41,6 +41,7 @@ program davit
   integer :: nargs
 
   call single_threaded_blas()
+  call stop_idle_blas_workers()
   nargs = command_argument_count()
   if (nargs < 1) call usage_error("missing subcommand")
   command = argument(1)
