@@ -122,13 +122,14 @@ contains
   !> (12, 6, 3 ms: never a whole number of the 4.98 ms fast periods, where the stages'
   !> restarts resonate with the fast mode, see doc/benchmarks/multirate.md) divides the
   !> largest position error over 1 s by 2^1.8 to 2^2.3 (observed 2^2.0), for both
-  !> tableaux and for the chained MRI-GARK-ERK22a ('mri2', Sandu 2019); an order-1
-  !> coupling (stages fed the tendency of y_n, or 'mri2' with gamma = [[1/2, 0], [0, 1/2]]:
-  !> forward Euler in the slow part) fails this.
+  !> tableaux and for the chained MRI-GARK-ERK22a and ERK22b ('mri2', 'mri2b', Sandu
+  !> 2019); an order-1 coupling (stages fed the tendency of y_n, or 'mri2' with gamma =
+  !> [[1/2, 0], [0, 1/2]], or 'mri2b' without its last stage's correction: forward Euler
+  !> in the slow part) fails this.
   subroutine multirate_order(state)
     type(case_state), intent(inout) :: state
-    character(len=10), parameter :: methods(3) = [character(len=10) :: "multirate", &
-                                                  "multirate2", "mri2"]
+    character(len=10), parameter :: methods(4) = [character(len=10) :: "multirate", &
+                                                  "multirate2", "mri2", "mri2b"]
     real(wp) :: err(3), de
     integer :: i, j
     do j = 1, size(methods)

@@ -64,9 +64,10 @@ module davit_bench_suite
   !> converged reference of that sea. The multirate method (MIS: the ship, the boat's
   !> water and wind once per 0.02 s stage, the rigging, hooks and fenders in 10 RK4
   !> substeps) in the regular and single-summation seas; its chained variant mri2 (one
-  !> fast sweep per step) at 0.01 s steps with 5 substeps in the regular sea and both
-  !> irregular ones (the Figs. 20-23 sweeps' integrator).
-  type(scene_spec), parameter :: scenes(16) = [ &
+  !> fast sweep per step) at 0.01 s steps with 5 substeps (run as 3 + 3) in the regular
+  !> sea and both irregular ones (the Figs. 20-23 sweeps' integrator), and mri2b (one
+  !> fast sweep of exactly 5 substeps of 2e-3 s per 0.01 s step) in the same three.
+  type(scene_spec), parameter :: scenes(19) = [ &
     scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., "regular"), &
     scene_spec("regular_rosw", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
                "regular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
@@ -95,6 +96,13 @@ module davit_bench_suite
                .false., "irregular", "mri2", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
     scene_spec("irregular_single_mri2", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
                20.0_wp, .false., "irregular_single", "mri2", 1.0e-4_wp, 1.0e-5_wp, &
+               0.01_wp, 5), &
+    scene_spec("regular_mri2b", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
+               "regular", "mri2b", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
+    scene_spec("irregular_mri2b", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, &
+               .false., "irregular", "mri2b", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
+    scene_spec("irregular_single_mri2b", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
+               20.0_wp, .false., "irregular_single", "mri2b", 1.0e-4_wp, 1.0e-5_wp, &
                0.01_wp, 5), &
     scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true., &
                "paper_literal"), &

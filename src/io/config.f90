@@ -255,15 +255,19 @@ contains
                   "kept for many steps), or the multirate infinitesimal step methods of "// &
                   "order 2 ('multirate': Wicker-Skamarock stages 1/3, 1/2, 1; 'multirate2': "// &
                   "midpoint stages 1/2, 1; 'mri2': MRI-GARK-ERK22a, the stages chained so "// &
-                  "that the fast part sweeps each step once) with dt their macro step: "// &
+                  "that the fast part sweeps each step once; 'mri2b': MRI-GARK-ERK22b, "// &
+                  "one fast sweep of the whole step and the slow part's trapezoidal "// &
+                  "correction) with dt their macro step: "// &
                   "the ship and the boat's "// &
                   "water and wind loads once per stage, the rest (falls, hooks, fenders, "// &
                   "gravity) at `substeps` RK4 substeps per dt; the adaptive ones take "// &
                   "substeps inside each dt.")
     call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
                "RK4 substeps of the fast part per macro step dt (integrator = "// &
-               "'multirate', 'multirate2' or 'mri2'; the substep dt/substeps must keep "// &
-               "the falls' ~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other "// &
+               "'multirate', 'multirate2', 'mri2' or 'mri2b'; each stage takes its share "// &
+               "rounded to a whole number: 'mri2' nint(substeps/2) per half step, so 5 "// &
+               "runs 3 + 3; 'mri2b' exactly substeps; the substep must keep the falls' "// &
+               "~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other "// &
                "integrators ignore it.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)

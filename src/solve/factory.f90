@@ -15,8 +15,8 @@ module davit_solve_factory
 
   !> The integrators `new_integrator` builds, by the name the decks give them (the
   !> `&simulation integrator` and `&sweep integrator` choices read this list).
-  character(len=*), parameter :: integrator_names(7) = [character(len=10) :: "rk4", &
-    "dopri5", "rosenbrock", "rosw", "multirate", "multirate2", "mri2"]
+  character(len=*), parameter :: integrator_names(8) = [character(len=10) :: "rk4", &
+    "dopri5", "rosenbrock", "rosw", "multirate", "multirate2", "mri2", "mri2b"]
 
 contains
 
@@ -27,9 +27,10 @@ contains
   !> (observed-order studies); rk4 is always fixed-step and ignores it. "multirate" (the
   !> Wicker-Skamarock tableau) and "multirate2" (the midpoint tableau) are the MIS methods of
   !> davit_solve_multirate, with `substeps` RK4 substeps of the fast part per macro step dt
-  !> (default 10); "mri2" its chained MRI-GARK-ERK22a variant (one fast sweep per step).
+  !> (default 10); "mri2" its chained MRI-GARK-ERK22a variant (one fast sweep per step),
+  !> "mri2b" the chained MRI-GARK-ERK22b (one fast sweep of exactly `substeps`).
   subroutine new_integrator(name, n, integrator, error, rtol, atol, fixed_step, substeps)
-    !> Integrator name: rk4, dopri5, rosenbrock, rosw, multirate, multirate2 or mri2.
+    !> Integrator name: rk4, dopri5, rosenbrock, rosw, multirate, multirate2, mri2 or mri2b.
     character(len=*), intent(in) :: name
     !> Size of the state vector.
     integer, intent(in) :: n
@@ -86,9 +87,17 @@ contains
         integrator%chained = .true.
         integrator%gamma = reshape([0.5_wp, -0.5_wp, 0.0_wp, 1.0_wp], [2, 2])
       end select
+    case ("mri2b")
+      allocate (multirate_type :: integrator)
+      select type (integrator)
+      type is (multirate_type)
+        integrator%c = [1.0_wp, 1.0_wp]
+        integrator%chained = .true.
+        integrator%gamma = reshape([1.0_wp, -0.5_wp, 0.0_wp, 0.5_wp], [2, 2])
+      end select
     case default
       call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock, "// &
-                       "rosw, multirate, multirate2, mri2)")
+                       "rosw, multirate, multirate2, mri2, mri2b)")
       return
     end select
     call integrator%init(n)
