@@ -56,8 +56,9 @@ module davit_bench_suite
   !> regular and irregular seas; the same scenes with the Rosenbrock-W method (the
   !> rigging implicit) and with the fast level of detail (quasi-static blocks, RK4 1e-2
   !> s); the paper-literal level of detail (2 lumps per sling, rotating sheaves) at RK4's
-  !> stability limit and with the Rosenbrock-W method, 20 s (its explicit step is 13x
-  !> smaller). Quick: the start of each.
+  !> stability limit and with the Rosenbrock-W method (rtol 1e-4, and 1e-3 as
+  !> `paper_literal_rosw_loose`), 20 s (its explicit step is 13x smaller). Quick: the
+  !> start of each.
   !> The single-summation sea (100 components, one direction per frequency, instead of
   !> 100 x 13) at the default level of detail, with Rosenbrock-W, and at the fast level
   !> for irregular sweeps (quasi-static blocks, Rosenbrock-W), measured against the
@@ -67,7 +68,7 @@ module davit_bench_suite
   !> fast sweep per step) at 0.01 s steps with 5 substeps (run as 3 + 3) in the regular
   !> sea and both irregular ones (the Figs. 20-23 sweeps' integrator), and mri2b (one
   !> fast sweep of exactly 5 substeps of 2e-3 s per 0.01 s step) in the same three.
-  type(scene_spec), parameter :: scenes(19) = [ &
+  type(scene_spec), parameter :: scenes(20) = [ &
     scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., "regular"), &
     scene_spec("regular_rosw", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
                "regular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
@@ -107,7 +108,9 @@ module davit_bench_suite
     scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true., &
                "paper_literal"), &
     scene_spec("paper_literal_rosw", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
-               .false., "paper_literal", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp)]
+               .false., "paper_literal", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
+    scene_spec("paper_literal_rosw_loose", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
+               .false., "paper_literal", "rosw", 1.0e-3_wp, 1.0e-4_wp, 0.02_wp)]
 
   !> The scenes' converged references (davit_bench_accuracy), in the decks folder.
   character(len=*), parameter :: reference_file = "bench_reference.h5"
