@@ -19,7 +19,6 @@ module davit_sweep_driver
   use davit_io_hdf5_writer, only: h5_writer_type, check_output_path, acquire_lock, release_lock
   use davit_io_namelist, only: int_to_str
   use davit_io_deck_reader, only: fmt_real
-  use davit_io_text, only: fmt_fixed
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
   use davit_run_recorders, only: boat_recorder
@@ -32,6 +31,7 @@ module davit_sweep_driver
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
                                  status_failed, status_not_needed, not_run_result
   use davit_sweep_summary, only: write_summary, read_results
+  use davit_sweep_progress, only: sweep_state, report_progress, seconds_since
   use davit_sweep_shards, only: shard_spec, shard_mask, shard_text, longest_first
   use davit_sweep_adaptive, only: adaptive, refuse_adaptive, adaptive_plan, new_plan, &
                                   round_cases, close_round, mark_not_needed, plan_text, &
@@ -70,15 +70,6 @@ module davit_sweep_driver
     integer :: shard_cases = 0
     real(wp) :: wall_time = 0.0_wp
   end type sweep_outcome
-
-  !> What the critical section shares: the rows, counters, clocks of the last progress line
-  !> and checkpoint, and the first I/O failure.
-  type :: sweep_state
-    type(case_result), allocatable :: results(:)
-    integer :: done = 0, failed = 0, todo = 0, threads = 1
-    integer(i8) :: clock0 = 0, rate = 1, last_progress = 0, last_checkpoint = 0
-    type(error_type), allocatable :: io_error
-  end type sweep_state
 
   !> A sweep under way: its cases, the base deck's clearance, the shared state, the cases
   !> to run (dearest first; the first state%todo of them), the shard's cases, and whether
@@ -413,24 +404,6 @@ contains
     end if
   end subroutine store_case
 
-  !> "davit sweep: 12/80 cases (1 failed), 0.41 cases/s, ETA 2 min 21 s" on stderr.
-  subroutine report_progress(state)
-    type(sweep_state), intent(in) :: state
-    real(wp) :: elapsed, rate
-    character(len=:), allocatable :: line
-    elapsed = seconds_since(state, state%clock0)
-    rate = real(state%done, wp)/max(elapsed, 1.0e-9_wp)
-    line = "davit sweep: "//int_to_str(state%done)//"/"//int_to_str(state%todo)// &
-           " cases ("//int_to_str(state%failed)//" failed), "//fmt_fixed(rate, 3)//" cases/s"
-    if (state%done < state%todo) then
-      line = line//", ETA "//fmt_duration(real(state%todo - state%done, wp)/rate)
-    else
-      line = line//", "//fmt_duration(elapsed)
-    end if
-    write (error_unit, "(a)") line
-    flush (error_unit)
-  end subroutine report_progress
-
   !> The case's time series (the run file layout) under the series folder; inside the
   !> critical section.
   subroutine write_series(path, cfg, sys, rec, row, run_error, state)
@@ -535,29 +508,5 @@ contains
       n = fit
     end if
   end function thread_count
-
-  real(wp) function seconds_since(state, clock) result(dt)
-    type(sweep_state), intent(in) :: state
-    integer(i8), intent(in) :: clock
-    integer(i8) :: now
-    call system_clock(now)
-    dt = real(now - clock, wp)/real(state%rate, wp)
-  end function seconds_since
-
-
-  !> "2 h 5 min", "3 min 21 s" or "42 s".
-  function fmt_duration(seconds) result(s)
-    real(wp), intent(in) :: seconds
-    character(len=:), allocatable :: s
-    integer :: t
-    t = nint(max(seconds, 0.0_wp))
-    if (t >= 3600) then
-      s = int_to_str(t/3600)//" h "//int_to_str(mod(t, 3600)/60)//" min"
-    else if (t >= 60) then
-      s = int_to_str(t/60)//" min "//int_to_str(mod(t, 60))//" s"
-    else
-      s = int_to_str(t)//" s"
-    end if
-  end function fmt_duration
 
 end module davit_sweep_driver
