@@ -15,9 +15,13 @@ module davit_sweep_progress
   !> What the critical section shares: the rows, counters, clocks of the last progress line
   !> and checkpoint, and the first I/O failure.
   type :: sweep_state
+    !> One row per case.
     type(case_result), allocatable :: results(:)
+    !> Cases finished, failed, to run; threads.
     integer :: done = 0, failed = 0, todo = 0, threads = 1
+    !> Clock counts at the start, per second, at the last progress line and at the last checkpoint.
     integer(i8) :: clock0 = 0, rate = 1, last_progress = 0, last_checkpoint = 0
+    !> The first I/O failure inside the loop (reported at the end).
     type(error_type), allocatable :: io_error
   end type sweep_state
 
@@ -25,6 +29,7 @@ contains
 
   !> "davit sweep: 12/80 cases (1 failed), 0.41 cases/s, ETA 2 min 21 s" on stderr.
   subroutine report_progress(state)
+    !> Counters and clocks.
     type(sweep_state), intent(in) :: state
     real(wp) :: elapsed, rate
     character(len=:), allocatable :: line
@@ -42,7 +47,9 @@ contains
   end subroutine report_progress
 
   real(wp) function seconds_since(state, clock) result(dt)
+    !> The clock rate.
     type(sweep_state), intent(in) :: state
+    !> A clock count (system_clock).
     integer(i8), intent(in) :: clock
     integer(i8) :: now
     call system_clock(now)
@@ -51,6 +58,7 @@ contains
 
   !> "2 h 5 min", "3 min 21 s" or "42 s".
   function fmt_duration(seconds) result(s)
+    !> Duration [s].
     real(wp), intent(in) :: seconds
     character(len=:), allocatable :: s
     integer :: t

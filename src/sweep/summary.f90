@@ -29,12 +29,19 @@ contains
   !> Write the whole summary to `path` (atomically: `path.tmp`, then renamed). A shard's
   !> summary (shard%count > 0) also records shard_index and shard_count.
   subroutine write_summary(path, s, cases, results, threads, series_dir, shard, error)
+    !> Path of the summary file; the series folder recorded ("" for none).
     character(len=*), intent(in) :: path, series_dir
+    !> The sweep deck.
     type(sweep_config), intent(in) :: s
+    !> The cases of the sweep.
     type(sweep_case), intent(in) :: cases(:)
+    !> One row per case.
     type(case_result), intent(in) :: results(:)
+    !> Threads (or MPI ranks) recorded.
     integer, intent(in) :: threads
+    !> The shard this summary holds (count 0: the whole sweep).
     type(shard_spec), intent(in) :: shard
+    !> Set when the file cannot be written.
     type(error_type), allocatable, intent(out) :: error
     type(h5_writer_type) :: w
     call w%create(path, error)

@@ -22,11 +22,17 @@ contains
   !> The results of an earlier summary of the same sweep and shard (resume). Fails with a
   !> clear message when the file is not a summary of this sweep deck, base deck and shard.
   subroutine read_results(path, s, ncase, shard, results, error)
+    !> Path of the earlier summary.
     character(len=*), intent(in) :: path
+    !> The sweep deck it must belong to.
     type(sweep_config), intent(in) :: s
+    !> Number of cases of the sweep.
     integer, intent(in) :: ncase
+    !> The shard it must hold (count 0: the whole sweep).
     type(shard_spec), intent(in) :: shard
+    !> One row per case, read back.
     type(case_result), intent(inout) :: results(:)
+    !> Set when the file is not a summary of this sweep and shard, or a column is damaged.
     type(error_type), allocatable, intent(out) :: error
     type(h5_reader_type) :: f
     call f%open(path, error)
@@ -81,13 +87,21 @@ contains
   !> A whole summary (merge): its sweep's identity (file names and deck texts in `s`), the
   !> cases, the rows, the shard and the thread count.
   subroutine read_summary(path, s, cases, results, shard, threads, series_dir, error)
+    !> Path of the summary.
     character(len=*), intent(in) :: path
+    !> The sweep's identity: file names and deck texts.
     type(sweep_config), intent(out) :: s
+    !> The cases.
     type(sweep_case), allocatable, intent(out) :: cases(:)
+    !> One row per case.
     type(case_result), allocatable, intent(out) :: results(:)
+    !> The shard it holds (count 0: the whole sweep).
     type(shard_spec), intent(out) :: shard
+    !> Threads recorded.
     integer, intent(out) :: threads
+    !> The series folder recorded ("" for none).
     character(len=:), allocatable, intent(out) :: series_dir
+    !> Set when the file is not a whole, readable summary.
     type(error_type), allocatable, intent(out) :: error
     type(h5_reader_type) :: f
     integer(i8) :: n

@@ -80,7 +80,7 @@ HEADER = re.compile(
     r"(subroutine|function)\s+(\w+)\s*(?:\(([^)]*)\))?", re.I)
 END_ROUTINE = re.compile(r"^end\s*(subroutine|function)\b", re.I)
 DECL = re.compile(r"^(?:type|class|real|integer|logical|character|complex|procedure)\b"
-                  r"[^:]*::(.*)$", re.I)
+                  r".*?::(.*)$", re.I)
 
 
 def missing_doc_comments(text, label="<text>"):
