@@ -174,7 +174,7 @@ contains
     class(recorder_type), intent(inout) :: rec
     !> Steps, evaluations, wall times and completion.
     type(run_summary), intent(out) :: summary
-    !> run_error: why the loop ended early (divergence, failed step), the record kept; error: a
+    !> Why the loop ended early (divergence, failed step; the record so far kept), and a
     !> set-up failure.
     type(error_type), allocatable, intent(out) :: run_error, error
     !> Watches each accepted step and may end the run (launch log).
