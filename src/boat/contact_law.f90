@@ -28,7 +28,7 @@ module davit_boat_contact_law
                                                          "lankarani_nikravesh"]
 
   type :: fender_state_type
-    !> Contact phase: phase_free, phase_compression or phase_restitution.
+    !> Contact phase: phase_free, phase_compression, phase_restitution or phase_separated.
     integer :: phase = phase_free
     !> Approach speed at first contact [m/s], recorded maximum indentation [m] and force [N],
     !> permanent set of the last contact at which a new compression starts [m].
