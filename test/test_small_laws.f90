@@ -1,12 +1,14 @@
 !> Small laws tested directly, each against its closed form: the foundation sling's Hooke
 !> spring and axial dashpot (tension-only), the wire's dashpot as a fraction of critical, the
-!> seafarer's words for where the waves come from, and a path's folder.
+!> seafarer's words for where the waves come from, a path's folder, and the peak-load watch
+!> on a tension history whose exceedances are known in closed form.
 module test_small_laws
-  use davit_kinds, only: wp
+  use davit_kinds, only: wp, pi
   use davit_rigging_elastic_sling, only: elastic_sling_type, sling_hook_force, sling_energy
   use davit_rigging_wire_damping, only: wire_dashpot
   use davit_run_scenario, only: coming_from
   use davit_io_search_path, only: folder_of
+  use davit_run_load_peaks, only: load_peaks
   use harness, only: suite_type, case_state, new_case, check, check_true
   implicit none
   private
@@ -20,7 +22,8 @@ contains
     suite%cases = [new_case("elastic_sling_hooke_dashpot_tension_only", elastic_sling), &
                    new_case("wire_dashpot_fraction_of_critical", wire_critical), &
                    new_case("waves_coming_from_in_eight_sectors", coming_from_sectors), &
-                   new_case("folder_of_a_path", folder_of_paths)]
+                   new_case("folder_of_a_path", folder_of_paths), &
+                   new_case("load_peaks_half_sine_exceedances", half_sine_peaks)]
   end function collect_small_laws
 
   !> A sling of l0 = 1 m, EA = 1e6 N (k = EA/l0 = 1e6 N/m), c = 100 N s/m from an anchor at
@@ -94,5 +97,36 @@ contains
     call check_true(state, folder_of("a.nml") == "", "bare name")
     call check_true(state, folder_of("/a.h5") == "/", "root")
   end subroutine folder_of_paths
+
+  !> Two half-sine pulses T(t) = T0 sin(pi t/tau) (tau = 2 s, T0 = 60 kN, then 0 for 1 s,
+  !> then the pulse again) sampled every h = 1e-3 s against an MBL of 120 kN with factor 6
+  !> (SWL 20 kN): the peak is T0 at t = tau/2 = 1 s; the SWL is first exceeded at
+  !> t1 = tau/pi asin(SWL/T0) = 0.21635 s, each pulse stays above it tau - 2 t1 = 1.5673 s
+  !> (the watch sums the steps that end above it: within h per crossing), it is exceeded
+  !> twice, and the MBL never. The sling (T/2 here) peaks with the segment.
+  subroutine half_sine_peaks(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: tau = 2.0_wp, t0 = 60.0e3_wp, h = 1.0e-3_wp
+    type(load_peaks) :: p
+    real(wp) :: t, tension, t1
+    integer :: k
+    call p%init(1, 1, 120.0e3_wp, 6.0_wp, 3.5_wp)
+    do k = 1, nint(5.0_wp/h)
+      t = k*h
+      tension = 0.0_wp
+      if (t <= tau) tension = t0*sin(pi*t/tau)
+      if (t >= tau + 1.0_wp) tension = t0*sin(pi*(t - tau - 1.0_wp)/tau)
+      call p%update(t, [tension], [0.5_wp*tension])
+    end do
+    t1 = tau/pi*asin(20.0e3_wp/t0)
+    call check(state, p%segment(1), t0, "peak T0", rel_tol=1.0e-12_wp)
+    call check(state, p%segment_time(1), tau/2.0_wp, "peak at tau/2", abs_tol=0.5_wp*h)
+    call check(state, p%sling(1), 0.5_wp*t0, "sling peak", rel_tol=1.0e-12_wp)
+    call check(state, p%swl%first, t1, "SWL first exceeded", abs_tol=h)
+    call check(state, p%swl%duration, 2.0_wp*(tau - 2.0_wp*t1), "time above the SWL", &
+               abs_tol=4.0_wp*h)
+    call check_true(state, p%swl%count == 2, "two excursions above the SWL")
+    call check_true(state, p%mbl%count == 0 .and. p%mbl%first < 0.0_wp, "MBL never reached")
+  end subroutine half_sine_peaks
 
 end module test_small_laws
