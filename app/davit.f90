@@ -29,7 +29,9 @@ program davit
   interface
     function c_mkdir(path, mode) bind(C, name="mkdir") result(status)
       import :: c_int, c_char
+      !> Path of the folder, NUL-terminated.
       character(kind=c_char), intent(in) :: path(*)
+      !> Permission bits.
       integer(c_int), value :: mode
       integer(c_int) :: status
     end function c_mkdir
@@ -76,6 +78,7 @@ contains
   !> `run` and `rao` take the same arguments: one deck and an optional output file. A run
   !> draws its progress on stderr when that is a terminal.
   subroutine cmd_run(rao)
+    !> `davit rao` (else `davit run`).
     logical, intent(in) :: rao
     character(len=:), allocatable :: deck, out, arg
     type(config_type) :: cfg
@@ -193,6 +196,7 @@ contains
 
   !> ", N not needed" when an adaptive sweep's converged cells left cases out.
   function not_needed_note(outcome) result(note)
+    !> The sweep's counts.
     type(sweep_outcome), intent(in) :: outcome
     character(len=:), allocatable :: note
     note = ""
@@ -201,7 +205,9 @@ contains
 
   !> " for shard K/N (M of its cases)" after a shard's summary line.
   function shard_line(opts, outcome) result(line)
+    !> The sweep's options (the shard).
     type(sweep_options), intent(in) :: opts
+    !> The sweep's counts.
     type(sweep_outcome), intent(in) :: outcome
     character(len=:), allocatable :: line
     line = ""
@@ -211,7 +217,9 @@ contains
 
   !> The K/N of --shard (option i); advances i past both.
   subroutine take_shard(i, opts)
+    !> Index of the --shard option, advanced past its value.
     integer, intent(inout) :: i
+    !> The sweep's options, their shard set.
     type(sweep_options), intent(inout) :: opts
     character(len=:), allocatable :: v
     type(error_type), allocatable :: error
@@ -267,7 +275,9 @@ contains
 
   !> The value of option i (the next argument); advances i past both.
   subroutine take_value(i, v)
+    !> Index of the option, advanced past its value.
     integer, intent(inout) :: i
+    !> The option's value.
     character(len=:), allocatable, intent(out) :: v
     if (i == nargs) call usage_error("option "//argument(i)//" needs a value")
     v = argument(i + 1)
@@ -276,8 +286,11 @@ contains
 
   !> The integer value (>= lowest) of option i; advances i past both.
   subroutine take_int(i, lowest, n)
+    !> Index of the option, advanced past its value.
     integer, intent(inout) :: i
+    !> Smallest value allowed.
     integer, intent(in) :: lowest
+    !> The option's value.
     integer, intent(out) :: n
     character(len=:), allocatable :: name, v
     integer :: ios
@@ -305,6 +318,7 @@ contains
 
   !> Check the decks and print the number of cases, without running any.
   subroutine sweep_dry_run(sweep)
+    !> The sweep deck.
     type(sweep_config), intent(in) :: sweep
     type(sweep_case), allocatable :: cases(:)
     type(error_type), allocatable :: error
@@ -319,6 +333,7 @@ contains
   !> "; at most: adaptive realisations ..." for a sweep with target_halfwidth > 0, whose
   !> case count is every cell's max_realisations slots.
   function adaptive_note(sweep) result(note)
+    !> The sweep deck.
     type(sweep_config), intent(in) :: sweep
     character(len=:), allocatable :: note
     note = ""
@@ -377,6 +392,7 @@ contains
   !> else the DAVIT_PATH folder that holds them (the installed share/davit/input), as
   !> `davit run` finds its data files.
   subroutine find_bench_decks(decks)
+    !> The bench decks' folder found (empty on entry: --decks was not given).
     character(len=:), allocatable, intent(inout) :: decks
     character(len=:), allocatable :: full, searched
     type(error_type), allocatable :: error
@@ -416,6 +432,7 @@ contains
 
   !> out/<deck name without .nml>.h5, creating out/ if needed.
   function default_output(deck) result(path)
+    !> Path of the deck.
     character(len=*), intent(in) :: deck
     character(len=:), allocatable :: path, base
     integer :: slash, dot, status
@@ -459,6 +476,7 @@ contains
 
   !> True when an argument after the subcommand is -h or --help.
   logical function asks_help(nargs)
+    !> Number of command-line arguments.
     integer, intent(in) :: nargs
     integer :: i
     asks_help = .false.
@@ -469,6 +487,7 @@ contains
 
   !> The usage of one subcommand (the general help for an unknown one).
   subroutine print_command_help(command)
+    !> The subcommand.
     character(len=*), intent(in) :: command
     select case (command)
     case ("run")
@@ -517,6 +536,7 @@ contains
   end subroutine print_command_help
 
   function argument(i) result(arg)
+    !> Index of the argument.
     integer, intent(in) :: i
     character(len=:), allocatable :: arg
     integer :: n
@@ -526,6 +546,7 @@ contains
   end function argument
 
   subroutine usage_error(message)
+    !> What is wrong with the command line.
     character(len=*), intent(in) :: message
     write (error_unit, "(a)") "davit: error: "//message, &
       "usage: davit run|rao DECK.nml [-o OUT.h5] | davit sweep SWEEP.nml [options] | "// &
@@ -534,6 +555,7 @@ contains
   end subroutine usage_error
 
   subroutine fail(error)
+    !> The error, printed before the exit.
     type(error_type), intent(in) :: error
     flush (output_unit)
     write (error_unit, "(a)") "davit: error: "//error%message

@@ -14,7 +14,9 @@ contains
 
   !> Allocate `error` with `message`.
   pure subroutine fatal_error(error, message)
+    !> The error, allocated.
     type(error_type), allocatable, intent(out) :: error
+    !> What went wrong, for the user (file, group, key, value, what is allowed).
     character(len=*), intent(in) :: message
     allocate (error)
     error%message = message

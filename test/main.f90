@@ -33,6 +33,7 @@ program main
   use test_capi, only: collect_capi
   use test_mmg, only: collect_mmg
   use test_mmg_bem, only: collect_mmg_bem
+  use test_small_laws, only: collect_small_laws
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -60,7 +61,7 @@ program main
             collect_boat_bem(), collect_strip_pressure(), collect_events(), &
             collect_assess(), collect_adaptive(), collect_core(), &
             collect_wave_grid(), collect_multirate(), collect_block_balance(), &
-            collect_capi(), collect_mmg(), collect_mmg_bem()]
+            collect_capi(), collect_mmg(), collect_mmg_bem(), collect_small_laws()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

@@ -5,6 +5,7 @@ module test_deck
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config, read_config, document_keys
   use davit_io_deck_reader, only: key_doc
+  use davit_io_namelist_entries, only: nml_entry, str_hash, probe, rehash
   use harness, only: suite_type, case_state, new_case, check, check_true
   implicit none
   private
@@ -26,7 +27,8 @@ contains
                    new_case("missing_file", missing_file), &
                    new_case("full_syntax", full_syntax), &
                    new_case("defaults_documented_and_valid", defaults_documented), &
-                   new_case("contact_side_from_beam", contact_side_from_beam)]
+                   new_case("contact_side_from_beam", contact_side_from_beam), &
+                   new_case("entry_hash_fnv1a_and_probing", entry_hash)]
   end function collect_deck
 
   function bad(text, expected) result(b)
@@ -197,5 +199,40 @@ contains
     call parse_config("empty.nml", "", cfg, error)
     call check_true(state, .not. allocated(error), "an empty deck (all defaults) is valid")
   end subroutine defaults_documented
+
+  !> The deck's hash is 32-bit FNV-1a (Fowler, Noll, Vo) of group, a NUL byte and key, kept
+  !> to 31 bits. Expected values from an independent FNV-1a (Python, offset basis 2166136261,
+  !> prime 16777619) that reproduces the published vectors "" -> 0x811c9dc5, "a" ->
+  !> 0xe40c292c, "foobar" -> 0xbf9cf968: one NUL byte -> 0x050c5d1f = 84696351, and so on.
+  !> Linear probing after a rehash finds every entry at its index and a missing key nowhere,
+  !> with an empty slot for it.
+  subroutine entry_hash(state)
+    type(case_state), intent(inout) :: state
+    type(nml_entry), allocatable :: entries(:)
+    integer, allocatable :: slot(:)
+    character(len=10), parameter :: groups(5) = [character(len=10) :: "boat", "sea", &
+                                                 "simulation", "boat", "sea"]
+    character(len=8), parameter :: keys(5) = [character(len=8) :: "mass", "height", "t_end", &
+                                              "beam", "period"]
+    integer :: k, h
+    call check_true(state, str_hash("", "") == 84696351, "hash of one NUL byte")
+    call check_true(state, str_hash("boat", "mass") == 1492314453, "hash of boat/mass")
+    call check_true(state, str_hash("sea", "height") == 1912905879, "hash of sea/height")
+    call check_true(state, str_hash("simulation", "t_end") == 1376828948, &
+                    "hash of simulation/t_end")
+    allocate (entries(size(keys)), slot(1))
+    do k = 1, size(keys)
+      entries(k)%group = trim(groups(k))
+      entries(k)%key = trim(keys(k))
+    end do
+    call rehash(slot, entries, 5)
+    call check_true(state, size(slot) == 8, "slots rounded up to a power of two")
+    do k = 1, size(keys)
+      call check_true(state, probe(slot, entries, trim(groups(k)), trim(keys(k)), h) == k, &
+                      "found: "//trim(groups(k))//"/"//trim(keys(k)))
+    end do
+    call check_true(state, probe(slot, entries, "boat", "height", h) == 0, "missing key")
+    call check_true(state, slot(h) == 0, "missing key: an empty slot")
+  end subroutine entry_hash
 
 end module test_deck

@@ -19,6 +19,7 @@ module test_sweep
   use davit_sweep_driver, only: longest_first
   use davit_sweep_shards, only: shard_spec, parse_shard, shard_mask
   use davit_sweep_row_codec, only: encode_row, decode_row
+  use davit_sweep_progress, only: fmt_duration
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_negative_inf
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -42,7 +43,8 @@ contains
                    new_case("shards_deal_the_dearest_order_round_robin", shards_round_robin), &
                    new_case("shard_argument_k_of_n", shard_argument), &
                    new_case("row_message_round_trip_bitwise", row_round_trip), &
-                   new_case("row_message_refuses_wrong_length", row_wrong_length)]
+                   new_case("row_message_refuses_wrong_length", row_wrong_length), &
+                   new_case("progress_durations_in_hours_minutes_seconds", durations)]
   end function collect_sweep
 
   function sweep_from_text(text) result(s)
@@ -208,6 +210,17 @@ contains
       call check_true(state, allocated(error), "refused: "//trim(bad(k)))
     end do
   end subroutine shard_argument
+
+  !> The progress line's times: 7500 s = 2 h 5 min (the seconds dropped), 201 s =
+  !> 3 min 21 s, 42.4 s rounds to 42 s, 59.6 s to 60 s = 1 min 0 s, a negative time is 0 s.
+  subroutine durations(state)
+    type(case_state), intent(inout) :: state
+    call check_true(state, fmt_duration(7500.0_wp) == "2 h 5 min", "7500 s")
+    call check_true(state, fmt_duration(201.0_wp) == "3 min 21 s", "201 s")
+    call check_true(state, fmt_duration(42.4_wp) == "42 s", "42.4 s")
+    call check_true(state, fmt_duration(59.6_wp) == "1 min 0 s", "59.6 s")
+    call check_true(state, fmt_duration(-3.0_wp) == "0 s", "-3 s")
+  end subroutine durations
 
   pure function unique_seeds(seeds) result(u)
     integer, intent(in) :: seeds(:)

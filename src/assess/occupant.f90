@@ -21,6 +21,8 @@ contains
   !> samples; classical RK4 on half-interval input values. The model's period is ~0.12 s
   !> against dt ~1e-3 s: RK4's error (omega dt)^4/120 ~ 1e-7.
   pure function response_peaks(a, dt, omega, zeta) result(peaks)
+    !> Acceleration samples [m/s^2] and their spacing [s]; the model's natural frequency [rad/s]
+    !> and damping ratio.
     real(wp), intent(in) :: a(:), dt, omega, zeta
     real(wp) :: peaks(2)
     real(wp) :: x(2), k1(2), k2(2), k3(2), k4(2), amid, dr

@@ -51,6 +51,7 @@ module davit_assess_rules
     "dynamic response index up the spine <= &limits dri_limit"]
 
   type :: rule_check
+    !> Measured value, its limit (same unit) and the margin 1 - value/limit (negative: failed).
     real(wp) :: value = 0.0_wp, limit = 0.0_wp, margin = 0.0_wp
   end type rule_check
 
@@ -58,7 +59,9 @@ contains
 
   !> Check k with the measured value and its limit (limit > 0).
   pure function new_check(k, value, limit) result(c)
+    !> Index of the check in check_ids (1..n_checks).
     integer, intent(in) :: k
+    !> Measured value and its limit (> 0), in the check's unit (check_units).
     real(wp), intent(in) :: value, limit
     type(rule_check) :: c
     c%value = value
@@ -80,6 +83,7 @@ contains
 
   !> Passed (margin >= 0); a check that does not apply passes.
   elemental logical function check_passes(c)
+    !> The check.
     type(rule_check), intent(in) :: c
     check_passes = ieee_is_nan(c%margin) .or. c%margin >= 0.0_wp
   end function check_passes

@@ -19,7 +19,9 @@ contains
   !> quantile z (default z95): (2k + z^2 -+ z sqrt(z^2 + 4k(n-k)/n)) / (2(n + z^2)).
   !> n = 0 carries no information: [0, 1].
   pure function wilson_interval(k, n, z) result(bounds)
+    !> Successes k and trials n (0 <= k <= n).
     integer, intent(in) :: k, n
+    !> Normal quantile of the confidence level (default: 95 %).
     real(wp), intent(in), optional :: z
     real(wp) :: bounds(2)
     real(wp) :: q, centre, spread
@@ -38,7 +40,9 @@ contains
 
   !> Half the width of the Wilson interval of k in n (0.5 for n = 0).
   pure real(wp) function wilson_halfwidth(k, n, z) result(half)
+    !> Successes k and trials n (0 <= k <= n).
     integer, intent(in) :: k, n
+    !> Normal quantile of the confidence level (default: 95 %).
     real(wp), intent(in), optional :: z
     real(wp) :: bounds(2)
     bounds = wilson_interval(k, n, z)

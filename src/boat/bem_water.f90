@@ -49,6 +49,7 @@ module davit_boat_bem_water
   real(wp), parameter :: immersion_lag = 0.02_wp
 
   type :: boat_bem_type
+    !> The boat's BEM database (added mass, damping, memory fits, diffraction; input/boat_bem.nc).
     type(bem_database_type) :: db
     !> A(inf) in Kane order (symmetrised) [kg, kg m, kg m^2].
     real(wp) :: a_inf(6, 6) = 0.0_wp
@@ -74,8 +75,13 @@ module davit_boat_bem_water
   !> X, ~d|X|/d(beta) x 0.005 rad) and second order in k |r - r0| (< 2e-3 of a component
   !> for k = 0.6 1/m and 0.1 m).
   type :: diffraction_cache_type
+    !> Whether the window below has been sampled.
     logical :: valid = .false.
+    !> The window's ends t [s], the CG's horizontal position r0 (inertial) [m] and the yaw psi0
+    !> [rad] it was sampled at.
     real(wp) :: t(2) = 0.0_wp, r0(2) = 0.0_wp, psi0 = 0.0_wp
+    !> Load samples d(DOF, (value, d/dt, d/dx, d/dy), end) in the heading frame [N, N m and their
+    !> rates].
     real(wp) :: d(6, 4, 2) = 0.0_wp
   end type diffraction_cache_type
 
@@ -96,10 +102,17 @@ contains
   !> (I1, I2, I3, m, m, m), in sea `sea`, with roll damping zeta_roll of critical at the
   !> roll stiffness c44 [N m/rad] of the strips, full immersion at f V_0.
   subroutine new_boat_bem(db, sea, m_kane, zeta_roll, c44, full, volume0, self, error)
+    !> The boat's BEM database.
     type(bem_database_type), intent(in) :: db
+    !> The sea whose waves excite the diffraction load.
     type(wave_field_type), intent(in) :: sea
+    !> Rigid-body mass diagonal (I1, I2, I3, m, m, m) [kg m^2, kg]; roll damping fraction of
+    !> critical; roll stiffness of the strips [N m/rad]; fraction f of V_0 at full immersion; V_0 =
+    !> m/rho [m^3].
     real(wp), intent(in) :: m_kane(6), zeta_roll, c44, full, volume0
+    !> The water model built.
     type(boat_bem_type), intent(out) :: self
+    !> Set when the database does not fit the boat (sizes, a singular mass).
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: s(6, 6), work(64)
     integer :: i, j, info
@@ -144,14 +157,18 @@ contains
 
   !> The geometric immersion min(1, V_wet/(f V_0)) of wet volume `volume` [m^3].
   pure real(wp) function boat_bem_immersion(self, volume) result(s)
+    !> The boat's BEM water model.
     type(boat_bem_type), intent(in) :: self
+    !> Wet volume of the hull [m^3].
     real(wp), intent(in) :: volume
     s = min(1.0_wp, max(0.0_wp, volume/(self%full*self%volume0)))
   end function boat_bem_immersion
 
   !> Added kinetic energy 1/2 s u^T A(inf) u [J] at immersion s and speeds u (Kane order).
   pure real(wp) function boat_bem_kinetic_energy(self, s, u) result(e)
+    !> The boat's BEM water model.
     type(boat_bem_type), intent(in) :: self
+    !> Immersion s (0..1) and the boat's speeds u (Kane order) [rad/s, m/s].
     real(wp), intent(in) :: s, u(6)
     e = 0.5_wp*s*dot_product(u, matmul(self%a_inf, u))
   end function boat_bem_kinetic_energy
@@ -161,10 +178,16 @@ contains
   !> (s, memory states) with their rates xdot; the modal masses v = 1 + s lambda of the
   !> boat's coupled mass block (davit_core_layout).
   pure subroutine boat_bem_loads(self, sea, t, c, r, psi, u, s_geom, x, cache, xdot, f, v)
+    !> The boat's BEM water model.
     type(boat_bem_type), intent(in) :: self
+    !> The sea (diffraction load and its ramp).
     type(wave_field_type), intent(in) :: sea
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m], yaw [rad], speeds (Kane
+    !> order), geometric immersion (0..1), and the states (lagged immersion, memory states).
     real(wp), intent(in) :: t, c(3, 3), r(3), psi, u(6), s_geom, x(:)
+    !> The diffraction load's slow-clock window (used when valid).
     type(diffraction_cache_type), intent(in) :: cache
+    !> Rates of the states; generalized forces (Kane order) [N m, N]; modal masses 1 + s lambda.
     real(wp), intent(out) :: xdot(:), f(6), v(6)
     real(wp) :: mu(6), s, load(6), m(3, 3)
     s = x(1)
@@ -197,9 +220,13 @@ contains
 
   !> Sample the window [t1, t2] at the CG's horizontal position r(1:2) and yaw psi.
   pure subroutine diffraction_refresh(self, sea, t1, t2, r, psi, cache)
+    !> The boat's BEM water model.
     type(boat_bem_type), intent(in) :: self
+    !> The sea whose diffraction load is sampled.
     type(wave_field_type), intent(in) :: sea
+    !> Window start and end [s], CG position (inertial) [m], yaw [rad].
     real(wp), intent(in) :: t1, t2, r(3), psi
+    !> The window sampled.
     type(diffraction_cache_type), intent(out) :: cache
     integer :: j
     cache%t = [t1, t2]

@@ -31,6 +31,7 @@ module davit_boat_contact
 
   !> The Hertz laws: stiffness K [N/m^1.5] (eq. 27) and the phases both laws go through.
   type, abstract, extends(contact_law_type) :: hertz_law_type
+    !> Hertz stiffness K [N/m^1.5] (eq. 27).
     real(wp) :: k = 0.0_wp
   contains
     procedure :: update => hertz_update
@@ -54,6 +55,8 @@ contains
   !> K = (4/3) E* sqrt(R) from the two materials; r_ship <= 0 means a flat ship side (R = R_b).
   pure real(wp) function hertz_stiffness(e_boat, nu_boat, e_ship, nu_ship, r_boat, r_ship) &
     result(k)
+    !> Young's moduli [Pa] and Poisson ratios of the boat's and the ship's materials, and the radii
+    !> of curvature of the boat and the ship [m] (r_ship <= 0: flat side).
     real(wp), intent(in) :: e_boat, nu_boat, e_ship, nu_ship, r_boat, r_ship
     real(wp) :: e_star, r
     e_star = 1.0_wp/((1.0_wp - nu_boat**2)/e_boat + (1.0_wp - nu_ship**2)/e_ship)
@@ -65,8 +68,11 @@ contains
   !> Hertz compression from the offset (the dent of the last contact), the elastoplastic
   !> restitution down to the permanent set, nothing while separated.
   pure real(wp) function elastoplastic_force(self, s, delta, delta_dot) result(f)
+    !> The elastoplastic Hertz law.
     class(hertz_elastoplastic_law_type), intent(in) :: self
+    !> The fender's contact state (phase, offset, turning point).
     type(fender_state_type), intent(in) :: s
+    !> Penetration into the side plane [m] and its rate [m/s] (positive approaching).
     real(wp), intent(in) :: delta, delta_dot
     real(wp) :: dp
     f = 0.0_wp
@@ -85,8 +91,11 @@ contains
   !> f = K delta^(3/2) (1 + 3 (1 - e^2)/4 delta_dot/v0), clipped at zero; plain Hertz before
   !> the approach speed v0 is recorded.
   pure real(wp) function lankarani_nikravesh_force(self, s, delta, delta_dot) result(f)
+    !> The Lankarani-Nikravesh law.
     class(lankarani_nikravesh_law_type), intent(in) :: self
+    !> The fender's contact state (approach speed v0).
     type(fender_state_type), intent(in) :: s
+    !> Penetration into the side plane [m] and its rate [m/s] (positive approaching).
     real(wp), intent(in) :: delta, delta_dot
     f = 0.0_wp
     if (delta <= 0.0_wp) return
@@ -103,8 +112,11 @@ contains
   !> restitution (recording delta_max and f_max there); the contact ends when the force
   !> vanishes (delta <= delta_p) or the point is back on its side (delta <= 0).
   pure subroutine hertz_update(self, s, delta, delta_dot)
+    !> The Hertz law.
     class(hertz_law_type), intent(in) :: self
+    !> The fender's contact state, advanced.
     type(fender_state_type), intent(inout) :: s
+    !> Penetration [m] and its rate [m/s] at the end of the accepted step.
     real(wp), intent(in) :: delta, delta_dot
     select case (s%phase)
     case (phase_free)
@@ -140,8 +152,11 @@ contains
   !> location asks at every point it tries (davit_system_model's modes). The same branches
   !> as hertz_update; a test holds the two together.
   pure integer function hertz_next_phase(self, s, delta, delta_dot) result(phase)
+    !> The Hertz law.
     class(hertz_law_type), intent(in) :: self
+    !> The fender's contact state.
     type(fender_state_type), intent(in) :: s
+    !> Penetration [m] and its rate [m/s] at the point tried.
     real(wp), intent(in) :: delta, delta_dot
     phase = s%phase
     select case (s%phase)
@@ -194,8 +209,11 @@ contains
   !> Hertz impact of an effective mass m at speed v0 (review A4): energy balance
   !> 1/2 m v0^2 = 2/5 K delta_m^(5/2) gives delta_m and f_m = K delta_m^(3/2).
   pure subroutine hertz_peak(c, mass, v0, delta_m, f_m)
+    !> The Hertz law (its stiffness K).
     class(hertz_law_type), intent(in) :: c
+    !> Effective mass [kg] and approach speed [m/s].
     real(wp), intent(in) :: mass, v0
+    !> Peak penetration [m] and peak force [N].
     real(wp), intent(out) :: delta_m, f_m
     delta_m = (1.25_wp*mass*v0**2/c%k)**0.4_wp
     f_m = c%k*delta_m**1.5_wp

@@ -28,6 +28,7 @@ module davit_boat_contact_law
                                                          "lankarani_nikravesh"]
 
   type :: fender_state_type
+    !> Contact phase: phase_free, phase_compression, phase_restitution or phase_separated.
     integer :: phase = phase_free
     !> Approach speed at first contact [m/s], recorded maximum indentation [m] and force [N],
     !> permanent set of the last contact at which a new compression starts [m].
@@ -39,6 +40,7 @@ module davit_boat_contact_law
   !> A fender contact law; `restitution` is the coefficient of restitution e_r every law
   !> is built to return.
   type, abstract :: contact_law_type
+    !> Coefficient of restitution e_r the law is built to return (0..1).
     real(wp) :: restitution = 0.8_wp
   contains
     procedure(force_i), deferred :: force

@@ -16,12 +16,14 @@ module davit_boat_fenders
   public :: side_plane_type, fender_set_type, new_fender_set, fender_probe, fender_loads
 
   type :: side_plane_type
+    !> A point of the ship's side plane and its unit normal towards the boat, inertial [m].
     real(wp) :: point(3) = 0.0_wp, normal(3) = [0.0_wp, 1.0_wp, 0.0_wp]
     !> Rigid motion of the ship: a reference point, its velocity, angular velocity [SI].
     real(wp) :: origin(3) = 0.0_wp, velocity(3) = 0.0_wp, angular_velocity(3) = 0.0_wp
   end type side_plane_type
 
   type :: fender_set_type
+    !> Number of fenders and of contact points per fender.
     integer :: nf = 0, nd = 0
     !> Fender points in the boat frame, (3, nd, nf) [m].
     real(wp), allocatable :: points(:, :, :)
@@ -34,8 +36,12 @@ contains
   !> Fenders at boat-frame x positions xs, all at y = y0, each with nd points evenly over
   !> z in [z_range(1), z_range(2)].
   pure function new_fender_set(xs, y0, z_range, nd, law) result(fs)
+    !> Fender positions along b1 [m]; their common b2 offset [m]; the b3 extent of their points
+    !> [m].
     real(wp), intent(in) :: xs(:), y0, z_range(2)
+    !> Contact points per fender (>= 1).
     integer, intent(in) :: nd
+    !> The contact law of every fender.
     class(contact_law_type), intent(in) :: law
     type(fender_set_type) :: fs
     integer :: i, j
@@ -56,10 +62,15 @@ contains
   !> For each fender: the deepest point (index), its penetration delta (= -distance) and
   !> approach rate delta_dot (eq. 33), for a boat with rotation c, CG r and speeds u.
   pure subroutine fender_probe(fs, plane, c, r, u, deepest, delta, delta_dot)
+    !> The boat's fenders.
     type(fender_set_type), intent(in) :: fs
+    !> The ship's side plane (inertial).
     type(side_plane_type), intent(in) :: plane
+    !> Boat rotation b -> inertial, CG position (inertial) [m], speeds (Kane order).
     real(wp), intent(in) :: c(3, 3), r(3), u(6)
+    !> Per fender, the index of its deepest point.
     integer, intent(out) :: deepest(fs%nf)
+    !> Per fender, the penetration of its deepest point [m] and its rate [m/s].
     real(wp), intent(out) :: delta(fs%nf), delta_dot(fs%nf)
     real(wp) :: p(3), d, v_point(3), v_plane(3)
     integer :: i, j
@@ -84,10 +95,15 @@ contains
   !> Generalized contact force on the boat (eq. 34, one contact per fender) and the normal
   !> force of each fender [N].
   pure subroutine fender_loads(fs, states, plane, c, r, u, f, force)
+    !> The boat's fenders.
     type(fender_set_type), intent(in) :: fs
+    !> Each fender's contact state.
     type(fender_state_type), intent(in) :: states(:)
+    !> The ship's side plane (inertial).
     type(side_plane_type), intent(in) :: plane
+    !> Boat rotation b -> inertial, CG position (inertial) [m], speeds (Kane order).
     real(wp), intent(in) :: c(3, 3), r(3), u(6)
+    !> Generalized forces (Kane order) [N m, N]; each fender's normal force [N].
     real(wp), intent(out) :: f(6), force(fs%nf)
     integer :: deepest(fs%nf), j
     real(wp) :: delta(fs%nf), delta_dot(fs%nf)

@@ -18,7 +18,9 @@ module davit_boat_hull
   public :: hull_metacentric_height, hull_waterplane_area
 
   type :: boat_hull_type
+    !> Number of sections along the hull.
     integer :: n = 0
+    !> Length, beam and height of the hull [m]; keel depth below the CG [m].
     real(wp) :: length = 0.0_wp, beam = 0.0_wp, height = 0.0_wp, keel = 0.0_wp
     !> Strip thickness t_s = L/n [m].
     real(wp) :: thickness = 0.0_wp
@@ -31,18 +33,27 @@ module davit_boat_hull
   !> (m corners (y, z), in the rectangle's order; cut(i): corner i lies on the surface
   !> line, so the edge i -> i+1 is the waterline where both its ends are cut).
   type :: section_wet_type
+    !> Wet area [m^2].
     real(wp) :: area = 0.0_wp
+    !> Centroid (y, z) of the wet area, boat frame [m].
     real(wp) :: centroid(2) = 0.0_wp
+    !> Wet width along b2 and wet height along b3 [m].
     real(wp) :: width = 0.0_wp, height = 0.0_wp
+    !> Corners of the wet polygon (0..5).
     integer :: m = 0
+    !> The wet polygon's corners (y, z), boat frame [m].
     real(wp) :: poly(2, 5) = 0.0_wp
+    !> Whether corner i lies on the surface line.
     logical :: cut(5) = .false.
   end type section_wet_type
 
 contains
 
   pure function new_boat_hull(length, beam, height, keel, exponent, n) result(h)
+    !> Length, beam, height [m], keel depth below the CG [m] and the breadth exponent of the
+    !> sections' taper.
     real(wp), intent(in) :: length, beam, height, keel, exponent
+    !> Number of sections.
     integer, intent(in) :: n
     type(boat_hull_type) :: h
     integer :: k
@@ -62,8 +73,12 @@ contains
   !> Wet part of section k where the depth below the surface is d(y, z) = d0 + gy y + gz z
   !> (d0 includes the section's x position; wet where d > 0).
   pure function section_immersion(h, k, d0, gy, gz) result(s)
+    !> The hull.
     type(boat_hull_type), intent(in) :: h
+    !> Section index (1..n).
     integer, intent(in) :: k
+    !> Depth below the surface at the section's centre d0 [m] (with its x position) and its slopes
+    !> gy, gz along b2, b3: d(y, z) = d0 + gy y + gz z.
     real(wp), intent(in) :: d0, gy, gz
     type(section_wet_type) :: s
     real(wp) :: corner(2, 4), poly(2, 5), depth(4), a, cross_term, half
@@ -115,6 +130,7 @@ contains
 
   !> Waterplane area of the upright strip hull, sum b_k t_s [m^2].
   pure real(wp) function hull_waterplane_area(h) result(a)
+    !> The hull.
     type(boat_hull_type), intent(in) :: h
     a = sum(h%breadth)*h%thickness
   end function hull_waterplane_area
@@ -124,7 +140,9 @@ contains
   !> KB = T/2 (wall-sided sections, flat bottom), BM = I_T/v, I_T = sum b_k^3 t_s/12 (the
   !> strips' waterplane), KG = h%keel (review G25). 0.766 m for the III.B boat.
   pure real(wp) function hull_metacentric_height(h, v) result(gm)
+    !> The hull.
     type(boat_hull_type), intent(in) :: h
+    !> Wet volume [m^3].
     real(wp), intent(in) :: v
     gm = 0.5_wp*v/hull_waterplane_area(h) + sum(h%breadth**3)*h%thickness/(12.0_wp*v) - h%keel
   end function hull_metacentric_height

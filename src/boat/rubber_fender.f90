@@ -47,6 +47,7 @@ contains
   !> table index is formed from the deflection clamped to the table, never from int() of a
   !> value out of the integer range.
   pure real(wp) function rubber_loading(d, r_rated, delta) result(f)
+    !> Fender diameter [m], rated reaction [N] at 60 % deflection, deflection [m].
     real(wp), intent(in) :: d, r_rated, delta
     real(wp) :: x, w
     integer :: i, n
@@ -66,6 +67,8 @@ contains
   !> Unloading reaction [N] from the turning point (delta_m, f_m) with exponent p; capped
   !> at f_m (beyond delta_m the fender is loading again, which the phase machine catches).
   pure real(wp) function rubber_unloading(d, r_rated, f_m, p, delta) result(f)
+    !> Fender diameter [m], rated reaction [N], force at the turning point [N], unloading exponent,
+    !> deflection [m].
     real(wp), intent(in) :: d, r_rated, f_m, p, delta
     f = 0.0_wp
     if (delta <= 0.0_wp .or. f_m <= 0.0_wp) return
@@ -74,6 +77,7 @@ contains
 
   !> Work [J] of the path f_m (R/f_m)^p from 0 to delta_m (p = 1: the loading curve).
   pure real(wp) function rubber_work(d, r_rated, delta_m, p) result(w)
+    !> Fender diameter [m], rated reaction [N], turning-point deflection [m], path exponent.
     real(wp), intent(in) :: d, r_rated, delta_m, p
     real(wp) :: h, f_m
     integer :: i
@@ -90,6 +94,8 @@ contains
   !> The exponent p >= 1 whose unloading path returns e^2 of the loading work up to
   !> delta_m (bisection on a bracket that doubles until it holds the root).
   pure real(wp) function rubber_unloading_exponent(d, r_rated, delta_m, e) result(p)
+    !> Fender diameter [m], rated reaction [N], turning-point deflection [m], coefficient of
+    !> restitution.
     real(wp), intent(in) :: d, r_rated, delta_m, e
     real(wp) :: target, lo, hi
     integer :: it

@@ -28,6 +28,8 @@ contains
   !> Rubber fender law: diameter d [m], rated reaction r_rated [N] at 60 % deflection,
   !> coefficient of restitution e_r.
   pure function new_rubber_fender_law(d, r_rated, restitution) result(c)
+    !> Fender diameter [m], rated reaction [N] at 60 % deflection, coefficient of restitution
+    !> (0..1).
     real(wp), intent(in) :: d, r_rated, restitution
     type(rubber_fender_law_type) :: c
     c%diameter = d
@@ -37,8 +39,11 @@ contains
 
   !> The loading curve, or the unloading path of this contact's turning point.
   pure real(wp) function rubber_force(self, s, delta, delta_dot) result(f)
+    !> The rubber fender law.
     class(rubber_fender_law_type), intent(in) :: self
+    !> The fender's contact state (phase, turning point, exponent).
     type(fender_state_type), intent(in) :: s
+    !> Deflection [m] and its rate [m/s] (positive approaching).
     real(wp), intent(in) :: delta, delta_dot
     f = 0.0_wp
     if (delta <= 0.0_wp) return
@@ -52,8 +57,11 @@ contains
   !> The phases after an accepted step; the unloading exponent of a turning point is
   !> solved once here.
   pure subroutine rubber_update(self, s, delta, delta_dot)
+    !> The rubber fender law.
     class(rubber_fender_law_type), intent(in) :: self
+    !> The fender's contact state, advanced.
     type(fender_state_type), intent(inout) :: s
+    !> Deflection [m] and its rate [m/s] at the end of the accepted step.
     real(wp), intent(in) :: delta, delta_dot
     if (delta <= 0.0_wp) then
       s = fender_state_type()
@@ -82,8 +90,11 @@ contains
 
   !> The phase rubber_update would set, without the root solve for the exponent.
   pure integer function rubber_next_phase(self, s, delta, delta_dot) result(phase)
+    !> The rubber fender law.
     class(rubber_fender_law_type), intent(in) :: self
+    !> The fender's contact state.
     type(fender_state_type), intent(in) :: s
+    !> Deflection [m] and its rate [m/s] at the point tried.
     real(wp), intent(in) :: delta, delta_dot
     phase = s%phase
     if (delta <= 0.0_wp) then

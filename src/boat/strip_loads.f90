@@ -52,7 +52,9 @@ module davit_boat_strip_loads
   integer, parameter :: strip_level_pressure = 1, strip_level_paper = 2
 
   type :: strip_model_type
+    !> The hull's sections.
     type(boat_hull_type) :: hull
+    !> Level of detail: strip_level_pressure or the paper's strips.
     integer :: level = strip_level_pressure
     !> Drag coefficients along b1, b2, b3 (paper: C_fluid = 1.2).
     real(wp) :: cd(3) = 1.2_wp
@@ -76,9 +78,14 @@ contains
   !> B = 2 zeta sqrt(C M).
   pure function new_strip_model(hull, cd, metacentric_height, zeta, mass, inertia, level, &
                                 paper_roll) result(s)
+    !> The hull's sections.
     type(boat_hull_type), intent(in) :: hull
+    !> Drag coefficients along b1, b2, b3; metacentric height [m]; damping fractions; mass [kg];
+    !> principal moments of inertia [kg m^2].
     real(wp), intent(in) :: cd(3), metacentric_height, zeta(3), mass, inertia(3)
+    !> Level of detail (default: pressure-integrated strips).
     integer, intent(in), optional :: level
+    !> Roll from the paper's formula instead of the hull's breadth.
     logical, intent(in), optional :: paper_roll
     type(strip_model_type) :: s
     real(wp) :: c33, c44, c55
@@ -100,6 +107,7 @@ contains
 
   !> Velocity of the strip centre (x, 0, 0) in b: (u4, u5 + x u3, u6 - x u2) (review §1.5).
   pure function strip_velocity(u, x) result(v)
+    !> Boat speeds (Kane order) [rad/s, m/s]; strip position along b1 [m].
     real(wp), intent(in) :: u(6), x
     real(wp) :: v(3)
     ! eq. (20) written out (the partial-velocity matrix product made a heap temporary)
@@ -110,6 +118,7 @@ contains
 
   !> Partial velocities of the strip centre, eq. (20): column r is dv/du_r in b.
   pure function strip_partial_velocities(x) result(vr)
+    !> Strip position along b1 [m].
     real(wp), intent(in) :: x
     real(wp) :: vr(3, 6)
     vr = 0.0_wp
@@ -125,7 +134,9 @@ contains
   !> rho g (h - GM_T) (1 - cos phi) V with the paper's roll stiffness. With -m g z_G and
   !> the kinetic energy, the undamped boat's energy.
   pure real(wp) function strip_potential(s, c, r) result(e)
+    !> The strip model.
     type(strip_model_type), intent(in) :: s
+    !> Boat rotation b -> inertial and CG position (inertial) [m].
     real(wp), intent(in) :: c(3, 3), r(3)
     type(section_wet_type) :: wet
     real(wp) :: v, n3(3)
@@ -148,10 +159,15 @@ contains
   !> CG r (inertial) and speeds u at time t; also the wet volume [m^3]. With a cache
   !> that covers t, the water comes from its slow clock (davit_boat_strip_waves).
   pure subroutine strip_loads(s, field, t, c, r, u, f, volume, cache)
+    !> The strip model.
     type(strip_model_type), intent(in) :: s
+    !> The sea at the strips.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m], speeds (Kane order).
     real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
+    !> Generalized forces (Kane order) [N m, N]; wet volume [m^3].
     real(wp), intent(out) :: f(6), volume
+    !> The water at the strips on the slow clock (absent: evaluated directly).
     type(strip_wave_cache_type), intent(in), optional :: cache
     type(section_wet_type) :: wet(s%hull%n)
     real(wp) :: vrel(3, s%hull%n), grad_d(3, s%hull%n), fk(3), p(3), eta, slope(2), a1max

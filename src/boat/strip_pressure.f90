@@ -45,8 +45,11 @@ contains
   !> grad of a cos(theta) is a sin(theta) (kx, ky); the Stokes-2 term (k a^2/2) cos(2 theta)
   !> adds k a^2 sin(2 theta) (kx, ky) (r^2 with the ramp r).
   pure subroutine surface_plane(field, t, x, y, eta, grad)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
+    !> Surface elevation [m] (up) and its horizontal gradient.
     real(wp), intent(out) :: eta, grad(2)
     real(wp) :: th(wave_chunk), r, s2, th1
     integer :: i0, i1
@@ -78,10 +81,16 @@ contains
   !> load = (F2, F3, M1) in b per unit ramp [N, N, N m] (force on the strip of thickness
   !> t_s; M1 about b1 through G) and rate = d(load)/dt at fixed geometry.
   pure subroutine section_wave_load(field, t, hull, wet, c, pk, d0, gy, gz, load, rate)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> The hull.
     type(boat_hull_type), intent(in) :: hull
+    !> The section's wet polygon.
     type(section_wet_type), intent(in) :: wet
+    !> Time [s], rotation b -> inertial, section centre (inertial) [m], and the depth d0 [m] with
+    !> its slopes gy, gz across the section (d = d0 + gy y + gz z).
     real(wp), intent(in) :: t, c(3, 3), pk(3), d0, gy, gz
+    !> Froude-Krylov load on the section per unit length, boat frame [N/m], and its time rate.
     real(wp), intent(out) :: load(3), rate(3)
     real(wp) :: loads(3, 1), rates(3, 1)
     call section_wave_loads(field, [t], hull, wet, c, pk, d0, gy, gz, loads, rates)
@@ -97,11 +106,18 @@ contains
   !> the block (vectorised: exp and fast_sincos have SIMD forms, complex exp and libm
   !> sincos do not), summed per lane and reduced once at the end.
   pure subroutine section_wave_loads(field, times, hull, wet, c, pk, d0, gy, gz, load, rate)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Sample times [s].
     real(wp), intent(in) :: times(:)
+    !> The hull.
     type(boat_hull_type), intent(in) :: hull
+    !> The section's wet polygon.
     type(section_wet_type), intent(in) :: wet
+    !> Rotation b -> inertial, section centre (inertial) [m], and the depth d0 [m] with its slopes
+    !> gy, gz across the section (d = d0 + gy y + gz z).
     real(wp), intent(in) :: c(3, 3), pk(3), d0, gy, gz
+    !> Load per unit length (3, time) [N/m] and its time rate at each sample.
     real(wp), intent(out) :: load(:, :), rate(:, :)
     real(wp) :: depth(5), dxy(2, 5), geo(5, 5), j(4)
     ! per block: lags and vertex factors f_v = exp(-k d_v) (cos lag_v, -sin lag_v), time

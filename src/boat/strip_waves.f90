@@ -42,6 +42,7 @@ module davit_boat_strip_waves
   real(wp), parameter :: reach = 2.0_wp
 
   type :: strip_wave_cache_type
+    !> Whether the slow clock is on, and whether its window holds samples.
     logical :: enabled = .false., valid = .false.
     !> Window length h [s] and the window [t1, t2].
     real(wp) :: window = 0.0_wp, t(2) = 0.0_wp
@@ -57,6 +58,7 @@ module davit_boat_strip_waves
     !> Unramped dynamic section loads (F2, F3, M1) and their rates, (3, 2, end, strip), for
     !> the strips wet at t1 (`loaded`).
     real(wp), allocatable :: fk(:, :, :, :)
+    !> Per strip, whether its samples were taken (it was possibly wet).
     logical, allocatable :: loaded(:)
   end type strip_wave_cache_type
 
@@ -64,8 +66,11 @@ contains
 
   !> A cache for n strips with window h [s]; enabled only for irregular seas and h > 0.
   pure function new_strip_wave_cache(field, n, h) result(cache)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Number of strips.
     integer, intent(in) :: n
+    !> Length of a window [s] (0: off).
     real(wp), intent(in) :: h
     type(strip_wave_cache_type) :: cache
     cache%window = h
@@ -80,8 +85,11 @@ contains
   !> After a step ending at t: true when the window should be renewed (the next step may
   !> leave it); records t.
   subroutine strip_waves_due(cache, t, due)
+    !> The strips' window.
     type(strip_wave_cache_type), intent(inout) :: cache
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> Whether t has left the window and it must be refreshed.
     logical, intent(out) :: due
     due = cache%enabled .and. (.not. cache%valid .or. t < cache%t(1) .or. &
                                t + reach*max(t - cache%t_last, 0.0_wp) > cache%t(2))
@@ -90,7 +98,9 @@ contains
 
   !> True when a stage at time t may use the cache.
   pure logical function strip_waves_cover(cache, t)
+    !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
+    !> Time [s].
     real(wp), intent(in) :: t
     strip_waves_cover = cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)
   end function strip_waves_cover
@@ -104,11 +114,17 @@ contains
   !> With the grids (`&sea kinematics = 'grid'`), the elevation terms come from `surface`
   !> and the velocity terms from `volume` wherever they hold the point, else the exact sums.
   pure subroutine strip_waves_refresh(cache, hull, field, t, c, r, maybe_wet, surface, volume)
+    !> The strips' window, refilled.
     type(strip_wave_cache_type), intent(inout) :: cache
+    !> The hull.
     type(boat_hull_type), intent(in) :: hull
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Window start [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> Per strip, whether it may be wet in the window (only those are sampled).
     logical, intent(in) :: maybe_wet(:)
+    !> Precomputed grids of the surface and of the water below it (absent: the sea itself).
     type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
     real(wp) :: p(3), q(3), eta, ramp
@@ -198,8 +214,11 @@ contains
   !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
   !> One pass with independent accumulators: the sums are latency-bound one at a time.
   pure subroutine elevation_sums(field, t, x, y, e)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
+    !> Unramped elevation [m] and its derivatives in t, x, y.
     real(wp), intent(out) :: e(ne)
     real(wp) :: s(wave_chunk), cs(wave_chunk), as
     integer :: i, i0, m
@@ -223,8 +242,12 @@ contains
   !> theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin,
   !> d(sin)/dx = -kx cos, d/dd = -k. One pass, independent accumulators.
   pure subroutine kinematic_sums(field, t, x, y, d, e, v)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], horizontal position (inertial) [m], stretched depth [m].
     real(wp), intent(in) :: t, x, y, d
+    !> Unramped elevation terms (as elevation_sums) and water velocity (inertial, z down) [m/s]
+    !> with its derivatives in t, x, y, d.
     real(wp), intent(out) :: e(ne), v(3, nv)
     real(wp) :: s(wave_chunk), cs(wave_chunk), w(wave_chunk), as, wc, ws, wcg, wsg, wsc, wss
     integer :: i, i0, m, l
@@ -276,9 +299,13 @@ contains
 
   !> Elevation [m] (up) at the horizontal point (x, y) near strip k's centre at time t.
   pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
+    !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (when the window does not hold strip k).
     type(wave_field_type), intent(in) :: field
+    !> Strip index.
     integer, intent(in) :: k
+    !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
     real(wp) :: lam
     lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
@@ -289,10 +316,15 @@ contains
   !> Elevation and water velocity (inertial, z down; zero above the surface) at the point
   !> pt near strip k's wet centroid at time t, as wave_kinematics gives them.
   pure subroutine cached_kinematics(cache, field, k, t, pt, eta, velocity)
+    !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (when the window does not hold strip k).
     type(wave_field_type), intent(in) :: field
+    !> Strip index.
     integer, intent(in) :: k
+    !> Time [s] and the point (inertial) [m].
     real(wp), intent(in) :: t, pt(3)
+    !> Surface elevation [m] and the water velocity at the point, inertial [m/s].
     real(wp), intent(out) :: eta, velocity(3)
     real(wp) :: hw(4), lam, ramp, dx(3)
     integer :: i
@@ -316,9 +348,13 @@ contains
   !> Surface slope (d eta/dx, d eta/dy) near strip k's centre at time t (the gradient terms
   !> of the elevation, linear in time over the window).
   pure function cached_slope(cache, field, k, t) result(slope)
+    !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (when the window does not hold strip k).
     type(wave_field_type), intent(in) :: field
+    !> Strip index.
     integer, intent(in) :: k
+    !> Time [s].
     real(wp), intent(in) :: t
     real(wp) :: slope(2), lam
     lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
@@ -328,11 +364,17 @@ contains
   !> Dynamic section load (F2, F3, M1) of strip k at time t from the window (found), or
   !> found = .false. where the strip was dry at t1.
   pure subroutine cached_wave_load(cache, field, k, t, load, found)
+    !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Strip index.
     integer, intent(in) :: k
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> The section's pressure load per unit length, boat frame [N/m].
     real(wp), intent(out) :: load(3)
+    !> Whether the window holds the load of strip k.
     logical, intent(out) :: found
     real(wp) :: hw(4)
     load = 0.0_wp

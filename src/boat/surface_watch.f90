@@ -27,6 +27,7 @@ module davit_boat_surface_watch
   public :: surface_watch_type, new_surface_watch, watch_refresh, surely_dry, strip_surely_dry
 
   type :: surface_watch_type
+    !> Whether the samples below have been taken.
     logical :: valid = .false.
     !> Sample time [s] and refresh interval [s].
     real(wp) :: t = 0.0_wp, interval = 0.05_wp
@@ -37,10 +38,12 @@ module davit_boat_surface_watch
     !> Lipschitz constants of eta in time [m/s] and in horizontal space [-], and of its
     !> slope in time [1/s] and space [1/m].
     real(wp) :: rate_bound = 0.0_wp, slope_bound = 0.0_wp
+    !> Lipschitz constants of the slope in time [1/s] and in space [1/m].
     real(wp) :: slope_rate_bound = 0.0_wp, curvature_bound = 0.0_wp
     !> Interpolation error bounds of the elevation [m] and slope [-] of a sample taken
     !> from the grid (`&sea kinematics = 'grid'`), added so the proof stays a proof.
     real(wp) :: grid_error(2) = 0.0_wp
+    !> Per strip, whether its surface came from the precomputed grid.
     logical, allocatable :: from_grid(:)
   end type surface_watch_type
 
@@ -48,8 +51,11 @@ contains
 
   !> Bounds of the field's rate and slope; the watch starts invalid (no shortcut).
   pure function new_surface_watch(field, nstrips, interval) result(w)
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Number of strips.
     integer, intent(in) :: nstrips
+    !> Length of a window [s].
     real(wp), intent(in) :: interval
     type(surface_watch_type) :: w
     real(wp) :: amp, ramp_rate, stokes
@@ -78,10 +84,15 @@ contains
   !> grid where given and it holds the point (its error bound added in the proof), else
   !> the exact sum.
   pure subroutine watch_refresh(w, s, field, t, c, r, grid)
+    !> The watch, refreshed.
     type(surface_watch_type), intent(inout) :: w
+    !> The strip model.
     type(strip_model_type), intent(in) :: s
+    !> The sea.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> Precomputed surface grid (absent: the sea itself).
     type(wave_grid_type), intent(in), optional :: grid
     real(wp) :: p(3), grad(2), e(4)
     integer :: k
@@ -105,8 +116,11 @@ contains
 
   !> True only if no strip can touch the water at time t with the boat at (c, r).
   pure logical function surely_dry(w, s, t, c, r)
+    !> The watch.
     type(surface_watch_type), intent(in) :: w
+    !> The strip model.
     type(strip_model_type), intent(in) :: s
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
     integer :: k
     surely_dry = .false.
@@ -119,9 +133,13 @@ contains
 
   !> True only if strip k cannot touch the water at time t with the boat at (c, r).
   pure logical function strip_surely_dry(w, s, k, t, c, r)
+    !> The watch.
     type(surface_watch_type), intent(in) :: w
+    !> The strip model.
     type(strip_model_type), intent(in) :: s
+    !> Strip index.
     integer, intent(in) :: k
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
     real(wp) :: p(3), eta_up, dist, radius, grid_error(2)
     type(section_wet_type) :: wet

@@ -28,6 +28,7 @@ module davit_boat_wind_loads
   type, abstract :: boat_wind_type
     !> Projected areas normal to b1, b2, b3 [m^2], drag and lift coefficients.
     real(wp) :: areas(3) = [8.5_wp, 26.2_wp, 26.2_wp]
+    !> Drag and lift coefficients of the hull (eqs. 15-16).
     real(wp) :: cd = 0.5_wp, cl = 1.2_wp
     !> Lift cylinder diameter D_b and length l_b [m].
     real(wp) :: diameter = 3.29_wp, length = 11.5_wp
@@ -62,7 +63,10 @@ contains
 
   !> Force on the boat (b components) for its velocity relative to the air v (b components).
   pure function boat_wind_force(w, v, dry_fraction) result(f)
+    !> The wind load model.
     class(boat_wind_type), intent(in) :: w
+    !> Velocity of the boat relative to the air, b components [m/s]; fraction of the hull above the
+    !> water (0..1).
     real(wp), intent(in) :: v(3), dry_fraction
     real(wp) :: f(3), speed
     f = 0.0_wp
@@ -75,16 +79,22 @@ contains
 
   !> -1/2 rho_air D_b l_b C_L v2^2 along b3 (upward: b3 points down).
   pure subroutine add_symmetric_lift(self, v, f)
+    !> The symmetric lift model.
     class(symmetric_lift_wind_type), intent(in) :: self
+    !> Velocity relative to the air, b components [m/s].
     real(wp), intent(in) :: v(3)
+    !> Force on the boat, b components [N], with the lift added.
     real(wp), intent(inout) :: f(3)
     f(3) = f(3) - 0.5_wp*rho_air*self%diameter*self%length*self%cl*v(2)**2
   end subroutine add_symmetric_lift
 
   !> -1/2 rho_air D_b l_b C_L |v_n|^2 k, k = b1 x v_n / |b1 x v_n| (eq. 16).
   pure subroutine add_literal_lift(self, v, f)
+    !> The paper's lift model (eq. 16).
     class(literal_lift_wind_type), intent(in) :: self
+    !> Velocity relative to the air, b components [m/s].
     real(wp), intent(in) :: v(3)
+    !> Force on the boat, b components [N], with the lift added.
     real(wp), intent(inout) :: f(3)
     real(wp) :: vn(3), kdir(3)
     vn = [0.0_wp, v(2), v(3)]

@@ -3,7 +3,6 @@
 module davit_io_config
   use davit_kinds, only: wp, pi
   use davit_sea_spectrum, only: spectrum_peak_omega
-  use davit_boat_wind_loads, only: lift_form_names
   use davit_solve_factory, only: integrator_names
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
@@ -13,6 +12,7 @@ module davit_io_config
   use davit_io_sea_keys, only: sea_grid_config, read_sea_grid
   use davit_io_limits_keys, only: limits_config, read_limits
   use davit_io_contact_keys, only: contact_config, read_contact
+  use davit_io_boat_keys, only: boat_config, read_boat
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
@@ -21,13 +21,19 @@ module davit_io_config
   public :: level_wave_height, level_wind_speed
 
   type :: simulation_config
+    !> End time [s], time step [s], output interval [s], step limit in contact [s], slow-clock
+    !> interval of the wave loads [s].
     real(wp) :: t_end, dt, output_interval, dt_contact, wave_update
     !> Time the run goes on after the hooks are released [s] (review G24).
     real(wp) :: after_release
+    !> Integrator name; scene ('hanging_boat', 'lowering', 'launch', 'sea', 'ship'); how contact
+    !> limits the step.
     character(len=:), allocatable :: integrator, scene, contact_approach
+    !> Seed of the irregular sea's random phases.
     integer :: seed
     !> RK4 substeps of the fast part per macro step dt (integrator 'multirate', 'multirate2').
     integer :: substeps = 10
+    !> Relative and absolute tolerances of the adaptive integrators.
     real(wp) :: rtol, atol
     !> Adaptive integrators without error control: one step of dt per macro step.
     logical :: fixed_step
@@ -37,73 +43,81 @@ module davit_io_config
 
   !> Sea state (paper eqs. 43-45, review §1.9, G18-G22). Angles are stored in radians.
   type :: sea_config
+    !> Sea-state level (presets), spreading exponent s, number of frequencies and of directions.
     integer :: level, spreading_s, n_frequencies, n_directions
+    !> Wave type ('calm', 'airy', 'stokes2', 'irregular') and the irregular sea's summation
+    !> ('double', 'single_equal_energy', 'single_random').
     character(len=:), allocatable :: wave_type, summation
+    !> Height [m], period [s], direction travelled towards [rad], phase [rad], spreading window
+    !> [rad], lowest and highest frequency [rad/s].
     real(wp) :: height, period, direction, phase, spread_window, omega_min, omega_max
+    !> Time over which the waves ramp up from calm [s].
     real(wp) :: ramp_time
     !> Where height and period came from ("deck", "level 4 preset", ...): printed and
     !> stored with the run's scenario (davit_run_scenario).
     character(len=:), allocatable :: height_source, period_source
+    !> Jitter the frequencies within their bins; each direction draws its own frequency.
     logical :: jitter, independent_frequencies
+    !> Wave probes' x and y (inertial) [m].
     real(wp), allocatable :: probes_x(:), probes_y(:)
+    !> Precomputed-grid kinematics (&sea kinematics and the grid's keys).
     type(sea_grid_config) :: grid
   end type sea_config
 
   !> Response amplitude operators of the ship (`davit rao`).
   type :: rao_config
+    !> Wave frequencies [rad/s] and headings relative to the ship [rad] of the RAO runs.
     real(wp), allocatable :: omegas(:), headings(:)
+    !> Wave amplitude [m], settling time before measuring [s], time step [s].
     real(wp) :: amplitude, settle_time, dt
+    !> Wave periods measured after settling.
     integer :: measure_periods
   end type rao_config
 
   !> Steady wind for the force models (eq. 15, 46); direction it blows towards [rad].
   type :: wind_config
+    !> Wind speed [m/s] and the direction it blows towards [rad].
     real(wp) :: speed, direction
     !> Where speed and direction came from ("deck", "level 5 preset", ...): a deck copied
     !> with another level keeps a pinned speed, so the run says which it used.
     character(len=:), allocatable :: speed_source, direction_source
   end type wind_config
 
-  !> Lifeboat of Section III.B (review F5) and its initial state.
-  type :: boat_config
-    real(wp) :: mass, inertia(3)
-    real(wp) :: position(3), euler(3), velocity(3), angular_velocity(3)
-    !> Strip hull (review G25) and water loads (eqs. 18-25).
-    real(wp) :: length, beam, height, keel, breadth_exponent, drag_coefficients(3)
-    real(wp) :: metacentric_height, zeta(3)
-    integer :: strips
-    !> Roll stiffness ('hull' | 'paper').
-    character(len=:), allocatable :: roll_restoring
-    !> Wind on the boat (eqs. 15-16, review §1.4, G27).
-    real(wp) :: wind_areas(3), wind_drag_coefficient, lift_coefficient, lift_diameter
-    character(len=:), allocatable :: lift_form
-    !> Water-load model (issue 18): 'bem' (pressure-integrated strips plus added mass,
-    !> radiation memory, diffraction and viscous roll damping from the hull's BEM database),
-    !> 'pressure' (the pressure-integrated strips alone) or 'paper' (the paper's strips).
-    character(len=:), allocatable :: water_model, database
-    real(wp) :: roll_damping, full_immersion
-  end type boat_config
-
   !> Two massless elastic slings from fixed anchors to the hooks (foundation rigging).
   type :: slings_config
+    !> Hook and anchor positions, fore and aft, inertial [m].
     real(wp) :: hook_fore(3), hook_aft(3), anchor_fore(3), anchor_aft(3)
+    !> Unstretched sling length [m], wire diameter [m], Young's modulus [Pa], axial dashpot [N
+    !> s/m].
     real(wp) :: length, diameter, youngs_modulus, damping
+    !> Whether the slings hold the boat.
     logical :: attached
   end type slings_config
 
   type :: config_type
+    !> Path of the deck read.
     character(len=:), allocatable :: filename
     !> The deck text as read, stored in the output file.
     character(len=:), allocatable :: deck_text
+    !> &simulation: scene, integrator, times, tolerances.
     type(simulation_config) :: simulation
+    !> &boat: the lifeboat and its loads.
     type(boat_config) :: boat
+    !> &slings: the foundation slings.
     type(slings_config) :: slings
+    !> &sea: the sea state.
     type(sea_config) :: sea
+    !> &wind: the steady wind.
     type(wind_config) :: wind
+    !> &ship (and &mmg): the ship.
     type(ship_config) :: ship
+    !> &rao: the RAO runs.
     type(rao_config) :: rao
+    !> &contact: fenders and contact law.
     type(contact_config) :: contact
+    !> &rigging: falls, slings, winch.
     type(rigging_config) :: rigging
+    !> &limits: rule limits and the occupant model.
     type(limits_config) :: limits
   end type config_type
 
@@ -111,8 +125,11 @@ contains
 
   !> Read, validate and return the configuration of deck file `filename`.
   subroutine read_config(filename, cfg, error)
+    !> Path of the deck.
     character(len=*), intent(in) :: filename
+    !> The configuration, every key checked.
     type(config_type), intent(out) :: cfg
+    !> Set for the first unreadable line or refused key (file, line, group, key, range).
     type(error_type), allocatable, intent(out) :: error
     type(nml_deck) :: deck
     call read_deck(filename, deck, error)
@@ -122,8 +139,11 @@ contains
 
   !> Same as read_config for deck text in memory (tests).
   subroutine parse_config(filename, text, cfg, error)
+    !> Name used in messages; the deck text.
     character(len=*), intent(in) :: filename, text
+    !> The configuration, every key checked.
     type(config_type), intent(out) :: cfg
+    !> Set for the first unreadable line or refused key (file, line, group, key, range).
     type(error_type), allocatable, intent(out) :: error
     type(nml_deck) :: deck
     call parse_deck(filename, text, deck, error)
@@ -133,6 +153,7 @@ contains
 
   !> The documentation of every key (defaults of an empty deck).
   subroutine document_keys(docs)
+    !> Every key of every group with its default, range, units and description.
     type(key_doc), allocatable, intent(out) :: docs(:)
     type(nml_deck) :: deck
     type(config_type) :: cfg
@@ -296,88 +317,6 @@ contains
                   "slack or taut on the integrator's dense output, cutting the step there.")
   end subroutine read_simulation
 
-  subroutine read_boat(r, b)
-    type(deck_reader_type), intent(inout) :: r
-    type(boat_config), intent(inout) :: b
-    character(len=*), parameter :: g = "boat"
-    call r%real(g, "mass", b%mass, 8500.0_wp, 0.0_wp, 1.0e6_wp, "kg", &
-                "Lifeboat mass (paper III.B).", lo_open=.true.)
-    call r%real_vec(g, "inertia", b%inertia, [25020.0_wp, 51745.0_wp, 51745.0_wp], &
-                    0.0_wp, 1.0e9_wp, "kg m^2", &
-                    "Principal moments of inertia about b1, b2, b3 (paper III.B).", &
-                    lo_open=.true.)
-    call r%real_vec(g, "position", b%position, [0.0_wp, 13.3_wp, -15.0_wp], -1.0e4_wp, &
-                    1.0e4_wp, "m", "Initial CG position in the inertial frame (x along "// &
-                    "N1, y starboard, z down; 15 m above the still water).")
-    call r%real_vec(g, "euler", b%euler, [0.0_wp, 0.0_wp, 0.0_wp], -1.5_wp, 1.5_wp, "rad", &
-                    "Initial roll, pitch, yaw (ZYX, eq. 2; x forward, y starboard, "// &
-                    "z down: roll starboard down, pitch bow up, yaw bow to starboard).")
-    call r%real_vec(g, "velocity", b%velocity, [0.0_wp, 0.0_wp, 0.0_wp], -100.0_wp, &
-                    100.0_wp, "m/s", "Initial CG velocity in the inertial frame.")
-    call r%real_vec(g, "angular_velocity", b%angular_velocity, [0.0_wp, 0.0_wp, 0.0_wp], &
-                    -10.0_wp, 10.0_wp, "rad/s", &
-                    "Initial angular velocity in body components (u1..u3).")
-    call r%real(g, "length", b%length, 11.5_wp, 0.1_wp, 100.0_wp, "m", &
-                "Hull length l_b of the strips and the lift cylinder (paper III.B).")
-    call r%real(g, "beam", b%beam, 2.8_wp, 0.01_wp, 50.0_wp, "m", "Hull beam B (III.B).")
-    call r%real(g, "height", b%height, 3.1_wp, 0.01_wp, 50.0_wp, "m", &
-                "Hull section height H (III.B).")
-    call r%real(g, "keel", b%keel, 1.1_wp, -50.0_wp, 50.0_wp, "m", &
-                "Keel below the CG along b3 (CG 1.1 m above the keel).")
-    call r%real(g, "breadth_exponent", b%breadth_exponent, 4.3_wp, 1.0_wp, 100.0_wp, "-", &
-                "p in b(x) = B (1 - |2x/L|^p) (4.3 gives the waterplane area A3 = 26.2 m^2).")
-    call r%int(g, "strips", b%strips, 20, 1, 400, "-", "Number of strips n (eq. 18).")
-    call r%real_vec(g, "drag_coefficients", b%drag_coefficients, [1.2_wp, 1.2_wp, 1.2_wp], &
-                    0.0_wp, 10.0_wp, "-", "Water drag coefficients c_D1..3 (paper C_fluid).")
-    call r%choice(g, "roll_restoring", b%roll_restoring, "hull", &
-                  [character(len=5) :: "hull", "paper"], "Roll stiffness: 'hull' (GM_T = "// &
-                  "KB + BM - KG of the plan shape with KG = keel, 0.766 m) or 'paper' "// &
-                  "(metacentric_height, eq. 24).")
-    call r%real(g, "metacentric_height", b%metacentric_height, 2.0_wp, 0.0_wp, 20.0_wp, "m", &
-                "h_m of the roll restoring moment with roll_restoring = 'paper' "// &
-                "(eq. 24, paper III.B).")
-    call r%real_vec(g, "zeta", b%zeta, [0.0_wp, 0.0_wp, 0.0_wp], 0.0_wp, 2.0_wp, "-", &
-                    "Linear heave, roll, pitch damping on the water, fraction of critical "// &
-                    "(0.1 is typical; the paper gives none).")
-    call r%real_vec(g, "wind_areas", b%wind_areas, [8.5_wp, 26.2_wp, 26.2_wp], 0.0_wp, &
-                    1.0e4_wp, "m^2", "Projected areas normal to b1, b2, b3 (III.B).")
-    call r%real(g, "wind_drag_coefficient", b%wind_drag_coefficient, 0.5_wp, 0.0_wp, &
-                10.0_wp, "-", "Wind drag coefficient C_w (paper C_air).")
-    call r%real(g, "lift_coefficient", b%lift_coefficient, 1.2_wp, 0.0_wp, 10.0_wp, "-", &
-                "Wind lift coefficient C_L (paper).")
-    call r%real(g, "lift_diameter", b%lift_diameter, 3.29_wp, 0.0_wp, 50.0_wp, "m", &
-                "Lift cylinder diameter D_b (the circle of the frontal area).")
-    call r%choice(g, "lift_form", b%lift_form, "symmetric", &
-                  lift_form_names, "Wind lift: 'symmetric' "// &
-                  "(upward, from the lateral cross-flow) or eq. 16 'literal'.")
-    call read_boat_water(r, b)
-  end subroutine read_boat
-
-  !> The boat's water-load model (issue 18, README "Boat on the water").
-  subroutine read_boat_water(r, b)
-    type(deck_reader_type), intent(inout) :: r
-    type(boat_config), intent(inout) :: b
-    character(len=*), parameter :: g = "boat"
-    call r%choice(g, "water_model", b%water_model, "bem", &
-                  [character(len=8) :: "bem", "pressure", "paper"], "Water loads: 'bem' "// &
-                  "(the pressure strips plus A(inf), radiation memory, diffraction and "// &
-                  "viscous roll damping from the hull's BEM database, scaled with "// &
-                  "immersion), 'pressure' (sections clipped by the local surface's tangent "// &
-                  "plane, wave pressure integrated over the wet bottom and sides, alone) or "// &
-                  "'paper' (centre-line strips with the metacentric roll moment, eqs. 18-25).")
-    call r%string(g, "database", b%database, "boat_bem.nc", &
-                  "BEM database of the boat's hull (water_model = 'bem'), looked up in "// &
-                  "the deck's folder, then DAVIT_PATH, unless absolute.")
-    call r%real(g, "roll_damping", b%roll_damping, 0.1_wp, 0.0_wp, 2.0_wp, "-", &
-                "Viscous roll damping (water_model = 'bem'), fraction of critical at the "// &
-                "roll resonance with A44(w): eddy making at the sharp bilges, which "// &
-                "potential flow lacks (Ikeda; ~0.05-0.15 for small craft at zero speed).")
-    call r%real(g, "full_immersion", b%full_immersion, 0.5_wp, 0.0_wp, 1.0_wp, "-", &
-                "Immersion s = min(1, V_wet/(f V_0)) scales the BEM terms; f is this key: "// &
-                "they reach full strength once f of the displacement V_0 = m/rho is wet.", &
-                lo_open=.true.)
-  end subroutine read_boat_water
-
   subroutine read_slings(r, s)
     type(deck_reader_type), intent(inout) :: r
     type(slings_config), intent(inout) :: s
@@ -517,6 +456,7 @@ contains
   !> Wave height H of a sea-state level's preset [m] (review G19: upper bounds of the level;
   !> Level 3, added for the operability tables, likewise: sea state 3 is 0.5-1.25 m).
   pure real(wp) function level_wave_height(level)
+    !> Sea-state level.
     integer, intent(in) :: level
     select case (level)
     case (3)
@@ -531,6 +471,7 @@ contains
   !> Wind speed of a sea-state level's preset [m/s] (review G19; Level 3: the upper bound of
   !> Beaufort 3, 5.4 m/s, rounded as G19 rounds 7.9 to 8).
   pure real(wp) function level_wind_speed(level)
+    !> Sea-state level.
     integer, intent(in) :: level
     select case (level)
     case (3)

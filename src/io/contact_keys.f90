@@ -11,13 +11,23 @@ module davit_io_contact_keys
 
   !> Fender contact with the ship's side (eqs. 27-34, review §1.7, G16, G17).
   type :: contact_config
+    !> Whether fender contact with the ship's side is on.
     logical :: enabled
+    !> The contact law: 'rubber_fender', 'hertz_elastoplastic' or 'lankarani_nikravesh'.
     character(len=:), allocatable :: law
+    !> Hertz laws: Young's moduli [Pa] and Poisson ratios of the fender and of the ship's side.
     real(wp) :: youngs_boat, poisson_boat, youngs_ship, poisson_ship
+    !> Hertz laws: radii of curvature of the fender and of the side [m] (0: flat side); the
+    !> coefficient of restitution of every law.
     real(wp) :: radius_boat, radius_ship, restitution
+    !> Rubber fender: diameter [m] and rated reaction at 60 % deflection [N].
     real(wp) :: fender_diameter, fender_reaction
+    !> Boat-frame x of each fender [m].
     real(wp), allocatable :: fender_x(:)
+    !> Boat-frame y of the fenders [m], their z span (z down) [m], and the ship-frame y of the side
+    !> plane [m].
     real(wp) :: fender_y, fender_z(2), side_y
+    !> Contact points per fender.
     integer :: fender_points
   end type contact_config
 
@@ -25,7 +35,9 @@ contains
 
   !> The &contact group's keys, checked and documented (deck_reader_type).
   subroutine read_contact(r, s, ship_beam)
+    !> The deck's reader, positioned at the &contact group.
     type(deck_reader_type), intent(inout) :: r
+    !> The &contact values, defaults in, the deck's read over them.
     type(contact_config), intent(inout) :: s
     !> The ship's beam [m] (&ship beam): the side plane's default is half of it plus 0.1 m.
     real(wp), intent(in) :: ship_beam

@@ -14,14 +14,19 @@ module davit_io_deck_reader
   public :: deck_reader_type, key_doc, fmt_real
 
   type :: key_doc
+    !> The key's group and name, its default, allowed range, units and description, as `davit keys`
+    !> prints them.
     character(len=:), allocatable :: group, key, default, allowed, units, description
   end type key_doc
 
   type :: deck_reader_type
+    !> The parsed deck (groups, keys, values, lines).
     type(nml_deck) :: deck
     !> Known groups, in order of first use.
     character(len=64), allocatable :: known(:)
+    !> Every key read so far, documented (what `davit keys` prints).
     type(key_doc), allocatable :: docs(:)
+    !> The first error found (file, line, group, key).
     type(error_type), allocatable :: error
   contains
     procedure :: init => reader_init
@@ -43,7 +48,9 @@ module davit_io_deck_reader
 contains
 
   subroutine reader_init(self, deck)
+    !> The reader, reset.
     class(deck_reader_type), intent(inout) :: self
+    !> The parsed deck.
     type(nml_deck), intent(in) :: deck
     self%deck = deck
     allocate (self%known(0), self%docs(0))
@@ -54,11 +61,17 @@ contains
   !> `default_text` documents a default that depends on other keys.
   subroutine get_real(self, group, key, x, default, lo, hi, units, description, lo_open, &
                       hi_open, default_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; units ("-" for none); the key's description.
     character(len=*), intent(in) :: group, key, units, description
+    !> The value read (the default when the key is absent).
     real(wp), intent(out) :: x
+    !> Default value; smallest and largest value allowed.
     real(wp), intent(in) :: default, lo, hi
+    !> Whether lo, hi themselves are refused (default: allowed).
     logical, intent(in), optional :: lo_open, hi_open
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
     real(wp) :: v(1)
     call get_real_vec(self, group, key, v, [default], lo, hi, units, description, &
@@ -69,12 +82,19 @@ contains
   !> Real list of min_count..max_count values, each in the range.
   subroutine get_real_list(self, group, key, x, default, lo, hi, units, description, &
                            min_count, max_count, default_text, lo_open)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; units ("-" for none); the key's description.
     character(len=*), intent(in) :: group, key, units, description
+    !> The values read (the default when the key is absent).
     real(wp), allocatable, intent(out) :: x(:)
+    !> Default values; smallest and largest value allowed.
     real(wp), intent(in) :: default(:), lo, hi
+    !> Fewest and most values allowed.
     integer, intent(in) :: min_count, max_count
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
+    !> Whether lo itself is refused (default: allowed).
     logical, intent(in), optional :: lo_open
     character(len=:), allocatable :: value, items(:)
     integer :: line, n
@@ -104,11 +124,17 @@ contains
   !> Real vector of fixed size(x); every component must be in the range.
   subroutine get_real_vec(self, group, key, x, default, lo, hi, units, description, &
                           lo_open, hi_open, default_text, count_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; units ("-" for none); the key's description.
     character(len=*), intent(in) :: group, key, units, description
+    !> The values read, size(x) of them (the default when the key is absent).
     real(wp), intent(inout) :: x(:)
+    !> Default values; smallest and largest value allowed.
     real(wp), intent(in) :: default(:), lo, hi
+    !> Whether lo, hi themselves are refused (default: allowed).
     logical, intent(in), optional :: lo_open, hi_open
+    !> The default as documented, when it depends on other keys; the count as documented.
     character(len=*), intent(in), optional :: default_text, count_text
     character(len=:), allocatable :: allowed, value
     character(len=:), allocatable :: items(:)
@@ -159,10 +185,15 @@ contains
   end subroutine get_real_vec
 
   subroutine get_int(self, group, key, n, default, lo, hi, units, description, default_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; units ("-" for none); the key's description.
     character(len=*), intent(in) :: group, key, units, description
+    !> The value read (the default when the key is absent).
     integer, intent(out) :: n
+    !> Default value; smallest and largest value allowed.
     integer, intent(in) :: default, lo, hi
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: allowed, value
     integer :: ios, line
@@ -185,9 +216,13 @@ contains
   end subroutine get_int
 
   subroutine get_logical(self, group, key, flag, default, description)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; the key's description.
     character(len=*), intent(in) :: group, key, description
+    !> The value read (the default when the key is absent).
     logical, intent(out) :: flag
+    !> Default value.
     logical, intent(in) :: default
     character(len=:), allocatable :: value, v
     integer :: line
@@ -209,10 +244,15 @@ contains
 
   !> String restricted to a list of choices (case-insensitive, quotes optional).
   subroutine get_choice(self, group, key, s, default, choices, description, default_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; default value; the key's description.
     character(len=*), intent(in) :: group, key, default, description
+    !> The values allowed.
     character(len=*), intent(in) :: choices(:)
+    !> The value read, unquoted (the default when the key is absent).
     character(len=:), allocatable, intent(out) :: s
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: value, allowed
     integer :: line, i
@@ -233,8 +273,11 @@ contains
 
   !> Free text (quotes optional), e.g. a file name; must not be empty.
   subroutine get_string(self, group, key, s, default, description)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; default value; the key's description.
     character(len=*), intent(in) :: group, key, default, description
+    !> The value read, unquoted (the default when the key is absent).
     character(len=:), allocatable, intent(out) :: s
     character(len=:), allocatable :: value
     integer :: line
@@ -253,10 +296,15 @@ contains
   !> Integer list of min_count..max_count values, each in lo..hi.
   subroutine get_int_list(self, group, key, x, default, lo, hi, units, description, &
                           min_count, max_count, default_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; units ("-" for none); the key's description.
     character(len=*), intent(in) :: group, key, units, description
+    !> The values read (the default when the key is absent).
     integer, allocatable, intent(out) :: x(:)
+    !> Default values; smallest and largest value allowed; fewest and most values.
     integer, intent(in) :: default(:), lo, hi, min_count, max_count
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: allowed, value, items(:)
     integer :: i, ios, line
@@ -290,11 +338,17 @@ contains
   !> Logical list of min_count..max_count values.
   subroutine get_logical_list(self, group, key, x, default, description, min_count, &
                               max_count, default_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; the key's description.
     character(len=*), intent(in) :: group, key, description
+    !> The values read (the default when the key is absent).
     logical, allocatable, intent(out) :: x(:)
+    !> Default values.
     logical, intent(in) :: default(:)
+    !> Fewest and most values allowed.
     integer, intent(in) :: min_count, max_count
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: allowed, value, items(:)
     integer :: i, line
@@ -324,11 +378,17 @@ contains
   !> optional).
   subroutine get_choice_list(self, group, key, s, default, choices, description, min_count, &
                              max_count, default_text)
+    !> The reader; the key is marked used and documented.
     class(deck_reader_type), intent(inout) :: self
+    !> Group and key; the key's description.
     character(len=*), intent(in) :: group, key, description
+    !> Default values; the values allowed.
     character(len=*), intent(in) :: default(:), choices(:)
+    !> The values read, unquoted (the default when the key is absent).
     character(len=len(choices)), allocatable, intent(out) :: s(:)
+    !> Fewest and most values allowed.
     integer, intent(in) :: min_count, max_count
+    !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: allowed, value, items(:), defaults, item
     integer :: i, line
@@ -362,7 +422,9 @@ contains
 
   !> Whether the deck sets group/key (without marking it used).
   logical function reader_has(self, group, key) result(found)
+    !> The reader.
     class(deck_reader_type), intent(in) :: self
+    !> Group and key.
     character(len=*), intent(in) :: group, key
     found = find_entry(self%deck, group, key) > 0
   end function reader_has
@@ -393,8 +455,11 @@ contains
 
   !> Record the first error with file, line, group and key.
   subroutine reader_fail(self, line, group, key, value, problem, allowed, units)
+    !> The reader.
     class(deck_reader_type), intent(inout) :: self
+    !> Line of the deck (0: none).
     integer, intent(in) :: line
+    !> Group and key; the value given; what is wrong; what is allowed; units.
     character(len=*), intent(in) :: group, key, value, problem, allowed, units
     character(len=:), allocatable :: msg
     if (allocated(self%error)) return
@@ -406,7 +471,9 @@ contains
 
   !> Reject unknown groups and keys; return the first error found.
   subroutine reader_finish(self, error)
+    !> The reader.
     class(deck_reader_type), intent(inout) :: self
+    !> The first error found, or one for an unknown group or key.
     type(error_type), allocatable, intent(out) :: error
     integer :: i, k
     character(len=:), allocatable :: names

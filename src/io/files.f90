@@ -93,6 +93,7 @@ contains
 
   !> What `path` is (links followed): kind_none when absent or not reachable.
   integer function file_kind(path)
+    !> Path of the file or folder.
     character(len=*), intent(in) :: path
     integer(c_int) :: err
     file_kind = int(c_file_kind(path//c_null_char, err))
@@ -100,6 +101,7 @@ contains
 
   !> "a folder", "a FIFO or pipe", ... for messages.
   function kind_name(kind) result(name)
+    !> A kind from file_kind (kind_none, kind_regular, kind_folder, ...).
     integer, intent(in) :: kind
     character(len=:), allocatable :: name
     select case (kind)
@@ -125,6 +127,7 @@ contains
   !> Whether `a` and `b` both exist and are one file (device and inode: `./x.h5`, `x.h5`,
   !> `$PWD/x.h5`, links).
   logical function same_file(a, b)
+    !> The two paths.
     character(len=*), intent(in) :: a, b
     same_file = c_same_file(a//c_null_char, b//c_null_char) == 1
   end function same_file
@@ -133,9 +136,13 @@ contains
   !> a device): the open never waits for a writer, and more than `cap` bytes is an error
   !> (/dev/zero would never end). `what` names the file in messages ("input deck").
   subroutine read_stream(path, what, cap, text, error)
+    !> Path of the file; what it is, for messages ("input deck").
     character(len=*), intent(in) :: path, what
+    !> Largest number of bytes accepted.
     integer(i8), intent(in) :: cap
+    !> The file's whole text.
     character(len=:), allocatable, intent(out) :: text
+    !> Set when the file cannot be opened or read, or holds more than cap bytes.
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: buf
     integer(c_int) :: fd, err, closed
@@ -189,7 +196,9 @@ contains
   !> created only if absent, or replacing it (atomically) when `replace`. `status` is 0,
   !> exists_already, or the errno value that says why not (errno_text).
   integer function write_whole(path, tmp, text, replace) result(status)
+    !> Path of the file; the private temporary file beside it; the text written.
     character(len=*), intent(in) :: path, tmp, text
+    !> Replace an existing file (else an existing one gives exists_already).
     logical, intent(in) :: replace
     status = int(c_write_whole(path//c_null_char, tmp//c_null_char, text, &
                                len(text, c_long), merge(1_c_int, 0_c_int, replace)))
@@ -197,12 +206,14 @@ contains
 
   !> Create the empty file `path` (exclusively): 0, or the errno value that says why not.
   integer function create_empty(path) result(status)
+    !> Path of the file.
     character(len=*), intent(in) :: path
     status = int(c_create_empty(path//c_null_char))
   end function create_empty
 
   !> Remove `path` if it exists (a file, a FIFO, a link; never a folder).
   subroutine remove_file(path)
+    !> Path of the file.
     character(len=*), intent(in) :: path
     integer(c_int) :: status
     status = c_unlink(path//c_null_char)
@@ -210,12 +221,14 @@ contains
 
   !> The longest file name allowed in folder `dir` (255 on most file systems; -1 unknown).
   integer function name_max(dir)
+    !> Path of the folder.
     character(len=*), intent(in) :: dir
     name_max = int(c_name_max(dir//c_null_char))
   end function name_max
 
   !> The C library's text of errno value `err` ("No space left on device").
   function errno_text(err) result(text)
+    !> An errno value.
     integer, intent(in) :: err
     character(len=:), allocatable :: text
     character(kind=c_char, len=200) :: buf

@@ -66,6 +66,7 @@ contains
 
   !> Forget every scale and attachment (a new file).
   subroutine registry_reset(self)
+    !> The registry, emptied.
     class(dim_registry_type), intent(inout) :: self
     if (allocated(self%scales)) deallocate (self%scales)
     if (allocated(self%attached)) deallocate (self%attached)
@@ -86,7 +87,9 @@ contains
   !> The units, description and long_name (the same text, the name netCDF/CF tools show)
   !> of dataset `dset`.
   subroutine describe(dset, units, description, failed)
+    !> The open dataset.
     integer(hid_t), intent(in) :: dset
+    !> Its units (UDUNITS form, "1" for none) and what it holds.
     character(len=*), intent(in) :: units, description
     !> The first failure's description (note_failure).
     character(len=:), allocatable, intent(inout) :: failed
@@ -97,7 +100,9 @@ contains
 
   !> A scalar UTF-8 string attribute `name` = `value` on the open object `oid`.
   subroutine put_str(oid, name, value, failed)
+    !> The open object (file, group or dataset).
     integer(hid_t), intent(in) :: oid
+    !> Name and value of the attribute.
     character(len=*), intent(in) :: name, value
     !> The first failure's description (note_failure).
     character(len=:), allocatable, intent(inout) :: failed
@@ -130,11 +135,15 @@ contains
   !> DIMENSION_LIST here and the scales' REFERENCE_LIST at close (H5DSattach_scale
   !> rewrites both at every call, which doubled the time to write a sweep summary).
   subroutine attach_dims(self, file, name, dset, dims, extent, failed)
+    !> The registry of the file's scales and attachments.
     class(dim_registry_type), intent(inout) :: self
     !> The open output file.
     integer(hid_t), intent(in) :: file
+    !> Path of the dataset in the file; its dimensions' names, comma-separated, slowest first.
     character(len=*), intent(in) :: name, dims
+    !> The open dataset.
     integer(hid_t), intent(in) :: dset
+    !> The dataset's Fortran extents.
     integer(hsize_t), intent(in) :: extent(:)
     !> The first failure's description (note_failure).
     character(len=:), allocatable, intent(inout) :: failed
@@ -197,6 +206,7 @@ contains
 
   !> REFERENCE_LIST of every scale of `file`: (dataset, axis) of each axis attached to it.
   subroutine write_reference_lists(self, file, failed)
+    !> The registry of the file's scales and attachments.
     class(dim_registry_type), intent(in) :: self
     !> The open output file, about to be closed.
     integer(hid_t), intent(in) :: file

@@ -5,13 +5,13 @@
 !> Every failure names the file and the dataset or attribute. Not thread-safe (Debian's
 !> HDF5 is built without locking): call it from one thread at a time.
 module davit_io_hdf5_reader
-  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr, c_int, c_char, c_size_t, &
-                                         c_null_ptr, c_associated, c_f_pointer
+  use, intrinsic :: iso_c_binding, only: c_loc, c_ptr, c_int, c_null_ptr
   use hdf5
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_io_files, only: file_kind, kind_name, kind_none, kind_regular
-  use davit_io_text, only: int_text, join_text
+  use davit_io_text, only: int_text
+  use davit_io_hdf5_text, only: extents_text, dataset_class, c_length, c_text, text_type
   implicit none
   private
   public :: h5_reader_type, h5_start
@@ -24,11 +24,6 @@ module davit_io_hdf5_reader
       import :: c_int
       integer(c_int) :: status
     end function c_h5dont_atexit
-    function c_strlen(s) bind(C, name="strlen") result(n)
-      import :: c_ptr, c_size_t
-      type(c_ptr), value :: s
-      integer(c_size_t) :: n
-    end function c_strlen
   end interface
 
   !> The most values davit reads from one dataset or text: 2^28 (2 GiB as reals, far
@@ -37,8 +32,11 @@ module davit_io_hdf5_reader
   integer(i8), parameter :: max_values = 2_i8**28
 
   type :: h5_reader_type
+    !> HDF5 identifier of the open file (-1: none).
     integer(hid_t) :: file = -1
+    !> Path of the file, for messages.
     character(len=:), allocatable :: path
+    !> Whether a file is open.
     logical :: is_open = .false.
   contains
     procedure :: open => reader_open
@@ -72,8 +70,11 @@ contains
   !> Open `path` for reading. Only a regular file: HDF5 seeks, and opening a FIFO would
   !> wait for a writer forever.
   subroutine reader_open(self, path, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Path of the file.
     character(len=*), intent(in) :: path
+    !> Set when the path is not a readable HDF5 file.
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr, kind
     self%path = path
@@ -93,6 +94,7 @@ contains
   end subroutine reader_open
 
   subroutine reader_close(self)
+    !> The reader, closed.
     class(h5_reader_type), intent(inout) :: self
     integer :: hdferr
     if (.not. self%is_open) return
@@ -172,18 +174,6 @@ contains
     end do
   end subroutine check_extents
 
-  !> "2 x 3 x 4" for messages.
-  function extents_text(d) result(text)
-    integer(hsize_t), intent(in) :: d(:)
-    character(len=:), allocatable :: text
-    character(len=20) :: items(size(d))
-    integer :: k
-    do k = 1, size(d)
-      items(k) = int_text(int(d(k), i8))
-    end do
-    text = join_text(items, " x ")
-  end function extents_text
-
   !> `what` could not be allocated (the memory): a message instead of a crash.
   subroutine no_memory(self, what, n, error)
     type(h5_reader_type), intent(in) :: self
@@ -213,19 +203,6 @@ contains
     end if
     n = dims(1)
   end subroutine open_1d
-
-  !> The type class of dataset `dset` (H5T_INTEGER_F, H5T_FLOAT_F, H5T_STRING_F, ...).
-  integer function dataset_class(dset) result(tclass)
-    integer(hid_t), intent(in) :: dset
-    integer(hid_t) :: ftype
-    integer :: hdferr
-    tclass = -1
-    call h5dget_type_f(dset, ftype, hdferr)
-    if (hdferr /= 0) return
-    call h5tget_class_f(ftype, tclass, hdferr)
-    if (hdferr /= 0) tclass = -1
-    call h5tclose_f(ftype, hdferr)
-  end function dataset_class
 
   !> Refuse dataset `name` unless it holds numbers (integers_only: integers, as a real
   !> column would be silently truncated to integer codes); it is closed when refused.
@@ -277,9 +254,13 @@ contains
   end subroutine read_values
 
   subroutine reader_read_1d(self, name, x, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Path of the dataset.
     character(len=*), intent(in) :: name
+    !> The values.
     real(wp), allocatable, target, intent(out) :: x(:)
+    !> Set when the dataset is missing, not 1-D, not numeric or unreadable.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
@@ -294,9 +275,13 @@ contains
   end subroutine reader_read_1d
 
   subroutine reader_read_1d_int(self, name, x, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Path of the dataset.
     character(len=*), intent(in) :: name
+    !> The values.
     integer(i8), allocatable, target, intent(out) :: x(:)
+    !> Set when the dataset is missing, not 1-D, not integer or unreadable.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
@@ -314,10 +299,15 @@ contains
   !> Numeric dataset `name` of any rank (0-7) as reals (HDF5 converts integers), flattened
   !> in Fortran order, with its extents in Fortran order (the reverse of what h5py shows).
   subroutine reader_read_array(self, name, x, dims, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Path of the dataset.
     character(len=*), intent(in) :: name
+    !> The values, flattened in Fortran order.
     real(wp), allocatable, target, intent(out) :: x(:)
+    !> The extents in Fortran order.
     integer, allocatable, intent(out) :: dims(:)
+    !> Set when the dataset is missing, not numeric, too large or unreadable.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset
     type(c_ptr) :: buf
@@ -335,9 +325,13 @@ contains
   !> A string dataset, returned blank-padded to its longest entry (variable-length) or to
   !> its stored width (fixed-length).
   subroutine reader_read_strings(self, name, x, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Path of the dataset.
     character(len=*), intent(in) :: name
+    !> The strings, blank-padded.
     character(len=:), allocatable, target, intent(out) :: x(:)
+    !> Set when the dataset is missing, not text, too large or unreadable.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: dset, ftype, mtype
     integer(size_t) :: width
@@ -446,48 +440,15 @@ contains
     call h5tclose_f(mtype, hdferr)
   end subroutine read_vlen_strings
 
-  !> Length of the C string at `p` (0 for a null pointer: HDF5's empty string).
-  integer function c_length(p) result(n)
-    type(c_ptr), intent(in) :: p
-    n = 0
-    if (.not. c_associated(p)) return
-    n = int(c_strlen(p))
-  end function c_length
-
-  !> The C string at `p` as Fortran text ("" for a null pointer).
-  function c_text(p) result(text)
-    type(c_ptr), intent(in) :: p
-    character(len=:), allocatable :: text
-    character(kind=c_char), pointer :: chars(:)
-    integer :: i, n
-    n = c_length(p)
-    allocate (character(len=n) :: text)
-    if (n == 0) return
-    call c_f_pointer(p, chars, [n])
-    do i = 1, n
-      text(i:i) = chars(i)
-    end do
-  end function c_text
-
-  !> The memory type of `width` characters for reading text stored as `ftype`: its
-  !> character set too, since HDF5 converts no text between ASCII and UTF-8 (davit writes
-  !> UTF-8 since its files name their dimensions; older files are ASCII).
-  subroutine text_type(ftype, width, mtype)
-    integer(hid_t), intent(in) :: ftype
-    integer(size_t), intent(in) :: width
-    integer(hid_t), intent(out) :: mtype
-    integer :: cset, hdferr
-    call h5tcopy_f(H5T_FORTRAN_S1, mtype, hdferr)
-    call h5tset_size_f(mtype, width, hdferr)
-    call h5tget_cset_f(ftype, cset, hdferr)
-    if (hdferr == 0) call h5tset_cset_f(mtype, cset, hdferr)
-  end subroutine text_type
-
   !> Scalar string attribute `name` of the root group.
   subroutine reader_attr_str(self, name, value, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Name of the attribute.
     character(len=*), intent(in) :: name
+    !> Its value.
     character(len=:), allocatable, intent(out) :: value
+    !> Set when the attribute is missing, not a scalar string or unreadable.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: attr, ftype, mtype
     integer(size_t) :: width
@@ -516,9 +477,13 @@ contains
 
   !> Scalar integer attribute `name` of the root group.
   subroutine reader_attr_int(self, name, value, error)
+    !> The reader.
     class(h5_reader_type), intent(inout) :: self
+    !> Name of the attribute.
     character(len=*), intent(in) :: name
+    !> Its value.
     integer(i8), target, intent(out) :: value
+    !> Set when the attribute is missing, not a scalar integer or unreadable.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: attr, ftype
     type(c_ptr) :: buf
@@ -573,7 +538,9 @@ contains
 
   !> Whether the root group has attribute `name` (optional attributes: a sweep shard's).
   logical function reader_has_attr(self, name) result(exists)
+    !> The reader.
     class(h5_reader_type), intent(in) :: self
+    !> Name of the attribute.
     character(len=*), intent(in) :: name
     integer :: hdferr
     call h5aexists_by_name_f(self%file, "/", name, exists, hdferr)
@@ -582,7 +549,9 @@ contains
 
   !> Whether the root group has a link `name` (optional datasets: a BEM database's drift).
   logical function reader_has_dataset(self, name) result(exists)
+    !> The reader.
     class(h5_reader_type), intent(in) :: self
+    !> Name of the link.
     character(len=*), intent(in) :: name
     integer :: hdferr
     call h5lexists_f(self%file, name, exists, hdferr)

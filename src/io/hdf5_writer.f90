@@ -27,10 +27,13 @@ module davit_io_hdf5_writer
   public :: h5_writer_type, check_output_path, acquire_lock, release_lock
 
   type :: h5_writer_type
+    !> HDF5 identifier of the open file (-1: none).
     integer(hid_t) :: file = -1
+    !> The output's path and the temporary file written until close.
     character(len=:), allocatable :: path, tmp_path
     !> Where close() puts the file (path, unless retarget() names another).
     character(len=:), allocatable :: final_path
+    !> Whether a file is open.
     logical :: is_open = .false.
     !> This writer took path.lock (and releases it); false when the caller holds it.
     logical :: owns_lock = .false.
@@ -69,8 +72,11 @@ contains
   !> simulation) if the path is unwritable, not a davit output, or being written by
   !> another davit.
   subroutine writer_create(self, path, error)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the output.
     character(len=*), intent(in) :: path
+    !> Set when the path is refused, locked or cannot be created.
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr, perr, status
     integer(hid_t) :: fapl
@@ -108,13 +114,17 @@ contains
 
   !> Put the file under `path` when closed instead of the name given to create().
   subroutine writer_retarget(self, path)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path the file is put under at close.
     character(len=*), intent(in) :: path
     self%final_path = path
   end subroutine writer_retarget
 
   subroutine writer_group(self, name)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the group ("/boat").
     character(len=*), intent(in) :: name
     integer(hid_t) :: gid
     integer :: hdferr
@@ -124,8 +134,11 @@ contains
   end subroutine writer_group
 
   subroutine writer_write_1d(self, name, data, units, description, dims)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
     character(len=*), intent(in) :: name, units, description
+    !> The values.
     real(wp), intent(in) :: data(:)
     !> Dimension names, one per axis of `data` (see the module comment).
     character(len=*), intent(in), optional :: dims
@@ -136,8 +149,11 @@ contains
   end subroutine writer_write_1d
 
   subroutine writer_write_2d(self, name, data, units, description, dims)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
     character(len=*), intent(in) :: name, units, description
+    !> The values (Fortran order; HDF5 shows them transposed).
     real(wp), intent(in) :: data(:, :)
     !> Dimension names, one per axis of `data` (see the module comment).
     character(len=*), intent(in), optional :: dims
@@ -148,8 +164,11 @@ contains
   end subroutine writer_write_2d
 
   subroutine writer_write_3d(self, name, data, units, description, dims)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
     character(len=*), intent(in) :: name, units, description
+    !> The values (Fortran order; HDF5 shows them transposed).
     real(wp), intent(in) :: data(:, :, :)
     !> Dimension names, one per axis of `data` (see the module comment).
     character(len=*), intent(in), optional :: dims
@@ -161,9 +180,13 @@ contains
 
   !> 64-bit integer dataset (codes, counts, flags), with its units and description.
   subroutine writer_write_1d_int(self, name, data, units, description, dims)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
     character(len=*), intent(in) :: name, units, description
+    !> The values.
     integer(i8), intent(in) :: data(:)
+    !> The dimensions' names, comma-separated, slowest first (absent: unnamed).
     character(len=*), intent(in), optional :: dims
     integer(i8), allocatable, target :: buf(:)
     integer(hid_t) :: space, dset
@@ -189,8 +212,11 @@ contains
   !> a fixed-length string array and shows its entries after the first as NIL, while it
   !> reads variable-length UTF-8 as its own `string` type (as h5py, h5netcdf and xarray do).
   subroutine writer_write_strings(self, name, data, units, description, dims)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; the strings; their units; what they hold.
     character(len=*), intent(in) :: name, data(:), units, description
+    !> The dimension's name (absent: unnamed).
     character(len=*), intent(in), optional :: dims
     ! each entry NUL-terminated (a C string), pointed at by one element of ptr
     character(len=len(data) + 1), allocatable, target :: buf(:)
@@ -253,7 +279,9 @@ contains
 
   !> String attribute on the object `obj` ("/" for the root).
   subroutine writer_attr_str(self, obj, name, value)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> The object's path ("/" for the root); the attribute's name and value.
     character(len=*), intent(in) :: obj, name, value
     integer(hid_t) :: oid
     integer :: hdferr
@@ -265,8 +293,11 @@ contains
   end subroutine writer_attr_str
 
   subroutine writer_attr_int(self, obj, name, value)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> The object's path ("/" for the root); the attribute's name.
     character(len=*), intent(in) :: obj, name
+    !> The attribute's value.
     integer(i8), intent(in), target :: value
     integer(hid_t) :: oid, space, attr
     integer :: hdferr
@@ -284,8 +315,11 @@ contains
   end subroutine writer_attr_int
 
   subroutine writer_attr_real(self, obj, name, value)
+    !> The writer.
     class(h5_writer_type), intent(inout) :: self
+    !> The object's path ("/" for the root); the attribute's name.
     character(len=*), intent(in) :: obj, name
+    !> The attribute's value.
     real(wp), intent(in) :: value
     integer(hid_t) :: oid, space, attr
     integer(hsize_t), parameter :: dims(1) = [1]
@@ -305,7 +339,9 @@ contains
   !> Close the file and rename it into place; reports any write failure, after which the
   !> temporary file is removed and any earlier file under the name is left as it was.
   subroutine writer_close(self, error)
+    !> The writer, closed.
     class(h5_writer_type), intent(inout) :: self
+    !> Set when a write failed or the rename failed.
     type(error_type), allocatable, intent(out) :: error
     integer :: hdferr
     if (.not. self%is_open) return
@@ -336,6 +372,7 @@ contains
 
   !> Close and delete the temporary file (nothing is left behind).
   subroutine writer_discard(self)
+    !> The writer, closed and its temporary file removed.
     class(h5_writer_type), intent(inout) :: self
     integer :: hdferr
     if (.not. self%is_open) return

@@ -31,7 +31,9 @@ module davit_io_limits_keys
 contains
 
   subroutine read_limits(r, s)
+    !> The deck's reader, positioned at the &limits group.
     type(deck_reader_type), intent(inout) :: r
+    !> The &limits values, defaults in, the deck's read over them.
     type(limits_config), intent(inout) :: s
     character(len=*), parameter :: g = "limits"
     call r%real(g, "grade", s%grade, 1960.0e6_wp, 1.0e8_wp, 3.0e9_wp, "Pa", &
@@ -81,7 +83,9 @@ contains
 
   !> EN 12385-4 minimum breaking load [N] of a rope of diameter d [m].
   pure real(wp) function minimum_breaking_load(s, d)
+    !> The &limits values (rope grade, breaking force factor).
     type(limits_config), intent(in) :: s
+    !> Rope diameter [m].
     real(wp), intent(in) :: d
     minimum_breaking_load = s%breaking_factor*d**2*s%grade
   end function minimum_breaking_load

@@ -20,9 +20,13 @@ contains
   !> The MMG coefficients, the propeller revolutions [1/s] (0: the self-propulsion point
   !> at &ship headway) and the steering.
   subroutine read_mmg(r, p, rps, steer)
+    !> The deck's reader, positioned at the &mmg group.
     type(deck_reader_type), intent(inout) :: r
+    !> The MMG coefficients, defaults (KVLCC2) in, the deck's read over them.
     type(mmg_type), intent(inout) :: p
+    !> Propeller revolutions [1/s] (0: the self-propulsion point at &ship headway).
     real(wp), intent(out) :: rps
+    !> The rudder's steering (autopilot or orders).
     type(rudder_type), intent(out) :: steer
     call read_hull(r, p)
     call read_propeller(r, p, rps)

@@ -8,23 +8,22 @@ module davit_io_namelist
   use davit_kinds, only: i8
   use davit_error, only: error_type, fatal_error
   use davit_io_files, only: file_kind, read_stream, kind_none, kind_folder, kind_pipe
+  use davit_io_namelist_entries, only: nml_entry, probe, rehash, move_entry, str_hash
   implicit none
   private
   public :: nml_entry, nml_deck, read_deck, parse_deck, to_lower, int_to_str, find_entry, key_at, &
             shown, int_text, line_end
 
-  type :: nml_entry
-    character(len=:), allocatable :: group, key, value
-    integer :: line = 0
-    logical :: used = .false.
-  end type nml_entry
-
   type :: nml_deck
+    !> Path of the deck, for messages.
     character(len=:), allocatable :: filename
     !> The full deck text, stored verbatim in every output file.
     character(len=:), allocatable :: text
+    !> Every key = value of the deck, in order.
     type(nml_entry), allocatable :: entries(:)
+    !> The groups, in order.
     character(len=64), allocatable :: groups(:)
+    !> Line that opens each group.
     integer, allocatable :: group_lines(:)
     !> Open-addressing hash of (group, key) -> index in entries (0 = empty slot), so that
     !> parsing and every lookup stay linear in the deck size.
@@ -44,8 +43,11 @@ contains
   !> namelist group is refused: an empty read (a pipe that gave nothing, a FIFO nobody
   !> writes to) must not run the all-defaults scenario silently.
   subroutine read_deck(filename, deck, error)
+    !> Path of the deck.
     character(len=*), intent(in) :: filename
+    !> The parsed deck.
     type(nml_deck), intent(out) :: deck
+    !> Set when the file cannot be read or its text does not parse.
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: text
     integer :: kind
@@ -76,8 +78,11 @@ contains
 
   !> Parse deck text; `filename` is only used in messages.
   subroutine parse_deck(filename, text, deck, error)
+    !> Name used in messages; the deck text.
     character(len=*), intent(in) :: filename, text
+    !> The parsed deck.
     type(nml_deck), intent(out) :: deck
+    !> Set for the first line that does not parse (file, line, what is wrong).
     type(error_type), allocatable, intent(out) :: error
     character(len=:), allocatable :: body, group
     integer, allocatable :: body_line(:)
@@ -382,7 +387,9 @@ contains
 
   !> Index of (group, key) in the deck's entries, or 0 if the deck does not set it.
   integer function find_entry(deck, group, key) result(k)
+    !> The parsed deck.
     type(nml_deck), intent(in) :: deck
+    !> Group and key, lower case.
     character(len=*), intent(in) :: group, key
     integer :: h
     k = 0
@@ -393,7 +400,9 @@ contains
   !> "file:LINE: " for a message about several keys of `group`: the line of the first of
   !> `keys` the deck sets, else the line that opens the group, else "file: " (all defaults).
   function key_at(deck, group, keys) result(s)
+    !> The parsed deck.
     type(nml_deck), intent(in) :: deck
+    !> The group; its keys of interest.
     character(len=*), intent(in) :: group, keys(:)
     character(len=:), allocatable :: s
     integer :: i, k
@@ -415,70 +424,9 @@ contains
     s = deck%filename//": "
   end function key_at
 
-  !> Linear probing: the entry index of (group, key), or 0 with `h` the free slot.
-  integer function probe(slot, entries, group, key, h) result(k)
-    integer, intent(in) :: slot(:)
-    type(nml_entry), intent(in) :: entries(:)
-    character(len=*), intent(in) :: group, key
-    integer, intent(out) :: h
-    k = 0
-    h = iand(str_hash(group, key), size(slot) - 1) + 1
-    do while (slot(h) /= 0)
-      if (entries(slot(h))%key == key) then
-        if (entries(slot(h))%group == group) then
-          k = slot(h)
-          return
-        end if
-      end if
-      h = merge(1, h + 1, h == size(slot))
-    end do
-  end function probe
-
-  !> Rebuild the hash of `entries` with `n` slots (a power of two).
-  subroutine rehash(slot, entries, n)
-    integer, allocatable, intent(inout) :: slot(:)
-    type(nml_entry), intent(in) :: entries(:)
-    integer, intent(in) :: n
-    integer :: k, h, m
-    m = 1
-    do while (m < n)
-      m = 2*m
-    end do
-    deallocate (slot)
-    allocate (slot(m))
-    slot = 0
-    do k = 1, size(entries)
-      if (probe(slot, entries(1:k - 1), entries(k)%group, entries(k)%key, h) == 0) slot(h) = k
-    end do
-  end subroutine rehash
-
-  subroutine move_entry(from, to)
-    type(nml_entry), intent(inout) :: from, to
-    call move_alloc(from%group, to%group)
-    call move_alloc(from%key, to%key)
-    call move_alloc(from%value, to%value)
-    to%line = from%line
-    to%used = from%used
-  end subroutine move_entry
-
-  !> FNV-1a hash of group, a separator and key, as a non-negative integer.
-  pure integer function str_hash(group, key) result(h)
-    character(len=*), intent(in) :: group, key
-    integer(i8) :: x
-    integer :: i
-    x = 2166136261_i8
-    do i = 1, len_trim(group)
-      x = iand(ieor(x, int(iachar(group(i:i)), i8))*16777619_i8, 4294967295_i8)
-    end do
-    x = iand(ieor(x, 0_i8)*16777619_i8, 4294967295_i8)
-    do i = 1, len(key)
-      x = iand(ieor(x, int(iachar(key(i:i)), i8))*16777619_i8, 4294967295_i8)
-    end do
-    h = int(iand(x, 2147483647_i8))
-  end function str_hash
-
   !> Text quoted in a message: control and non-ASCII bytes as '?', cut to 80 characters.
   pure function shown(str) result(s)
+    !> The text.
     character(len=*), intent(in) :: str
     character(len=:), allocatable :: s
     integer :: i, c
@@ -509,7 +457,9 @@ contains
 
   !> Where the line of `text` that starts at pos ends: its newline, or one past the text.
   pure integer function line_end(text, pos) result(eol)
+    !> The text.
     character(len=*), intent(in) :: text
+    !> Index where the line starts.
     integer, intent(in) :: pos
     eol = index(text(pos:), new_line("a"))
     if (eol == 0) then
@@ -561,6 +511,7 @@ contains
   end function strip_comment
 
   pure function to_lower(str) result(s)
+    !> The text.
     character(len=*), intent(in) :: str
     character(len=len(str)) :: s
     integer :: i, c
@@ -572,6 +523,7 @@ contains
   end function to_lower
 
   pure function int_to_str(i) result(s)
+    !> The integer.
     integer, intent(in) :: i
     character(len=:), allocatable :: s
     s = int_text(int(i, i8))
@@ -580,6 +532,7 @@ contains
   !> An 8-byte integer as text (counts of steps, rows, RHS evaluations; davit_io_text
   !> passes it on).
   pure function int_text(n) result(s)
+    !> The integer.
     integer(i8), intent(in) :: n
     character(len=:), allocatable :: s
     character(len=24) :: buf

@@ -46,6 +46,7 @@ contains
 
   !> Why a file could not be created: the C library's words, or HDF5's failure.
   function create_cause(status) result(cause)
+    !> 0 for HDF5's failure, else an errno value.
     integer, intent(in) :: status
     character(len=:), allocatable :: cause
     if (status /= 0) then
@@ -60,7 +61,9 @@ contains
   !> temporary file beside it: davit never replaces those, and never opens a FIFO (the
   !> open would wait for a reader forever).
   subroutine check_output_path(path, error)
+    !> Path of the output.
     character(len=*), intent(in) :: path
+    !> Set when the path is refused, with why.
     type(error_type), allocatable, intent(out) :: error
     integer(hid_t) :: file
     integer :: hdferr, kind
@@ -120,8 +123,11 @@ contains
   !> then keeps it). A stale lock (its process no longer runs, or empty or unreadable: an
   !> older davit's on a full disk) is taken over with a note on stderr.
   subroutine acquire_lock(path, owned, error)
+    !> Path of the output (the lock is path.lock).
     character(len=*), intent(in) :: path
+    !> False when this process held the lock already.
     logical, intent(out) :: owned
+    !> Set when another running davit holds the lock or it cannot be created.
     type(error_type), allocatable, intent(out) :: error
     integer :: attempt, pid, status
     character(len=:), allocatable :: lock, text
@@ -215,6 +221,7 @@ contains
 
   !> Remove the lock `path.lock` if this process holds it.
   subroutine release_lock(path)
+    !> Path of the output (the lock is path.lock).
     character(len=*), intent(in) :: path
     if (lock_owner(path//".lock") == c_getpid()) call remove_if_named(path//".lock")
   end subroutine release_lock
@@ -223,6 +230,7 @@ contains
   !> lock can remove what a killed run left. The lock is replaced whole (a full disk
   !> keeps the one-line lock rather than emptying it).
   subroutine note_tmp(path, tmp)
+    !> Path of the output (the lock is path.lock); the temporary file.
     character(len=*), intent(in) :: path, tmp
     character(len=:), allocatable :: lock
     integer :: status

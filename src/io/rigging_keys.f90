@@ -21,28 +21,42 @@ module davit_io_rigging_keys
     character(len=:), allocatable :: winch_mode
     !> 'equilibrium' (pre-stretched, static) or 'unstretched' (Fig. 13 transient).
     character(len=:), allocatable :: initial
+    !> Lumped masses per sling (0: a massless tension-only spring).
     integer :: lumps
+    !> Unstretched sling length [m], sling mass per metre [kg/m], wire diameter [m], Young's
+    !> modulus of the wire [Pa].
     real(wp) :: sling_length, sling_mass_per_length, wire_diameter, youngs_modulus
+    !> Absolute axial dashpots of the slings and of each cable segment [N s/m].
     real(wp) :: sling_damping, cable_damping
     !> Wire damping ratio of every axial spring's own block mode, and whether the absolute
     !> dashpot keys were given (then they are used as given).
     real(wp) :: wire_damping_ratio
+    !> Whether sling_damping and cable_damping were given in the deck.
     logical :: sling_damping_given = .false., cable_damping_given = .false.
     !> Height of a block's centre above its hook when it rests on it [m] (0: no stop).
     real(wp) :: block_stop
+    !> Fore and aft davit heads [m], the spacing of a head's two cable nodes [m], lead sheave [m],
+    !> drum [m], all ship frame.
     real(wp) :: head_fore(3), head_aft(3), head_spacing, lead_sheave(3), drum_position(3)
+    !> Sheave radius [m], sheave polar inertia [kg m^2], block mass [kg], drum radius [m].
     real(wp) :: sheave_radius, sheave_inertia, block_mass, drum_radius
+    !> Drum pay-out speed [m/s], boat lowering speed [m/s], winch start [s], speed ramp [s], brake
+    !> start [s], braking time [s].
     real(wp) :: drum_speed, lowering_speed, winch_start, ramp_time, stop_time, brake_time
+    !> Coulomb bearing moment of a rotating sheave [N m]; T_out/T_in over a quasi-static sheave.
     real(wp) :: bearing_friction, friction_ratio
     !> Hook release once waterborne (SOLAS: both hooks at once), after release_delay [s].
     logical :: release
+    !> Delay of the release after the boat is waterborne [s].
     real(wp) :: release_delay
   end type rigging_config
 
 contains
 
   subroutine read_rigging(r, s)
+    !> The deck's reader, positioned at the &rigging group.
     type(deck_reader_type), intent(inout) :: r
+    !> The &rigging values, defaults in, the deck's read over them.
     type(rigging_config), intent(inout) :: s
     call read_topology(r, s)
     call read_wire(r, s)

@@ -10,14 +10,18 @@ module davit_io_sea_keys
   !> 'sum' (exact, the reference) or 'grid'; the grid's spacing [m] (also between its depth
   !> levels), time step [s], margin around the boat [m] and deepest level [m].
   type :: sea_grid_config
+    !> 'sum' (exact) or 'grid' (interpolated from a precomputed grid).
     character(len=:), allocatable :: kinematics
+    !> Grid spacing [m], time step [s], margin around the boat [m], deepest level [m].
     real(wp) :: spacing = 1.0_wp, time_step = 0.1_wp, margin = 3.0_wp, depth = 3.0_wp
   end type sea_grid_config
 
 contains
 
   subroutine read_sea_grid(r, s)
+    !> The deck's reader, positioned at the &sea group.
     type(deck_reader_type), intent(inout) :: r
+    !> The grid's values, defaults in, the deck's read over them.
     type(sea_grid_config), intent(inout) :: s
     character(len=*), parameter :: g = "sea"
     call r%choice(g, "kinematics", s%kinematics, "sum", [character(len=4) :: "sum", "grid"], &

@@ -15,9 +15,13 @@ contains
   !> in `first` when none is (an open then fails naming it); `searched` lists the
   !> folders tried, comma-separated.
   subroutine find_file(first, path, full, found, searched)
+    !> The folder tried first ("" = the current one) and the file's path.
     character(len=*), intent(in) :: first, path
+    !> The file found, or path in first when none is.
     character(len=:), allocatable, intent(out) :: full
+    !> Whether the file was found.
     logical, intent(out) :: found
+    !> The folders tried, comma-separated.
     character(len=:), allocatable, intent(out), optional :: searched
     character(len=:), allocatable :: dirs, tried, dir
     character(len=4096) :: env
@@ -52,6 +56,7 @@ contains
 
   !> The folder part of `path`, with its trailing "/" ("" for a bare name).
   pure function folder_of(path) result(folder)
+    !> A file path.
     character(len=*), intent(in) :: path
     character(len=:), allocatable :: folder
     folder = path(1:index(path, "/", back=.true.))

@@ -13,11 +13,20 @@ module davit_io_ship_keys
 
   !> Ship of Table 1 and the review's gaps G9-G15 (derived quantities in davit_ship_hull).
   type :: ship_config
+    !> Length overall, on the waterline, between perpendiculars, beam, draught, depth, GM [m]; CG x
+    !> and z [m]; block and waterplane coefficients; displacement [kg] (Table 1).
     real(wp) :: loa, lwl, lpp, beam, draught, depth, gm, cg_x, cg_z, cb, cwp, displacement
+    !> Heave, roll and pitch damping as fractions of critical; quadratic roll damping [N m s^2];
+    !> cross-flow drag coefficient.
     real(wp) :: zeta_heave, zeta_roll, zeta_pitch, roll_quadratic, crossflow_cd
+    !> Frontal and lateral windage areas [m^2], height of the lateral wind force above G [m], list
+    !> and trim [rad] (the deck gives degrees).
     real(wp) :: area_front, area_lateral, wind_height, list, trim
+    !> Initial CG position (inertial) [m], heading [rad] (the deck gives degrees), headway [m/s].
     real(wp) :: position(3), heading, headway
+    !> Hold the ship fixed.
     logical :: frozen
+    !> Where the phase of the ship's wave loads is taken: 'initial' or 'current' position.
     character(len=:), allocatable :: wave_phase
     !> 'fk_box' (the paper's box) or 'bem' (Cummins' equation from `database`).
     character(len=:), allocatable :: model, database
@@ -37,15 +46,20 @@ module davit_io_ship_keys
     !> constant thrust) or 'mmg' (group &mmg: hull, propeller at `rps`, rudder steered by
     !> `rudder`).
     character(len=:), allocatable :: manoeuvring
+    !> The MMG coefficients (group &mmg).
     type(mmg_type) :: mmg
+    !> The rudder's steering (group &mmg).
     type(rudder_type) :: rudder
+    !> Propeller revolutions [1/s] (0: the self-propulsion point at headway).
     real(wp) :: rps = 0.0_wp
   end type ship_config
 
 contains
 
   subroutine read_ship(r, s)
+    !> The deck's reader, positioned at the &ship group.
     type(deck_reader_type), intent(inout) :: r
+    !> The &ship values, defaults in, the deck's read over them.
     type(ship_config), intent(inout) :: s
     character(len=*), parameter :: g = "ship"
     real(wp), parameter :: deg = pi/180.0_wp

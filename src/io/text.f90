@@ -12,13 +12,16 @@ module davit_io_text
 contains
 
   pure function count_range(min_count, max_count) result(s)
+    !> Smallest and largest count.
     integer, intent(in) :: min_count, max_count
     character(len=:), allocatable :: s
     s = int_to_str(min_count)//"-"//int_to_str(max_count)
   end function count_range
 
   pure function optional_text(text, fallback) result(s)
+    !> The text, when given.
     character(len=*), intent(in), optional :: text
+    !> What to return when text is absent.
     character(len=*), intent(in) :: fallback
     character(len=:), allocatable :: s
     if (present(text)) then
@@ -30,6 +33,7 @@ contains
 
   !> The items, each without its trailing blanks, separated by `sep` ("1, 2, 3").
   pure function join_text(items, sep) result(s)
+    !> The items; the separator.
     character(len=*), intent(in) :: items(:), sep
     character(len=:), allocatable :: s
     integer :: i
@@ -41,6 +45,7 @@ contains
   end function join_text
 
   pure function join_ints(x) result(s)
+    !> The integers.
     integer, intent(in) :: x(:)
     character(len=:), allocatable :: s
     character(len=12) :: items(size(x))
@@ -49,6 +54,7 @@ contains
   end function join_ints
 
   pure function join_logicals(x) result(s)
+    !> The logicals.
     logical, intent(in) :: x(:)
     character(len=:), allocatable :: s
     character(len=7) :: items(size(x))
@@ -60,6 +66,7 @@ contains
   !> [sign] . digits, then optionally e|E|d|D [sign] digits. List-directed READ alone would
   !> accept more ('T', '1-3' read as 1e-3, '-15-1' as -1.5), so anything else is refused.
   pure logical function is_number(s)
+    !> The text.
     character(len=*), intent(in) :: s
     integer :: i, n, mant, frac, k
     is_number = .false.
@@ -90,6 +97,7 @@ contains
 
   !> An integer: [sign] digits.
   pure logical function is_integer(s)
+    !> The text.
     character(len=*), intent(in) :: s
     integer :: i, n, k
     n = len_trim(s)
@@ -116,6 +124,7 @@ contains
 
 
   pure function unquote(s) result(r)
+    !> The text, quoted or not.
     character(len=*), intent(in) :: s
     character(len=:), allocatable :: r
     integer :: n
@@ -129,6 +138,7 @@ contains
   end function unquote
 
   pure function join_reals(x) result(s)
+    !> The reals.
     real(wp), intent(in) :: x(:)
     character(len=:), allocatable :: s
     character(len=40) :: items(size(x))  ! fmt_real's longest
@@ -141,7 +151,9 @@ contains
 
   !> x with `decimals` digits after the point, a zero before it ("0.0812", "-0.5").
   pure function fmt_fixed(x, decimals) result(s)
+    !> The number.
     real(wp), intent(in) :: x
+    !> Digits after the point.
     integer, intent(in) :: decimals
     character(len=:), allocatable :: s
     character(len=40) :: buf
@@ -155,6 +167,7 @@ contains
 
   !> Shortest readable form of a real (no trailing zeros).
   pure function fmt_real(x) result(s)
+    !> The number.
     real(wp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=40) :: buf

@@ -89,13 +89,21 @@ contains
   !> residual: the elastic force left on a block at the balance [N] (links, stop and
   !> weight, without the fallback's anchor).
   pure subroutine solve_blocks(falls, inp, ship, br, bv, solved, iterations, residual)
+    !> The falls (cables, top sling segments, block mass).
     type(falls_type), intent(in) :: falls
+    !> The lower ends of the top segments, the hooks and the drive (balance_input_type).
     type(balance_input_type), intent(in) :: inp
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> Block positions (3, block), inertial [m]: in the start, out the balance.
     real(wp), intent(inout) :: br(3, 2)
+    !> Block velocities (3, block) on the balance, inertial [m/s].
     real(wp), intent(out) :: bv(3, 2)
+    !> Whether Newton's iteration converged.
     logical, intent(out) :: solved
+    !> Balance evaluations used.
     integer, intent(out), optional :: iterations
+    !> Largest net force left on a block relative to its load.
     real(wp), intent(out), optional :: residual
     type(balance_input_type) :: in
     real(wp) :: b0(3, 2), left

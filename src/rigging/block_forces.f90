@@ -22,10 +22,17 @@ module davit_rigging_block_forces
   !> nodes at rest in vn: rates are taken at fixed blocks) and, for its fallback, the
   !> anchor of the blocks and its stiffness k_anchor (0: none).
   type :: balance_input_type
+    !> Lower ends of the top sling segments (3, sling), inertial [m], and their velocities [m/s].
     real(wp) :: low_r(3, 2) = 0.0_wp, low_v(3, 2) = 0.0_wp
+    !> Hook positions (3, hook), inertial [m], and their velocities [m/s] (the blocks' stops).
     real(wp) :: hook_r(3, 2) = 0.0_wp, hook_v(3, 2) = 0.0_wp
+    !> Drum passage and speed, sheave angles and rates.
     type(drive_type) :: drive
+    !> The cables' node positions (3, node, cable), inertial [m], and velocities [m/s], set by
+    !> solve_blocks.
     real(wp) :: pn(3, max_nodes, 2) = 0.0_wp, vn(3, max_nodes, 2) = 0.0_wp
+    !> Anchor positions of the two blocks (3 each), inertial [m], and the anchoring spring [N/m]
+    !> (0: none).
     real(wp) :: anchor(6) = 0.0_wp, k_anchor = 0.0_wp
   end type balance_input_type
 
@@ -34,7 +41,11 @@ module davit_rigging_block_forces
   !> segments' elastic tensions continued through slack (< 0 there), f_real: their
   !> tension-only values; res_d: the dashpots' force on the moving blocks (0 unless asked).
   type :: balance_type
+    !> Net force on the blocks [N], its Jacobian d res/d b [N/m] and its rate at fixed blocks
+    !> [N/s].
     real(wp) :: res(6) = 0.0_wp, jac(6, 6) = 0.0_wp, rate(6) = 0.0_wp
+    !> The top segments' elastic tensions continued through slack and their tension-only values
+    !> [N]; the dashpots' force on the blocks [N].
     real(wp) :: f_sling(2) = 0.0_wp, f_real(2) = 0.0_wp, res_d(6) = 0.0_wp
   end type balance_type
 
@@ -46,11 +57,17 @@ contains
   !> inp%k_anchor > 0 a spring k_anchor ties each block to inp%anchor (solve_blocks'
   !> fallback).
   pure subroutine block_balance(falls, inp, b, v, taut, bal, dashpots)
+    !> The falls.
     type(falls_type), intent(in) :: falls
+    !> The lower ends, hooks, drive and nodes (balance_input_type).
     type(balance_input_type), intent(in) :: inp
+    !> Block positions and velocities (two blocks, 3 each), inertial [m, m/s].
     real(wp), intent(in) :: b(6), v(6)
+    !> Per sling, whether its top segment is held (taut).
     logical, intent(in) :: taut(2)
+    !> The balance at b.
     type(balance_type), intent(out) :: bal
+    !> Also the dashpots' force (default: without).
     logical, intent(in), optional :: dashpots
     real(wp) :: br(3, 2), bv(3, 2), block_f(3, 2), damp_f(3, 2)
     integer :: i

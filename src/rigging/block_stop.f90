@@ -40,6 +40,7 @@ module davit_rigging_block_stop
     !> Height of the block's centre above the hook at contact [m] (0: no stop), stiffness
     !> [N/m], dashpot [N s/m], onset [m], friction coefficient, slip speed [m/s].
     real(wp) :: height = 0.0_wp, k = 0.0_wp, c = 0.0_wp, onset = stop_onset
+    !> Friction coefficient and the slip speed below which friction is regularised [m/s].
     real(wp) :: mu = stop_mu, v_slip = slip_speed
   end type block_stop_type
 
@@ -47,6 +48,8 @@ contains
 
   !> A stop at `height` above the hook with stiffness k for a block of mass m_b.
   pure function new_block_stop(height, k, m_b) result(st)
+    !> Height of the block's centre above the hook at contact [m], stiffness [N/m], block mass
+    !> [kg].
     real(wp), intent(in) :: height, k, m_b
     type(block_stop_type) :: st
     st%height = height
@@ -82,8 +85,11 @@ contains
   !> with `dynamic` also its dashpot and the friction against the slip, else the elastic
   !> part alone (quasi-static blocks, whose balance has no inertia for them to act on).
   pure function stop_force(st, r_hook, v_hook, r_b, v_b, dynamic) result(f)
+    !> The stop.
     type(block_stop_type), intent(in) :: st
+    !> Hook position and velocity, block position and velocity, inertial [m, m/s].
     real(wp), intent(in) :: r_hook(3), v_hook(3), r_b(3), v_b(3)
+    !> With the dashpot and friction (massive blocks), else the elastic part alone.
     logical, intent(in) :: dynamic
     real(wp) :: f(3), d, fn, df, slip(3)
     f = 0.0_wp
@@ -100,9 +106,14 @@ contains
   !> Adds the stops' forces to both blocks (br, bv) and their reactions to the hooks.
   pure subroutine add_stop_forces(st, hook_pos, hook_vel, br, bv, dynamic, block_f, &
                                   hook_force)
+    !> The stop.
     type(block_stop_type), intent(in) :: st
+    !> Hook positions and velocities, block positions and velocities (3, 2 each), inertial [m,
+    !> m/s].
     real(wp), intent(in) :: hook_pos(3, 2), hook_vel(3, 2), br(3, 2), bv(3, 2)
+    !> With the dashpot and friction (massive blocks), else the elastic part alone.
     logical, intent(in) :: dynamic
+    !> Forces on the blocks and on the hooks (3, 2 each), inertial [N], the stops' added.
     real(wp), intent(inout) :: block_f(3, 2), hook_force(3, 2)
     real(wp) :: f(3)
     integer :: a
@@ -116,7 +127,9 @@ contains
   !> Elastic energy of both stops [J]: k d^3/(6 e) below the onset e, then
   !> k e^2/6 + k (d^2 - e d)/2 (the integral of the elastic law).
   pure function stop_energy(st, hook_pos, br) result(en)
+    !> The stop.
     type(block_stop_type), intent(in) :: st
+    !> Hook positions and block positions (3, 2 each), inertial [m].
     real(wp), intent(in) :: hook_pos(3, 2), br(3, 2)
     real(wp) :: en, d, e
     integer :: a
@@ -138,8 +151,12 @@ contains
   !> tangent df/dz_block (-k s'(d), on the vertical only) and the force's rate at a fixed
   !> block with the hook moving at v_hook (k s'(d) v_hook,3).
   pure subroutine stop_tangent(st, r_hook, v_hook, r_b, f, dfdz, rate)
+    !> The stop.
     type(block_stop_type), intent(in) :: st
+    !> Hook position and velocity, block position, inertial [m, m/s].
     real(wp), intent(in) :: r_hook(3), v_hook(3), r_b(3)
+    !> Force on the block, inertial [N]; its tangent along N3 [N/m]; its rate at a fixed block
+    !> [N/s].
     real(wp), intent(out) :: f(3), dfdz, rate
     real(wp) :: fn, df
     call elastic(st, penetration(st, r_hook, r_b), fn, df)

@@ -25,12 +25,15 @@ module davit_rigging_cable
   real(wp), parameter :: l0_floor = 1.0e-6_wp
 
   type :: cable_type
+    !> Number of nodes of the cable.
     integer :: nnode = 0
+    !> Kind of each node: node_drum, node_fixed, node_block or node_dead.
     integer :: kind(max_nodes) = 0
     !> Ship-frame position of drum, fixed-sheave and dead-end nodes [m].
     real(wp) :: p_ship(3, max_nodes) = 0.0_wp
     !> Block (1 or 2) of a block node; sheave index (in the rigging's list, 0 = none).
     integer :: block(max_nodes) = 0
+    !> Sheave index of each node in the rigging's list (0: none).
     integer :: sheave(max_nodes) = 0
     !> Unstretched segment lengths at zero passage L0_i(0) [m].
     real(wp) :: l0_init(max_nodes - 1) = 0.0_wp
@@ -45,7 +48,10 @@ module davit_rigging_cable
   !> One cable's chords (lam, l), passages (s, sdot; rotating sheaves), segment tensions f
   !> and the tensions g that drive the sheaves (cable_tensions_rotating).
   type :: cable_eval_type
+    !> Chord unit vectors, inertial, and chord lengths [m]; passages [m] and their rates [m/s] at
+    !> the nodes.
     real(wp) :: lam(3, max_nodes - 1), l(max_nodes - 1), s(max_nodes), sdot(max_nodes)
+    !> Segment tensions [N] and the tensions that drive the sheaves [N].
     real(wp) :: f(max_nodes - 1), g(max_nodes - 1)
   end type cable_eval_type
 
@@ -54,9 +60,13 @@ contains
   !> Inertial node positions and velocities: ship-fixed nodes p = r_s + C_s p_ship,
   !> v = v_s + w_s x (C_s p_ship) (w_s inertial components); block nodes from the blocks.
   pure subroutine cable_node_kinematics(cab, ship, block_r, block_v, p, v)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> Block positions and velocities (3, block), inertial [m, m/s].
     real(wp), intent(in) :: block_r(3, 2), block_v(3, 2)
+    !> Node positions and velocities (3, node), inertial [m, m/s].
     real(wp), intent(out) :: p(3, max_nodes), v(3, max_nodes)
     real(wp) :: arm(3)
     integer :: i
@@ -76,8 +86,12 @@ contains
 
   !> Passages s_i and rates: drum from the winch, dead end 0, sheaves r theta (no slip).
   pure subroutine cable_passages(cab, s_drum, v_drum, radius, theta, omega, s, sdot)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Drum passage [m] and pay-out speed [m/s]; sheave radius [m]; sheave angles [rad] and rates
+    !> [rad/s].
     real(wp), intent(in) :: s_drum, v_drum, radius, theta(:), omega(:)
+    !> Passages at the nodes [m] and their rates [m/s].
     real(wp), intent(out) :: s(max_nodes), sdot(max_nodes)
     integer :: i
     s = 0.0_wp
@@ -95,8 +109,11 @@ contains
 
   !> Chord unit vectors lam, chord lengths l and their rates for every segment.
   pure subroutine cable_geometry(cab, p, v, lam, l, ldot)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Node positions and velocities (3, node), inertial [m, m/s].
     real(wp), intent(in) :: p(3, max_nodes), v(3, max_nodes)
+    !> Chord unit vectors (inertial), chord lengths [m] and their rates [m/s].
     real(wp), intent(out) :: lam(3, max_nodes - 1), l(max_nodes - 1), ldot(max_nodes - 1)
     real(wp) :: d(3)
     integer :: i
@@ -117,9 +134,13 @@ contains
   !> and using g (not f) in the torque keeps the discrete model exactly conservative.
   !> The difference is O(strain) ~ 3e-4 of f.
   pure subroutine cable_tensions_rotating(cab, l, ldot, s, sdot, f, g)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Chord lengths [m] and their rates [m/s].
     real(wp), intent(in) :: l(max_nodes - 1), ldot(max_nodes - 1)
+    !> Passages at the nodes [m] and their rates [m/s].
     real(wp), intent(in) :: s(max_nodes), sdot(max_nodes)
+    !> Segment tensions [N] and the tensions that drive the sheaves [N].
     real(wp), intent(out) :: f(max_nodes - 1), g(max_nodes - 1)
     real(wp) :: l0, e, fel, edot
     integer :: i
@@ -142,9 +163,14 @@ contains
   !> out: the load side pulls the cable over each sheave against friction). The n-1 segment
   !> dashpots act in series, so the cable dashpot is c/(n-1) on dL/dt - v_drum.
   pure subroutine cable_tension_quasi_static(cab, l, ldot, l0_total, v_drum, ratio, f)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Chord lengths [m] and their rates [m/s].
     real(wp), intent(in) :: l(max_nodes - 1), ldot(max_nodes - 1)
+    !> Unstretched length of the whole cable [m], drum pay-out speed [m/s], sheave friction ratio
+    !> (1: frictionless).
     real(wp), intent(in) :: l0_total, v_drum, ratio
+    !> Segment tensions [N].
     real(wp), intent(out) :: f(max_nodes - 1)
     real(wp) :: w(max_nodes - 1), stretch, total, lengths, t
     integer :: nseg
@@ -164,9 +190,14 @@ contains
   !> Eq. (79) corrected: node i receives f_i lam_i - f_(i-1) lam_(i-1); block nodes add it to
   !> their block. Sheave torques r (g_out - g_in) (eq. 71, corrected, c_gamma = 1).
   pure subroutine cable_node_forces(cab, lam, f, g, radius, block_f, torque)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Chord unit vectors (inertial), segment tensions and sheave-driving tensions [N].
     real(wp), intent(in) :: lam(3, max_nodes - 1), f(max_nodes - 1), g(max_nodes - 1)
+    !> Sheave radius [m].
     real(wp), intent(in) :: radius
+    !> Forces on the blocks (3, block), inertial [N], and torques on the sheaves [N m], the cable's
+    !> added.
     real(wp), intent(inout) :: block_f(3, 2), torque(:)
     integer :: i
     do i = 2, cab%nnode - 1
@@ -182,7 +213,9 @@ contains
 
   !> Elastic energy sum EA e^2/(2 L0) over taut segments [J] (rotating sheaves).
   pure function cable_energy_rotating(cab, l, s) result(en)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Chord lengths [m] and passages at the nodes [m].
     real(wp), intent(in) :: l(max_nodes - 1), s(max_nodes)
     real(wp) :: en, l0, e
     integer :: i
@@ -204,9 +237,14 @@ contains
   !> K_i = lam g^T + (f_i/l_i)(I - lam lam^T); and df/dL0 = -EA l/L0^2. What is left out,
   !> d f/d(node velocities) times accelerations, is the O(c a/k) lag of a massive block.
   pure subroutine cable_block_tangent_rotating(cab, ce, v, v_exo, jac, rate)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> The cable evaluated at the blocks (chords, passages, tensions).
     type(cable_eval_type), intent(in) :: ce
+    !> Node velocities and their part from the ship alone (3, node), inertial [m/s].
     real(wp), intent(in) :: v(3, max_nodes), v_exo(3, max_nodes)
+    !> Jacobian of the force on the blocks [N/m] and its rate at fixed blocks [N/s], the cable's
+    !> added.
     real(wp), intent(inout) :: jac(6, 6), rate(6)
     real(wp) :: k(3, 3), l0, dl0, g(3), e, edot, phi, dphi
     integer :: i
@@ -239,9 +277,15 @@ contains
                                                    v_exo, jac, rate)
     ! 9 arguments: as cable_block_tangent_rotating, with the one-tension law's inputs
     ! (unstretched length, drum speed, friction ratio) in place of the passages.
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> The cable evaluated at the blocks (chords, tensions).
     type(cable_eval_type), intent(in) :: ce
+    !> Unstretched cable length [m], pay-out speed [m/s], friction ratio; node velocities and their
+    !> part from the ship alone (3, node), inertial [m/s].
     real(wp), intent(in) :: l0_total, v_drum, ratio, v(3, max_nodes), v_exo(3, max_nodes)
+    !> Jacobian of the force on the blocks [N/m] and its rate at fixed blocks [N/s], the cable's
+    !> added.
     real(wp), intent(inout) :: jac(6, 6), rate(6)
     real(wp) :: w(max_nodes - 1), u(3, 2), q(3, 2), k(3, 3), t_i(3)
     real(wp) :: total, weighted, t_el, tdot, d_el, d_damp, phi, rate_l
@@ -315,6 +359,7 @@ contains
   !> the dashpot by it keeps a tension-only segment's tension continuous, with a
   !> continuous slope, where it goes slack, instead of jumping from c de/dt to 0.
   elemental real(wp) function ramp_factor(e, ramp) result(phi)
+    !> Stretch [m] and the ramp length [m] (0: none).
     real(wp), intent(in) :: e, ramp
     real(wp) :: x
     phi = 1.0_wp
@@ -325,6 +370,7 @@ contains
 
   !> d ramp_factor/de.
   elemental real(wp) function ramp_slope(e, ramp) result(dphi)
+    !> Stretch [m] and the ramp length [m] (0: none).
     real(wp), intent(in) :: e, ramp
     real(wp) :: x
     dphi = 0.0_wp

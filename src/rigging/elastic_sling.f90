@@ -13,7 +13,9 @@ module davit_rigging_elastic_sling
     real(wp) :: anchor(3) = 0.0_wp
     !> Unstretched length [m], axial stiffness EA [N], axial dashpot [N s/m].
     real(wp) :: length = 1.0_wp
+    !> Axial stiffness EA [N].
     real(wp) :: ea = 0.0_wp
+    !> Axial dashpot [N s/m].
     real(wp) :: damping = 0.0_wp
   end type elastic_sling_type
 
@@ -24,8 +26,11 @@ contains
   !> dD/dt = (v_hook - v_anchor) . e: the corrected eq. (63) (review §1.6), never divided by
   !> the stretch. Tension-only: zero when slack, and spring + dashpot clipped at >= 0 (eq. 58).
   pure subroutine sling_hook_force(sling, r_hook, v_hook, force, tension)
+    !> The sling.
     type(elastic_sling_type), intent(in) :: sling
+    !> Hook position [m] and velocity [m/s], inertial.
     real(wp), intent(in) :: r_hook(3), v_hook(3)
+    !> Force on the hook, inertial [N], and the sling tension [N].
     real(wp), intent(out) :: force(3), tension
     real(wp) :: d(3), dist, e(3), stretch, rate
     d = r_hook - sling%anchor
@@ -44,7 +49,9 @@ contains
 
   !> Elastic energy 1/2 k stretch^2 (zero when slack) [J].
   pure function sling_energy(sling, r_hook) result(e)
+    !> The sling.
     type(elastic_sling_type), intent(in) :: sling
+    !> Hook position, inertial [m].
     real(wp), intent(in) :: r_hook(3)
     real(wp) :: e, stretch
     stretch = max(0.0_wp, norm2(r_hook - sling%anchor) - sling%length)

@@ -30,23 +30,31 @@ module davit_rigging_falls
   type :: falls_type
     !> Cables, rotating sheaves (0 if quasi-static), total cable segments.
     integer :: ncable = 0, nsheave = 0, nseg = 0
+    !> Rotating sheaves (with inertia), else quasi-static.
     logical :: rotating = .false.
+    !> The cables (1 for reeving A, 2 for B).
     type(cable_type) :: cables(2)
+    !> The slings (their top segments hold the blocks).
     type(sling_chain_type) :: sling
+    !> Mass of a block [kg], sheave radius [m], sheave friction ratio (1: frictionless).
     real(wp) :: block_mass = 50.0_wp, sheave_radius = 0.16_wp, friction_ratio = 1.0_wp
     !> Quasi-static sheaves: unstretched cable length at zero pay-out, per cable [m].
     real(wp) :: l0_total(2) = 0.0_wp
     !> The blocks' hook stops (davit_rigging_block_stop), the wire's damping ratio and
     !> whether the cables' dashpot is raised to its floor once their lengths are known.
     type(block_stop_type) :: stop
+    !> Damping ratio of the wire.
     real(wp) :: wire_zeta = 0.0_wp
+    !> Whether the cables' dashpot is raised to its floor once their lengths are known.
     logical :: cable_floor = .false.
   end type falls_type
 
   !> What moves the cable over its sheaves: drum passage s_drum [m] and pay-out speed
   !> v_drum [m/s], sheave angles theta [rad] and rates omega [rad/s] (rotating sheaves).
   type :: drive_type
+    !> Drum passage [m] and pay-out speed [m/s].
     real(wp) :: s_drum = 0.0_wp, v_drum = 0.0_wp
+    !> Sheave angles [rad] and rates [rad/s].
     real(wp) :: theta(max_sheaves) = 0.0_wp, omega(max_sheaves) = 0.0_wp
   end type drive_type
 
@@ -54,8 +62,11 @@ contains
 
   !> Node lists of reeving A (paper Fig. 8, G6) or B (one wire per fall).
   subroutine build_reeving(self, cfg, ea)
+    !> The falls, their cables' node lists set.
     type(falls_type), intent(inout) :: self
+    !> The &rigging configuration (reeving, geometry).
     type(rigging_config), intent(in) :: cfg
+    !> Axial stiffness EA of the wire [N].
     real(wp), intent(in) :: ea
     real(wp) :: h(3), heads(3, 2), lead(3), drum(3)
     integer :: a, c, i, ns
@@ -116,11 +127,17 @@ contains
   !> Chords, passages and segment tensions of cable cab (falls' cable c, or a copy of it)
   !> with its nodes at p moving at v.
   pure subroutine cable_tensions(falls, cab, c, drive, p, v, ce)
+    !> The falls.
     type(falls_type), intent(in) :: falls
+    !> The cable (falls' cable c, or a copy of it).
     type(cable_type), intent(in) :: cab
+    !> Index of the cable (1 or 2).
     integer, intent(in) :: c
+    !> Drum passage and speed, sheave angles and rates.
     type(drive_type), intent(in) :: drive
+    !> Node positions and velocities (3, node), inertial [m, m/s].
     real(wp), intent(in) :: p(3, max_nodes), v(3, max_nodes)
+    !> Chords, passages and tensions of the cable.
     type(cable_eval_type), intent(out) :: ce
     real(wp) :: ldot(max_nodes - 1)
     integer :: ns
@@ -141,10 +158,16 @@ contains
 
   !> Unstretched cable lengths for tension T per cable (T = 0 when unstretched).
   subroutine set_cable_lengths(self, br, q, ship, unstretched, residual)
+    !> The falls, their unstretched lengths set.
     type(falls_type), intent(inout) :: self
+    !> Block positions (3, block), inertial [m]; the forces the blocks must carry (3, block) [N].
     real(wp), intent(in) :: br(3, 2), q(3, 2)
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> Set the lengths to the chords (no tension) instead of the tension each block needs.
     logical, intent(in) :: unstretched
+    !> max |Q - T (lam_out - lam_in)|/|Q| over the blocks: how far the falls miss the blocks'
+    !> loads.
     real(wp), intent(out) :: residual
     real(wp) :: p(3, max_nodes), v(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
     real(wp) :: ldot(max_nodes - 1), sv(3), num, den, t
@@ -183,10 +206,15 @@ contains
   !> pose: sum EA e^2/(2 L0) over taut segments (rotating sheaves), or EA e^2/(2 L0_tot)
   !> of the cable's one stretch e (quasi-static sheaves).
   pure subroutine add_cable_energy(self, drive, ship, br, en)
+    !> The falls.
     type(falls_type), intent(in) :: self
+    !> Drum passage and speed, sheave angles.
     type(drive_type), intent(in) :: drive
+    !> The ship's pose (taken at rest).
     type(pose_type), intent(in) :: ship
+    !> Block positions (3, block), inertial [m].
     real(wp), intent(in) :: br(3, 2)
+    !> Energy [J], the cables' added.
     real(wp), intent(inout) :: en
     real(wp) :: p(3, max_nodes), v(3, max_nodes), lam(3, max_nodes - 1), l(max_nodes - 1)
     real(wp) :: ldot(max_nodes - 1), s(max_nodes), sdot(max_nodes), stretch
@@ -211,8 +239,11 @@ contains
   !> Unstretched length of cable c [m]: sum L0_i = sum L0_i(0) + s_drum (the sheave
   !> passages telescope), or L0_tot(0) + s_drum for quasi-static sheaves.
   pure function cable_unstretched_length(self, drive, c) result(len0)
+    !> The falls.
     type(falls_type), intent(in) :: self
+    !> Drum passage.
     type(drive_type), intent(in) :: drive
+    !> Index of the cable (1 or 2).
     integer, intent(in) :: c
     real(wp) :: len0, s(max_nodes), sdot(max_nodes)
     integer :: i, ns
@@ -233,6 +264,7 @@ contains
 
   !> The ship where `ship` is, at rest (statics and energies).
   pure function at_rest(ship) result(pose)
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
     type(pose_type) :: pose
     pose%r = ship%r

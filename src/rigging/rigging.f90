@@ -40,10 +40,9 @@ module davit_rigging_rigging
   use davit_kinds, only: wp, gravity, pi
   use davit_error, only: error_type, fatal_error
   use davit_core_pose, only: pose_type
-  use davit_core_layout, only: state_layout_type, state_part_type
   use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates
   use davit_io_rigging_keys, only: rigging_config
-  use davit_rigging_winch, only: winch_type, winch_speed
+  use davit_rigging_winch, only: winch_speed
   use davit_rigging_sling_chain, only: max_lumps, chain_forces, chain_energy, new_sling_chain
   use davit_rigging_cable, only: max_nodes, cable_eval_type, cable_node_kinematics, &
                                  cable_node_forces
@@ -54,6 +53,7 @@ module davit_rigging_rigging
   use davit_rigging_wire_damping, only: sling_dashpot, sling_lump_dashpots
   use davit_rigging_block_stop, only: add_stop_forces, stop_energy
   use davit_rigging_sling_start, only: lay_out_sling, pendulum_velocity, check_start_residual
+  use davit_rigging_rigging_state, only: rigging_state_type, set_layout, sling_range
   implicit none
   private
   public :: rigging_type, new_rigging, max_segments, max_sheaves
@@ -73,30 +73,15 @@ module davit_rigging_rigging
   !> part, ~6 kN of a 1 m sling: the loaded rigging (~20 kN per part) never sees it.
   real(wp), parameter :: dashpot_ramp = 1.0e-4_wp
 
-  !> The falls (cables, top sling segments, blocks; davit_rigging_block_balance) plus the
-  !> lumps, the sheaves' dynamics, the winch and the state layout.
-  type, extends(falls_type) :: rigging_type
-    !> The sizes: state length, DOFs (F1), lumps per sling.
-    integer :: nstate = 0, ndof = 0, nlump = 0
-    !> The rigging's own state layout (parts "lumps", "blocks", "sheaves", "drum"), and
-    !> those parts; block_r, block_v: where the block positions and velocities are (the
-    !> blocks' q and u, or for quasi-static blocks the two halves of their 12 q slots).
-    type(state_layout_type) :: layout
-    type(state_part_type) :: lumps, blocks, sheaves, drum
-    integer :: block_r(2) = [1, 0], block_v(2) = [1, 0]
-    logical :: unstretched = .false.
-    !> Quasi-static (inertia-free) blocks: positions solved from the force balance.
-    logical :: static_blocks = .false.
-    character(len=1) :: reeving = "a"
-    type(winch_type) :: winch
-    real(wp) :: sheave_inertia = 0.19_wp, drum_radius = 0.25_wp, bearing_friction = 0.0_wp
+  !> The rigging: its parts and state (davit_rigging_rigging_state) with the Kane blocks,
+  !> forces, initial state, energy and observations of the whole.
+  type, extends(rigging_state_type) :: rigging_type
   contains
     procedure :: kane_blocks => rigging_kane_blocks
     procedure :: rhs => rigging_rhs
     procedure :: initial_state => rigging_initial_state
     procedure :: energy => rigging_energy
     procedure :: observe => rigging_observe
-    procedure :: paid_out, sheave_angles, drum_angle, lump_positions, block_positions
     procedure :: block_state => rigging_block_state
     procedure :: unstretched_length
   end type rigging_type
@@ -112,8 +97,11 @@ contains
 
   !> Build the rigging from its configuration (review G4-G8, G26 defaults).
   subroutine new_rigging(self, cfg, error)
+    !> The rigging built.
     type(rigging_type), intent(out) :: self
+    !> The &rigging configuration.
     type(rigging_config), intent(in) :: cfg
+    !> Set when the configuration gives no consistent rigging.
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: ea, gear
     if (cfg%lumps < 0 .or. cfg%lumps > max_lumps .or. cfg%block_stop >= cfg%sling_length) then
@@ -151,35 +139,6 @@ contains
     call set_layout(self)
   end subroutine new_rigging
 
-  !> The rigging's layout (parts in state order, see the module header) and its DOFs: the
-  !> speeds plus the drum's passage, prescribed by the winch (F1).
-  subroutine set_layout(self)
-    type(rigging_type), intent(inout) :: self
-    integer :: n
-    n = self%nlump
-    call self%layout%add("lumps", 6*n, 6*n, self%lumps)
-    if (self%static_blocks) then
-      call self%layout%add("blocks", 12, 0, self%blocks)
-      self%block_r = [self%blocks%q(1), self%blocks%q(1) + 5]
-      self%block_v = [self%blocks%q(1) + 6, self%blocks%q(2)]
-    else
-      call self%layout%add("blocks", 6, 6, self%blocks)
-      self%block_r = self%blocks%q
-      self%block_v = self%blocks%u
-    end if
-    call self%layout%add("sheaves", self%nsheave, self%nsheave, self%sheaves)
-    call self%layout%add("drum", 1, 0, self%drum)
-    self%nstate = self%layout%n
-    self%ndof = self%layout%nu + 1
-  end subroutine set_layout
-
-  !> Range in y of sling a's 3 n entries within the lumps' range r (q or u): sling 1 first.
-  pure function sling_range(r, n, a) result(s)
-    integer, intent(in) :: r(2), n, a
-    integer :: s(2)
-    s = [r(1) + 3*n*(a - 1), r(1) + 3*n*a - 1]
-  end function sling_range
-
   !> Kane blocks of the rigging over its own slice y (size nstate) for given hook
   !> kinematics and ship pose: dydt at the coordinates (kinematic relations: lump and
   !> massive block positions move at their velocities, eq. 51; quasi-static block copies
@@ -193,10 +152,17 @@ contains
                                       hook_force)
     ! 9 arguments: the Kane-block interface every subsystem shares (time, own state, the
     ! bodies it hangs between, its two Kane results) plus the hook forces it returns.
+    !> The rigging.
     class(rigging_type), intent(in) :: self
+    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
+    !> velocities [m/s].
     real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
+    !> The ship's pose (the davit heads, sheaves and drum move with it).
     type(pose_type), intent(in) :: ship
+    !> Time derivative of the rigging's states (kinematic rows set); the Kane blocks (mass and
+    !> force rows).
     real(wp), intent(inout) :: dydt(:), kane(:, :)
+    !> Forces on the two boat hooks (3, hook), inertial [N].
     real(wp), intent(out) :: hook_force(3, 2)
     type(rig_forces_type) :: out
     call evaluate(self, t, y, hook_pos, hook_vel, ship, dydt, kane, out)
@@ -206,10 +172,16 @@ contains
   !> Time derivative of the rigging states (kane_blocks, then eq. 89 by kane_rates) and
   !> the forces ON the two boat hooks.
   pure subroutine rigging_rhs(self, t, y, hook_pos, hook_vel, ship, dydt, hook_force)
+    !> The rigging.
     class(rigging_type), intent(in) :: self
+    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
+    !> velocities [m/s].
     real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> Time derivative of the rigging's states.
     real(wp), intent(inout) :: dydt(:)
+    !> Forces on the two boat hooks (3, hook), inertial [N].
     real(wp), intent(out) :: hook_force(3, 2)
     real(wp) :: kane(3, self%nstate)
     call self%kane_blocks(t, y, hook_pos, hook_vel, ship, dydt, kane, hook_force)
@@ -220,9 +192,14 @@ contains
   !> tensions (segment k above lump k-1, k = 1 at the hook; column = sling).
   pure subroutine rigging_observe(self, t, y, hook_pos, hook_vel, ship, seg_tension, &
                                   sling_tension)
+    !> The rigging.
     class(rigging_type), intent(in) :: self
+    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
+    !> velocities [m/s].
     real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> Cable segment tensions [N]; sling segment tensions (segment, sling) [N].
     real(wp), intent(out) :: seg_tension(self%nseg), sling_tension(self%nlump + 1, 2)
     real(wp) :: dydt(self%nstate), kane(3, self%nstate)
     type(rig_forces_type) :: out
@@ -412,12 +389,20 @@ contains
                                       iterations, residual)
     ! 11 arguments: the evaluation's inputs as in kane_blocks, and three optional
     ! diagnostics.
+    !> The rigging.
     class(rigging_type), intent(in) :: self
+    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
+    !> velocities [m/s].
     real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> Block positions [m] and velocities [m/s] (3, block), inertial.
     real(wp), intent(out) :: r(3, 2), v(3, 2)
+    !> Whether the quasi-static balance converged.
     logical, intent(out), optional :: solved
+    !> Newton's balance evaluations.
     integer, intent(out), optional :: iterations
+    !> Largest elastic force left on a block relative to its load.
     real(wp), intent(out), optional :: residual
     logical :: ok
     integer :: it
@@ -449,11 +434,18 @@ contains
   !> an error if it exceeds 0.2 (davit_rigging_sling_start: not an equilibrium).
   subroutine rigging_initial_state(self, hook_pos, hook_force, ship, y, residual, error, mode, &
                                    hook_vel, heads, head_vel)
+    !> The rigging, its cable lengths set.
     class(rigging_type), intent(inout) :: self
+    !> Hook positions (3, hook), inertial [m], and the force each needs from the rigging [N].
     real(wp), intent(in) :: hook_pos(3, 2), hook_force(3, 2)
+    !> The ship's pose.
     type(pose_type), intent(in) :: ship
+    !> The rigging's initial state slice; the equilibrium residual max abs(Q - T (lam_out -
+    !> lam_in))/abs(Q).
     real(wp), intent(out) :: y(:), residual
+    !> Set when the residual exceeds 0.2 (the heads are not above the hooks).
     type(error_type), allocatable, intent(out) :: error
+    !> 'equilibrium' (default) or 'unstretched'.
     character(len=*), intent(in), optional :: mode
     !> The hooks' velocities and the davit heads' positions and velocities: each sling's
     !> lumps and block start as points of a rigid pendulum from its head to its hook (a ship
@@ -508,8 +500,11 @@ contains
   !> out, so this is conserved only with the drum stopped. Quasi-static blocks have no
   !> kinetic energy and sit at their balance.
   pure function rigging_energy(self, y, hook_pos, ship) result(en)
+    !> The rigging.
     class(rigging_type), intent(in) :: self
+    !> The rigging's own state slice; the hooks' positions (3, hook), inertial [m].
     real(wp), intent(in) :: y(:), hook_pos(3, 2)
+    !> The ship's pose (taken at rest).
     type(pose_type), intent(in) :: ship
     real(wp) :: en, br(3, 2), bv(3, 2)
     type(balance_input_type) :: inp
@@ -543,52 +538,14 @@ contains
   !> Unstretched length of cable c [m]: sum L0_i = sum L0_i(0) + s_drum (the sheave
   !> passages telescope), or L0_tot(0) + s_drum for quasi-static sheaves.
   pure function unstretched_length(self, y, c) result(len0)
+    !> The rigging.
     class(rigging_type), intent(in) :: self
+    !> The rigging's own state slice.
     real(wp), intent(in) :: y(:)
+    !> Index of the cable (1 or 2).
     integer, intent(in) :: c
     real(wp) :: len0
     len0 = cable_unstretched_length(self%falls_type, rigging_drive(self, y, 0.0_wp), c)
   end function unstretched_length
-
-  !> Paid-out length at the drum s_drum [m].
-  pure function paid_out(self, y) result(s)
-    class(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: y(:)
-    real(wp) :: s
-    s = y(self%drum%q(1))
-  end function paid_out
-
-  !> Drum angle s_drum/r_d [rad].
-  pure function drum_angle(self, y) result(theta)
-    class(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: y(:)
-    real(wp) :: theta
-    theta = y(self%drum%q(1))/self%drum_radius
-  end function drum_angle
-
-  !> Sheave angles [rad] (empty with quasi-static sheaves).
-  pure function sheave_angles(self, y) result(theta)
-    class(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: y(:)
-    real(wp) :: theta(self%nsheave)
-    theta = y(self%sheaves%q(1):self%sheaves%q(2))
-  end function sheave_angles
-
-  !> Lump positions (3, lump, sling), inertial [m].
-  pure function lump_positions(self, y) result(r)
-    class(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: y(:)
-    real(wp) :: r(3, self%nlump, 2)
-    r = reshape(y(self%lumps%q(1):self%lumps%q(2)), [3, self%nlump, 2])
-  end function lump_positions
-
-  !> Block positions (3, block), inertial [m], as stored in the state: for quasi-static
-  !> blocks the copies that follow the solved positions (block_state gives those).
-  pure function block_positions(self, y) result(r)
-    class(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: y(:)
-    real(wp) :: r(3, 2)
-    r = reshape(y(self%block_r(1):self%block_r(2)), [3, 2])
-  end function block_positions
 
 end module davit_rigging_rigging

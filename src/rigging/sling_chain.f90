@@ -15,11 +15,13 @@ module davit_rigging_sling_chain
   integer, parameter :: max_lumps = 20
 
   type :: sling_chain_type
+    !> Lumps per sling (0..max_lumps).
     integer :: nlump = 0
     !> Unstretched segment length l/(n+1) [m], its stiffness EA (n+1)/l [N/m] and its
     !> absolute dashpot [N s/m], c_top that of the top segment (at the block); lump mass
     !> mu l/(n+1) [kg].
     real(wp) :: l0_seg = 1.0_wp, k_seg = 0.0_wp, c_seg = 0.0_wp, c_top = 0.0_wp
+    !> Mass of a lump [kg].
     real(wp) :: m_lump = 0.0_wp
     !> Stretch over which the dashpot tension grows from 0 to full [m] (0: at once), as
     !> cable_type%ramp.
@@ -31,7 +33,10 @@ contains
   !> A sling of unstretched length l, axial stiffness ea, whole-sling dashpot c (segments in
   !> series, so each gets (n+1) c) and mass mu per metre, split over n lumps.
   pure function new_sling_chain(nlump, length, ea, c, mu) result(ch)
+    !> Lumps per sling (0..max_lumps).
     integer, intent(in) :: nlump
+    !> Unstretched length [m], axial stiffness EA [N], whole-sling dashpot [N s/m], mass per metre
+    !> [kg/m].
     real(wp), intent(in) :: length, ea, c, mu
     type(sling_chain_type) :: ch
     ch%nlump = nlump
@@ -68,10 +73,15 @@ contains
                                f_top, f_hook, tension)
     ! 11 arguments: the chain's two ends and its lumps as they lie in the state, and its
     ! four results; bundling them would copy the lump arrays at every evaluation.
+    !> The sling.
     type(sling_chain_type), intent(in) :: ch
+    !> Hook and top (block) positions and velocities, inertial [m, m/s].
     real(wp), intent(in) :: r_hook(3), v_hook(3), r_top(3), v_top(3)
+    !> Lump positions and velocities (3, lump), inertial [m, m/s].
     real(wp), intent(in) :: r_lump(3, ch%nlump), v_lump(3, ch%nlump)
+    !> Net segment forces on the lumps (3, lump), force on the top and on the hook, inertial [N].
     real(wp), intent(out) :: f_lump(3, ch%nlump), f_top(3), f_hook(3)
+    !> Segment tensions (segment 1 at the hook) [N].
     real(wp), intent(out) :: tension(ch%nlump + 1)
     real(wp) :: r(3, 0:max_lumps + 1), v(3, 0:max_lumps + 1), fn(3, 0:max_lumps + 1), e(3)
     integer :: k, n
@@ -96,8 +106,11 @@ contains
 
   !> Kinetic + gravity (z down: -m g z) + elastic energy of the lumps and segments [J].
   pure function chain_energy(ch, r_hook, r_lump, v_lump, r_top) result(en)
+    !> The sling.
     type(sling_chain_type), intent(in) :: ch
+    !> Hook and top (block) positions, inertial [m].
     real(wp), intent(in) :: r_hook(3), r_top(3)
+    !> Lump positions and velocities (3, lump), inertial [m, m/s].
     real(wp), intent(in) :: r_lump(3, ch%nlump), v_lump(3, ch%nlump)
     real(wp) :: en, r(3, 0:max_lumps + 1), stretch
     integer :: k, n
@@ -123,8 +136,12 @@ contains
   !> turning the force. Moving r_low changes f_top by -jac times its displacement.
   pure subroutine top_segment_tangent(ch, r_low, v_low, r_top, v_top, f_top, f, f_real, jac)
     ! 9 arguments: the segment's two ends (position, velocity) and its four results.
+    !> The sling.
     type(sling_chain_type), intent(in) :: ch
+    !> Lower end (hook or lump n) and block positions and velocities, inertial [m, m/s].
     real(wp), intent(in) :: r_low(3), v_low(3), r_top(3), v_top(3)
+    !> Force on the block, inertial [N]; the segment's tension continued through slack and its
+    !> tension-only value [N]; d(force on block)/d(block position) [N/m].
     real(wp), intent(out) :: f_top(3), f, f_real, jac(3, 3)
     real(wp) :: e(3), k_geo, dist, g(3), dv(3), phi, dphi
     integer :: j

@@ -77,6 +77,7 @@ contains
   subroutine check_start_residual(residual, error)
     !> max |Q - T (lam_out - lam_in)|/|Q| over the blocks (davit_rigging_falls).
     real(wp), intent(in) :: residual
+    !> Set when the residual exceeds residual_max.
     type(error_type), allocatable, intent(out) :: error
     character(len=16) :: text
     if (residual > residual_max) then

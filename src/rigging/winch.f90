@@ -23,7 +23,9 @@ contains
 
   !> Pay-out speed v(t) = speed * ramp(t) * brake(t) [m/s].
   pure function winch_speed(w, t) result(v)
+    !> The winch.
     type(winch_type), intent(in) :: w
+    !> Time [s].
     real(wp), intent(in) :: t
     real(wp) :: v, ramp, brake
     if (t > w%t_cmd) then
@@ -49,7 +51,9 @@ contains
   !> Command the drum's speed to `v_to` [m/s], reached linearly over `ramp` [s] from the
   !> speed it has at t (so the speed stays continuous); stepping continues from t on.
   pure subroutine winch_command(w, t, v_to, ramp)
+    !> The winch, its command set.
     type(winch_type), intent(inout) :: w
+    !> Time of the command [s], target speed [m/s], time to reach it [s].
     real(wp), intent(in) :: t, v_to, ramp
     w%v_from = winch_speed(w, t)
     w%t_cmd = t
@@ -60,7 +64,9 @@ contains
   !> Paid-out length int_0^t v dt [m], closed form. Exact when the brake starts after the
   !> ramp has finished (t_stop >= t_start + t_ramp), which is the case it is used for.
   pure function winch_passage(w, t) result(s)
+    !> The winch.
     type(winch_type), intent(in) :: w
+    !> Time [s].
     real(wp), intent(in) :: t
     real(wp) :: s, tau, dt
     s = 0.0_wp

@@ -22,6 +22,7 @@ contains
 
   !> c = 2 zeta sqrt(k m) [N s/m]: damping ratio zeta of a mass m on a spring k.
   pure real(wp) function wire_dashpot(zeta, k, m) result(c)
+    !> Damping ratio; spring stiffness [N/m]; mass [kg].
     real(wp), intent(in) :: zeta, k, m
     c = 2.0_wp*zeta*sqrt(max(k, 0.0_wp)*max(m, 0.0_wp))
   end function wire_dashpot
@@ -30,7 +31,9 @@ contains
   !> the block on the whole sling (EA/l; segments in series each get (n+1) times it, so
   !> the block mode keeps zeta whatever the lumps).
   pure real(wp) function sling_dashpot(cfg, ea) result(c)
+    !> The &rigging configuration (sling_damping, wire damping ratio, block mass).
     type(rigging_config), intent(in) :: cfg
+    !> Axial stiffness EA of the sling [N].
     real(wp), intent(in) :: ea
     if (cfg%sling_damping_given) then
       c = cfg%sling_damping
@@ -46,7 +49,9 @@ contains
   !> the block, the others for a lump, 2 zeta sqrt(k_seg m_p) (MoorDyn's per-segment
   !> rule); the block mode then rings mostly in the top segment (zeta/sqrt(n+1) or more).
   pure subroutine sling_lump_dashpots(cfg, ch)
+    !> The &rigging configuration.
     type(rigging_config), intent(in) :: cfg
+    !> The sling, its segments' dashpots set.
     type(sling_chain_type), intent(inout) :: ch
     if (cfg%sling_damping_given .or. ch%nlump == 0) return
     ch%c_top = wire_dashpot(cfg%wire_damping_ratio, ch%k_seg, cfg%block_mass)
@@ -57,7 +62,9 @@ contains
   !> stiffest (shortest) part, 2 zeta sqrt(EA/L0_min m_b) over the segments that end at a
   !> block (their unstretched lengths l0).
   pure real(wp) function cable_floor(cab, l0, zeta, m_b) result(c)
+    !> The cable.
     type(cable_type), intent(in) :: cab
+    !> Unstretched segment lengths [m]; damping ratio; block mass [kg].
     real(wp), intent(in) :: l0(:), zeta, m_b
     real(wp) :: shortest
     integer :: i

@@ -42,8 +42,11 @@ contains
   !> An error naming the first key whose value the run cannot finish or fit with.
   !> in_sweep: the values may come from the sweep's keys, not from the base deck's lines.
   subroutine check_run_budget(cfg, error, in_sweep)
+    !> The checked configuration of the run.
     type(config_type), intent(in) :: cfg
+    !> Set for the first key the run cannot finish or fit with.
     type(error_type), allocatable, intent(out) :: error
+    !> The values may come from a sweep's keys (the message says so).
     logical, intent(in), optional :: in_sweep
     real(wp) :: ratio, bytes, limit, parts(3)
     character(len=:), allocatable :: problem, allowed
@@ -116,6 +119,7 @@ contains
 
   !> Memory the run holds [bytes]: samples x fields recorded, the seat trace, the waves.
   pure real(wp) function run_memory_estimate(cfg) result(bytes)
+    !> The run's configuration.
     type(config_type), intent(in) :: cfg
     real(wp) :: terms(3)
     terms = memory_parts(cfg)
@@ -187,6 +191,7 @@ contains
   !> The memory limit [bytes]: max_memory [GiB], or 80 % of MemTotal (/proc/meminfo;
   !> 16 GiB where it cannot be read).
   real(wp) function memory_limit(cfg) result(limit)
+    !> The run's configuration (&simulation max_memory).
     type(config_type), intent(in) :: cfg
     if (cfg%simulation%max_memory > 0.0_wp) then
       limit = cfg%simulation%max_memory*gib

@@ -38,10 +38,16 @@ contains
   !> Run the deck's scene and write `out_path`; `progress` (davit run at a terminal) sees
   !> the time loop of the integrated scenes.
   subroutine run_simulation(cfg, out_path, summary, error, progress)
+    !> The checked configuration of the run.
     type(config_type), intent(in) :: cfg
+    !> Path of the HDF5 file written.
     character(len=*), intent(in) :: out_path
+    !> Steps, evaluations, wall time and completion of the run.
     type(run_summary), intent(out) :: summary
+    !> Set when the run cannot be set up or its file not written (a divergence is reported in the
+    !> file and the summary).
     type(error_type), allocatable, intent(out) :: error
+    !> Progress line at a terminal (absent: none).
     type(progress_meter), intent(inout), optional :: progress
     type(system_type) :: boat
     type(ship_system_type) :: ship
@@ -158,13 +164,22 @@ contains
   !> steps the same loop one pass at a time: a change here goes there too (test_capi and
   !> test_library compare them).
   subroutine integrate(sim, problem, y, rec, summary, run_error, error, monitor, progress)
+    !> The &simulation settings (integrator, tolerances, steps, t_end, output interval).
     type(simulation_config), intent(in) :: sim
+    !> The system integrated.
     class(ode_problem), intent(inout) :: problem
+    !> State vector: in the initial state, out the last one.
     real(wp), intent(inout) :: y(:)
+    !> The recorder sampled at each output time.
     class(recorder_type), intent(inout) :: rec
+    !> Steps, evaluations, wall times and completion.
     type(run_summary), intent(out) :: summary
+    !> Why the loop ended early (divergence, failed step; the record so far kept), and a
+    !> set-up failure.
     type(error_type), allocatable, intent(out) :: run_error, error
+    !> Watches each accepted step and may end the run (launch log).
     class(step_monitor), intent(inout), optional :: monitor
+    !> Progress line at a terminal.
     type(progress_meter), intent(inout), optional :: progress
     class(integrator_type), allocatable :: integ
     type(event_stepper_type) :: stepper
@@ -245,7 +260,9 @@ contains
   !> Index of the first non-finite state component, or of a speed (indices in
   !> speeds(1):speeds(2)) beyond any physical value, which marks a blow-up early.
   pure integer function first_bad(y, speeds)
+    !> State vector.
     real(wp), intent(in) :: y(:)
+    !> First and last index of the speeds checked against physical bounds.
     integer, intent(in) :: speeds(2)
     integer :: k
     first_bad = 0

@@ -10,15 +10,19 @@ module davit_run_impact_events
   public :: impact_event, impact_tracker
 
   type :: impact_event
+    !> The fender that struck (1..nf).
     integer :: fender = 0
     !> Onset [s], duration [s], normal impact speed [m/s], peak force [N], peak step-mean
     !> CG and seat accelerations [m/s^2]; the seat's filtered peak is filled in at the end.
     real(wp) :: time = 0.0_wp, duration = 0.0_wp, speed = 0.0_wp, peak_force = 0.0_wp
+    !> Peak step-mean CG acceleration, peak raw and filtered seat acceleration [m/s^2].
     real(wp) :: peak_acceleration = 0.0_wp, peak_seat_raw = 0.0_wp, peak_seat = 0.0_wp
   end type impact_event
 
   type :: impact_tracker
+    !> Number of events recorded.
     integer :: n = 0
+    !> The events, in order of onset.
     type(impact_event), allocatable :: events(:)
     !> Per fender: its open event, 0 while it does not touch.
     integer, allocatable :: open(:)
@@ -30,7 +34,9 @@ module davit_run_impact_events
 contains
 
   subroutine tracker_init(self, nfender)
+    !> The tracker, emptied.
     class(impact_tracker), intent(inout) :: self
+    !> Number of fenders.
     integer, intent(in) :: nfender
     self%n = 0
     allocate (self%events(16))
@@ -40,8 +46,12 @@ contains
   !> The fenders' forces and approach rates after the step ending at t, with the step's
   !> mean CG and seat accelerations. `started` counts the events opened by this step.
   subroutine tracker_track(self, t, force, delta_dot, acceleration, seat, started)
+    !> The tracker.
     class(impact_tracker), intent(inout) :: self
+    !> End of the step [s]; each fender's normal force [N] and approach rate [m/s]; the step's mean
+    !> CG and seat accelerations [m/s^2].
     real(wp), intent(in) :: t, force(:), delta_dot(:), acceleration, seat
+    !> Number of events this step opened.
     integer, intent(out) :: started
     integer :: j, k
     started = 0

@@ -42,13 +42,20 @@ module davit_run_launch_log
   real(wp), parameter :: judge_time = 10.0_wp
 
   type, extends(step_monitor) :: launch_log
+    !> Time the log runs on after the release [s]; the boat's weight [N]; the seat's point in the
+    !> boat frame [m].
     real(wp) :: after_release = 5.0_wp, weight = 0.0_wp, seat_point(3) = 0.0_wp
+    !> The fender impacts.
     type(impact_tracker) :: impacts
+    !> Peak loads and limit exceedances.
     type(load_peaks) :: loads
+    !> The seat's velocity on its grid, for its filtered acceleration.
     type(seat_trace) :: seat
     !> What the rule checks need beyond the peaks, and the deck's limits.
     type(rule_watch) :: rules
+    !> The deck's &limits.
     type(limits_config) :: limits
+    !> Whether a fender touched at the last step.
     logical :: contact = .false.
     !> The CG: inertial velocity of the last step, its peak step-mean acceleration and when.
     real(wp) :: v_prev(3) = 0.0_wp, t_prev = -1.0_wp, peak_cg = 0.0_wp, peak_cg_time = -1.0_wp
@@ -57,8 +64,11 @@ module davit_run_launch_log
     real(wp) :: contact_share = 0.0_wp, slack_share = 0.0_wp, lowest = huge(1.0_wp)
     !> Largest tilt of the boat (its b3 axis from the vertical) [rad] and when [s].
     real(wp) :: tilt = 0.0_wp, tilt_time = -1.0_wp
+    !> Time of the last step [s].
     real(wp) :: t_last = 0.0_wp
+    !> Number of snatches (slack to taut) so far.
     integer :: snatches = 0
+    !> Whether the falls were slack at the last step.
     logical :: slack = .false.
   contains
     procedure :: watch => log_watch
@@ -74,7 +84,9 @@ contains
   !> The log of a run of `sys` built from `cfg`: limits from the deck's wire (the full
   !> rigging's, or the foundation slings').
   function new_launch_log(cfg, sys) result(log)
+    !> The run's configuration (&limits, the wire).
     type(config_type), intent(in) :: cfg
+    !> The system of the run.
     type(system_type), intent(in) :: sys
     type(launch_log) :: log
     real(wp) :: d
@@ -95,9 +107,13 @@ contains
   end function new_launch_log
 
   subroutine log_watch(self, problem, t, y, done)
+    !> The log.
     class(launch_log), intent(inout) :: self
+    !> The system (a davit_system_model system_type).
     class(ode_problem), intent(in) :: problem
+    !> End of the accepted step [s] and the state there.
     real(wp), intent(in) :: t, y(:)
+    !> Whether the launch has ended (released and settled).
     logical, intent(out) :: done
     done = .false.
     if (.not. allocated(self%impacts%open)) return
@@ -194,8 +210,11 @@ contains
   !> Events, peaks, limits, the seat's filtered acceleration and the outcome (root
   !> attribute `outcome`), after the recorder has written its groups.
   subroutine log_write(self, problem, w)
+    !> The log.
     class(launch_log), intent(in) :: self
+    !> The system of the run.
     class(ode_problem), intent(in) :: problem
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
     type(impact_tracker) :: impacts
     real(wp), allocatable :: a(:, :)
@@ -229,6 +248,7 @@ contains
 
   !> The rule checks of the launch so far (davit_assess_rules).
   function log_checks(self, dr) result(c)
+    !> The log.
     class(launch_log), intent(in) :: self
     !> The spine's dynamic response index: peak up and down, 0 without a seat trace.
     real(wp), intent(out), optional :: dr(2)
@@ -287,7 +307,9 @@ contains
 
   !> The launch's outcome, events, peaks and rule checks in words (end of davit run).
   function log_report(self, sys) result(text)
+    !> The log.
     class(launch_log), intent(in) :: self
+    !> The system of the run.
     type(system_type), intent(in) :: sys
     character(len=:), allocatable :: text
     type(impact_tracker) :: impacts
@@ -303,9 +325,13 @@ contains
   !> The seat's filtered acceleration a (3, n), each impact's filtered peak from its onset
   !> to 0.2 s after its end, and the largest filtered value with its time.
   subroutine log_seat_peaks(self, a, impacts, peak)
+    !> The log.
     class(launch_log), intent(in) :: self
+    !> The seat's filtered acceleration (3, n) [m/s^2].
     real(wp), allocatable, intent(out) :: a(:, :)
+    !> The impacts, their filtered seat peaks filled in.
     type(impact_tracker), intent(inout) :: impacts
+    !> The largest filtered value [m/s^2] and its time [s].
     real(wp), intent(out) :: peak(2)
     real(wp), allocatable :: mag(:)
     integer :: k, i1, i2
@@ -325,7 +351,9 @@ contains
 
   !> How the launch ended, in words (empty for a boat that is not on the davit).
   function log_outcome(self, sys) result(text)
+    !> The log.
     class(launch_log), intent(in) :: self
+    !> The system of the run.
     type(system_type), intent(in) :: sys
     character(len=:), allocatable :: text
     text = ""

@@ -19,7 +19,9 @@ module davit_run_launch_report
 contains
 
   subroutine write_impacts(w, tr)
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> The impacts of the run.
     type(impact_tracker), intent(in) :: tr
     integer :: n
     n = tr%n
@@ -50,7 +52,9 @@ contains
   end subroutine write_impacts
 
   subroutine write_loads(w, p)
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> Peak loads and limit exceedances.
     type(load_peaks), intent(in) :: p
     call w%group("peaks")
     call w%write_1d("peaks/sling_tension", p%sling, "N", "Largest tension of each sling "// &
@@ -83,8 +87,11 @@ contains
   end subroutine write_limit
 
   subroutine write_seat(w, s, a, point)
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> The seat trace.
     type(seat_trace), intent(in) :: s
+    !> The seat's filtered acceleration (3, n) [m/s^2]; the seat's point in the boat frame [m].
     real(wp), intent(in) :: a(:, :), point(3)
     call w%group("seat")
     call w%attr_real("seat", "interval", s%dt)
@@ -103,8 +110,12 @@ contains
   !> with what it checks, its source and whether it passed; the davit head height H and the
   !> occupant's dynamic response indices.
   subroutine write_assessment(w, c, head_height, dr)
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> The rule checks.
     type(rule_check), intent(in) :: c(n_checks)
+    !> Davit head height H above the still water [m]; the occupant's dynamic response indices
+    !> (positive, negative).
     real(wp), intent(in) :: head_height, dr(2)
     character(len=:), allocatable :: name
     integer :: k
@@ -141,10 +152,15 @@ contains
 
   !> The end-of-run summary: outcome, impacts, peaks and the rule checks, one per line.
   function launch_text(outcome, impacts, loads, seat_peak, c) result(text)
+    !> How the launch ended, in words.
     character(len=*), intent(in) :: outcome
+    !> The impacts of the run.
     type(impact_tracker), intent(in) :: impacts
+    !> Peak loads and limit exceedances.
     type(load_peaks), intent(in) :: loads
+    !> Largest filtered seat acceleration [m/s^2].
     real(wp), intent(in) :: seat_peak
+    !> The rule checks.
     type(rule_check), intent(in) :: c(n_checks)
     character(len=:), allocatable :: text
     character(len=*), parameter :: nl = new_line("a")

@@ -17,8 +17,11 @@ contains
 
   !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s] of df/dy at t = 0.
   subroutine linear_modes(cfg, rate_max, omega_max, error)
+    !> The deck's configuration (its system at t = 0).
     type(config_type), intent(in) :: cfg
+    !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s].
     real(wp), intent(out) :: rate_max, omega_max
+    !> Set when the system cannot be built or the eigenvalues not found.
     type(error_type), allocatable, intent(out) :: error
     type(system_type) :: sys
     type(ship_system_type) :: ship

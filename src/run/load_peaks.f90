@@ -10,15 +10,22 @@ module davit_run_load_peaks
 
   !> One limit: its value, first exceedance [s] and total time beyond it [s].
   type :: limit_watch
+    !> The limit [N or m/s] (huge: none), first time beyond it [s] (-1: never), total time beyond
+    !> [s].
     real(wp) :: value = huge(1.0_wp), first = -1.0_wp, duration = 0.0_wp
+    !> Number of exceedances.
     integer :: count = 0
+    !> Whether the last value was beyond the limit.
     logical :: beyond = .false.
   end type limit_watch
 
   type :: load_peaks
     !> Peak tension of each cable segment and each sling [N] and when [s].
     real(wp), allocatable :: segment(:), segment_time(:), sling(:), sling_time(:)
+    !> Watches of the safe working load (MBL/safety factor) and the MBL of the wire [N], and of
+    !> the impact speed limit [m/s].
     type(limit_watch) :: swl, mbl, impact
+    !> Largest impact speed [m/s]; time of the last update [s].
     real(wp) :: max_impact_speed = 0.0_wp, t_prev = 0.0_wp
   contains
     procedure :: init => peaks_init
@@ -29,8 +36,12 @@ module davit_run_load_peaks
 contains
 
   subroutine peaks_init(self, nseg, nsling, mbl, safety_factor, impact_speed)
+    !> The peaks, reset.
     class(load_peaks), intent(inout) :: self
+    !> Number of cable segments and of slings.
     integer, intent(in) :: nseg, nsling
+    !> Minimum breaking load of the wire [N], safety factor of the safe working load, impact speed
+    !> limit [m/s].
     real(wp), intent(in) :: mbl, safety_factor, impact_speed
     allocate (self%segment(nseg), self%segment_time(nseg), source=0.0_wp)
     allocate (self%sling(nsling), self%sling_time(nsling), source=0.0_wp)
@@ -42,7 +53,9 @@ contains
   !> Tensions of the cable segments and of the slings (largest over each sling's
   !> segments) after the step ending at t.
   subroutine peaks_update(self, t, segment, sling)
+    !> The peaks.
     class(load_peaks), intent(inout) :: self
+    !> End of the step [s]; cable segment tensions [N]; each sling's tension [N].
     real(wp), intent(in) :: t, segment(:), sling(:)
     real(wp) :: largest
     where (segment > self%segment)
@@ -61,7 +74,9 @@ contains
 
   !> An impact at t with normal speed `speed`.
   subroutine peaks_impact(self, t, speed)
+    !> The peaks.
     class(load_peaks), intent(inout) :: self
+    !> Time of the impact [s] and its normal speed [m/s].
     real(wp), intent(in) :: t, speed
     self%max_impact_speed = max(self%max_impact_speed, speed)
     call check(self%impact, t, 0.0_wp, speed)

@@ -46,6 +46,7 @@ contains
 
   !> A meter that draws when `enabled` (e.g. stderr_is_terminal()), else does nothing.
   function new_progress_meter(enabled) result(meter)
+    !> Whether the meter draws.
     logical, intent(in) :: enabled
     type(progress_meter) :: meter
     meter%enabled = enabled
@@ -53,7 +54,9 @@ contains
 
   !> The run begins: it will go to simulated time t_end (s).
   subroutine start(self, t_end)
+    !> The meter.
     class(progress_meter), intent(inout) :: self
+    !> Simulated end time [s].
     real(wp), intent(in) :: t_end
     if (.not. self%enabled) return
     self%t_end = t_end
@@ -65,7 +68,9 @@ contains
 
   !> The run has reached simulated time t; redraws if the interval has passed.
   subroutine update(self, t)
+    !> The meter.
     class(progress_meter), intent(inout) :: self
+    !> Simulated time reached [s].
     real(wp), intent(in) :: t
     integer(i8) :: now
     if (.not. self%enabled) return
@@ -77,7 +82,9 @@ contains
 
   !> The run ended at simulated time t: the last line (if any was drawn) and a newline.
   subroutine finish(self, t)
+    !> The meter.
     class(progress_meter), intent(inout) :: self
+    !> Simulated end time reached [s].
     real(wp), intent(in) :: t
     integer(i8) :: now
     if (.not. (self%enabled .and. self%shown)) return

@@ -46,9 +46,13 @@ contains
   !> Response amplitude per unit wave amplitude and phase [rad] of the 6 DOFs at one
   !> frequency and relative heading.
   subroutine rao_case(base, omega, heading, amplitude, phase, error)
+    !> The RAO deck's configuration (the ship, its sea).
     type(config_type), intent(in) :: base
+    !> Wave frequency [rad/s] and heading relative to the ship [rad].
     real(wp), intent(in) :: omega, heading
+    !> Per DOF, the response amplitude per unit wave amplitude [m/m, rad/m] and its phase [rad].
     real(wp), intent(out) :: amplitude(6), phase(6)
+    !> Set when the run fails.
     type(error_type), allocatable, intent(out) :: error
     type(config_type) :: cfg
     type(ship_system_type) :: ship
@@ -115,9 +119,13 @@ contains
   end subroutine rao_case
 
   subroutine run_rao(cfg, out_path, summary, error)
+    !> The RAO deck's configuration.
     type(config_type), intent(in) :: cfg
+    !> Path of the HDF5 file written.
     character(len=*), intent(in) :: out_path
+    !> Steps, evaluations, wall time and completion of the runs.
     type(run_summary), intent(out) :: summary
+    !> Set when a run fails or the file cannot be written.
     type(error_type), allocatable, intent(out) :: error
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: none, case_error

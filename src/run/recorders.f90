@@ -16,7 +16,9 @@ module davit_run_recorders
   public :: recorder_type, boat_recorder, ship_recorder
 
   type, abstract :: recorder_type
+    !> Number of samples taken.
     integer :: n = 0
+    !> Sample times [s].
     real(wp), allocatable :: time(:)
   contains
     procedure(init_interface), deferred :: init
@@ -67,12 +69,16 @@ module davit_run_recorders
 
   !> The boat on its slings or davit: CG kinematics, tensions, contact, energy.
   type, extends(recorder_type) :: boat_recorder
+    !> CG position (inertial) [m], Euler angles [rad], CG velocity (inertial) [m/s], per sample.
     real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
+    !> Angular velocity (body) [rad/s], CG acceleration [m/s^2], sling tensions [N], per sample.
     real(wp), allocatable :: angular_velocity(:, :), acceleration(:, :), tension(:, :)
+    !> Energy [J], clearance to the ship's side [m], fender contact forces [N], per sample.
     real(wp), allocatable :: energy(:), clearance(:), contact_force(:, :)
     !> Full rigging only: cable segment tensions, paid-out length, sheave angles, lumps,
     !> movable blocks.
     real(wp), allocatable :: segment_tension(:, :), paid_out(:), pulley_angle(:, :)
+    !> Lump positions and movable block positions, inertial [m], per sample.
     real(wp), allocatable :: lumps(:, :, :), blocks(:, :, :)
     !> Moving ship only: its CG position, Euler angles and heading error (yaw minus the
     !> heading it keeps).
@@ -87,7 +93,9 @@ module davit_run_recorders
 
   !> The ship alone: CG position and velocity (inertial), attitude, body rates.
   type, extends(recorder_type) :: ship_recorder
+    !> CG position (inertial) [m], Euler angles [rad], CG velocity (inertial) [m/s], per sample.
     real(wp), allocatable :: position(:, :), euler(:, :), velocity(:, :)
+    !> Angular velocity (body) [rad/s], per sample.
     real(wp), allocatable :: angular_velocity(:, :)
     !> The MMG ship's rudder angle (allocated only with &ship manoeuvring = 'mmg').
     real(wp), allocatable :: rudder(:)
@@ -102,7 +110,9 @@ module davit_run_recorders
 contains
 
   pure function boat_speed_range(self, problem) result(r)
+    !> The recorder.
     class(boat_recorder), intent(in) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
     integer :: r(2)
     select type (problem)
@@ -112,8 +122,11 @@ contains
   end function boat_speed_range
 
   subroutine boat_init(self, problem, nmax)
+    !> The recorder, allocated.
     class(boat_recorder), intent(inout) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> Largest number of samples.
     integer, intent(in) :: nmax
     select type (problem)
     type is (system_type)
@@ -133,8 +146,11 @@ contains
   end subroutine boat_init
 
   subroutine boat_sample(self, problem, t, y)
+    !> The recorder.
     class(boat_recorder), intent(inout) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> Sample time [s] and the state there.
     real(wp), intent(in) :: t, y(:)
     integer :: k
     if (self%n >= size(self%time)) return
@@ -176,8 +192,11 @@ contains
   end subroutine sample_rigging
 
   subroutine boat_write(self, problem, w)
+    !> The recorder.
     class(boat_recorder), intent(in) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
     integer :: n
     select type (sys => problem)
@@ -284,8 +303,11 @@ contains
   end subroutine write_rigging
 
   pure function boat_state_name(self, problem, k) result(name)
+    !> The recorder.
     class(boat_recorder), intent(in) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> Index into the state vector.
     integer, intent(in) :: k
     character(len=:), allocatable :: name
     name = "state "//int_to_str(k)
@@ -305,7 +327,9 @@ contains
   end function boat_state_name
 
   pure function ship_speed_range(self, problem) result(r)
+    !> The recorder.
     class(ship_recorder), intent(in) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
     integer :: r(2)
     select type (problem)
@@ -315,8 +339,11 @@ contains
   end function ship_speed_range
 
   subroutine ship_init(self, problem, nmax)
+    !> The recorder, allocated.
     class(ship_recorder), intent(inout) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> Largest number of samples.
     integer, intent(in) :: nmax
     allocate (self%time(nmax), self%position(3, nmax), self%euler(3, nmax), &
               self%velocity(3, nmax), self%angular_velocity(3, nmax))
@@ -327,8 +354,11 @@ contains
   end subroutine ship_init
 
   subroutine ship_sample(self, problem, t, y)
+    !> The recorder.
     class(ship_recorder), intent(inout) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> Sample time [s] and the state there.
     real(wp), intent(in) :: t, y(:)
     type(state_part_type) :: p
     integer :: k
@@ -350,8 +380,11 @@ contains
   end subroutine ship_sample
 
   subroutine ship_write(self, problem, w)
+    !> The recorder.
     class(ship_recorder), intent(in) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
     integer :: n
     n = self%n
@@ -371,8 +404,11 @@ contains
   end subroutine ship_write
 
   pure function ship_state_name(self, problem, k) result(name)
+    !> The recorder.
     class(ship_recorder), intent(in) :: self
+    !> The system recorded.
     class(ode_problem), intent(in) :: problem
+    !> Index into the state vector.
     integer, intent(in) :: k
     character(len=:), allocatable :: name
     if (k >= 4 .and. k <= 6) then

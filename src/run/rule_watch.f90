@@ -30,6 +30,7 @@ module davit_run_rule_watch
   real(wp), parameter :: settle_time = 1.0_wp, ring_out = 2.0_wp, water_gap = 1.0_wp
 
   type :: rule_watch
+    !> Whether the boat hangs from a davit (the lowering checks apply).
     logical :: on_davit = .false.
     !> Heads' midpoint in the ship frame [m]; keel below the CG [m]; boat weight [N].
     real(wp) :: head_mid(3) = 0.0_wp, keel = 0.0_wp, weight = 0.0_wp
@@ -39,13 +40,16 @@ module davit_run_rule_watch
     real(wp) :: head_height = -1.0_wp
     !> Lowering window: 0 before it, 1 open, 2 closed; its first and last (t, d).
     integer :: window = 0
+    !> Start and end of the window (t [s], distance lowered d [m]).
     real(wp) :: t1 = 0.0_wp, d1 = 0.0_wp, t2 = 0.0_wp, d2 = 0.0_wp
     !> Emergency stop: integral of the fall load over the second before it [N s], the time
     !> covered [s], the largest fall load after it [N], and whether the run saw it all.
     real(wp) :: pre_load = 0.0_wp, pre_time = 0.0_wp, stop_peak = 0.0_wp
+    !> Whether the stop and its ring-out were seen.
     logical :: stop_seen = .false.
     !> The hooks: their load at the last step [N], at release [N] (< 0: no release).
     real(wp) :: hook_load = 0.0_wp, release_load = -1.0_wp, t_release = -1.0_wp
+    !> Time of the last step [s].
     real(wp) :: t_prev = -1.0_wp
   contains
     procedure :: watch => rules_watch
@@ -57,7 +61,9 @@ module davit_run_rule_watch
 contains
 
   function new_rule_watch(cfg, sys) result(w)
+    !> The run's configuration (&limits, the winch).
     type(config_type), intent(in) :: cfg
+    !> The system of the run.
     type(system_type), intent(in) :: sys
     type(rule_watch) :: w
     w%on_davit = sys%par%on_davit
@@ -73,8 +79,11 @@ contains
 
   !> The lowering window and the release, after the step ending at t.
   subroutine rules_watch(self, sys, t, y)
+    !> The watch.
     class(rule_watch), intent(inout) :: self
+    !> The system of the run.
     type(system_type), intent(in) :: sys
+    !> End of the step [s] and the state there.
     real(wp), intent(in) :: t, y(:)
     type(pose_type) :: ship
     real(wp) :: hooks(3, 2), hook_vel(3, 2), head(3), d, cg_height, c(3, 3)
@@ -108,7 +117,9 @@ contains
   !> The falls' load (largest cable-segment tension) and the hooks' load (sum of the
   !> slings') after the step ending at t, until the hooks are released.
   subroutine rules_loads(self, t, fall, hooks)
+    !> The watch.
     class(rule_watch), intent(inout) :: self
+    !> End of the step [s]; the falls' load and the hooks' load [N].
     real(wp), intent(in) :: t, fall, hooks
     real(wp) :: h
     h = 0.0_wp
@@ -127,7 +138,9 @@ contains
   !> Mean lowering speed over the window [m/s] (NaN: the window was shorter than 1 s) and
   !> the davit head height H [m].
   subroutine rules_lowering_speed(self, speed, height)
+    !> The watch.
     class(rule_watch), intent(in) :: self
+    !> Mean lowering speed [m/s] (NaN: window under 1 s) and the davit head height H [m].
     real(wp), intent(out) :: speed, height
     speed = ieee_value(speed, ieee_quiet_nan)
     height = self%head_height
@@ -139,7 +152,9 @@ contains
   !> happened while lowering (before it the window must have opened, the hooks not be
   !> released) or the run ended before the ring-out.
   subroutine rules_stop_loads(self, before, peak)
+    !> The watch.
     class(rule_watch), intent(in) :: self
+    !> Fall load before the stop and its peak after it [N] (NaN: no stop seen).
     real(wp), intent(out) :: before, peak
     before = ieee_value(before, ieee_quiet_nan)
     peak = before

@@ -11,15 +11,20 @@ module davit_run_run_summary
   public :: run_summary, write_root_attributes
 
   type :: run_summary
+    !> Accepted steps and right-hand-side evaluations.
     integer(i8) :: steps = 0, rhs_evaluations = 0
+    !> Wall time of the run [s].
     real(wp) :: wall_time = 0.0_wp
     !> The longest wall time of one step (step, events, history, monitors, sample) [s] and
     !> the simulated time it ended at [s]; the longest wall time of one output interval (a
     !> frame of a live display) [s] and the time it ended at [s]: what a real-time user
     !> needs beside the totals.
     real(wp) :: worst_step = 0.0_wp, worst_step_time = 0.0_wp
+    !> Longest wall time of one output interval [s] and the simulated time it ended at [s].
     real(wp) :: worst_interval = 0.0_wp, worst_interval_time = 0.0_wp
+    !> Samples recorded.
     integer :: samples = 0
+    !> Whether the run reached its end time (or the launch's end).
     logical :: complete = .false.
     !> The launch's outcome, peaks and rule checks in words (boat scenes; else empty).
     character(len=:), allocatable :: report
@@ -32,14 +37,18 @@ contains
 
   !> A step that took `wall` seconds and ended at simulated time t.
   pure subroutine note_step(self, wall, t)
+    !> The summary.
     class(run_summary), intent(inout) :: self
+    !> Wall time of the step [s] and the simulated time it ended at [s].
     real(wp), intent(in) :: wall, t
     call keep_worst(self%worst_step, self%worst_step_time, wall, t)
   end subroutine note_step
 
   !> An output interval that took `wall` seconds and ended at simulated time t.
   pure subroutine note_interval(self, wall, t)
+    !> The summary.
     class(run_summary), intent(inout) :: self
+    !> Wall time of the interval [s] and the simulated time it ended at [s].
     real(wp), intent(in) :: wall, t
     call keep_worst(self%worst_interval, self%worst_interval_time, wall, t)
   end subroutine note_interval
@@ -57,11 +66,17 @@ contains
   !> and /scenario (what the run simulated, davit_run_scenario) unless `scenario` is false
   !> (the RAO runs, which sweep their own waves).
   subroutine write_root_attributes(w, cfg, summary, integrator, run_error, scenario)
+    !> The open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> The run's configuration.
     type(config_type), intent(in) :: cfg
+    !> The run's statistics.
     type(run_summary), intent(in) :: summary
+    !> Name of the integrator used.
     character(len=*), intent(in) :: integrator
+    !> Why the run ended early (unallocated: it did not).
     type(error_type), allocatable, intent(in) :: run_error
+    !> Write /scenario (default: yes).
     logical, intent(in), optional :: scenario
     call w%attr_str("/", "davit_version", davit_version)
     call w%attr_str("/", "input_file", cfg%filename)

@@ -23,6 +23,7 @@ contains
 
   !> The scenario as a short block of lines (no trailing newline).
   function scenario_text(cfg) result(text)
+    !> The run's configuration.
     type(config_type), intent(in) :: cfg
     character(len=:), allocatable :: text
     character(len=*), parameter :: nl = new_line("a")
@@ -42,7 +43,9 @@ contains
   !> /scenario: the values used, their sources and the conventions, one attribute each,
   !> plus the printed block (`summary`).
   subroutine write_scenario(w, cfg)
+    !> The open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> The run's configuration.
     type(config_type), intent(in) :: cfg
     character(len=*), parameter :: g = "scenario"
     call w%group(g)
@@ -144,6 +147,7 @@ contains
   !> Where something travelling towards `towards_deg` (relative to the bow, towards
   !> starboard) comes from, in a seafarer's words (eight sectors of 45 deg).
   function coming_from(towards_deg) result(text)
+    !> Direction of travel relative to the bow, towards starboard [deg].
     real(wp), intent(in) :: towards_deg
     character(len=:), allocatable :: text
     character(len=*), parameter :: names(0:7) = [character(len=38) :: &

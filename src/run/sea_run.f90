@@ -20,9 +20,13 @@ module davit_run_sea_run
 contains
 
   subroutine run_sea(cfg, out_path, summary, error)
+    !> The 'sea' deck's configuration.
     type(config_type), intent(in) :: cfg
+    !> Path of the HDF5 file written.
     character(len=*), intent(in) :: out_path
+    !> Wall time and completion of the run.
     type(run_summary), intent(out) :: summary
+    !> Set when the sea cannot be built or the file not written.
     type(error_type), allocatable, intent(out) :: error
     type(wave_field_type) :: field
     type(h5_writer_type) :: writer
@@ -78,7 +82,9 @@ contains
 
   !> The realised component table: enough to rebuild the sea anywhere (eq. 43).
   subroutine write_components(w, field)
+    !> The open output file.
     type(h5_writer_type), intent(inout) :: w
+    !> The realised sea.
     type(wave_field_type), intent(in) :: field
     call w%group("sea/components")
     call w%write_1d("sea/components/omega", field%omega, "rad/s", "Component frequency", &

@@ -13,11 +13,15 @@ module davit_run_seat_trace
   type :: seat_trace
     !> Grid interval [s] and the filter's -3 dB frequency [Hz].
     real(wp) :: dt = 1.0e-3_wp, cutoff = 20.0_wp
+    !> Points on the grid so far.
     integer :: n = 0
     !> Velocity at t = (k - 1) dt, inertial [m/s], and the boat's rotation matrix (boat ->
     !> inertial, by columns) at the step that reached it.
     real(wp), allocatable :: v(:, :), axes(:, :)
+    !> Time of the last step [s] and the seat's inertial velocity then [m/s].
     real(wp) :: t_last = -1.0_wp, v_last(3) = 0.0_wp
+    !> Largest raw (unfiltered) step-mean acceleration [m/s^2], its time [s], and the last one
+    !> [m/s^2].
     real(wp) :: raw_peak = 0.0_wp, raw_time = -1.0_wp, last_raw = 0.0_wp
   contains
     procedure :: add => trace_add
@@ -30,7 +34,10 @@ contains
   !> The seat velocity v after the step ending at t (the first call is at t = 0), with the
   !> boat's rotation matrix c then.
   subroutine trace_add(self, t, v, c)
+    !> The trace.
     class(seat_trace), intent(inout) :: self
+    !> End of the step [s]; the seat's inertial velocity [m/s]; the boat's rotation (boat ->
+    !> inertial).
     real(wp), intent(in) :: t, v(3), c(3, 3)
     real(wp) :: tk
     if (self%t_last < 0.0_wp) then
@@ -71,6 +78,7 @@ contains
 
   !> Filtered acceleration at the grid's midpoints t = (k - 1/2) dt, k = 1..n-1, (3, n-1).
   pure function trace_filtered(self) result(a)
+    !> The trace.
     class(seat_trace), intent(in) :: self
     real(wp), allocatable :: a(:, :)
     allocate (a(3, max(self%n - 1, 0)))
@@ -83,6 +91,7 @@ contains
   !> grid's midpoints, (3, n-1): each step-mean acceleration turned into the axes of the
   !> step's end, then filtered as `filtered` does.
   pure function trace_body_filtered(self) result(a)
+    !> The trace.
     class(seat_trace), intent(in) :: self
     real(wp), allocatable :: a(:, :)
     integer :: i

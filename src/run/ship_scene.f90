@@ -14,9 +14,13 @@ module davit_run_ship_scene
 contains
 
   subroutine build_ship_scene(cfg, ship, y, error)
+    !> The 'ship' deck's configuration.
     type(config_type), intent(in) :: cfg
+    !> The ship system built.
     type(ship_system_type), intent(out) :: ship
+    !> Its initial state.
     real(wp), allocatable, intent(out) :: y(:)
+    !> Set when the ship cannot be built.
     type(error_type), allocatable, intent(out) :: error
     type(wave_field_type) :: sea
     call build_wave_field(cfg%sea, cfg%simulation%seed, 0, sea)

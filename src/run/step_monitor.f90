@@ -32,8 +32,11 @@ module davit_run_step_monitor
 contains
 
   subroutine write_nothing(self, problem, w)
+    !> The monitor.
     class(step_monitor), intent(in) :: self
+    !> The system of the run.
     class(ode_problem), intent(in) :: problem
+    !> The run's open output file.
     type(h5_writer_type), intent(inout) :: w
   end subroutine write_nothing
 

@@ -175,7 +175,9 @@ contains
   !> The step the stiffest explicit stage takes when the macro step is h (what a
   !> divergence message names): h itself, but for the multirate methods' fast substeps.
   pure real(wp) function whole_step(self, h) result(hs)
+    !> The integrator.
     class(integrator_type), intent(in) :: self
+    !> Macro step [s].
     real(wp), intent(in) :: h
     hs = h
   end function whole_step

@@ -227,7 +227,9 @@ contains
 
   !> The fast part's RK4 substep of a macro step h (the stability limit applies to it).
   pure real(wp) function substep(self, h) result(hs)
+    !> The multirate integrator.
     class(multirate_type), intent(in) :: self
+    !> Macro step [s].
     real(wp), intent(in) :: h
     hs = h/real(self%substeps, wp)
   end function substep

@@ -19,7 +19,6 @@ module davit_sweep_driver
   use davit_io_hdf5_writer, only: h5_writer_type, check_output_path, acquire_lock, release_lock
   use davit_io_namelist, only: int_to_str
   use davit_io_deck_reader, only: fmt_real
-  use davit_io_text, only: fmt_fixed
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
   use davit_run_recorders, only: boat_recorder
@@ -32,6 +31,7 @@ module davit_sweep_driver
   use davit_sweep_metrics, only: launch_metrics, case_result, status_not_run, status_ok, &
                                  status_failed, status_not_needed, not_run_result
   use davit_sweep_summary, only: write_summary, read_results
+  use davit_sweep_progress, only: sweep_state, report_progress, seconds_since
   use davit_sweep_shards, only: shard_spec, shard_mask, shard_text, longest_first
   use davit_sweep_adaptive, only: adaptive, refuse_adaptive, adaptive_plan, new_plan, &
                                   round_cases, close_round, mark_not_needed, plan_text, &
@@ -63,32 +63,32 @@ module davit_sweep_driver
   end type sweep_options
 
   type :: sweep_outcome
+    !> Cases of the sweep, finished ok, failed, left not run, run by this call; OpenMP threads
+    !> used.
     integer :: ncase = 0, ok = 0, failed = 0, not_run = 0, ran = 0, threads = 1
     !> Cases an adaptive sweep's converged cells did not need (status 3).
     integer :: not_needed = 0
     !> Cases of the shard run (ncase for the whole sweep).
     integer :: shard_cases = 0
+    !> Wall time of the sweep [s].
     real(wp) :: wall_time = 0.0_wp
   end type sweep_outcome
-
-  !> What the critical section shares: the rows, counters, clocks of the last progress line
-  !> and checkpoint, and the first I/O failure.
-  type :: sweep_state
-    type(case_result), allocatable :: results(:)
-    integer :: done = 0, failed = 0, todo = 0, threads = 1
-    integer(i8) :: clock0 = 0, rate = 1, last_progress = 0, last_checkpoint = 0
-    type(error_type), allocatable :: io_error
-  end type sweep_state
 
   !> A sweep under way: its cases, the base deck's clearance, the shared state, the cases
   !> to run (dearest first; the first state%todo of them), the shard's cases, and whether
   !> this process holds the summary's lock.
   type :: sweep_run
+    !> The cases of the sweep.
     type(sweep_case), allocatable :: cases(:)
+    !> The base deck's initial clearance to the ship's side [m].
     real(wp) :: clearance0 = 0.0_wp
+    !> Rows, counters and clocks the critical section shares.
     type(sweep_state) :: state
+    !> The cases to run, dearest first (the first state%todo of them).
     integer, allocatable :: pending(:)
+    !> Per case, whether it belongs to this shard.
     logical, allocatable :: mine(:)
+    !> Whether this process holds the summary's lock.
     logical :: own_lock = .false.
   end type sweep_run
 
@@ -105,10 +105,15 @@ contains
 
   !> Run (or resume) the sweep and write the summary `out_path`.
   subroutine run_sweep(s, opts, out_path, outcome, error)
+    !> The sweep deck (base deck, varied values).
     type(sweep_config), intent(in) :: s
+    !> Threads, resume, progress, series folder, shard.
     type(sweep_options), intent(in) :: opts
+    !> Path of the summary file.
     character(len=*), intent(in) :: out_path
+    !> Counts and wall time of the sweep.
     type(sweep_outcome), intent(out) :: outcome
+    !> Set when the sweep cannot start or its summary cannot be written.
     type(error_type), allocatable, intent(out) :: error
     type(sweep_run) :: run
     integer :: nthreads
@@ -190,11 +195,17 @@ contains
   !> `nthreads` goes into the summary, `where` into the progress line. The lock is held
   !> on success only (finish_sweep releases it).
   subroutine start_sweep(s, opts, out_path, nthreads, where, run, error)
+    !> The sweep deck.
     type(sweep_config), intent(in) :: s
+    !> Threads, resume, progress, series folder, shard.
     type(sweep_options), intent(in) :: opts
+    !> Path of the summary file; where the sweep runs, for the opening progress line.
     character(len=*), intent(in) :: out_path, where
+    !> Threads (or MPI ranks) recorded in the summary.
     integer, intent(in) :: nthreads
+    !> The sweep under way.
     type(sweep_run), intent(out) :: run
+    !> Set when a deck, the output, the lock, the series folder or the earlier summary is refused.
     type(error_type), allocatable, intent(out) :: error
     if (opts%shard%count > 0) call refuse_adaptive(s, "shards (--shard K/N)", error)
     if (allocated(error)) return
@@ -271,11 +282,17 @@ contains
 
   !> The final summary, the outcome, and the lock released.
   subroutine finish_sweep(s, opts, out_path, run, outcome, error)
+    !> The sweep deck.
     type(sweep_config), intent(in) :: s
+    !> Threads, resume, progress, series folder, shard.
     type(sweep_options), intent(in) :: opts
+    !> Path of the summary file.
     character(len=*), intent(in) :: out_path
+    !> The sweep under way; its lock released.
     type(sweep_run), intent(inout) :: run
+    !> Counts and wall time of the sweep.
     type(sweep_outcome), intent(out) :: outcome
+    !> Set when the final summary cannot be written (or an I/O failure during the loop).
     type(error_type), allocatable, intent(out) :: error
     call write_summary(out_path, s, run%cases, run%state%results, run%state%threads, &
                        series(opts), opts%shard, error)
@@ -296,9 +313,13 @@ contains
 
   !> The cases of the sweep and the base deck's initial clearance [m].
   subroutine prepare_cases(s, cases, clearance0, error)
+    !> The sweep deck.
     type(sweep_config), intent(in) :: s
+    !> The cases of the sweep.
     type(sweep_case), allocatable, intent(out) :: cases(:)
+    !> The base deck's initial clearance to the ship's side [m].
     real(wp), intent(out) :: clearance0
+    !> Set when a case's deck is refused.
     type(error_type), allocatable, intent(out) :: error
     call initial_clearance(s%base, clearance0, error)
     if (allocated(error)) return
@@ -332,11 +353,17 @@ contains
   !> Run one case: build its system, integrate with the launch metrics watching every step,
   !> return its row. A failed run gives a row of status failed with the message.
   subroutine run_case(cfg, stop_at_release, sys, rec, row, run_error)
+    !> The case's configuration.
     type(config_type), intent(in) :: cfg
+    !> End the run at the release (the sweep's metrics need nothing after it).
     logical, intent(in) :: stop_at_release
+    !> The case's system, built here.
     type(system_type), intent(out) :: sys
+    !> The case's time series (written only with a series folder).
     type(boat_recorder), intent(out) :: rec
+    !> The case's row of the summary.
     type(case_result), intent(out) :: row
+    !> Why the run failed (unallocated: it did not).
     type(error_type), allocatable, intent(out) :: run_error
     type(launch_metrics) :: metrics
     type(run_summary) :: summary
@@ -380,12 +407,19 @@ contains
 
   !> Inside the critical section: store row c, report progress, checkpoint when due.
   subroutine store_case(s, cases, c, row, opts, state, out_path)
+    !> The sweep deck.
     type(sweep_config), intent(in) :: s
+    !> The cases of the sweep.
     type(sweep_case), intent(in) :: cases(:)
+    !> Index of the case stored.
     integer, intent(in) :: c
+    !> The case's row.
     type(case_result), intent(in) :: row
+    !> Progress and checkpoint intervals, series folder, shard.
     type(sweep_options), intent(in) :: opts
+    !> Rows, counters and clocks, the row stored.
     type(sweep_state), intent(inout) :: state
+    !> Path of the summary file (checkpoints).
     character(len=*), intent(in) :: out_path
     type(error_type), allocatable :: error
     integer(i8) :: now
@@ -412,24 +446,6 @@ contains
       state%last_checkpoint = now
     end if
   end subroutine store_case
-
-  !> "davit sweep: 12/80 cases (1 failed), 0.41 cases/s, ETA 2 min 21 s" on stderr.
-  subroutine report_progress(state)
-    type(sweep_state), intent(in) :: state
-    real(wp) :: elapsed, rate
-    character(len=:), allocatable :: line
-    elapsed = seconds_since(state, state%clock0)
-    rate = real(state%done, wp)/max(elapsed, 1.0e-9_wp)
-    line = "davit sweep: "//int_to_str(state%done)//"/"//int_to_str(state%todo)// &
-           " cases ("//int_to_str(state%failed)//" failed), "//fmt_fixed(rate, 3)//" cases/s"
-    if (state%done < state%todo) then
-      line = line//", ETA "//fmt_duration(real(state%todo - state%done, wp)/rate)
-    else
-      line = line//", "//fmt_duration(elapsed)
-    end if
-    write (error_unit, "(a)") line
-    flush (error_unit)
-  end subroutine report_progress
 
   !> The case's time series (the run file layout) under the series folder; inside the
   !> critical section.
@@ -471,6 +487,7 @@ contains
   end function shard_note
 
   function series(opts) result(dir)
+    !> The sweep's options.
     type(sweep_options), intent(in) :: opts
     character(len=:), allocatable :: dir
     dir = ""
@@ -508,7 +525,9 @@ contains
   !> (the base deck's memory estimate) within the memory limit together. The results do not
   !> depend on the thread count.
   integer function thread_count(requested, base) result(n)
+    !> Threads asked for (--threads; 0: the runtime's default).
     integer, intent(in) :: requested
+    !> The base deck (its memory estimate).
     type(config_type), intent(in) :: base
     integer :: cap, fit
     character(len=:), allocatable :: source
@@ -535,29 +554,5 @@ contains
       n = fit
     end if
   end function thread_count
-
-  real(wp) function seconds_since(state, clock) result(dt)
-    type(sweep_state), intent(in) :: state
-    integer(i8), intent(in) :: clock
-    integer(i8) :: now
-    call system_clock(now)
-    dt = real(now - clock, wp)/real(state%rate, wp)
-  end function seconds_since
-
-
-  !> "2 h 5 min", "3 min 21 s" or "42 s".
-  function fmt_duration(seconds) result(s)
-    real(wp), intent(in) :: seconds
-    character(len=:), allocatable :: s
-    integer :: t
-    t = nint(max(seconds, 0.0_wp))
-    if (t >= 3600) then
-      s = int_to_str(t/3600)//" h "//int_to_str(mod(t, 3600)/60)//" min"
-    else if (t >= 60) then
-      s = int_to_str(t/60)//" min "//int_to_str(mod(t, 60))//" s"
-    else
-      s = int_to_str(t)//" s"
-    end if
-  end function fmt_duration
 
 end module davit_sweep_driver
