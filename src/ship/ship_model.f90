@@ -24,6 +24,7 @@ module davit_ship_ship_model
   use davit_core_rotation, only: rotation_matrix, euler_rates
   use davit_core_kane, only: kane_rates, kane_at_rest
   use davit_core_layout, only: state_layout_type, state_part_type
+  use davit_core_hermite, only: hermite_interpolate
   use davit_ship_bem_loads, only: bem_ship_type, bem_wave_coefficients, bem_restoring, &
                                   bem_memory, turn_to_body
   use davit_ship_ship_blocks, only: box_blocks, bem_blocks
@@ -343,15 +344,9 @@ contains
   pure function fk_interpolated(self, t) result(load)
     type(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t
-    real(wp) :: load(6), h, s, h00, h10, h01, h11
-    h = self%wave_t(2) - self%wave_t(1)
-    s = (t - self%wave_t(1))/h
-    h00 = (1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2
-    h10 = s*(1.0_wp - s)**2
-    h01 = s*s*(3.0_wp - 2.0_wp*s)
-    h11 = s*s*(s - 1.0_wp)
-    load = h00*self%wave_f(:, 1) + h10*h*self%wave_d(:, 1) + h01*self%wave_f(:, 2) + &
-           h11*h*self%wave_d(:, 2)
+    real(wp) :: load(6)
+    load = hermite_interpolate(self%wave_t, self%wave_f(:, 1), self%wave_d(:, 1), &
+                               self%wave_f(:, 2), self%wave_d(:, 2), t)
   end function fk_interpolated
 
   !> The ship alone: its Kane blocks and eq. 89.
