@@ -171,7 +171,7 @@ contains
       amp = max(amp, abs(b(3) - b0(3)))
     end do
     call note(state, "largest interpolation error / amplitude", worst/amp)
-    call check_true(state, cached%wave_cached, "the wave clock is on")
+    call check_true(state, cached%clock%valid, "the wave clock is on")
     call check_true(state, worst < 1.0e-6_wp*amp, "interpolated = direct loads")
   end subroutine wave_clock
 

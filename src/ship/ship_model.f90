@@ -24,7 +24,7 @@ module davit_ship_ship_model
   use davit_core_rotation, only: rotation_matrix, euler_rates
   use davit_core_kane, only: kane_rates, kane_at_rest
   use davit_core_layout, only: state_layout_type, state_part_type
-  use davit_core_hermite, only: hermite_interpolate
+  use davit_core_slow_clock, only: slow_clock_type, clock_kept, clock_shifted
   use davit_ship_bem_loads, only: bem_ship_type, bem_wave_coefficients, bem_restoring, &
                                   bem_memory, turn_to_body
   use davit_ship_ship_blocks, only: box_blocks, bem_blocks
@@ -83,14 +83,13 @@ module davit_ship_ship_model
     real(wp) :: moor_k(3) = 0.0_wp, moor_c(3) = 0.0_wp, moor_i(3) = 0.0_wp
     real(wp) :: anchor(3) = 0.0_wp
     type(state_part_type) :: control
-    !> Slow clock of the Froude-Krylov loads (`&simulation wave_update`; 0: off): with the
-    !> phases at the initial position they depend on time alone, so they are sampled with
-    !> their rates on the grid k wave_dt and interpolated by cubic Hermite in between
-    !> (error ~ (omega wave_dt)^4/384 of each component). Stages outside the window
-    !> [wave_t(1), wave_t(2)] are evaluated directly.
-    real(wp) :: wave_dt = 0.0_wp
-    logical :: wave_cached = .false.
-    real(wp) :: wave_t(2) = 0.0_wp, wave_f(6, 2) = 0.0_wp, wave_d(6, 2) = 0.0_wp
+    !> Slow clock of the Froude-Krylov loads (davit_core_slow_clock, rule clock_grid;
+    !> `&simulation wave_update`, off at 0): with the phases at the initial position they
+    !> depend on time alone, so they are sampled with their rates (wave_f, wave_d) on the
+    !> grid k h and interpolated by cubic Hermite in between. Stages outside the window are
+    !> evaluated directly.
+    type(slow_clock_type) :: clock
+    real(wp) :: wave_f(6, 2) = 0.0_wp, wave_d(6, 2) = 0.0_wp
     !> The ship's state: part "ship" (rigid body) and, for the BEM ship, part
     !> "ship_radiation" (its memory states); body and radiation are their ranges.
     type(state_layout_type) :: layout
@@ -127,17 +126,21 @@ module davit_ship_ship_model
 contains
 
   subroutine new_ship_system(self, hull, sea, wind, frozen, position, heading, &
-                             phase_at_initial, headway, bem)
-    ! 10 arguments: the ship's parts as the deck gives them (hull, sea, wind, pose, switches)
+                             phase_at_initial, headway, clock, bem)
+    ! 11 arguments: the ship's parts as the deck gives them (hull, sea, wind, pose, switches,
+    ! slow clock)
     type(ship_system_type), intent(out) :: self
     type(hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: sea
     type(wind_type), intent(in) :: wind
     logical, intent(in) :: frozen, phase_at_initial
     real(wp), intent(in) :: position(3), heading, headway
+    !> The slow clock of the Froude-Krylov loads (rule clock_grid; interval 0: off).
+    type(slow_clock_type), intent(in) :: clock
     type(bem_ship_type), intent(in), optional :: bem
     real(wp) :: z_eq, water(6), air(6)
     z_eq = position(3)
+    self%clock = clock
     self%phase_at_initial = phase_at_initial
     self%origin = position(1:2) - [cos(heading), sin(heading)]*hull%cg_x
     if (present(bem)) then
@@ -283,9 +286,9 @@ contains
     if (self%mmg_on) call rudder_switch(self%steer, t, yaw)
     if (abs(yaw - self%psi_ref) > heading_tolerance) then
       call self%refresh_heading(yaw)
-      self%wave_cached = .false.
+      call self%clock%invalidate()
     end if
-    if (self%wave_dt > 0.0_wp .and. self%phase_at_initial .and. &
+    if (self%clock%enabled() .and. self%phase_at_initial .and. &
         self%sea%kind /= wave_none .and. .not. self%frozen) call advance_wave_clock(self, t)
   end subroutine ship_after_step
 
@@ -295,20 +298,16 @@ contains
   subroutine advance_wave_clock(self, t)
     type(ship_system_type), intent(inout) :: self
     real(wp), intent(in) :: t
-    real(wp) :: t0
-    t0 = self%wave_dt*floor(t/self%wave_dt)
-    if (self%wave_cached .and. t0 == self%wave_t(1)) return
-    if (self%wave_cached .and. t0 == self%wave_t(2)) then
-      self%wave_t(1) = self%wave_t(2)
+    integer :: action
+    call self%clock%advance(t, action)
+    if (action == clock_kept) return
+    if (action == clock_shifted) then
       self%wave_f(:, 1) = self%wave_f(:, 2)
       self%wave_d(:, 1) = self%wave_d(:, 2)
     else
-      self%wave_t(1) = t0
-      call fk_unramped(self, t0, self%wave_f(:, 1), self%wave_d(:, 1))
+      call fk_unramped(self, self%clock%window(1), self%wave_f(:, 1), self%wave_d(:, 1))
     end if
-    self%wave_t(2) = t0 + self%wave_dt
-    call fk_unramped(self, self%wave_t(2), self%wave_f(:, 2), self%wave_d(:, 2))
-    self%wave_cached = .true.
+    call fk_unramped(self, self%clock%window(2), self%wave_f(:, 2), self%wave_d(:, 2))
   end subroutine advance_wave_clock
 
   !> Froude-Krylov loads (heading frame, without the start-up ramp) at the initial position
@@ -345,8 +344,8 @@ contains
     type(ship_system_type), intent(in) :: self
     real(wp), intent(in) :: t
     real(wp) :: load(6)
-    load = hermite_interpolate(self%wave_t, self%wave_f(:, 1), self%wave_d(:, 1), &
-                               self%wave_f(:, 2), self%wave_d(:, 2), t)
+    load = self%clock%interpolate(self%wave_f(:, 1), self%wave_d(:, 1), self%wave_f(:, 2), &
+                                  self%wave_d(:, 2), t)
   end function fk_interpolated
 
   !> The ship alone: its Kane blocks and eq. 89.
@@ -567,7 +566,7 @@ contains
     real(wp) :: load(6), o(3), s(wave_chunk), cs(wave_chunk)
     integer :: j, i0, i1, m
     associate (sea => self%sea)
-      if (self%wave_cached .and. t >= self%wave_t(1) .and. t <= self%wave_t(2)) then
+      if (self%clock%covers(t)) then
         load = wave_ramp(sea, t)*fk_interpolated(self, t)
         return
       end if

@@ -61,11 +61,11 @@ contains
     r = matmul(c, q(4:6))
     do j = 1, par%water%hull%n
       maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
-                                            t + hist%waves%window, c, r)
+                                            t + hist%waves%clock%interval, c, r)
     end do
     if (any(maybe_wet) .and. hist%surface_grid%enabled) then
-      call prepare_grid(par, hist%surface_grid, t, hist%waves%window, c, r)
-      call prepare_grid(par, hist%volume_grid, t, hist%waves%window, c, r, maybe_wet)
+      call prepare_grid(par, hist%surface_grid, t, hist%waves%clock%interval, c, r)
+      call prepare_grid(par, hist%volume_grid, t, hist%waves%clock%interval, c, r, maybe_wet)
       call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet, &
                                hist%surface_grid, hist%volume_grid)
     else if (any(maybe_wet)) then
@@ -73,10 +73,9 @@ contains
     end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
-      call diffraction_refresh(par%bem, par%sea, hist%waves%t(1), hist%waves%t(2), r, &
-                               q(3), hist%diffraction)
+      call diffraction_refresh(par%bem, par%sea, hist%waves%clock, r, q(3), hist%diffraction)
     else
-      hist%diffraction%valid = .false.
+      call hist%diffraction%clock%invalidate()
     end if
   end subroutine refresh_strip_waves
 
