@@ -30,8 +30,8 @@ module davit_core_slow_clock
   !> far end is the new near end, whose samples the caller keeps); a new window (both ends
   !> to sample).
   integer, parameter :: clock_kept = 0, clock_shifted = 1, clock_renewed = 2
-  !> clock_reach: a window is renewed once the next step, if up to this many times the
-  !> last one, could end past it, so all stages of steady steps stay inside.
+  !> Under clock_reach a window is renewed once the next step, if up to this many times
+  !> the last one, could end past it, so all stages of steady steps stay inside.
   real(wp), parameter :: reach = 2.0_wp
 
   !> A slow clock: its interval, rule and current window.
@@ -44,7 +44,7 @@ module davit_core_slow_clock
     logical :: valid = .false.
     !> The window [t1, t2] [s].
     real(wp) :: window(2) = 0.0_wp
-    !> clock_reach: time of the last accepted step seen [s] (the next step's reach).
+    !> Time of the last accepted step seen [s] (clock_reach: the next step's reach).
     real(wp) :: t_last = 0.0_wp
   contains
     procedure :: enabled
@@ -86,7 +86,7 @@ contains
     covers = self%valid .and. t >= self%window(1) .and. t <= self%window(2)
   end function covers
 
-  !> clock_reach, after an accepted step ending at t: true when the window should be
+  !> For clock_reach, after an accepted step ending at t: true when the window should be
   !> opened anew (the next step may leave it); records t.
   pure subroutine due(self, t, renew)
     !> The clock (its last step's time updated).
@@ -100,7 +100,8 @@ contains
     self%t_last = t
   end subroutine due
 
-  !> clock_reach: the window [t, t + h], valid from now on (the caller samples its ends).
+  !> Open the window [t, t + h] (clock_reach), valid from now on (the caller samples its
+  !> ends).
   pure subroutine open(self, t)
     !> The clock.
     class(slow_clock_type), intent(inout) :: self
@@ -110,7 +111,7 @@ contains
     self%valid = .true.
   end subroutine open
 
-  !> clock_grid, after an accepted step ending at t: move the window onto the grid
+  !> For clock_grid, after an accepted step ending at t: move the window onto the grid
   !> interval that holds t; `action` says which ends the caller must sample
   !> (clock_kept: none; clock_shifted: the far end, the near end's samples being the old
   !> far end's; clock_renewed: both).

@@ -132,9 +132,9 @@ contains
                                  integral=.true.)
     end associate
     self%par%with_ship = .true.
-    call self%par%layout%append(self%ship%layout, offset)
+    call self%par%layout%append(self%ship%par%layout, offset)
     self%par%ship_part = self%par%layout%part("ship")
-    self%par%ship_slice = [offset + 1, offset + self%ship%layout%n]
+    self%par%ship_slice = [offset + 1, offset + self%ship%par%layout%n]
   end subroutine new_moving_ship
 
   !> The ship of the deck in the sea and wind given: the paper's box or (&ship model =
@@ -344,7 +344,7 @@ contains
   pure function ship_initial_state(ship, cfg) result(y)
     type(ship_system_type), intent(in) :: ship
     type(config_type), intent(in) :: cfg
-    real(wp) :: y(ship%layout%n)
+    real(wp) :: y(ship%par%layout%n)
     y = ship_state(ship, [cfg%ship%list, cfg%ship%trim, cfg%ship%heading], &
                    cfg%ship%position, [0.0_wp, 0.0_wp, 0.0_wp], &
                    [cfg%ship%headway, 0.0_wp, 0.0_wp])
