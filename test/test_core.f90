@@ -94,47 +94,51 @@ contains
   !> The two window rules, by hand. clock_grid, h = 0.25: t = 0.3 opens [0.25, 0.5] (both
   !> ends new); 0.4 keeps it; 0.55 shifts it to [0.5, 0.75] (one new end); 1.6 jumps to
   !> [1.5, 1.75] (both new), and after invalidate the same t samples both ends again.
-  !> clock_reach, h = 0.1: due at the first step (no window); after open(0) a step to 0.01
-  !> reaches 0.01 + 2 (0.01) = 0.03 <= 0.1 (not due), one to 0.05 reaches
-  !> 0.05 + 2 (0.04) = 0.13 > 0.1 (due), and a step back before t1 is due.
+  !> clock_reach, h = 0.1: due at the first step (no window); open(0) gives [0, 0.1]; a
+  !> step to 0.01 reaches 0.01 + 2 (0.01) = 0.03 <= 0.1 (not due), one to 0.05 reaches
+  !> 0.05 + 2 (0.04) = 0.13 > 0.1 (due), one to 0.09 is due and, not opened, leaves the old
+  !> window covering 0.09; a step back before t1 is due.
   subroutine clock_windows(state)
     type(case_state), intent(inout) :: state
     type(slow_clock_type) :: clock, off
     integer :: action
-    logical :: renew
     clock = new_slow_clock(0.25_wp, clock_grid)
     call check_true(state, clock%enabled() .and. .not. clock%covers(0.3_wp), "no window yet")
-    call clock%advance(0.3_wp, action)
+    call clock%tick(0.3_wp, action)
     call check_true(state, action == clock_renewed, "first window: both ends")
     call check(state, clock%window(1), 0.25_wp, "grid window start", abs_tol=0.0_wp)
     call check(state, clock%window(2), 0.5_wp, "grid window end", abs_tol=0.0_wp)
-    call clock%advance(0.4_wp, action)
+    call clock%tick(0.4_wp, action)
     call check_true(state, action == clock_kept, "inside: kept")
-    call clock%advance(0.55_wp, action)
+    call clock%tick(0.55_wp, action)
     call check_true(state, action == clock_shifted, "next interval: shifted")
     call check(state, clock%window(1), 0.5_wp, "shifted start", abs_tol=0.0_wp)
     call check(state, clock%window(2), 0.75_wp, "shifted end", abs_tol=0.0_wp)
     call check_true(state, clock%covers(0.5_wp) .and. clock%covers(0.75_wp) .and. &
                     .not. clock%covers(0.76_wp), "covers its closed window only")
-    call clock%advance(1.6_wp, action)
+    call clock%tick(1.6_wp, action)
     call check_true(state, action == clock_renewed, "jump: renewed")
     call check(state, clock%window(1), 1.5_wp, "jump start", abs_tol=0.0_wp)
     call clock%invalidate()
-    call clock%advance(1.6_wp, action)
+    call clock%tick(1.6_wp, action)
     call check_true(state, action == clock_renewed, "invalidated: renewed")
     off = new_slow_clock(0.0_wp, clock_grid)
     call check_true(state, .not. off%enabled(), "interval 0: off")
     clock = new_slow_clock(0.1_wp, clock_reach)
-    call clock%due(0.0_wp, renew)
-    call check_true(state, renew, "reach: due without a window")
+    call clock%tick(0.0_wp, action)
+    call check_true(state, action == clock_renewed, "reach: due without a window")
     call clock%open(0.0_wp)
-    call clock%due(0.01_wp, renew)
-    call check_true(state, .not. renew, "reach: short step stays inside")
-    call clock%due(0.05_wp, renew)
-    call check_true(state, renew, "reach: next step may leave the window")
+    call check(state, clock%window(2), 0.1_wp, "reach: window [t, t + h]", abs_tol=0.0_wp)
+    call clock%tick(0.01_wp, action)
+    call check_true(state, action == clock_kept, "reach: short step stays inside")
+    call clock%tick(0.05_wp, action)
+    call check_true(state, action == clock_renewed, "reach: next step may leave the window")
+    call clock%tick(0.09_wp, action)
+    call check_true(state, action == clock_renewed .and. clock%covers(0.09_wp), &
+                    "reach: not opened, the old window stays")
     call clock%open(0.05_wp)
-    call clock%due(0.04_wp, renew)
-    call check_true(state, renew, "reach: a step back before t1")
+    call clock%tick(0.04_wp, action)
+    call check_true(state, action == clock_renewed, "reach: a step back before t1")
   end subroutine clock_windows
 
   !> sin(w t) sampled with its rate on the grid windows of the clock and interpolated at
@@ -152,7 +156,7 @@ contains
       e(j) = 0.0_wp
       do i = 1, 400
         t = 0.0137_wp*real(i, wp)
-        call clock%advance(t, action)
+        call clock%tick(t, action)
         f(1, :) = sin(w*clock%window)
         d(1, :) = w*cos(w*clock%window)
         p = clock%interpolate(f(:, 1), d(:, 1), f(:, 2), d(:, 2), t)

@@ -26,7 +26,7 @@ module davit_boat_strip_waves
                                   component_phases
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
-  use davit_core_slow_clock, only: slow_clock_type
+  use davit_core_slow_clock, only: slow_clock_type, clock_renewed
   use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
   implicit none
   private
@@ -80,8 +80,9 @@ contains
     type(strip_wave_cache_type), intent(inout) :: cache
     real(wp), intent(in) :: t
     logical, intent(out) :: due
-    call cache%clock%due(t, due)
-    due = due .and. cache%enabled
+    integer :: action
+    call cache%clock%tick(t, action)
+    due = action == clock_renewed .and. cache%enabled
   end subroutine strip_waves_due
 
   !> True when a stage at time t may use the cache.

@@ -49,9 +49,8 @@ module davit_core_slow_clock
   contains
     procedure :: enabled
     procedure :: covers
-    procedure :: due
+    procedure :: tick
     procedure :: open
-    procedure :: advance
     procedure :: invalidate
     procedure :: weights
     procedure :: interpolate
@@ -86,19 +85,36 @@ contains
     covers = self%valid .and. t >= self%window(1) .and. t <= self%window(2)
   end function covers
 
-  !> For clock_reach, after an accepted step ending at t: true when the window should be
-  !> opened anew (the next step may leave it); records t.
-  pure subroutine due(self, t, renew)
-    !> The clock (its last step's time updated).
+  !> After an accepted step ending at t, by the clock's rule: what the owner of the window
+  !> must sample. clock_grid moves the window onto the grid interval that holds t and
+  !> answers clock_kept (nothing to sample), clock_shifted (the far end; the near end's
+  !> samples are the old far end's) or clock_renewed (both ends). clock_reach records t and
+  !> answers clock_renewed when the next step may leave the window, else clock_kept; the
+  !> owner then samples [t, t + h] and opens it (`open`), or keeps the old window when it
+  !> needs none (the strips, with no strip that may get wet).
+  pure subroutine tick(self, t, action)
+    !> The clock.
     class(slow_clock_type), intent(inout) :: self
     !> End of the accepted step [s].
     real(wp), intent(in) :: t
-    !> True when the caller should sample a new window (`open`).
-    logical, intent(out) :: renew
-    renew = .not. self%valid .or. t < self%window(1) .or. &
-            t + reach*max(t - self%t_last, 0.0_wp) > self%window(2)
-    self%t_last = t
-  end subroutine due
+    !> clock_kept, clock_shifted or clock_renewed.
+    integer, intent(out) :: action
+    if (self%rule == clock_grid) then
+      call grid_advance(self, t, action)
+    else
+      action = merge(clock_renewed, clock_kept, reach_due(self, t))
+      self%t_last = t
+    end if
+  end subroutine tick
+
+  !> clock_reach: the next step, if up to `reach` times the last one, may end past the
+  !> window (or there is none, or t lies before it).
+  pure logical function reach_due(self, t)
+    type(slow_clock_type), intent(in) :: self
+    real(wp), intent(in) :: t
+    reach_due = .not. self%valid .or. t < self%window(1) .or. &
+                t + reach*max(t - self%t_last, 0.0_wp) > self%window(2)
+  end function reach_due
 
   !> Open the window [t, t + h] (clock_reach), valid from now on (the caller samples its
   !> ends).
@@ -111,16 +127,10 @@ contains
     self%valid = .true.
   end subroutine open
 
-  !> For clock_grid, after an accepted step ending at t: move the window onto the grid
-  !> interval that holds t; `action` says which ends the caller must sample
-  !> (clock_kept: none; clock_shifted: the far end, the near end's samples being the old
-  !> far end's; clock_renewed: both).
-  pure subroutine advance(self, t, action)
-    !> The clock.
-    class(slow_clock_type), intent(inout) :: self
-    !> End of the accepted step [s].
+  !> clock_grid: the window onto the grid interval [k h, (k + 1) h] that holds t.
+  pure subroutine grid_advance(self, t, action)
+    type(slow_clock_type), intent(inout) :: self
     real(wp), intent(in) :: t
-    !> clock_kept, clock_shifted or clock_renewed.
     integer, intent(out) :: action
     real(wp) :: t0
     t0 = self%interval*floor(t/self%interval)
@@ -137,7 +147,7 @@ contains
     end if
     self%window(2) = t0 + self%interval
     self%valid = .true.
-  end subroutine advance
+  end subroutine grid_advance
 
   !> The window's samples no longer hold (the loads they sample changed).
   pure subroutine invalidate(self)

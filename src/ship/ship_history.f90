@@ -89,7 +89,7 @@ contains
     !> End of the accepted step [s].
     real(wp), intent(in) :: t
     integer :: action
-    call hist%clock%advance(t, action)
+    call hist%clock%tick(t, action)
     if (action == clock_kept) return
     if (action == clock_shifted) then
       hist%wave_f(:, 1) = hist%wave_f(:, 2)
