@@ -107,8 +107,8 @@ contains
     end if
   end subroutine tick
 
-  !> clock_reach: the next step, if up to `reach` times the last one, may end past the
-  !> window (or there is none, or t lies before it).
+  !> Whether, under clock_reach, the next step, if up to `reach` times the last one, may
+  !> end past the window (or there is none, or t lies before it).
   pure logical function reach_due(self, t)
     type(slow_clock_type), intent(in) :: self
     real(wp), intent(in) :: t
@@ -127,7 +127,7 @@ contains
     self%valid = .true.
   end subroutine open
 
-  !> clock_grid: the window onto the grid interval [k h, (k + 1) h] that holds t.
+  !> Move the window onto the grid interval [k h, (k + 1) h] that holds t (clock_grid).
   pure subroutine grid_advance(self, t, action)
     type(slow_clock_type), intent(inout) :: self
     real(wp), intent(in) :: t
