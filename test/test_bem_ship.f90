@@ -216,8 +216,8 @@ contains
     if (allocated(error)) error stop error%message
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
-    y(ship%body%q(1)) = 0.02_wp
-    period = decay_period(ship, y, ship%body%q(1))
+    y(ship%par%body%q(1)) = 0.02_wp
+    period = decay_period(ship, y, ship%par%body%q(1))
     expected = 2.0_wp*pi/damped_omega(db, 4)
     call note(state, "roll period, time domain [s]", period)
     call note(state, "roll 2 pi/w_d, frequency domain [s]", expected)
@@ -428,7 +428,7 @@ contains
     type(ship_system_type) :: ship
     type(rk4_type) :: rk
     real(wp), allocatable :: y(:)
-    real(wp) :: t, dt, ydot0
+    real(wp) :: t, dt, ydot0, coef(2)
     integer :: i
     write (phase, "(f6.1)") phase_deg
     call parse_config("t.nml", "&ship model = '"//model//"', database = '"//database// &
@@ -438,10 +438,11 @@ contains
     if (allocated(error)) error stop error%message
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
-    amplitude = hypot(ship%fk_sin(2, 1), ship%fk_cos(2, 1))
-    mass = ship%hull%mass
-    if (ship%bem) mass = ship%hydro%mass
-    period = 2.0_wp*pi/ship%sea%omega(1)
+    coef = ship%wave_coefficients(2, 1)
+    amplitude = hypot(coef(1), coef(2))
+    mass = ship%par%hull%mass
+    if (ship%par%bem) mass = ship%par%hydro%mass
+    period = 2.0_wp*pi/ship%par%sea%omega(1)
     dt = period/per_period
     call rk%init(size(y))
     ybar = 0.0_wp
@@ -452,7 +453,7 @@ contains
       call ship%after_step(t + dt, y)
       if (i == 2*per_period) ydot0 = sway_velocity(ship, y)
       if (i == 7*per_period) fbar = mass*(sway_velocity(ship, y) - ydot0)/(5.0_wp*period)
-      if (i > 7*per_period) ybar = ybar + y(ship%body%q(1) + 4)/per_period
+      if (i > 7*per_period) ybar = ybar + y(ship%par%body%q(1) + 4)/per_period
     end do
   end subroutine beam_run
 
@@ -461,8 +462,8 @@ contains
     type(ship_system_type), intent(in) :: ship
     real(wp), intent(in) :: y(:)
     real(wp) :: c(3, 3)
-    c = rotation_matrix(y(ship%body%q(1):ship%body%q(1) + 2))
-    vy = dot_product(c(2, :), y(ship%body%u(1) + 3:ship%body%u(2)))
+    c = rotation_matrix(y(ship%par%body%q(1):ship%par%body%q(1) + 2))
+    vy = dot_product(c(2, :), y(ship%par%body%u(1) + 3:ship%par%body%u(2)))
   end function sway_velocity
 
 
@@ -495,59 +496,60 @@ contains
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
     list = 6.0_wp*pi/180.0_wp
-    a = ship%hydro%db%added_mass_inf
-    allocate (dydt(size(y)), xdot(ship%hydro%db%nrad))
+    a = ship%par%hydro%db%added_mass_inf
+    allocate (dydt(size(y)), xdot(ship%par%hydro%db%nrad))
     ! a general state: attitude, heave, speeds, memory
     om = [0.05_wp, -0.02_wp, 0.01_wp]
     v = [0.0_wp, -0.5_wp, 0.8_wp]    ! no surge: the manoeuvring and resistance terms vanish
-    y(ship%body%q(1):ship%body%q(1) + 2) = [list + 0.1_wp, 0.05_wp, 0.3_wp]
-    y(ship%body%q(1) + 5) = y(ship%body%q(1) + 5) + 0.4_wp
-    y(ship%body%u(1):ship%body%u(2)) = [om, v]
-    do k = 1, ship%hydro%db%nrad
-      y(ship%radiation%q(1) + k - 1) = 0.1_wp*sin(real(k, wp))
+    y(ship%par%body%q(1):ship%par%body%q(1) + 2) = [list + 0.1_wp, 0.05_wp, 0.3_wp]
+    y(ship%par%body%q(1) + 5) = y(ship%par%body%q(1) + 5) + 0.4_wp
+    y(ship%par%body%u(1):ship%par%body%u(2)) = [om, v]
+    do k = 1, ship%par%hydro%db%nrad
+      y(ship%par%radiation%q(1) + k - 1) = 0.1_wp*sin(real(k, wp))
     end do
     call residual()
     call note(state, "largest term [N, N m]", scale)
     call check(state, maxval(abs(lhs - rhs)), 0.0_wp, "rigid body = Cummins' loads turned "// &
                "from the seakeeping frame", abs_tol=1.0e-9_wp*scale)
     ! heeled at its list, heaving at 1 m/s (inertial), memory of pure heave: no sway
-    y(ship%body%q(1):ship%body%q(1) + 2) = [list, 0.0_wp, 0.0_wp]
+    y(ship%par%body%q(1):ship%par%body%q(1) + 2) = [list, 0.0_wp, 0.0_wp]
     c = rotation_matrix([list, 0.0_wp, 0.0_wp])
-    y(ship%body%u(1):ship%body%u(2)) = [0.0_wp, 0.0_wp, 0.0_wp, c(3, :)]
-    y(ship%radiation%q(1):ship%radiation%q(2)) = 0.0_wp
-    do k = 1, size(ship%hydro%db%pairs)
-      associate (p => ship%hydro%db%pairs(k))
-        i0 = ship%radiation%q(1) + p%first - 1
+    y(ship%par%body%u(1):ship%par%body%u(2)) = [0.0_wp, 0.0_wp, 0.0_wp, c(3, :)]
+    y(ship%par%radiation%q(1):ship%par%radiation%q(2)) = 0.0_wp
+    do k = 1, size(ship%par%hydro%db%pairs)
+      associate (p => ship%par%hydro%db%pairs(k))
+        i0 = ship%par%radiation%q(1) + p%first - 1
         if (p%j == 3) y(i0:i0 + p%n - 1) = p%b     ! the states after a 1 m/s, 1 s heave
       end associate
     end do
     call residual()
-    acc(4:6) = matmul(c, dydt(ship%body%u(1) + 3:ship%body%u(2)))
+    acc(4:6) = matmul(c, dydt(ship%par%body%u(1) + 3:ship%par%body%u(2)))
     call note(state, "heeled ship heaving: vertical acceleration [m/s^2]", acc(6))
     call check(state, acc(5), 0.0_wp, "heeled ship heaving: no sway acceleration", &
                abs_tol=1.0e-9_wp*abs(acc(6)))
-    call check(state, dydt(ship%body%u(1)), 0.0_wp, "heeled ship heaving: no roll "// &
+    call check(state, dydt(ship%par%body%u(1)), 0.0_wp, "heeled ship heaving: no roll "// &
                "acceleration", abs_tol=1.0e-9_wp*abs(acc(6))/box(2))
   contains
 
     !> lhs, rhs of the equations above (DOF order) at the state y; dydt its rates.
     subroutine residual()
       real(wp) :: f(6)
-      associate (q => y(ship%body%q(1):ship%body%q(2)), u => y(ship%body%u(1):ship%body%u(2)))
+      associate (q => y(ship%par%body%q(1):ship%par%body%q(2)), &
+                 u => y(ship%par%body%u(1):ship%par%body%u(2)))
         call ship%rhs(0.0_wp, y, dydt)
         c = rotation_matrix(q(1:3))
         m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, q(3)]))
         om = u(1:3)
         v = u(4:6)
-        acc = [dydt(ship%body%u(1) + 3:ship%body%u(2)) + cross(om, v), &
-               dydt(ship%body%u(1):ship%body%u(1) + 2)]
-        lhs(1:3) = ship%hydro%mass*acc(1:3)
-        lhs(4:6) = ship%hydro%inertia*acc(4:6) + cross(om, ship%hydro%inertia*om)
-        call bem_memory(ship%hydro%db, y(ship%radiation%q(1):ship%radiation%q(2)), &
+        acc = [dydt(ship%par%body%u(1) + 3:ship%par%body%u(2)) + cross(om, v), &
+               dydt(ship%par%body%u(1):ship%par%body%u(1) + 2)]
+        lhs(1:3) = ship%par%hydro%mass*acc(1:3)
+        lhs(4:6) = ship%par%hydro%inertia*acc(4:6) + cross(om, ship%par%hydro%inertia*om)
+        call bem_memory(ship%par%hydro%db, y(ship%par%radiation%q(1):ship%par%radiation%q(2)), &
                         [matmul(transpose(m), v), matmul(transpose(m), om)], xdot, mu)
-        delta = [0.0_wp, 0.0_wp, q(6) - ship%z_eq, q(1) - list, q(2), 0.0_wp]
+        delta = [0.0_wp, 0.0_wp, q(6) - ship%par%z_eq, q(1) - list, q(2), 0.0_wp]
         f = -matmul(a, [matmul(transpose(m), acc(1:3)), matmul(transpose(m), acc(4:6))]) - mu &
-            - matmul(ship%hydro%db%stiffness, delta)
+            - matmul(ship%par%hydro%db%stiffness, delta)
         rhs = [matmul(m, f(1:3)), matmul(m, f(4:6))]
         scale = max(maxval(abs(lhs)), maxval(abs(mu)), maxval(abs(rhs)))
       end associate

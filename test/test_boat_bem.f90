@@ -16,6 +16,7 @@ module test_boat_bem
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, deck_config
   use davit_solve_rk4, only: rk4_type
+  use davit_core_slow_clock, only: slow_clock_type, new_slow_clock, clock_reach
   use davit_boat_bem_water, only: boat_bem_loads, diffraction_cache_type, &
                                   diffraction_refresh
   use davit_core_rotation, only: rotation_matrix
@@ -360,6 +361,7 @@ contains
     type(config_type) :: cfg
     type(system_type) :: sys
     type(diffraction_cache_type) :: cache, none
+    type(slow_clock_type) :: clock
     real(wp), allocatable :: y(:)
     real(wp) :: r0(3), r(3), c(3, 3), u(6), f_exact(6), f_cached(6), v(6), xdot(400)
     real(wp) :: x(400), t, worst, scale
@@ -375,7 +377,9 @@ contains
     u = 0.0_wp
     c = rotation_matrix([0.0_wp, 0.0_wp, 0.3_wp])
     r0 = [0.0_wp, 13.3_wp, 0.3_wp]
-    call diffraction_refresh(sys%par%bem, sys%par%sea, 20.0_wp, 20.05_wp, r0, 0.3_wp, cache)
+    clock = new_slow_clock(0.05_wp, clock_reach)
+    call clock%open(20.0_wp)
+    call diffraction_refresh(sys%par%bem, sys%par%sea, clock, r0, 0.3_wp, cache)
     worst = 0.0_wp
     scale = 0.0_wp
     do i = 0, 4

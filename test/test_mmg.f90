@@ -175,7 +175,7 @@ contains
     do i = 1, n
       call rk%step(ship, t, y, 0.02_wp)
       call ship%after_step(t, y)
-      rudder_max = max(rudder_max, abs(y(ship%rudder%q(1))))
+      rudder_max = max(rudder_max, abs(y(ship%par%rudder%q(1))))
     end do
   end subroutine run_deck
 
@@ -329,11 +329,11 @@ contains
     call build_ship_scene(cfg, ship, y, error)
     call check_true(state, .not. allocated(error), "accepted")
     if (allocated(error)) return
-    call check_true(state, ship%bem .and. ship%mmg_on, "BEM ship with MMG")
-    call check(state, ship%frame_speed, 2.0_wp, "frame speed", abs_tol=0.0_wp)
-    call check(state, ship%frame_velocity(1), 2.0_wp*cos(30.0_wp*deg), "frame velocity x", &
+    call check_true(state, ship%par%bem .and. ship%par%mmg_on, "BEM ship with MMG")
+    call check(state, ship%par%frame_speed, 2.0_wp, "frame speed", abs_tol=0.0_wp)
+    call check(state, ship%par%frame_velocity(1), 2.0_wp*cos(30.0_wp*deg), "frame velocity x", &
                abs_tol=1e-14_wp)
-    call check(state, ship%frame_velocity(2), 2.0_wp*sin(30.0_wp*deg), "frame velocity y", &
+    call check(state, ship%par%frame_velocity(2), 2.0_wp*sin(30.0_wp*deg), "frame velocity y", &
                abs_tol=1e-14_wp)
   end subroutine bem_frame
 

@@ -10,6 +10,7 @@ module test_mmg_bem
   use davit_io_config, only: config_type, parse_config
   use davit_core_rotation, only: rotation_matrix
   use davit_ship_ship_model, only: ship_system_type, ship_loads
+  use davit_core_slow_clock, only: slow_clock_type
   use davit_ship_rudder, only: rudder_type, rudder_order, autopilot_integral_rate, &
                                autopilot_order, autopilot_states
   use davit_run_ship_scene, only: build_ship_scene
@@ -124,8 +125,8 @@ contains
     do m = 1, 2
       do j = 1, 2
         call headway_ship(wave_edits(directions(j), trim(models(m)), ""), ship, y)
-        q = y(ship%body%q(1):ship%body%q(2))
-        u = y(ship%body%u(1):ship%body%u(2))
+        q = y(ship%par%body%q(1):ship%par%body%q(2))
+        u = y(ship%par%body%u(1):ship%par%body%u(2))
         c = rotation_matrix(q(1:3))
         do i = 1, size(f)
           load = ship_loads(ship, dt*(i - 1), q, u, c)
@@ -150,13 +151,14 @@ contains
   subroutine wave_clock(state)
     type(case_state), intent(inout) :: state
     type(ship_system_type) :: cached, direct
+    type(slow_clock_type) :: clock
     real(wp), allocatable :: y(:), y2(:)
     real(wp) :: c(3, 3), q(6), u(6), t, worst, amp, a(6), b(6), b0(6)
     integer :: i
     call headway_ship(wave_edits(180.0_wp, "bem", ", wave_update = 0.1"), cached, y)
     call headway_ship(wave_edits(180.0_wp, "bem", ""), direct, y2)
-    q = y(cached%body%q(1):cached%body%q(2))
-    u = y(cached%body%u(1):cached%body%u(2))
+    q = y(cached%par%body%q(1):cached%par%body%q(2))
+    u = y(cached%par%body%u(1):cached%par%body%u(2))
     c = rotation_matrix(q(1:3))
     worst = 0.0_wp
     amp = 0.0_wp
@@ -171,7 +173,8 @@ contains
       amp = max(amp, abs(b(3) - b0(3)))
     end do
     call note(state, "largest interpolation error / amplitude", worst/amp)
-    call check_true(state, cached%wave_cached, "the wave clock is on")
+    clock = cached%wave_clock()
+    call check_true(state, clock%valid, "the wave clock is on")
     call check_true(state, worst < 1.0e-6_wp*amp, "interpolated = direct loads")
   end subroutine wave_clock
 
@@ -197,19 +200,20 @@ contains
     do i = 1, 20000
       call rk%step(ship, t, y, 0.01_wp)
       call ship%after_step(t, y)
-      associate (u => y(ship%body%u(1):ship%body%u(2)), q => y(ship%body%q(1):ship%body%q(2)))
+      associate (u => y(ship%par%body%u(1):ship%par%body%u(2)), &
+                 q => y(ship%par%body%q(1):ship%par%body%q(2)))
         worst = max(worst, abs(hypot(u(4), u(5))/headway - 1.0_wp))
-        side = max(side, abs(q(3)) + abs(q(5)) + abs(y(ship%rudder%q(1))))
+        side = max(side, abs(q(3)) + abs(q(5)) + abs(y(ship%par%rudder%q(1))))
       end associate
     end do
-    call note(state, "self-propulsion rps", ship%rps)
+    call note(state, "self-propulsion rps", ship%par%rps)
     call note(state, "largest relative speed error", worst)
-    call check_true(state, ship%bem .and. ship%mmg_on, "the BEM/MMG ship")
+    call check_true(state, ship%par%bem .and. ship%par%mmg_on, "the BEM/MMG ship")
     call check(state, worst, 0.0_wp, "speed held within 1 %", abs_tol=0.01_wp)
     ! the self-propulsion point balances exactly: a load left out of it (the windage:
     ! 0.6 % in 200 s) shows at once
     call check(state, worst, 0.0_wp, "speed held to rounding", abs_tol=1e-6_wp)
-    call check(state, y(ship%body%q(1) + 3), 200.0_wp*headway, "distance in 200 s", &
+    call check(state, y(ship%par%body%q(1) + 3), 200.0_wp*headway, "distance in 200 s", &
                rel_tol=0.01_wp)
     call check(state, side, 0.0_wp, "straight, rudder amidships", abs_tol=1e-9_wp)
   end subroutine calm_speed

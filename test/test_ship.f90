@@ -495,8 +495,8 @@ contains
     call parse_config("t.nml", "&ship crossflow_cd = 0 / &wind speed = 0 /", cfg, error)
     call build_ship_scene(cfg, ship, y, error)
     call ship%set_mooring([0.0_wp, 0.0_wp, period], 0.0_wp, y)
-    y(ship%body%q(1) + 2) = 0.05_wp
-    t_cross = first_crossing(ship, y, ship%body%q(1) + 2, ship%anchor(3))
+    y(ship%par%body%q(1) + 2) = 0.05_wp
+    t_cross = first_crossing(ship, y, ship%par%body%q(1) + 2, ship%heading_setpoint())
     call note(state, "first zero crossing / (T/4)", t_cross/(0.25_wp*period))
     call check(state, t_cross, 0.25_wp*period, "spring period", rel_tol=0.01_wp)
     call parse_config("t.nml", "&ship heading_deg = 0 / &wind speed = 15, direction_deg = 60 /"// &
@@ -559,7 +559,7 @@ contains
       t = real(i, wp)*0.05_wp
       call ship%after_step(t, y)
       if (t > 500.0_wp) then
-        mean = mean + y(ship%body%q(1) + 2) - ship%anchor(3)
+        mean = mean + y(ship%par%body%q(1) + 2) - ship%heading_setpoint()
         n = n + 1
       end if
     end do

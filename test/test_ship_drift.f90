@@ -318,10 +318,11 @@ contains
     if (allocated(error)) error stop error%message
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
-    d = bem_drift(ship%hydro%db, ship%sea%omega(1), ship%sea%direction(1) - ship%psi_ref)
-    d_a2 = d(2)*ship%sea%amplitude(1)**2
-    me = ship%hydro%mass + ship%hydro%db%added_mass(2, 2, 1)
-    period = 2.0_wp*pi/ship%sea%omega(1)
+    d = bem_drift(ship%par%hydro%db, ship%par%sea%omega(1), &
+                  ship%par%sea%direction(1) - ship%heading_reference())
+    d_a2 = d(2)*ship%par%sea%amplitude(1)**2
+    me = ship%par%hydro%mass + ship%par%hydro%db%added_mass(2, 2, 1)
+    period = 2.0_wp*pi/ship%par%sea%omega(1)
     dt = period/per_period
     call rk%init(size(y))
     ybar = 0.0_wp
@@ -330,7 +331,8 @@ contains
       t = real(i - 1, wp)*dt
       call rk%step(ship, t, y, dt)
       call ship%after_step(t + dt, y)
-      associate (q => y(ship%body%q(1):ship%body%q(2)), u => y(ship%body%u(1):ship%body%u(2)))
+      associate (q => y(ship%par%body%q(1):ship%par%body%q(2)), &
+                 u => y(ship%par%body%u(1):ship%par%body%u(2)))
         if (i > 2*per_period .and. i <= 7*per_period) then
           c = rotation_matrix(q(1:3))
           load = ship_loads(ship, t + dt, q, u, c)

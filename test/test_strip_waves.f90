@@ -11,6 +11,7 @@ module test_strip_waves
   use davit_sea_wave_field, only: wave_field_type, new_irregular_sea, wave_elevation, &
                                   wave_kinematics
   use davit_boat_hull, only: boat_hull_type, new_boat_hull
+  use davit_core_slow_clock, only: new_slow_clock, clock_reach
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_refresh, cached_elevation, cached_kinematics
   use davit_system_model, only: system_type
@@ -92,7 +93,7 @@ contains
     call afloat(hull, c, r)
     do i = 1, 2
       h = 0.4_wp/real(2**i, wp)
-      cache = new_strip_wave_cache(field, hull%n, h)
+      cache = new_strip_wave_cache(field, hull%n, new_slow_clock(h, clock_reach))
       call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
       call max_errors(cache, field, hull, c, r, 20.0_wp + 0.37_wp*h, [0.0_wp, 0.0_wp, 0.0_wp], &
                       e_eta(i), e_v(i))
@@ -122,7 +123,7 @@ contains
     integer :: i, k
     call level5_sea(field)
     call afloat(hull, c, r)
-    cache = new_strip_wave_cache(field, hull%n, 0.05_wp)
+    cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.05_wp, clock_reach))
     call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
     do i = 1, 2
       dx = [0.08_wp, -0.06_wp, 0.04_wp]/real(i, wp)
@@ -168,7 +169,7 @@ contains
       if (allocated(error)) error stop "test deck rejected: "//error%message
       y = new_test_system(sys, cfg)
       cg(:, j) = drop_cg(sys, y, 600, 5.0e-3_wp)
-      if (j == 1) used = sys%hist%waves%valid
+      if (j == 1) used = sys%hist%waves%clock%valid
     end do
     call note(state, "CG difference after 3 s (m)", norm2(cg(:, 1) - cg(:, 2)))
     call note(state, "CG travel (m)", norm2(cg(:, 2) - [0.0_wp, 0.0_wp, -0.5_wp]))

@@ -38,7 +38,7 @@ module davit_boat_bem_water
   use davit_ship_bem_loads, only: bem_memory, to_kane_order, bem_roll_damping
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_ramp, wave_chunk, &
                                   component_phases
-  use davit_core_hermite, only: hermite_weights
+  use davit_core_slow_clock, only: slow_clock_type
   implicit none
   private
   public :: boat_bem_type, new_boat_bem, boat_bem_loads, boat_bem_immersion, &
@@ -75,11 +75,11 @@ module davit_boat_bem_water
   !> X, ~d|X|/d(beta) x 0.005 rad) and second order in k |r - r0| (< 2e-3 of a component
   !> for k = 0.6 1/m and 0.1 m).
   type :: diffraction_cache_type
-    !> Whether the window below has been sampled.
-    logical :: valid = .false.
-    !> The window's ends t [s], the CG's horizontal position r0 (inertial) [m] and the yaw psi0
-    !> [rad] it was sampled at.
-    real(wp) :: t(2) = 0.0_wp, r0(2) = 0.0_wp, psi0 = 0.0_wp
+    !> The strips' slow clock at the sampling: the window [t1, t2] and whether it holds.
+    type(slow_clock_type) :: clock
+    !> The CG's horizontal position r0 (inertial) [m] and the yaw psi0 [rad] it was sampled
+    !> at.
+    real(wp) :: r0(2) = 0.0_wp, psi0 = 0.0_wp
     !> Load samples d(DOF, (value, d/dt, d/dx, d/dy), end) in the heading frame [N, N m and their
     !> rates].
     real(wp) :: d(6, 4, 2) = 0.0_wp
@@ -209,7 +209,7 @@ contains
     f(1) = f(1) - s*self%b44*u(1)
     v = 1.0_wp + s*self%lambda
     if (s <= 0.0_wp .or. sea%kind == wave_none) return
-    if (cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)) then
+    if (cache%clock%covers(t)) then
       load = wave_ramp(sea, t)*cached_diffraction(cache, t, r)
     else
       load = wave_ramp(sea, t)*diffraction_load(self, sea, t, r, psi)
@@ -218,24 +218,26 @@ contains
     f(4:6) = f(4:6) + s*matmul(m, load(1:3))
   end subroutine boat_bem_loads
 
-  !> Sample the window [t1, t2] at the CG's horizontal position r(1:2) and yaw psi.
-  pure subroutine diffraction_refresh(self, sea, t1, t2, r, psi, cache)
+  !> Sample the window of the slow clock `clock` (open: valid) at the CG's horizontal
+  !> position r(1:2) and yaw psi.
+  pure subroutine diffraction_refresh(self, sea, clock, r, psi, cache)
     !> The boat's BEM water model.
     type(boat_bem_type), intent(in) :: self
     !> The sea whose diffraction load is sampled.
     type(wave_field_type), intent(in) :: sea
-    !> Window start and end [s], CG position (inertial) [m], yaw [rad].
-    real(wp), intent(in) :: t1, t2, r(3), psi
+    !> The strips' slow clock: the window [t1, t2] sampled.
+    type(slow_clock_type), intent(in) :: clock
+    !> CG position (inertial) [m], yaw [rad].
+    real(wp), intent(in) :: r(3), psi
     !> The window sampled.
     type(diffraction_cache_type), intent(out) :: cache
     integer :: j
-    cache%t = [t1, t2]
+    cache%clock = clock
     cache%r0 = r(1:2)
     cache%psi0 = psi
     do j = 1, 2
-      call diffraction_sums(self, sea, cache%t(j), r, psi, cache%d(:, :, j))
+      call diffraction_sums(self, sea, cache%clock%window(j), r, psi, cache%d(:, :, j))
     end do
-    cache%valid = .true.
   end subroutine diffraction_refresh
 
   !> The unramped load at t and CG position r from the window.
@@ -243,8 +245,10 @@ contains
     type(diffraction_cache_type), intent(in) :: cache
     real(wp), intent(in) :: t, r(3)
     real(wp) :: load(6), s, hw(4), dx(2)
-    s = (t - cache%t(1))/(cache%t(2) - cache%t(1))
-    hw = hermite_weights(cache%t, t)
+    associate (w => cache%clock%window)
+      s = (t - w(1))/(w(2) - w(1))
+    end associate
+    hw = cache%clock%weights(t)
     dx = r(1:2) - cache%r0
     associate (d => cache%d)
       load = hw(1)*d(:, 1, 1) + hw(2)*d(:, 2, 1) + hw(3)*d(:, 1, 2) + hw(4)*d(:, 2, 2) + &

@@ -26,7 +26,7 @@ module davit_boat_strip_waves
                                   component_phases
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
-  use davit_core_hermite, only: hermite_weights
+  use davit_core_slow_clock, only: slow_clock_type, clock_renewed
   use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
   implicit none
   private
@@ -37,17 +37,13 @@ module davit_boat_strip_waves
 
   !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
   integer, parameter :: ne = 4, nv = 5
-  !> A window is renewed once the next step, if up to this many times the last one, could
-  !> end past it: all stages of steady steps stay inside.
-  real(wp), parameter :: reach = 2.0_wp
 
   type :: strip_wave_cache_type
-    !> Whether the slow clock is on, and whether its window holds samples.
-    logical :: enabled = .false., valid = .false.
-    !> Window length h [s] and the window [t1, t2].
-    real(wp) :: window = 0.0_wp, t(2) = 0.0_wp
-    !> Time of the last accepted step seen [s] (for the next step's reach).
-    real(wp) :: t_last = 0.0_wp
+    !> Whether the slow clock is on.
+    logical :: enabled = .false.
+    !> The slow clock (davit_core_slow_clock, rule clock_reach): window length h, the
+    !> window [t1, t2] and whether it holds samples.
+    type(slow_clock_type) :: clock
     !> Strips whose velocity is sampled in this window (those the hull may wet in it).
     logical, allocatable :: sampled(:)
     !> Reference points: strip centres (x, y) and wet centroids (x, y, stretched depth d0).
@@ -64,17 +60,18 @@ module davit_boat_strip_waves
 
 contains
 
-  !> A cache for n strips with window h [s]; enabled only for irregular seas and h > 0.
-  pure function new_strip_wave_cache(field, n, h) result(cache)
+  !> A cache for n strips on the slow clock `clock` (rule clock_reach); enabled only for
+  !> irregular seas and a running clock.
+  pure function new_strip_wave_cache(field, n, clock) result(cache)
     !> The sea.
     type(wave_field_type), intent(in) :: field
     !> Number of strips.
     integer, intent(in) :: n
-    !> Length of a window [s] (0: off).
-    real(wp), intent(in) :: h
+    !> The strips' slow clock (its window length h; not running: off).
+    type(slow_clock_type), intent(in) :: clock
     type(strip_wave_cache_type) :: cache
-    cache%window = h
-    cache%enabled = h > 0.0_wp .and. field%kind == wave_irregular
+    cache%clock = clock
+    cache%enabled = clock%enabled() .and. field%kind == wave_irregular
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n))
@@ -84,16 +81,16 @@ contains
 
   !> After a step ending at t: true when the window should be renewed (the next step may
   !> leave it); records t.
-  subroutine strip_waves_due(cache, t, due)
+  pure subroutine strip_waves_due(cache, t, due)
     !> The strips' window.
     type(strip_wave_cache_type), intent(inout) :: cache
     !> Time [s].
     real(wp), intent(in) :: t
     !> Whether t has left the window and it must be refreshed.
     logical, intent(out) :: due
-    due = cache%enabled .and. (.not. cache%valid .or. t < cache%t(1) .or. &
-                               t + reach*max(t - cache%t_last, 0.0_wp) > cache%t(2))
-    cache%t_last = t
+    integer :: action
+    call cache%clock%tick(t, action)
+    due = action == clock_renewed .and. cache%enabled
   end subroutine strip_waves_due
 
   !> True when a stage at time t may use the cache.
@@ -102,7 +99,7 @@ contains
     type(strip_wave_cache_type), intent(in) :: cache
     !> Time [s].
     real(wp), intent(in) :: t
-    strip_waves_cover = cache%valid .and. t >= cache%t(1) .and. t <= cache%t(2)
+    strip_waves_cover = cache%clock%covers(t)
   end function strip_waves_cover
 
   !> New window [t, t + h] for the boat at (c, r): references at the strip centres and at
@@ -130,7 +127,7 @@ contains
     real(wp) :: p(3), q(3), eta, ramp
     integer :: k, j
     if (.not. cache%enabled) return
-    cache%t = [t, t + cache%window]
+    call cache%clock%open(t)
     ramp = wave_ramp(field, t)
     cache%sampled = maybe_wet
     cache%loaded = .false.
@@ -138,7 +135,8 @@ contains
       p = r + c(:, 1)*hull%x(k)
       cache%p(:, k) = p(1:2)
       do j = 1, 2
-        call elevation_terms(field, cache%t(j), p(1), p(2), cache%ep(:, j, k), surface)
+        call elevation_terms(field, cache%clock%window(j), p(1), p(2), cache%ep(:, j, k), &
+                             surface)
       end do
       if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
@@ -152,11 +150,10 @@ contains
       eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
       cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
       do j = 1, 2
-        call kinematic_terms(field, cache%t(j), q(1), q(2), cache%q(3, k), &
+        call kinematic_terms(field, cache%clock%window(j), q(1), q(2), cache%q(3, k), &
                              cache%eq(:, j, k), cache%vq(:, :, j, k), volume)
       end do
     end do
-    cache%valid = .true.
   end subroutine strip_waves_refresh
 
   !> Elevation terms from the grid where it holds (t, x, y), else the exact sums.
@@ -205,7 +202,8 @@ contains
     wet = section_immersion(hull, k, d0, grad(2), grad(3))
     if (wet%area <= 0.0_wp) return
     ! both window ends in one pass: they share the edge integrals, only the phase differs
-    call section_wave_loads(field, cache%t, hull, wet, c, p, d0, grad(2), grad(3), load, rate)
+    call section_wave_loads(field, cache%clock%window, hull, wet, c, p, d0, grad(2), grad(3), &
+                            load, rate)
     cache%fk(:, 1, :, k) = load
     cache%fk(:, 2, :, k) = rate
     cache%loaded(k) = .true.
@@ -308,9 +306,9 @@ contains
     !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
     real(wp) :: lam
-    lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
-    eta = wave_ramp(field, t)*expand_elevation(cache%ep(:, :, k), hermite_weights(cache%t, t), &
-                                               lam, [x, y] - cache%p(:, k))
+    lam = window_fraction(cache, t)
+    eta = wave_ramp(field, t)*expand_elevation(cache%ep(:, :, k), cache%clock%weights(t), lam, &
+                                               [x, y] - cache%p(:, k))
   end function cached_elevation
 
   !> Elevation and water velocity (inertial, z down; zero above the surface) at the point
@@ -328,8 +326,8 @@ contains
     real(wp), intent(out) :: eta, velocity(3)
     real(wp) :: hw(4), lam, ramp, dx(3)
     integer :: i
-    hw = hermite_weights(cache%t, t)
-    lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
+    hw = cache%clock%weights(t)
+    lam = window_fraction(cache, t)
     ramp = wave_ramp(field, t)
     dx(1:2) = pt(1:2) - cache%q(1:2, k)
     eta = ramp*expand_elevation(cache%eq(:, :, k), hw, lam, dx(1:2))
@@ -357,7 +355,7 @@ contains
     !> Time [s].
     real(wp), intent(in) :: t
     real(wp) :: slope(2), lam
-    lam = (t - cache%t(1))/(cache%t(2) - cache%t(1))
+    lam = window_fraction(cache, t)
     slope = wave_ramp(field, t)*((1.0_wp - lam)*cache%ep(3:4, 1, k) + lam*cache%ep(3:4, 2, k))
   end function cached_slope
 
@@ -380,11 +378,21 @@ contains
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
-    hw = hermite_weights(cache%t, t)
+    hw = cache%clock%weights(t)
     associate (g => cache%fk(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*g(:, 1, 1) + hw(2)*g(:, 2, 1) + hw(3)*g(:, 1, 2) + &
                                   hw(4)*g(:, 2, 2))
     end associate
   end subroutine cached_wave_load
+
+  !> Where t lies in the window, (t - t1)/(t2 - t1): the weight of the far end in the
+  !> gradient terms, which are linear in time.
+  pure real(wp) function window_fraction(cache, t) result(lam)
+    type(strip_wave_cache_type), intent(in) :: cache
+    real(wp), intent(in) :: t
+    associate (w => cache%clock%window)
+      lam = (t - w(1))/(w(2) - w(1))
+    end associate
+  end function window_fraction
 
 end module davit_boat_strip_waves

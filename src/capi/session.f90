@@ -258,12 +258,12 @@ contains
     case (ctrl_release)
       if (s%sys%hist%release_time < 0.0_wp) call release_hooks(s%sys%par, s%sys%hist, s%t, s%y)
     case (ctrl_heading)
-      if (.not. s%sys%par%with_ship .or. s%sys%ship%moor_k(3) <= 0.0_wp) then
+      if (.not. s%sys%par%with_ship .or. s%sys%ship%par%moor_k(3) <= 0.0_wp) then
         call fatal_error(error, "deck '"//s%deck_name//"': the ship keeps no heading "// &
                          "(a moving ship with heading keeping, &ship): no heading set-point")
         return
       end if
-      s%sys%ship%anchor(3) = value(1)
+      call s%sys%ship%set_heading(value(1))
     case default
       call fatal_error(error, "unknown control "//int_to_str(kind))
     end select

@@ -94,7 +94,7 @@ contains
                          fmt_fixed(t, 2)//" s")
         return
       end if
-      associate (q => y(ship%layout%parts(1)%q(1):ship%layout%parts(1)%q(2)))
+      associate (q => y(ship%par%layout%parts(1)%q(1):ship%par%layout%parts(1)%q(2)))
         ! surge, sway, heave (up), roll, pitch, yaw
         x = [q(4), q(5), -q(6), q(1), q(2), q(3)]
       end associate

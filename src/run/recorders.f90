@@ -167,7 +167,7 @@ contains
         associate (q => y(sys%par%ship_part%q(1):sys%par%ship_part%q(2)))
           self%ship_euler(:, k) = q(1:3)
           self%ship_position(:, k) = q(4:6)
-          self%heading_error(k) = q(3) - sys%ship%anchor(3)
+          self%heading_error(k) = q(3) - sys%ship%heading_setpoint()
         end associate
       end if
       self%energy(k) = sys%energy(y)
@@ -334,7 +334,7 @@ contains
     integer :: r(2)
     select type (problem)
     type is (ship_system_type)
-      r = problem%layout%parts(1)%u
+      r = problem%par%layout%parts(1)%u
     end select
   end function ship_speed_range
 
@@ -349,7 +349,7 @@ contains
               self%velocity(3, nmax), self%angular_velocity(3, nmax))
     select type (problem)
     type is (ship_system_type)
-      if (problem%mmg_on) allocate (self%rudder(nmax))
+      if (problem%par%mmg_on) allocate (self%rudder(nmax))
     end select
   end subroutine ship_init
 
@@ -367,8 +367,8 @@ contains
     k = self%n
     select type (problem)
     type is (ship_system_type)
-      p = problem%layout%parts(1)
-      if (allocated(self%rudder)) self%rudder(k) = y(problem%rudder%q(1))
+      p = problem%par%layout%parts(1)
+      if (allocated(self%rudder)) self%rudder(k) = y(problem%par%rudder%q(1))
     end select
     self%time(k) = t
     associate (q => y(p%q(1):p%q(2)), u => y(p%u(1):p%u(2)))

@@ -10,6 +10,7 @@
 module davit_solve_event_location
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem, integrator_type
+  use davit_core_hermite, only: hermite_interpolate
   implicit none
   private
   public :: event_stepper_type
@@ -206,7 +207,7 @@ contains
     do it = 1, max_bisections
       if (tb - ta <= time_tol*max(1.0_wp, abs(tb))) exit
       tm = 0.5_wp*(ta + tb)
-      call hermite(t0, t1, self%y0, self%f0, y1, self%f1, tm, self%ym)
+      self%ym = hermite_interpolate([t0, t1], self%y0, self%f0, y1, self%f1, tm)
       call problem%modes(tm, self%ym, self%mm)
       if (all(self%mm == self%m0)) then
         ta = tm
@@ -215,21 +216,5 @@ contains
       end if
     end do
   end subroutine bisect
-
-  !> Cubic Hermite interpolant at t in [t0, t1] (values and slopes at both ends).
-  pure subroutine hermite(t0, t1, y0, f0, y1, f1, t, y)
-    !> Ends t0, t1 [s], states y0, y1 and slopes f0, f1 there, and the time t [s].
-    real(wp), intent(in) :: t0, t1, y0(:), f0(:), y1(:), f1(:), t
-    !> Interpolated state at t.
-    real(wp), intent(out) :: y(:)
-    real(wp) :: h, s, h00, h10, h01, h11
-    h = t1 - t0
-    s = (t - t0)/h
-    h00 = (1.0_wp + 2.0_wp*s)*(1.0_wp - s)**2
-    h10 = s*(1.0_wp - s)**2
-    h01 = s*s*(3.0_wp - 2.0_wp*s)
-    h11 = s*s*(s - 1.0_wp)
-    y = h00*y0 + h*h10*f0 + h01*y1 + h*h11*f1
-  end subroutine hermite
 
 end module davit_solve_event_location

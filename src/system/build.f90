@@ -19,6 +19,7 @@ module davit_system_build
   use davit_boat_fenders, only: new_fender_set
   use davit_boat_strip_waves, only: new_strip_wave_cache
   use davit_boat_surface_watch, only: new_surface_watch
+  use davit_core_slow_clock, only: slow_clock_type, new_slow_clock, clock_grid, clock_reach
   use davit_rigging_rigging, only: new_rigging
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_mmg, only: mmg_type
@@ -131,9 +132,9 @@ contains
                                  integral=.true.)
     end associate
     self%par%with_ship = .true.
-    call self%par%layout%append(self%ship%layout, offset)
+    call self%par%layout%append(self%ship%par%layout, offset)
     self%par%ship_part = self%par%layout%part("ship")
-    self%par%ship_slice = [offset + 1, offset + self%ship%layout%n]
+    self%par%ship_slice = [offset + 1, offset + self%ship%par%layout%n]
   end subroutine new_moving_ship
 
   !> The ship of the deck in the sea and wind given: the paper's box or (&ship model =
@@ -147,8 +148,10 @@ contains
     type(hull_type) :: hull
     type(bem_database_type) :: db
     type(bem_ship_type) :: bem
+    type(slow_clock_type) :: clock
     call new_hull(hull, cfg%ship, error)
     if (allocated(error)) return
+    clock = new_slow_clock(cfg%simulation%wave_update, clock_grid)
     associate (s => cfg%ship)
       if (s%model == "bem") then
         call read_bem_database(beside(cfg%filename, s%database), db, error)
@@ -160,7 +163,7 @@ contains
           return
         end if
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
-                             s%wave_phase == "initial", s%headway, bem)
+                             s%wave_phase == "initial", s%headway, clock, bem)
         if (s%drift /= "none" .and. .not. db%has_drift) then
           call fatal_error(error, cfg%filename//": &ship: drift = '"//s%drift//"' needs "// &
                            "the mean drift coefficients (davit_drift), which database '"// &
@@ -176,11 +179,10 @@ contains
         return
       else
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
-                             s%wave_phase == "initial", s%headway)
+                             s%wave_phase == "initial", s%headway, clock)
       end if
       if (s%manoeuvring == "mmg") call new_mmg(ship, cfg)
     end associate
-    ship%wave_dt = cfg%simulation%wave_update
   end subroutine new_ship
 
   !> The MMG manoeuvring model of group &mmg on the box or BEM ship, with its dimensions.
@@ -228,7 +230,8 @@ contains
       par%wind = build_wind(cfg%wind)
       self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, surface_watch_interval)
       self%hist%waves = new_strip_wave_cache(par%sea, par%water%hull%n, &
-                                             cfg%simulation%wave_update)
+                                             new_slow_clock(cfg%simulation%wave_update, &
+                                                            clock_reach))
       if (cfg%sea%grid%kinematics == "grid") then
         associate (g => cfg%sea%grid)
           self%hist%surface_grid = new_wave_grid(par%sea, g%spacing, g%time_step, g%margin, &
@@ -341,7 +344,7 @@ contains
   pure function ship_initial_state(ship, cfg) result(y)
     type(ship_system_type), intent(in) :: ship
     type(config_type), intent(in) :: cfg
-    real(wp) :: y(ship%layout%n)
+    real(wp) :: y(ship%par%layout%n)
     y = ship_state(ship, [cfg%ship%list, cfg%ship%trim, cfg%ship%heading], &
                    cfg%ship%position, [0.0_wp, 0.0_wp, 0.0_wp], &
                    [cfg%ship%headway, 0.0_wp, 0.0_wp])

@@ -15,6 +15,9 @@ module davit_system_events
   use davit_system_boat_loads, only: water_loads
   use davit_system_observables, only: rigging_state
   use davit_sea_wave_grid, only: wave_grid_type, grid_prepare
+  use davit_sea_wave_field, only: wave_field_type
+  use davit_boat_hull, only: boat_hull_type
+  use davit_core_layout, only: state_part_type
   implicit none
   private
   public :: advance_history, release_hooks
@@ -31,8 +34,8 @@ contains
       if (.not. hist%watch%valid .or. t - hist%watch%t >= hist%watch%interval) then
         c = rotation_matrix(q(1:3))
         if (hist%surface_grid%enabled) then
-          call prepare_grid(par, hist%surface_grid, t, hist%watch%interval, c, &
-                            matmul(c, q(4:6)))
+          call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, &
+                            hist%watch%interval, c, matmul(c, q(4:6)))
           call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)), &
                              hist%surface_grid)
         else
@@ -61,11 +64,13 @@ contains
     r = matmul(c, q(4:6))
     do j = 1, par%water%hull%n
       maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
-                                            t + hist%waves%window, c, r)
+                                            t + hist%waves%clock%interval, c, r)
     end do
     if (any(maybe_wet) .and. hist%surface_grid%enabled) then
-      call prepare_grid(par, hist%surface_grid, t, hist%waves%window, c, r)
-      call prepare_grid(par, hist%volume_grid, t, hist%waves%window, c, r, maybe_wet)
+      associate (span => hist%waves%clock%interval)
+        call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, span, c, r)
+        call prepare_grid(par%water%hull, par%sea, hist%volume_grid, t, span, c, r, maybe_wet)
+      end associate
       call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet, &
                                hist%surface_grid, hist%volume_grid)
     else if (any(maybe_wet)) then
@@ -73,35 +78,33 @@ contains
     end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
-      call diffraction_refresh(par%bem, par%sea, hist%waves%t(1), hist%waves%t(2), r, &
-                               q(3), hist%diffraction)
+      call diffraction_refresh(par%bem, par%sea, hist%waves%clock, r, q(3), hist%diffraction)
     else
-      hist%diffraction%valid = .false.
+      call hist%diffraction%clock%invalidate()
     end if
   end subroutine refresh_strip_waves
 
-  !> Make grid g hold the boat's footprint (the corners of its strips, or of those in
-  !> `only`; boat at (c, r)) over [t, t + span].
-  subroutine prepare_grid(par, g, t, span, c, r, only)
-    type(system_params_type), intent(in) :: par
+  !> Make grid g of the sea hold the footprint of the boat's strip hull h (the corners of
+  !> its strips, or of those in `only`; boat at (c, r)) over [t, t + span].
+  subroutine prepare_grid(h, sea, g, t, span, c, r, only)
+    type(boat_hull_type), intent(in) :: h
+    type(wave_field_type), intent(in) :: sea
     type(wave_grid_type), intent(inout) :: g
     real(wp), intent(in) :: t, span, c(3, 3), r(3)
     logical, intent(in), optional :: only(:)
-    real(wp) :: xy(2, 2*par%water%hull%n), half
+    real(wp) :: xy(2, 2*h%n), half
     integer :: k, m
     m = 0
-    associate (h => par%water%hull)
-      half = 0.5_wp*maxval(h%breadth)
-      do k = 1, h%n
-        if (present(only)) then
-          if (.not. only(k)) cycle
-        end if
-        xy(:, m + 1) = r(1:2) + c(1:2, 1)*h%x(k) + c(1:2, 2)*half
-        xy(:, m + 2) = r(1:2) + c(1:2, 1)*h%x(k) - c(1:2, 2)*half
-        m = m + 2
-      end do
-    end associate
-    if (m > 0) call grid_prepare(g, par%sea, t, t + span, xy(:, 1:m))
+    half = 0.5_wp*maxval(h%breadth)
+    do k = 1, h%n
+      if (present(only)) then
+        if (.not. only(k)) cycle
+      end if
+      xy(:, m + 1) = r(1:2) + c(1:2, 1)*h%x(k) + c(1:2, 2)*half
+      xy(:, m + 2) = r(1:2) + c(1:2, 1)*h%x(k) - c(1:2, 2)*half
+      m = m + 2
+    end do
+    if (m > 0) call grid_prepare(g, sea, t, t + span, xy(:, 1:m))
   end subroutine prepare_grid
 
   !> Each fender's contact phase on the accepted state; the first contact.
@@ -130,7 +133,7 @@ contains
     type(system_history_type), intent(inout) :: hist
     real(wp), intent(in) :: t, y(:)
     real(wp), parameter :: hold = 1.0_wp
-    if (.not. keel_can_reach_water(par, y)) then
+    if (.not. keel_can_reach_water(par%boat_part, y)) then
       hist%afloat_since = -1.0_wp
       return
     end if
@@ -159,11 +162,11 @@ contains
   end subroutine release_hooks
 
   !> The CG is less than 10 m above the still water.
-  pure logical function keel_can_reach_water(par, y)
-    type(system_params_type), intent(in) :: par
+  pure logical function keel_can_reach_water(boat_part, y)
+    type(state_part_type), intent(in) :: boat_part
     real(wp), intent(in) :: y(:)
     real(wp) :: c(3, 3), r(3)
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
+    associate (q => y(boat_part%q(1):boat_part%q(2)))
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
     end associate

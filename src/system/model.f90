@@ -113,7 +113,7 @@ contains
         end if
       end if
       call boat_kane_blocks(par, self%hist, t, y(b%q(1):b%q(2)), y(b%u(1):b%u(2)), &
-                            y(x(1):x(2)), side_plane(par, pose), dydt(b%q(1):b%q(2)), &
+                            y(x(1):x(2)), side_plane(par%side_y, pose), dydt(b%q(1):b%q(2)), &
                             dydt(x(1):x(2)), kane(:, b%u(1):b%u(2)), part)
       if (par%on_davit) then
         if (part == loads_slow) then
@@ -183,17 +183,17 @@ contains
   end function system_stiff_states
 
   !> The states the rigging's rows depend on through the wire's stiffness: the boat's
-  !> (hooks) and the ship's body states (davit heads, lead sheave, drum), the first 12 of
-  !> the ship's slice (its q and u, davit_ship_ship_model's layout).
+  !> (hooks) and the ship's body states (davit heads, lead sheave, drum): the q and u of
+  !> its part "ship" (not its memory, rudder or control states).
   pure function system_coupled_states(self) result(idx)
     class(system_type), intent(in) :: self
     integer, allocatable :: idx(:)
     integer :: i
     allocate (idx(0))
     if (.not. self%par%on_davit) return
-    associate (b => self%par%boat_part, s => self%par%ship_slice)
+    associate (b => self%par%boat_part, s => self%par%ship_part)
       idx = [(i, i=b%q(1), b%q(2)), (i, i=b%u(1), b%u(2))]
-      if (self%par%with_ship) idx = [idx, (i, i=s(1), s(1) + 11)]
+      if (self%par%with_ship) idx = [idx, (i, i=s%q(1), s%q(2)), (i, i=s%u(1), s%u(2))]
     end associate
   end function system_coupled_states
 
@@ -254,7 +254,7 @@ contains
     real(wp), intent(out) :: acceleration(3)
     real(wp) :: dydt(size(y)), out(3, 5)
     call self%rhs(t, y, dydt)
-    out = boat_kinematics(self%par, y, dydt)
+    out = boat_kinematics(self%par%boat_part, y, dydt)
     position = out(:, 1)
     euler = out(:, 2)
     velocity = out(:, 3)

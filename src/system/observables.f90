@@ -6,6 +6,7 @@ module davit_system_observables
   use davit_kinds, only: wp, gravity
   use davit_core_rotation, only: rotation_matrix, cross
   use davit_core_pose, only: pose_type
+  use davit_core_layout, only: state_part_type
   use davit_core_body, only: body_inertial_position, body_kinetic_energy
   use davit_rigging_elastic_sling, only: sling_hook_force, sling_energy
   use davit_boat_fenders, only: side_plane_type, fender_probe, fender_loads
@@ -23,13 +24,15 @@ contains
   !> and acceleration of the CG (a = C (u_dot + omega x v), eq. 8), Euler angles and body
   !> angular velocity; out(:, 1:5) in that order of (position, euler, velocity,
   !> angular_velocity, acceleration).
-  pure function boat_kinematics(par, y, dydt) result(out)
-    type(system_params_type), intent(in) :: par
+  pure function boat_kinematics(boat_part, y, dydt) result(out)
+    !> The boat's state part (system_params_type's boat_part).
+    type(state_part_type), intent(in) :: boat_part
+    !> State y and its rates dydt.
     real(wp), intent(in) :: y(:), dydt(:)
     real(wp) :: out(3, 5), c(3, 3)
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
-               u => y(par%boat_part%u(1):par%boat_part%u(2)), &
-               u_dot => dydt(par%boat_part%u(1):par%boat_part%u(2)))
+    associate (q => y(boat_part%q(1):boat_part%q(2)), &
+               u => y(boat_part%u(1):boat_part%u(2)), &
+               u_dot => dydt(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       out(:, 1) = body_inertial_position(q)
       out(:, 2) = q(1:3)
@@ -99,7 +102,7 @@ contains
                u => y(par%boat_part%u(1):par%boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
-      plane = side_plane(par, ship_pose(par, y))
+      plane = side_plane(par%side_y, ship_pose(par, y))
       call fender_probe(par%fenders, plane, c, r, u, deepest, delta, delta_dot)
       clearance = -maxval(delta)
       force = 0.0_wp

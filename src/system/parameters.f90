@@ -91,12 +91,14 @@ contains
   end function ship_pose
 
   !> The ship's side plane (ship-frame y = side_y, normal +s2) carried by the ship.
-  pure function side_plane(par, pose) result(plane)
-    type(system_params_type), intent(in) :: par
+  pure function side_plane(side_y, pose) result(plane)
+    !> Ship-frame y of the side plane [m] (system_params_type's side_y).
+    real(wp), intent(in) :: side_y
+    !> The ship's pose.
     type(pose_type), intent(in) :: pose
     type(side_plane_type) :: plane
     plane%origin = pose%r
-    plane%point = pose%r + pose%c(:, 2)*par%side_y
+    plane%point = pose%r + pose%c(:, 2)*side_y
     plane%normal = pose%c(:, 2)
     plane%velocity = pose%v
     plane%angular_velocity = pose%w
@@ -131,7 +133,7 @@ contains
     associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
                u => y(par%boat_part%u(1):par%boat_part%u(2)))
       c = rotation_matrix(q(1:3))
-      call fender_probe(par%fenders, side_plane(par, ship_pose(par, y)), c, &
+      call fender_probe(par%fenders, side_plane(par%side_y, ship_pose(par, y)), c, &
                         matmul(c, q(4:6)), u, deepest, delta, delta_dot)
     end associate
   end subroutine fender_gaps
