@@ -40,7 +40,7 @@ contains
     type(system_params_type), intent(in) :: par
     !> The history (fender phases, surface watch, the water on the slow clocks).
     type(system_history_type), intent(in) :: hist
-    !> Time [s]; the boat's coordinates q (attitude angles [rad], CG position in body
+    !> Time [s]; the boat's coordinates q (Euler angles [rad], CG position in body
     !> components [m], eq. 3) and speeds u (omega [rad/s], v [m/s], body components);
     !> its BEM water states x (immersion, radiation memory; empty without them).
     real(wp), intent(in) :: t, q(6), u(6), x(:)
