@@ -25,11 +25,17 @@ module davit_ship_bem_database
   !> One fitted memory kernel: force DOF i, motion DOF j, order n, its first state in the
   !> ship's radiation states, and its matrices (n x n, n, n).
   type :: radiation_pair_type
+    !> Force DOF i and motion DOF j (1..6: surge, sway, heave, roll, pitch, yaw), the order n
+    !> (number of states) and the index of the first state in the ship's radiation states.
     integer :: i = 0, j = 0, n = 0, first = 0
+    !> State matrix A_s (n x n, [1/s]), input vector B_s (n) and output vector C_s (n) of
+    !> x' = A_s x + B_s u_j, mu_ij = C_s x (units such that mu_ij is in N or N m).
     real(wp), allocatable :: a(:, :), b(:), c(:)
   end type radiation_pair_type
 
+  !> A ship's BEM database as davit uses it (body axes, about the CG).
   type :: bem_database_type
+    !> The file the database was read from (named in the error messages).
     character(len=:), allocatable :: path
     !> Frequencies [rad/s] (ascending) and relative headings [rad] (0 .. 2 pi).
     real(wp), allocatable :: omega(:), heading(:)
@@ -39,14 +45,21 @@ module davit_ship_bem_database
     real(wp), allocatable :: exc_re(:, :, :), exc_im(:, :, :)
     !> Its Froude-Krylov part, as (i, beta, omega).
     real(wp), allocatable :: fk_re(:, :, :), fk_im(:, :, :)
+    !> Infinite-frequency added mass A(inf) [kg, kg m, kg m^2] and hydrostatic stiffness C
+    !> [N/m, N, N m/rad], 6 x 6 about the CG in body axes.
     real(wp) :: added_mass_inf(6, 6) = 0.0_wp, stiffness(6, 6) = 0.0_wp
+    !> Rigid-body mass matrix [kg, kg m, kg m^2] (6 x 6 about the CG) and displaced volume
+    !> [m^3] of the hull the database was computed for.
     real(wp) :: mass(6, 6) = 0.0_wp, volume = 0.0_wp
-    !> Mean wave drift load per unit amplitude squared D_i(omega, beta) (surge, sway [N/m^2],
-    !> yaw [N m/m^2]) as (i, beta, omega): optional (databases written before it lack it).
+    !> Whether the file holds the mean wave drift load per unit amplitude squared (optional:
+    !> databases written before it lack it).
     logical :: has_drift = .false.
+    !> Mean wave drift load per unit amplitude squared D_i(omega, beta) (surge, sway [N/m^2],
+    !> yaw [N m/m^2]) as (i, beta, omega); allocated only when has_drift.
     real(wp), allocatable :: drift(:, :, :)
     !> Radiation states in all (sum of the orders).
     integer :: nrad = 0
+    !> The fitted memory kernels, one per DOF pair of non-zero order.
     type(radiation_pair_type), allocatable :: pairs(:)
   end type bem_database_type
 
@@ -54,8 +67,11 @@ contains
 
   !> Read the davit variables of database `path`.
   subroutine read_bem_database(path, db, error)
+    !> Path of the netCDF4/HDF5 file written by `python -m postproc.bem build`.
     character(len=*), intent(in) :: path
+    !> The database read.
     type(bem_database_type), intent(out) :: db
+    !> Set when the file is missing, unreadable or a dataset has the wrong shape or values.
     type(error_type), allocatable, intent(out) :: error
     type(h5_reader_type) :: h5
     db%path = path
@@ -254,8 +270,12 @@ contains
   !> short do not move a ship this size, and the database says nothing about them. With
   !> diffraction_only, X minus its Froude-Krylov part.
   pure function bem_excitation(db, omega, beta, diffraction_only) result(x)
+    !> The database.
     type(bem_database_type), intent(in) :: db
+    !> Wave frequency omega [rad/s] and relative heading beta [rad] (wave direction minus
+    !> the ship's heading; any value, wrapped to the database's range).
     real(wp), intent(in) :: omega, beta
+    !> Take X - X_FK, the diffraction part alone (default: the whole X).
     logical, intent(in), optional :: diffraction_only
     complex(wp) :: x(6)
     logical :: diffraction
@@ -284,7 +304,10 @@ contains
   !> waves it vanishes (the lowest frequency's is ~0), in short ones it tends to the
   !> reflection limit 1/2 rho g times the lit waterline's projection, not to zero.
   pure function bem_drift(db, omega, beta) result(d)
+    !> The database (with has_drift set).
     type(bem_database_type), intent(in) :: db
+    !> Wave frequency omega [rad/s] and relative heading beta [rad] (wave direction minus
+    !> the ship's heading, wrapped to the database's range).
     real(wp), intent(in) :: omega, beta
     real(wp) :: d(3)
     real(wp) :: b, sw, sb
@@ -298,8 +321,11 @@ contains
 
   !> Interval [x(i), x(i+1)] holding v (clamped at the ends) and the weight of x(i+1).
   pure subroutine bracket(x, v, i, s)
+    !> Ascending grid x (at least 2 points) and the value v to place in it.
     real(wp), intent(in) :: x(:), v
+    !> Index of the interval's left end (1 .. size(x) - 1).
     integer, intent(out) :: i
+    !> Weight of x(i+1) in the linear interpolation, clamped to 0..1.
     real(wp), intent(out) :: s
     integer :: n
     n = size(x)

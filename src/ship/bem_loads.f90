@@ -29,7 +29,9 @@ module davit_ship_bem_loads
             bem_memory, to_kane_order, bem_roll_damping, invert, seakeeping_mass, &
             turn_to_body, solve_small
 
+  !> The BEM ship's hydrodynamics: database, masses and their Kane-order blocks.
   type :: bem_ship_type
+    !> The database (a copy of the one read at build).
     type(bem_database_type) :: db
     !> Rigid-body mass [kg] and principal inertia about the CG [kg m^2] (the database's).
     real(wp) :: mass = 0.0_wp, inertia(3) = 0.0_wp
@@ -58,9 +60,13 @@ contains
   !> The BEM ship of database db with viscous roll damping zeta_roll of critical:
   !> B44 = zeta 2 sqrt(C44 (I44 + A44(w_roll))), w_roll = sqrt(C44/(I44 + A44(w_roll))).
   subroutine new_bem_ship(db, zeta_roll, ship, error)
+    !> The ship's BEM database.
     type(bem_database_type), intent(in) :: db
+    !> Viscous roll damping as a fraction of critical (0 = none).
     real(wp), intent(in) :: zeta_roll
+    !> The BEM ship built.
     type(bem_ship_type), intent(out) :: ship
+    !> Set when M + A(inf) is not positive definite or the mass or an inertia is not > 0.
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: m(6, 6)
     integer :: info
@@ -84,8 +90,12 @@ contains
   !> whose restoring comes from elsewhere, the lifeboat's strips):
   !> B44 = zeta 2 sqrt(C44 (I44 + A44(w))), w = sqrt(C44/(I44 + A44(w))) iterated.
   pure real(wp) function bem_roll_damping(db, zeta, c44, i44) result(b44)
+    !> The database (A44(omega); C44 and I44 unless given).
     type(bem_database_type), intent(in) :: db
+    !> Damping as a fraction of critical (0 = none).
     real(wp), intent(in) :: zeta
+    !> Roll stiffness C44 [N m/rad] and roll inertia I44 [kg m^2] in place of the database's
+    !> (a body whose restoring comes from elsewhere).
     real(wp), intent(in), optional :: c44, i44
     real(wp) :: w, a44, c, m
     integer :: k
@@ -105,6 +115,7 @@ contains
 
   !> A 6 x 6 DOF-order matrix in Kane order (omega, v).
   pure function to_kane_order(m) result(k)
+    !> A 6 x 6 matrix in DOF order (surge, sway, heave, roll, pitch, yaw).
     real(wp), intent(in) :: m(6, 6)
     real(wp) :: k(6, 6)
     k = m(perm, perm)
@@ -115,9 +126,14 @@ contains
   !> sum_i fk_sin(:, i) sin(Phi_i) + fk_cos(:, i) cos(Phi_i), Phi_i the component's phase at
   !> the CG's initial position: a Re(X e^(i Phi)) = a Re X cos Phi - a Im X sin Phi.
   pure subroutine bem_wave_coefficients(ship, sea, psi, fk_sin, fk_cos)
+    !> The BEM ship (its database's X(omega, beta)).
     type(bem_ship_type), intent(in) :: ship
+    !> The sea: components' amplitudes [m], frequencies [rad/s] and directions [rad].
     type(wave_field_type), intent(in) :: sea
+    !> The ship's heading psi [rad].
     real(wp), intent(in) :: psi
+    !> Coefficients [N, N m] of sin(Phi_i) and cos(Phi_i), shape (6, number of components),
+    !> load order X, Y, Z, K, M, N in the heading frame.
     real(wp), intent(out) :: fk_sin(:, :), fk_cos(:, :)
     complex(wp) :: x(6)
     integer :: i
@@ -133,7 +149,10 @@ contains
   !> into ship axes by m: the vertical force acts along the inertial vertical (m e_z = row 3
   !> of C), as the weight and buoyancy do, the moments about the level axes.
   pure function bem_restoring(ship, dz, droll, dpitch, m) result(load)
+    !> The BEM ship (its hydrostatic stiffness C).
     type(bem_ship_type), intent(in) :: ship
+    !> Heave from equilibrium z - z_eq [m] (z down), roll and pitch from the static list and
+    !> trim [rad], and the rotation m = C^T Rz(psi) from the seakeeping frame to ship axes.
     real(wp), intent(in) :: dz, droll, dpitch, m(3, 3)
     real(wp) :: load(6)
     load = turn_to_body(m, -matmul(ship%db%stiffness, [0.0_wp, 0.0_wp, dz, droll, dpitch, &
@@ -142,6 +161,8 @@ contains
 
   !> A DOF-order load (forces, moments) of the seakeeping frame in ship axes: m f.
   pure function turn_to_body(m, f) result(load)
+    !> The rotation m from the seakeeping frame to ship axes and the load f (X, Y, Z [N],
+    !> K, M, N [N m]) in the seakeeping frame.
     real(wp), intent(in) :: m(3, 3), f(6)
     real(wp) :: load(6)
     load(1:3) = matmul(m, f(1:3))
@@ -155,6 +176,9 @@ contains
   !> is -m6 A m6^T (u' + (0, omega x v)): a full block that turns with the roll and pitch.
   !> At m = 1 it is M + A, the layout's block.
   pure function seakeeping_mass(a_kane, inertia, mass, m) result(mh)
+    !> Added mass in Kane order (omega, v) [kg, kg m, kg m^2], the rigid body's principal
+    !> inertia about the CG [kg m^2] and mass [kg], and the rotation m from the seakeeping
+    !> frame to ship axes.
     real(wp), intent(in) :: a_kane(6, 6), inertia(3), mass, m(3, 3)
     real(wp) :: mh(6, 6)
     integer :: i, j, k
@@ -173,7 +197,9 @@ contains
   !> Solve a x = b for a small matrix a (Gaussian elimination with partial pivoting; the
   !> database's A(inf) need not be exactly symmetric), x in place of b.
   pure subroutine solve_small(a, b)
+    !> The square matrix (not changed).
     real(wp), intent(in) :: a(:, :)
+    !> Right-hand side on entry, solution x on return.
     real(wp), intent(inout) :: b(:)
     real(wp) :: lu(size(b), size(b)), row(size(b)), s
     integer :: i, j, p, n
@@ -201,8 +227,13 @@ contains
   !> The radiation memory of database db: rates of the states x and the memory load mu
   !> (DOF order) for the speeds u_dof (DOF order).
   pure subroutine bem_memory(db, x, u_dof, xdot, mu)
+    !> The database (its fitted kernels).
     type(bem_database_type), intent(in) :: db
+    !> The radiation states x (db%nrad) and the speeds in DOF order (u, v, w [m/s], p, q, r
+    !> [rad/s]) in the frame the memory is taken in.
     real(wp), intent(in) :: x(:), u_dof(6)
+    !> Rates of the radiation states (db%nrad) and the memory load mu [N, N m] in DOF order,
+    !> same frame as the speeds.
     real(wp), intent(out) :: xdot(:), mu(6)
     real(wp) :: s, m
     integer :: k, r, q, i0, n
@@ -244,8 +275,11 @@ contains
 
   !> Inverse of a small matrix by LAPACK (dgesv on the identity).
   subroutine invert(a, a_inv, info)
+    !> The square matrix (not changed).
     real(wp), intent(in) :: a(:, :)
+    !> Its inverse, same shape.
     real(wp), intent(out) :: a_inv(:, :)
+    !> LAPACK dgesv's status: 0 on success, > 0 when the matrix is singular.
     integer, intent(out) :: info
     real(wp) :: lu(size(a, 1), size(a, 1))
     integer :: ipiv(size(a, 1)), k

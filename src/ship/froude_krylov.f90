@@ -10,6 +10,7 @@ module davit_ship_froude_krylov
   private
   public :: box_type, fk_box_load, fk_transfer
 
+  !> The ship's equivalent box for the Froude-Krylov loads.
   type :: box_type
     !> Length l = sqrt(C_b) L_wl (review §1.8, G15), beam B, draught d [m].
     real(wp) :: length = 0.0_wp, beam = 0.0_wp, draught = 0.0_wp
@@ -20,7 +21,10 @@ contains
   !> Generalized load (X, Y, Z, K, M, N) about O' of one wave component of amplitude zeta,
   !> wave number k, direction chi relative to the box's x axis and phase Phi at O'.
   pure function fk_box_load(box, zeta, k, chi, phi) result(load)
+    !> The equivalent box (length, beam, draught).
     type(box_type), intent(in) :: box
+    !> Wave amplitude zeta [m], wave number k [rad/m], direction chi [rad] the wave travels
+    !> in relative to the box's x axis (0: from astern) and the phase Phi [rad] at O'.
     real(wp), intent(in) :: zeta, k, chi, phi
     real(wp) :: load(6)
     real(wp) :: e, f, i0, i1, sl, sb, gl, gb, ekd, rgz, sfl, seb
@@ -49,6 +53,8 @@ contains
   !> Moments about the CG at (x_g, 0, z_g) from O' (review §1.8):
   !> K_G = K + z_G Y, M_G = M - z_G X + x_G Z, N_G = N - x_G Y.
   pure function fk_transfer(load, x_g, z_g) result(out)
+    !> Load (X, Y, Z [N], K, M, N [N m]) about O', and the CG's x (forward) and z (down)
+    !> relative to O' [m].
     real(wp), intent(in) :: load(6), x_g, z_g
     real(wp) :: out(6)
     out(1:3) = load(1:3)

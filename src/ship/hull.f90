@@ -11,9 +11,13 @@ module davit_ship_hull
   private
   public :: hull_type, new_hull, hull_natural_periods
 
+  !> The ship's hull: masses, restoring, damping and empirical coefficients derived once.
   type :: hull_type
+    !> The equivalent box of the Froude-Krylov loads (l = sqrt(C_b) L_wl, beam, draught).
     type(box_type) :: box
+    !> Windage (areas, length overall, height of the centre of effort) of the wind load.
     type(ship_wind_type) :: wind
+    !> Displacement mass [kg] (Table 1).
     real(wp) :: mass = 0.0_wp
     !> Rigid-body principal inertia about G [kg m^2].
     real(wp) :: inertia(3) = 0.0_wp
@@ -43,9 +47,14 @@ module davit_ship_hull
 
 contains
 
+  !> Derive the hull from the deck's &ship group: box, masses and inertias, strip-theory
+  !> added masses, hydrostatics, damping, Kijima derivatives (and the MMG added masses).
   subroutine new_hull(hull, s, error)
+    !> The hull derived.
     type(hull_type), intent(out) :: hull
+    !> The deck's &ship group (Table 1 and the review's gaps).
     type(ship_config), intent(in) :: s
+    !> Set when the section added-mass solve of the box's cross-section fails.
     type(error_type), allocatable, intent(out) :: error
     real(wp), allocatable :: y(:), z(:)
     real(wp) :: a(4), l, a44_g
@@ -121,6 +130,7 @@ contains
   !> Undamped natural periods (heave, roll, pitch) of the model's own mass, added mass and
   !> restoring [s].
   pure function hull_natural_periods(hull) result(t)
+    !> The hull (its masses, added masses and restoring).
     type(hull_type), intent(in) :: hull
     real(wp) :: t(3)
     t(1) = 2.0_wp*pi*sqrt((hull%mass + hull%added_mass(3))/hull%c33)

@@ -17,11 +17,18 @@ module davit_ship_mmg
   !> The coefficients (primed: non-dimensional on 1/2 rho L d U^2 for forces and
   !> 1/2 rho L^2 d U^2 for moments; v' = v_m/U, r' = r L/U; lengths x' on L).
   type :: mmg_type
+    !> Length between perpendiculars L [m] and draught d [m] the coefficients are made
+    !> non-dimensional with.
     real(wp) :: lpp = 1.0_wp, draught = 1.0_wp
-    !> Hull (Yasukawa & Yoshimura 2015 eqs. 8-10): R'_0 and the derivatives.
+    !> Hull (Yasukawa & Yoshimura 2015 eqs. 8-10): resistance R'_0 in straight running and
+    !> the surge derivatives X'_vv, X'_vr, X'_rr, X'_vvvv.
     real(wp) :: r0 = 0.0_wp, xvv = 0.0_wp, xvr = 0.0_wp, xrr = 0.0_wp, xvvvv = 0.0_wp
+    !> Sway force derivatives Y'_v, Y'_r, Y'_vvv, Y'_vvr, Y'_vrr, Y'_rrr of the cubic
+    !> polynomial Y'_H(v', r').
     real(wp) :: yv = 0.0_wp, yr = 0.0_wp, yvvv = 0.0_wp, yvvr = 0.0_wp, yvrr = 0.0_wp, &
                 yrrr = 0.0_wp
+    !> Yaw moment derivatives N'_v, N'_r, N'_vvv, N'_vvr, N'_vrr, N'_rrr of the cubic
+    !> polynomial N'_H(v', r') (about midship).
     real(wp) :: nv = 0.0_wp, nr = 0.0_wp, nvvv = 0.0_wp, nvvr = 0.0_wp, nvrr = 0.0_wp, &
                 nrrr = 0.0_wp
     !> Added masses m'_x, m'_y (on 1/2 rho L^2 d) and added yaw inertia J'_z (on
@@ -49,7 +56,9 @@ contains
   !> Hull forces (eq. 8-10): X_H = 1/2 rho L d U^2 (-R'_0 + X'_vv v'^2 + X'_vr v' r' +
   !> X'_rr r'^2 + X'_vvvv v'^4); Y_H, N_H the cubic polynomials in v', r'.
   pure function mmg_hull(p, u, vm, r) result(f)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s] and yaw rate r [rad/s].
     real(wp), intent(in) :: u, vm, r
     real(wp) :: f(3), uu, v, w, q
     f = 0.0_wp
@@ -67,7 +76,9 @@ contains
   !> 1 - w_P (eq. 16): (1 - w_P0) [1 + (1 - exp(-C_1 |beta_P|)) (C_2 - 1)],
   !> beta_P = beta - x'_P r', beta = atan(-v_m/u); C_2 by the sign of beta_P.
   pure real(wp) function mmg_wake(p, u, vm, r) result(one_minus_w)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s] and yaw rate r [rad/s].
     real(wp), intent(in) :: u, vm, r
     real(wp) :: uu, beta_p, c2
     one_minus_w = 1.0_wp - p%wp0
@@ -88,7 +99,10 @@ contains
 
   !> Propeller (eq. 14): X_P = (1 - t_P) rho n^2 D_P^4 K_T(J_P), J_P = u (1 - w_P)/(n D_P).
   pure function mmg_propeller(p, u, vm, r, n) result(f)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s] and propeller
+    !> revolutions n [1/s].
     real(wp), intent(in) :: u, vm, r, n
     real(wp) :: f(3)
     f = 0.0_wp
@@ -100,7 +114,10 @@ contains
   !> beta_R = beta - l'_R r'. u_P sqrt(1 + 8 K_T/(pi J^2)) = sqrt(u_P^2 + 8 T/(pi rho D^2))
   !> keeps it finite at u_P -> 0.
   pure function mmg_rudder_inflow(p, u, vm, r, n) result(uv)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s] and propeller
+    !> revolutions n [1/s].
     real(wp), intent(in) :: u, vm, r, n
     real(wp) :: uv(2), up, race, eta, uu, beta_r
     up = u*mmg_wake(p, u, vm, r)
@@ -119,7 +136,10 @@ contains
   !> atan(v_R/u_R); X_R = -(1 - t_R) F_N sin(delta), Y_R = -(1 + a_H) F_N cos(delta),
   !> N_R = -(x_R + a_H x_H) F_N cos(delta).
   pure function mmg_rudder(p, u, vm, r, delta, n) result(f)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s], rudder angle
+    !> delta [rad] (> 0 turns the ship to starboard) and propeller revolutions n [1/s].
     real(wp), intent(in) :: u, vm, r, delta, n
     real(wp) :: f(3), uv(2), fn
     uv = mmg_rudder_inflow(p, u, vm, r, n)
@@ -132,7 +152,10 @@ contains
 
   !> X, Y, N about midship: hull + propeller + rudder (eq. 5).
   pure function mmg_total(p, u, vm, r, delta, n) result(f)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s], rudder angle
+    !> delta [rad] (> 0 turns the ship to starboard) and propeller revolutions n [1/s].
     real(wp), intent(in) :: u, vm, r, delta, n
     real(wp) :: f(3)
     f = mmg_hull(p, u, vm, r) + mmg_propeller(p, u, vm, r, n) + &
@@ -144,8 +167,11 @@ contains
   !> the windage in still air), a quadratic in n (the rudder's normal force vanishes
   !> there, alpha_R = 0).
   pure real(wp) function mmg_self_propulsion(p, u, extra) result(n)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> The straight-running surge speed to hold [m/s] (> 0).
     real(wp), intent(in) :: u
+    !> A further resistance [N] the thrust also overcomes (default 0).
     real(wp), intent(in), optional :: extra
     real(wp) :: up, a, b, c, r
     up = u*(1.0_wp - p%wp0)

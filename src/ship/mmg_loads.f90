@@ -23,7 +23,12 @@ contains
   !> (davit_ship_hull mmg_added_masses): their difference, (m_y v_m - m_x v_G) r in surge,
   !> (m_y - m_x) u r in sway at midship, is added here so that the ship obeys eq. 4.
   pure function mmg_body_load(p, x_g, mx, my, m, u, delta, n) result(load)
+    !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
+    !> CG forward of midship x_g [m], horizontal added masses m_x, m_y [kg] held by the
+    !> ship's mass matrix, rotation m = C^T R_z(psi) from the level frame to ship axes,
+    !> speeds u = (omega [rad/s], v [m/s]) in ship axes at G, rudder angle delta [rad] and
+    !> propeller revolutions n [1/s].
     real(wp), intent(in) :: x_g, mx, my, m(3, 3), u(6), delta, n
     real(wp) :: load(6), vl(3), r, vm, f(3)
     vl = matmul(transpose(m), u(4:6))

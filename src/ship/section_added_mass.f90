@@ -34,8 +34,13 @@ contains
   !> Added mass per unit length [kg/m, kg m/m for 24, kg m^2/m for 44]:
   !> a(1) = a22, a(2) = a33, a(3) = a44, a(4) = a24, from the contour vertices (y, z).
   subroutine section_added_mass(y, z, a, error)
+    !> Section vertices [m], y to starboard and z down (waterline z = 0), from the starboard
+    !> waterline round the keel to the port waterline (size = panels + 1).
     real(wp), intent(in) :: y(:), z(:)
+    !> a22 [kg/m], a33 [kg/m], a44 [kg m^2/m] about the waterline point on the centreline and
+    !> the coupling a24 [kg m/m], per unit length of ship.
     real(wp), intent(out) :: a(4)
+    !> Set when the panel system is singular (a degenerate contour).
     type(error_type), allocatable, intent(out) :: error
     integer :: n, i, j, info
     real(wp), allocatable :: ym(:), zm(:), len(:), ny(:), nz(:), infl(:, :), pot(:, :), vn(:, :)
@@ -107,11 +112,15 @@ contains
 
   end subroutine section_added_mass
 
-  !> Vertices of a rectangular section of beam b and draught t, npanel panels per unit of
-  !> (b + 2t) roughly, clustered towards the corners.
+  !> Vertices of a rectangular section of beam b and draught t, nside panels on each side
+  !> and nbottom on the bottom, clustered towards the corners.
   pure subroutine rectangle_contour(b, t, nside, nbottom, y, z)
+    !> Beam b [m] and draught t [m] of the rectangle.
     real(wp), intent(in) :: b, t
+    !> Number of panels on each side and on the bottom.
     integer, intent(in) :: nside, nbottom
+    !> The vertices [m] (y to starboard, z down), 2 nside + nbottom + 1 of them, from the
+    !> starboard waterline round the keel to the port waterline.
     real(wp), allocatable, intent(out) :: y(:), z(:)
     integer :: i, k
     allocate (y(2*nside + nbottom + 1), z(2*nside + nbottom + 1))
@@ -135,8 +144,11 @@ contains
 
   !> Half-ellipse (semi-axes yb across, zt down) from the starboard waterline to port.
   pure subroutine ellipse_contour(yb, zt, n, y, z)
+    !> Half-beam yb [m] at the waterline and depth zt [m] at the keel (the semi-axes).
     real(wp), intent(in) :: yb, zt
+    !> Number of panels.
     integer, intent(in) :: n
+    !> The n + 1 vertices [m] (y to starboard, z down), from the starboard waterline to port.
     real(wp), allocatable, intent(out) :: y(:), z(:)
     integer :: i
     allocate (y(n + 1), z(n + 1))

@@ -22,8 +22,14 @@ contains
   !> -<phi (a33 - a22) z''> up-wave (a 14 m drift in 100 s of Level 5 beam seas without
   !> drag).
   pure subroutine box_blocks(hull, u, m, load, kane)
+    !> The box hull (masses, added masses, inertias, restrained DOFs).
     type(hull_type), intent(in) :: hull
+    !> Speeds u = (omega [rad/s], v [m/s]) in ship axes at G (Kane order), the rotation m =
+    !> C^T R_z(psi) from the seakeeping frame to ship axes, and the external loads (X, Y, Z [N],
+    !> K, M, N [N m]) in ship axes about G.
     real(wp), intent(in) :: u(6), m(3, 3), load(6)
+    !> The rows V, W phi and F (kane_v, kane_w_phi, kane_f) of the ship's six speeds, Kane
+    !> order (moments [N m] and inertias first, then forces [N] and masses).
     real(wp), intent(out) :: kane(3, 6)
     real(wp) :: mt(3), it(3), ig(3), a(6, 6), mh(6, 6), transport(6), gyro(6), ud(6), rhs(6)
     integer :: k
@@ -65,9 +71,16 @@ contains
   !> with the roll: a second-order mean sway force of -A(inf) with the rolled heave
   !> acceleration, ~3.6e4 N up-wave in Level 5 beam seas.
   pure subroutine bem_blocks(hydro, restrained, u, m, load, kane)
+    !> The BEM ship (A(inf) and M + A(inf) in Kane order, rigid-body mass and inertia).
     type(bem_ship_type), intent(in) :: hydro
+    !> DOFs held at zero acceleration (surge, sway, heave, roll, pitch, yaw), as in a tank test.
     logical, intent(in) :: restrained(6)
+    !> Speeds u = (omega [rad/s], v [m/s]) in ship axes at G (Kane order), the rotation m =
+    !> C^T R_z(psi) from the seakeeping frame to ship axes, and the external loads (X, Y, Z [N],
+    !> K, M, N [N m]; the radiation memory included) in ship axes about G.
     real(wp), intent(in) :: u(6), m(3, 3), load(6)
+    !> The rows V (all 1: the layout's coupled block holds M + A(inf)), W phi [N m, N] and
+    !> F [N m, N] of the ship's six speeds, Kane order.
     real(wp), intent(out) :: kane(3, 6)
     real(wp) :: mh(6, 6), transport(6), gyro(6), ud(6), rhs(6)
     mh = seakeeping_mass(hydro%a_kane, hydro%inertia, hydro%mass, m)

@@ -22,6 +22,7 @@ module davit_ship_wave_drift
   private
   public :: drift_none, drift_mean, drift_newman, drift_level, drift_coefficients, drift_load
 
+  !> The levels of `&ship drift`: none, the mean load, Newman's slowly varying load.
   integer, parameter :: drift_none = 0, drift_mean = 1, drift_newman = 2
 
 contains
@@ -29,6 +30,7 @@ contains
   !> The level of the key's value ('none', 'mean', 'newman'; anything else: none, the deck
   !> reader has checked it).
   pure integer function drift_level(name) result(level)
+    !> The value of `&ship drift`.
     character(len=*), intent(in) :: name
     select case (name)
     case ("mean")
@@ -43,9 +45,14 @@ contains
   !> a_i sqrt(|D_i|) sign(D_i) of each component (surge, sway, yaw) for the ship at heading
   !> psi: the signed square roots that both levels sum.
   pure subroutine drift_coefficients(db, sea, psi, coef)
+    !> The BEM database (with its drift coefficients).
     type(bem_database_type), intent(in) :: db
+    !> The sea (component amplitudes [m], frequencies [rad/s], directions [rad]).
     type(wave_field_type), intent(in) :: sea
+    !> The ship's heading psi [rad].
     real(wp), intent(in) :: psi
+    !> a_i sqrt(|D_i|) sign(D_i), shape (3, number of components): surge, sway [N^(1/2)] and
+    !> yaw [(N m)^(1/2)].
     real(wp), intent(out) :: coef(:, :)
     real(wp) :: d(3)
     integer :: i
@@ -58,8 +65,12 @@ contains
   !> The drift load (X, Y, Z, K, M, N; Z, K, M zero) in the seakeeping frame at time t of
   !> level `level` from the coefficients of drift_coefficients, the phases taken at (x, y).
   pure function drift_load(level, sea, coef, t, x, y) result(load)
+    !> drift_none, drift_mean or drift_newman.
     integer, intent(in) :: level
+    !> The sea (phases, start-up ramp).
     type(wave_field_type), intent(in) :: sea
+    !> The coefficients of drift_coefficients (3, number of components), time t [s] and the
+    !> horizontal position x, y [m] (earth frame) the phases are taken at.
     real(wp), intent(in) :: coef(:, :), t, x, y
     real(wp) :: load(6)
     real(wp) :: f(3), s(wave_chunk), c(wave_chunk), pc(3, 2), ps(3, 2)

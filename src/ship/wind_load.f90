@@ -12,9 +12,12 @@ module davit_ship_wind_load
   private
   public :: ship_wind_type, ship_wind_load
 
+  !> The ship's windage, the geometry of the wind load.
   type :: ship_wind_type
-    !> Frontal and lateral windage areas [m^2], overall length [m], centre height [m].
+    !> Frontal and lateral windage areas A_F, A_L [m^2].
     real(wp) :: area_front = 400.0_wp, area_lateral = 1600.0_wp
+    !> Length overall L_oa [m] (lever of the yaw moment) and height h_z [m] of the lateral
+    !> centre of effort above G (lever of the roll moment).
     real(wp) :: length_overall = 139.8_wp, height = 7.0_wp
   end type ship_wind_type
 
@@ -22,7 +25,10 @@ contains
 
   !> (X, Y, Z, K, M, N) for the relative air velocity v_rel = v_wind - v_ship, in ship axes.
   pure function ship_wind_load(w, v_rel) result(load)
+    !> The ship's windage.
     type(ship_wind_type), intent(in) :: w
+    !> Air velocity relative to the ship, v_wind - v_ship [m/s], in ship axes (the
+    !> horizontal components are used).
     real(wp), intent(in) :: v_rel(3)
     real(wp) :: load(6), q, alpha
     load = 0.0_wp

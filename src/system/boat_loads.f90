@@ -36,11 +36,20 @@ contains
   !> "boat_radiation"; empty otherwise). `part` (loads_all by default) selects the terms;
   !> V is the whole mass block in every part.
   pure subroutine boat_kane_blocks(par, hist, t, q, u, x, side, qdot, xdot, kane, part)
+    !> The system's parameters (boat, slings, water and wind models, fenders).
     type(system_params_type), intent(in) :: par
+    !> The history (fender phases, surface watch, the water on the slow clocks).
     type(system_history_type), intent(in) :: hist
+    !> Time [s]; the boat's coordinates q (Euler angles [rad], CG position in body
+    !> components [m], eq. 3) and speeds u (omega [rad/s], v [m/s], body components);
+    !> its BEM water states x (immersion, radiation memory; empty without them).
     real(wp), intent(in) :: t, q(6), u(6), x(:)
+    !> The ship's side plane the fenders touch (inertial).
     type(side_plane_type), intent(in) :: side
+    !> Rates of q and of x, and the rows V, W phi, F of the boat's six speeds (Kane order,
+    !> moments [N m] first, then forces [N]).
     real(wp), intent(out) :: qdot(6), xdot(:), kane(3, 6)
+    !> loads_all (default), loads_slow or loads_fast.
     integer, intent(in), optional :: part
     logical :: slow, fast
     slow = .true.
@@ -144,9 +153,14 @@ contains
   !> while the surface watch proves the hull dry; from the strips' slow clock where it
   !> covers t.
   pure subroutine water_loads(par, hist, t, c, r, u, f, volume)
+    !> The system's parameters (strip model, sea).
     type(system_params_type), intent(in) :: par
+    !> The history (surface watch, the strips' slow clock).
     type(system_history_type), intent(in) :: hist
+    !> Time [s], the boat's rotation (body -> inertial), CG position (inertial) [m] and
+    !> speeds (omega [rad/s], v [m/s], body components).
     real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
+    !> Generalized forces of the water (Kane order) [N m, N] and the wet volume [m^3].
     real(wp), intent(out) :: f(6), volume
     if (surely_dry(hist%watch, par%water, t, c, r)) then
       f = 0.0_wp

@@ -19,6 +19,7 @@ module davit_system_contact_policy
   private
   public :: contact_policy_type, contact_max_step
 
+  !> How steps are limited around fender contact (&simulation's contact keys).
   type :: contact_policy_type
     !> Step while a fender is in contact or about to be (0: no limit) [s].
     real(wp) :: dt_contact = 0.0_wp
@@ -33,9 +34,13 @@ contains
 
   !> Largest step from state (t, y) when the deck's step is dt.
   pure real(wp) function contact_max_step(policy, par, hist, y, dt) result(h)
+    !> The deck's contact step policy.
     type(contact_policy_type), intent(in) :: policy
+    !> The system's parameters (contact switch, fenders, side plane).
     type(system_params_type), intent(in) :: par
+    !> The history (the fenders' contact phases).
     type(system_history_type), intent(in) :: hist
+    !> The system's state and the deck's step dt [s].
     real(wp), intent(in) :: y(:), dt
     real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
     integer :: j

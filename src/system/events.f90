@@ -26,8 +26,11 @@ contains
 
   !> Advance the history on the accepted state (t, y).
   subroutine advance_history(par, hist, t, y)
+    !> The system's parameters.
     type(system_params_type), intent(in) :: par
+    !> The history (surface watch, strips' water samples, events, fender phases written).
     type(system_history_type), intent(inout) :: hist
+    !> Time [s] and state of the accepted step's end.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: c(3, 3)
     associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
@@ -152,8 +155,11 @@ contains
 
   !> Open the hooks at the accepted state (t, y): the falls freeze where the hooks are.
   subroutine release_hooks(par, hist, t, y)
+    !> The system's parameters.
     type(system_params_type), intent(in) :: par
+    !> The history (release time, hook positions and ship's pose at release written).
     type(system_history_type), intent(inout) :: hist
+    !> Time [s] and state of the release.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: hook_vel(3, nslings)
     hist%release_time = t

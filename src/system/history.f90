@@ -14,7 +14,9 @@ module davit_system_history
   private
   public :: system_history_type
 
+  !> The launch's history.
   type :: system_history_type
+    !> Each fender's contact phase and its records (davit_boat_contact_law), one per fender.
     type(fender_state_type), allocatable :: fender_states(:)
     !> Time of the first fender contact [s]; negative while there has been none.
     real(wp) :: first_contact_time = -1.0_wp
@@ -23,8 +25,9 @@ module davit_system_history
     !> condition began) and hook release; after release the falls no longer act on the
     !> boat and their states are frozen.
     real(wp) :: waterborne_time = -1.0_wp, release_time = -1.0_wp, afloat_since = -1.0_wp
-    !> Where the hooks were and the ship's pose when the hooks let go (inertial).
+    !> Where the hooks were when they let go [m] (inertial, one column per sling).
     real(wp) :: released_hooks(3, nslings) = 0.0_wp
+    !> The ship's pose when the hooks let go (inertial).
     type(pose_type) :: released_pose
     !> Skips the strip loads while the hull is provably out of the water (exact).
     type(surface_watch_type) :: watch

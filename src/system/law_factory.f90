@@ -26,6 +26,7 @@ contains
     type(contact_config), intent(in) :: k
     !> The law, allocated to its extension.
     class(contact_law_type), allocatable, intent(out) :: law
+    !> Set when `law` names no contact law (the message names the key and the allowed values).
     type(error_type), allocatable, intent(out) :: error
     select case (k%law)
     case ("rubber_fender")
@@ -56,6 +57,8 @@ contains
     type(boat_config), intent(in) :: b
     !> The wind loads, allocated to the lift form's extension.
     class(boat_wind_type), allocatable, intent(out) :: air
+    !> Set when `lift_form` names no lift form (the message names the key and the allowed
+    !> values).
     type(error_type), allocatable, intent(out) :: error
     select case (b%lift_form)
     case ("symmetric")

@@ -27,10 +27,15 @@ module davit_system_model
   private
   public :: system_type
 
+  !> The launch as an ODE problem for the integrators.
   type, extends(ode_problem) :: system_type
+    !> What never changes during the run: bodies, force models, environment, state layout.
     type(system_params_type) :: par
+    !> What the after-step hook updates: contact phases, events, the water's slow caches.
     type(system_history_type) :: hist
+    !> The step policy of fender contact.
     type(contact_policy_type) :: policy
+    !> The 6-DOF ship of the 'launch' scene (built only there, with_ship).
     type(ship_system_type) :: ship
   contains
     procedure :: rhs => system_rhs
@@ -53,9 +58,13 @@ contains
 
   !> Kane's equations: y' = (q_dot, (F - W phi)/V).
   subroutine system_rhs(self, t, y, dydt)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> State vector (the layout's: boat, its water states, rigging, ship).
     real(wp), intent(in) :: y(:)
+    !> Its time derivative y' = (q_dot, (F - W phi)/V).
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
     call kane_blocks(self, t, y, dydt, kane, loads_all)
@@ -66,9 +75,13 @@ contains
   !> ship whole, and the boat's water and wind loads (with the BEM water states); eq. 89
   !> with the same V, so slow + fast = system_rhs.
   subroutine system_rhs_slow(self, t, y, dydt)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> State vector (the layout's: boat, its water states, rigging, ship).
     real(wp), intent(in) :: y(:)
+    !> The slow part of y'.
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
     call kane_blocks(self, t, y, dydt, kane, loads_slow)
@@ -78,9 +91,13 @@ contains
   !> The fast part: the boat's kinematics, gyroscopic terms, gravity, slings and fenders,
   !> and the rigging with its hook forces; the ship has no rates here.
   subroutine system_rhs_fast(self, t, y, dydt)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> State vector (the layout's: boat, its water states, rigging, ship).
     real(wp), intent(in) :: y(:)
+    !> The fast part of y' (the ship's rows zero).
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
     call kane_blocks(self, t, y, dydt, kane, loads_fast)
@@ -155,7 +172,9 @@ contains
 
   !> The after-step hook: the ship's slow coefficients, then the launch's history.
   subroutine system_after_step(self, t, y)
+    !> The system (the ship's history and the launch's history written).
     class(system_type), intent(inout) :: self
+    !> Time [s] and state vector at the end of the accepted step.
     real(wp), intent(in) :: t, y(:)
     associate (s => self%par%ship_slice)
       if (self%par%with_ship) call self%ship%after_step(t, y(s(1):s(2)))
@@ -163,8 +182,11 @@ contains
     call advance_history(self%par, self%hist, t, y)
   end subroutine system_after_step
 
+  !> Largest step [s] from (t, y): the contact policy's (davit_system_contact_policy).
   pure real(wp) function system_max_step(self, t, y, dt) result(h)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> Time [s], state vector and the deck's step dt [s].
     real(wp), intent(in) :: t, y(:), dt
     h = contact_max_step(self%policy, self%par, self%hist, y, dt)
   end function system_max_step
@@ -172,6 +194,7 @@ contains
   !> The rigging's states (blocks, lumps, sheaves, drum): their axial springs are the
   !> system's stiff modes (the block on its sling ~1260 1/s, lumps ~3e4 1/s).
   pure function system_stiff_states(self) result(idx)
+    !> The system (its rigging slice).
     class(system_type), intent(in) :: self
     integer, allocatable :: idx(:)
     integer :: i
@@ -186,6 +209,7 @@ contains
   !> (hooks) and the ship's body states (davit heads, lead sheave, drum): the q and u of
   !> its part "ship" (not its memory, rudder or control states).
   pure function system_coupled_states(self) result(idx)
+    !> The system (its boat and ship parts).
     class(system_type), intent(in) :: self
     integer, allocatable :: idx(:)
     integer :: i
@@ -202,6 +226,7 @@ contains
   !> sling and cable segment is taut (the kinks of their tension-only laws), or whether
   !> each foundation sling is.
   pure integer function system_n_modes(self) result(n)
+    !> The system (contact policy, fenders, rigging, slings).
     class(system_type), intent(in) :: self
     n = 0
     if (.not. self%policy%located) return
@@ -210,9 +235,15 @@ contains
     if (self%par%slings_attached) n = n + nslings
   end function system_n_modes
 
+  !> The mode of each of the system_n_modes switches at (t, y), in that order: each
+  !> fender's next contact phase, then 1 (taut) or 0 (slack) for each cable and sling
+  !> segment on the davit, or for each foundation sling.
   subroutine system_modes(self, t, y, m)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> Time [s] and state vector.
     real(wp), intent(in) :: t, y(:)
+    !> The modes, system_n_modes of them.
     integer, intent(out) :: m(:)
     real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
     integer :: j, n
@@ -248,9 +279,14 @@ contains
   !> Inertial-frame observables of the boat (davit_system_observables), with its
   !> acceleration from the right-hand side.
   subroutine observe(self, t, y, position, euler, velocity, angular_velocity, acceleration)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> Time [s] and state vector.
     real(wp), intent(in) :: t, y(:)
+    !> The boat's CG position [m] and velocity [m/s] (inertial), Euler angles [rad] and
+    !> angular velocity [rad/s] (body components).
     real(wp), intent(out) :: position(3), euler(3), velocity(3), angular_velocity(3)
+    !> The CG's acceleration [m/s^2] (inertial).
     real(wp), intent(out) :: acceleration(3)
     real(wp) :: dydt(size(y)), out(3, 5)
     call self%rhs(t, y, dydt)
@@ -262,29 +298,47 @@ contains
     acceleration = out(:, 5)
   end subroutine observe
 
+  !> Mechanical energy [J] of the conservative part at y (davit_system_observables' energy).
   pure real(wp) function system_energy(self, y) result(e)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> State vector.
     real(wp), intent(in) :: y(:)
     e = energy(self%par, self%hist, y)
   end function system_energy
 
+  !> Tensions [N] of the foundation slings at y (zero when detached or on the davit).
   pure function system_sling_tensions(self, y) result(tension)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> State vector.
     real(wp), intent(in) :: y(:)
     real(wp) :: tension(nslings)
     tension = sling_tensions(self%par, y)
   end function system_sling_tensions
 
+  !> Smallest fender-to-side distance and each fender's normal force at y.
   pure subroutine system_contact_state(self, y, clearance, force)
+    !> The system.
     class(system_type), intent(in) :: self
+    !> State vector.
     real(wp), intent(in) :: y(:)
+    !> Smallest fender-to-side distance [m] (negative: penetration) and each fender's
+    !> normal force [N] (one per fender).
     real(wp), intent(out) :: clearance, force(:)
     call contact_state(self%par, self%hist, y, clearance, force)
   end subroutine system_contact_state
 
+  !> The rigging's tensions, paid-out length and lump positions at (t, y)
+  !> (davit_system_observables' rigging_state).
   pure subroutine system_rigging_state(self, t, y, seg, sling, paid, lumps)
+    !> The system (on the davit).
     class(system_type), intent(in) :: self
+    !> Time [s] and state vector.
     real(wp), intent(in) :: t, y(:)
+    !> Cable segment tensions [N] (one per segment), sling segment tensions [N] (nlump + 1
+    !> per sling, row 1 at the hook), paid-out length [m] and lump positions [m] (inertial,
+    !> (3, nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
     call rigging_state(self%par, self%hist, t, y, seg, sling, paid, lumps)
   end subroutine system_rigging_state

@@ -46,9 +46,15 @@ contains
   !> (row 1 at the hook; zero once the hooks are released) [N], paid-out length [m] and lump
   !> positions (inertial) [m].
   pure subroutine rigging_state(par, hist, t, y, seg, sling, paid, lumps)
+    !> The system's parameters (on the davit: its rigging).
     type(system_params_type), intent(in) :: par
+    !> The history (release time, hook positions and ship's pose at release).
     type(system_history_type), intent(in) :: hist
+    !> Time [s] and state vector.
     real(wp), intent(in) :: t, y(:)
+    !> Cable segment tensions [N] (par%rig%nseg), sling segment tensions [N]
+    !> (par%rig%nlump + 1 per sling, row 1 at the hook), paid-out length [m] and lump
+    !> positions [m] (inertial, (3, par%rig%nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
     real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), tr
     type(pose_type) :: pose
@@ -76,7 +82,9 @@ contains
   !> Tensions [N] of the foundation slings at state y (zero when detached or on the davit,
   !> where rigging_state gives the sling tensions).
   pure function sling_tensions(par, y) result(tension)
+    !> The system's parameters (the foundation slings and hooks).
     type(system_params_type), intent(in) :: par
+    !> State vector.
     real(wp), intent(in) :: y(:)
     real(wp) :: tension(nslings), hook_pos(3, nslings), hook_vel(3, nslings), fh(3)
     integer :: i
@@ -91,9 +99,14 @@ contains
   !> Smallest fender-to-side distance [m] (negative = penetration) and each fender's
   !> normal force [N] at state y.
   pure subroutine contact_state(par, hist, y, clearance, force)
+    !> The system's parameters (fenders, side plane, ship's pose).
     type(system_params_type), intent(in) :: par
+    !> The history (the fenders' contact phases, which the forces read).
     type(system_history_type), intent(in) :: hist
+    !> State vector.
     real(wp), intent(in) :: y(:)
+    !> Smallest fender-to-side distance [m] (negative: penetration) and each fender's
+    !> normal force [N] (zero without contact; one per fender).
     real(wp), intent(out) :: clearance, force(:)
     real(wp) :: c(3, 3), r(3), delta(par%fenders%nf), delta_dot(par%fenders%nf), f(6)
     integer :: deepest(par%fenders%nf)
@@ -117,8 +130,11 @@ contains
   !> their frozen states at the released hooks (the boat has left them), not the stretch
   !> to wherever the boat drifts.
   pure function energy(par, hist, y) result(e)
+    !> The system's parameters (boat, its BEM water model, rigging, slings).
     type(system_params_type), intent(in) :: par
+    !> The history (hook positions and ship's pose at release).
     type(system_history_type), intent(in) :: hist
+    !> State vector.
     real(wp), intent(in) :: y(:)
     real(wp) :: e, c(3, 3), r(3), hook_pos(3, nslings), hook_vel(3, nslings)
     type(pose_type) :: pose

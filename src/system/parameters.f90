@@ -22,50 +22,67 @@ module davit_system_parameters
   private
   public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics, fender_gaps
 
+  !> Number of slings (and hooks): fore and aft.
   integer, parameter :: nslings = 2
 
+  !> The launch's bodies, force models, environment and state layout.
   type :: system_params_type
     !> The state: part "boat" (eqs. 3-4), the rigging's parts on the davit, the ship's
-    !> parts in the 'launch' scene. boat and ship are their rigid bodies' ranges; the
-    !> rigging's slice is y(rig_slice(1) : rig_slice(2)), the ship's
-    !> y(ship_slice(1) : ship_slice(2)).
+    !> parts in the 'launch' scene.
     type(state_layout_type) :: layout
+    !> The boat's and the moving ship's rigid-body parts (ranges of q and u) in the state.
     type(state_part_type) :: boat_part, ship_part
     !> The boat's BEM water states (&boat water_model = 'bem'): immersion and radiation
     !> memory, part "boat_radiation" (q only); empty with the strips alone.
     type(state_part_type) :: radiation_part
+    !> First and last state index of the rigging, y(rig_slice(1) : rig_slice(2)), and of
+    !> the ship, y(ship_slice(1) : ship_slice(2)); [1, 0] (empty) without them.
     integer :: rig_slice(2) = [1, 0], ship_slice(2) = [1, 0]
+    !> The boat's mass [kg] and principal inertia about its CG [kg m^2].
     type(rigid_body_type) :: boat
     !> Hook points in the boat frame, one column per sling.
     real(wp) :: hooks(3, nslings) = 0.0_wp
-    !> Foundation slings (the 'hanging' scenes) and whether they hold the boat.
+    !> Foundation slings (the 'hanging' scenes), fore and aft.
     type(elastic_sling_type) :: slings(nslings)
+    !> Whether the foundation slings hold the boat (never on the davit, where the rigging
+    !> does).
     logical :: slings_attached = .true.
+    !> The strip model of the boat in the water (sections, level of detail, drag and
+    !> damping coefficients).
     type(strip_model_type) :: water
     !> Added mass, radiation, diffraction and roll damping from the hull's BEM database on
     !> top of the strips (&boat water_model = 'bem').
     logical :: bem_water = .false.
+    !> The boat's BEM water model (database, modes, roll damping), built when bem_water.
     type(boat_bem_type) :: bem
     !> Wind drag and lift on the boat, the lift form chosen at build.
     class(boat_wind_type), allocatable :: air
+    !> The sea: wave components (amplitudes, frequencies, directions, phases) and ramp.
     type(wave_field_type) :: sea
+    !> The mean wind: speed and the direction it blows towards.
     type(wind_type) :: wind
     !> Hull volume (dry fraction of the wind loads) [m^3].
     real(wp) :: hull_volume = 0.0_wp
+    !> Whether the fenders' contact with the ship's side acts (&contact enabled).
     logical :: contact = .false.
+    !> The boat's fenders: their points in the boat frame and the contact law.
     type(fender_set_type) :: fenders
     !> Ship-frame y of the side plane [m].
     real(wp) :: side_y = 0.0_wp
     !> The full davit rigging ('lowering' and 'launch' scenes) in place of the foundation
     !> slings.
     logical :: on_davit = .false.
+    !> The davit rigging (falls, winch, its state layout), built when on_davit.
     type(rigging_type) :: rig
     !> The ship at rest in its deck pose, unless a 6-DOF ship moves ('launch'), one-way
     !> coupled as in the paper (the davit loads do not act on it).
     type(pose_type) :: ship_rest
+    !> Whether a 6-DOF ship moves ('launch'; its state is y(ship_slice(1) : ship_slice(2)))
+    !> instead of ship_rest.
     logical :: with_ship = .false.
-    !> Hook release once waterborne (review G24), release_delay after it [s].
+    !> Hook release once waterborne (review G24).
     logical :: release = .true.
+    !> Delay of the release after the boat is waterborne (its condition held for 1 s) [s].
     real(wp) :: release_delay = 0.0_wp
   end type system_params_type
 
@@ -74,7 +91,9 @@ contains
   !> The ship's pose at state y: CG, rotation (ship -> N), velocity and angular velocity
   !> (inertial components).
   pure function ship_pose(par, y) result(pose)
+    !> The system's parameters (with_ship, ship_part, ship_rest).
     type(system_params_type), intent(in) :: par
+    !> The system's state.
     real(wp), intent(in) :: y(:)
     type(pose_type) :: pose
     if (.not. par%with_ship) then
@@ -106,8 +125,12 @@ contains
 
   !> Inertial positions and velocities of the two hooks at state y.
   pure subroutine hook_kinematics(par, y, hook_pos, hook_vel)
+    !> The system's parameters (boat_part, hooks).
     type(system_params_type), intent(in) :: par
+    !> The system's state.
     real(wp), intent(in) :: y(:)
+    !> Positions [m] and velocities [m/s] of the hooks, inertial components, one column
+    !> per sling.
     real(wp), intent(out) :: hook_pos(3, nslings), hook_vel(3, nslings)
     real(wp) :: c(3, 3), r(3)
     integer :: i
@@ -125,8 +148,12 @@ contains
   !> Each fender's signed distance into the ship's side delta (> 0: indentation) and its
   !> rate delta_dot at state y (eqs. 29-33).
   pure subroutine fender_gaps(par, y, delta, delta_dot)
+    !> The system's parameters (fenders, side plane, ship's pose).
     type(system_params_type), intent(in) :: par
+    !> The system's state.
     real(wp), intent(in) :: y(:)
+    !> Each fender's indentation delta [m] (> 0 into the ship's side; its deepest point's)
+    !> and its rate delta_dot [m/s] (> 0 approaching).
     real(wp), intent(out) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
     real(wp) :: c(3, 3)
     integer :: deepest(par%fenders%nf)

@@ -14,10 +14,15 @@ module davit_system_sea_builder
 
 contains
 
-  !> The random phases (and frequency jitter) come from `seed` and `stream` only.
+  !> The wave field of the &sea group (calm, regular or irregular); the random phases (and
+  !> frequency jitter) come from `seed` and `stream` only.
   subroutine build_wave_field(sea, seed, stream, field)
+    !> The &sea group as read from the deck.
     type(sea_config), intent(in) :: sea
+    !> Seed of the random generator (&simulation seed) and its stream index (0: the
+    !> seed's own; davit_core_random).
     integer, intent(in) :: seed, stream
+    !> The wave field built.
     type(wave_field_type), intent(out) :: field
     type(rng_type) :: rng
     select case (sea%wave_type)
@@ -46,7 +51,10 @@ contains
     end select
   end subroutine build_wave_field
 
+  !> The mean wind of the &wind group.
   pure function build_wind(wind) result(w)
+    !> The &wind group as read from the deck (speed [m/s], direction it blows towards
+    !> [rad], converted from direction_deg).
     type(wind_config), intent(in) :: wind
     type(wind_type) :: w
     w = new_wind(wind%speed, wind%direction)
