@@ -9,7 +9,7 @@ module davit_rigging_rigging_state
   use davit_rigging_falls, only: falls_type
   implicit none
   private
-  public :: rigging_state_type, set_layout, sling_range
+  public :: rigging_state_type, set_layout
 
   !> The falls (cables, top sling segments, blocks; davit_rigging_block_balance) plus the
   !> lumps, the sheaves' dynamics, the winch and the state layout.
@@ -62,14 +62,6 @@ contains
     self%nstate = self%layout%n
     self%ndof = self%layout%nu + 1
   end subroutine set_layout
-
-  !> Range in y of sling a's 3 n entries within the lumps' range r (q or u): sling 1 first.
-  pure function sling_range(r, n, a) result(s)
-    !> The lumps' range (q or u) in the slice; lumps per sling; the sling (1 or 2).
-    integer, intent(in) :: r(2), n, a
-    integer :: s(2)
-    s = [r(1) + 3*n*(a - 1), r(1) + 3*n*a - 1]
-  end function sling_range
 
   !> Paid-out length at the drum s_drum [m].
   pure function paid_out(self, y) result(s)
