@@ -30,6 +30,7 @@ contains
     type(suite_type) :: suite
     suite%name = "mmg_bem"
     suite%cases = [new_case("encounter_frequency_head_and_following", encounter), &
+                   new_case("encounter_frequency_kijima_ship", encounter_kijima), &
                    new_case("encounter_rate_in_the_wave_clock", wave_clock), &
                    new_case("calm_water_speed_held_at_self_propulsion", calm_speed), &
                    new_case("autopilot_integral_by_hand", integral_orders), &
@@ -113,17 +114,38 @@ contains
   !> ship; with U left out of the phase it would be 12.72 s (checked > 5 % away).
   subroutine encounter(state)
     type(case_state), intent(inout) :: state
+    call encounter_periods(state, "mmg")
+  end subroutine encounter
+
+  !> The same with `&ship manoeuvring = 'kijima'` (linear derivatives, cross-flow drag and
+  !> a constant thrust instead of the MMG model): a ship making way meets the waves at
+  !> omega_e whatever its manoeuvring model (before, the 'kijima' ship's phases stayed at
+  !> its initial position and it met them at omega: 12.72 s).
+  subroutine encounter_kijima(state)
+    type(case_state), intent(inout) :: state
+    call encounter_periods(state, "kijima")
+  end subroutine encounter_kijima
+
+  !> The heave-force period of the encounter cases with `manoeuvring` as the ship's model.
+  subroutine encounter_periods(state, manoeuvring)
+    type(case_state), intent(inout) :: state
+    character(len=*), intent(in) :: manoeuvring
     character(len=6), parameter :: models(2) = [character(len=6) :: "bem", "fk_box"]
     real(wp), parameter :: directions(2) = [180.0_wp, 0.0_wp], dt = 0.02_wp
     type(ship_system_type) :: ship
     real(wp), allocatable :: y(:)
+    character(len=160) :: edits(2, 4)
     real(wp) :: f(10000), omega, k, we, tp, c(3, 3), q(6), u(6), load(6)
     integer :: i, j, m
     omega = 2.0_wp*pi/period
     k = omega**2/gravity
     do m = 1, 2
       do j = 1, 2
-        call headway_ship(wave_edits(directions(j), trim(models(m)), ""), ship, y)
+        edits(:, 1:3) = wave_edits(directions(j), trim(models(m)), "")
+        edits(:, 4) = [character(len=160) :: "manoeuvring = 'mmg'", &
+                       "manoeuvring = '"//manoeuvring//"'"]
+        call headway_ship(edits, ship, y)
+        call check_true(state, ship%mmg_on .eqv. manoeuvring == "mmg", "manoeuvring model")
         q = y(ship%body%q(1):ship%body%q(2))
         u = y(ship%body%u(1):ship%body%u(2))
         c = rotation_matrix(q(1:3))
@@ -133,14 +155,14 @@ contains
         end do
         we = omega - k*headway*cos(directions(j)*deg)
         tp = crossing_period(f, dt)
-        call note(state, trim(models(m))//" heave-force period [s]", tp)
+        call note(state, manoeuvring//" "//trim(models(m))//" heave-force period [s]", tp)
         call check(state, tp, 2.0_wp*pi/we, trim(models(m))//": period 2 pi/omega_e", &
                    rel_tol=0.01_wp)
         call check_true(state, abs(tp/period - 1.0_wp) > 0.05_wp, &
                         "encounter period apart from the wave's")
       end do
     end do
-  end subroutine encounter
+  end subroutine encounter_periods
 
   !> With `&simulation wave_update = 0.1` the BEM ship's wave loads come from cubic Hermite
   !> interpolation of samples and their rates; the rates are those of the encounter phase

@@ -14,7 +14,7 @@
 !> BEM ship ('bem', davit_ship_bem_loads: Cummins' equation from a Capytaine database,
 !> whose radiation memory adds a second part "ship_radiation" of states to the layout).
 !> The manoeuvring, cross-flow, resistance, wind and heading-keeping loads serve both.
-!> With the MMG model (set_mmg) the ship making way is split in two time scales: the
+!> A ship making way (either manoeuvring model) is split in two time scales: the
 !> manoeuvring forces in the horizontal-body frame, the linear seakeeping (wave loads,
 !> radiation memory) about a frame moving at the headway along the initial heading, so
 !> the waves are met at their encounter frequencies and the memory (zero-speed kernels)
@@ -67,7 +67,7 @@ module davit_ship_ship_model
     !> gains a second-order mean part and the ship drifts at ~1 m/s in 2 m beam waves.
     logical :: phase_at_initial = .true.
     real(wp) :: origin(2) = 0.0_wp
-    !> The seakeeping frame of a ship making way (set_mmg): it moves at the headway U along
+    !> The seakeeping frame of a ship making way (any headway): it moves at U along
     !> the initial heading, frame_velocity = U (cos psi_0, sin psi_0) [m/s], so the linear
     !> wave loads see the phase at origin + frame_velocity t, hence the encounter
     !> frequency omega_e = omega - k U cos(beta); the radiation memory is fed the speeds
@@ -158,6 +158,10 @@ contains
     air = ship_wind_load(hull%wind, [-headway, 0.0_wp, 0.0_wp])
     self%thrust = 0.0_wp
     if (hull%empirical) self%thrust = -(water(1) + air(1))
+    ! a ship making way (either manoeuvring model) meets the waves at omega_e: the
+    ! seakeeping frame moves at the headway along the initial heading
+    self%frame_speed = headway
+    self%frame_velocity = headway*[cos(heading), sin(heading)]
     allocate (self%fk_sin(6, sea%n), self%fk_cos(6, sea%n))
     call self%refresh_heading(heading)
     call self%layout%add("ship", 6, 6, self%body)
@@ -244,9 +248,9 @@ contains
 
   !> Switch to the MMG manoeuvring model p with the steering `steer` (its heading: the
   !> initial one) and the propeller at `rps` (0: the self-propulsion point at `headway`);
-  !> the rudder angle joins the state as part "ship_rudder". The seakeeping frame then
-  !> moves at `headway` along the initial heading (the two-time-scale split: manoeuvring
-  !> in the horizontal-body frame, seakeeping about this steady motion).
+  !> the rudder angle joins the state as part "ship_rudder". The seakeeping frame moves at
+  !> `headway` along the initial heading (new_ship_system; the two-time-scale split:
+  !> manoeuvring in the horizontal-body frame, seakeeping about this steady motion).
   subroutine set_mmg(self, p, steer, rps, headway)
     class(ship_system_type), intent(inout) :: self
     type(mmg_type), intent(in) :: p
@@ -265,9 +269,6 @@ contains
       extra = -air(1)
     end if
     if (rps <= 0.0_wp) self%rps = mmg_self_propulsion(p, headway, extra)
-    ! the seakeeping frame moves with the ship's mean heading and speed
-    self%frame_speed = headway
-    self%frame_velocity = headway*[cos(self%psi_ref), sin(self%psi_ref)]
     call self%layout%add("ship_rudder", 1, 0, self%rudder)
     if (autopilot_states(steer) > 0) then
       call self%layout%add("ship_autopilot", autopilot_states(steer), 0, self%autopilot)
