@@ -417,7 +417,7 @@ contains
     real(wp), intent(in) :: t, q(6), u(6), c(3, 3), y(:)
     real(wp), intent(inout) :: load(6), dydt(:)
     real(wp) :: a(2), order
-    integer :: k
+    integer :: k, j
     ! the horizontal added masses that the ship's mass matrix holds: the MMG set's on the
     ! box (davit_ship_hull), the BEM ship's A(inf) (its memory adds the rest at low frequency)
     a = self%hull%added_mass(1:2)
@@ -427,7 +427,8 @@ contains
                                   level_to_body(q(3), c), u, delta, self%rps)
       if (self%autopilot%q(2) >= self%autopilot%q(1)) then
         k = self%autopilot%q(1)
-        call autopilot_order(self%steer, t, q(3), u(3), y(k:k + 2), order, dydt(k:k + 2))
+        j = self%autopilot%q(2)
+        call autopilot_order(self%steer, t, q(3), u(3), y(k:j), order, dydt(k:j))
       else
         order = rudder_order(self%steer, t, q(3), u(3))
       end if

@@ -30,9 +30,8 @@ TR, AH, XH, XR, EPS, KAPPA, LR, FA = 0.387, 0.312, -0.464 * L, -0.5 * L, 1.09, 0
 U0, RATE, START = 1.176, np.radians(15.68), 1.0
 
 
-def _forces(u, vm, r, delta, n):
-    """X, Y, N about midship (Yasukawa & Yoshimura 2015 eqs. 5-27)."""
-    h = HULL
+def _forces(u, vm, r, delta, n, h):
+    """X, Y, N about midship (Yasukawa & Yoshimura 2015 eqs. 5-27) with hull derivatives h."""
     speed = np.hypot(u, vm)
     v, rp, beta = vm / speed, r * L / speed, np.arctan(-vm / u)
     q = 0.5 * RHO * L * D * speed ** 2
@@ -65,26 +64,28 @@ def _self_propulsion():
     return (-b + np.sqrt(b * b - 4 * a * c)) / (2 * a)
 
 
-def reference(angle_deg, zigzag, t_end):
-    """Time, CG position (n, 2), heading, rudder of eq. 4's 3-DOF ship."""
+def reference(angle_deg, zigzag, t_end, gyradius=0.25, rps=None, rate=RATE, hull=None):
+    """Time, CG position (n, 2), heading, rudder of eq. 4's 3-DOF ship (yaw gyradius in
+    L, propeller revolutions [1/s] (None: self-propulsion), rudder rate [rad/s] and hull
+    derivatives as given: the deck's by default)."""
     m = RHO * VOL
     q2 = 0.5 * RHO * L ** 2 * D
     mx, my, jz = 0.022 * q2, 0.223 * q2, 0.011 * q2 * L ** 2
-    izg = m * (0.25 * L) ** 2
+    izg = m * (gyradius * L) ** 2
     mass = np.array([[m + mx, 0, 0], [0, m + my, XG * m], [0, XG * m, izg + XG ** 2 * m + jz]])
-    n = _self_propulsion()
+    n = rps or _self_propulsion()
     angle = np.radians(angle_deg)
 
     def rhs(t, y, side):
         u, vm, r, _, _, psi, delta = y
-        x, yf, nf = _forces(u, vm, r, delta, n)
+        x, yf, nf = _forces(u, vm, r, delta, n, hull or HULL)
         acc = np.linalg.solve(mass, [x + (m + my) * vm * r + XG * m * r ** 2,
                                      yf - (m + mx) * u * r, nf - XG * m * u * r])
         order = side * angle if t >= START else 0.0
-        rate = np.clip((order - delta) / 0.1, -RATE, RATE)
+        steer = np.clip((order - delta) / 0.1, -rate, rate)
         vg = vm + XG * r
         return [*acc, u * np.cos(psi) - vg * np.sin(psi), u * np.sin(psi) + vg * np.cos(psi),
-                r, rate]
+                r, steer]
 
     y = np.array([U0, 0, 0, 0, 0, 0, 0.0])
     pieces, t0, side = [], 0.0, 1.0
