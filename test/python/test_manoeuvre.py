@@ -150,6 +150,28 @@ def test_zigzag_overshoots_against_reference(runs, angle):
         assert g == pytest.approx(r, abs=0.15)
 
 
+def test_zigzag_faster_rudder_against_reference(davit, tmp_path):
+    """The 20/20 zig-zag with the steering gear twice as fast (31.36 deg/s): davit's
+    overshoots equal the reference solver's at that rate within 0.15 deg, and both are
+    more than 1.5 deg smaller than at 15.68 deg/s (the rudder checks the swing sooner)."""
+    deck = tmp_path / "fast.nml"
+    text = (ROOT / "input" / "kvlcc2_zigzag_20.nml").read_text()
+    assert "rudder_rate_deg = 15.68" in text
+    deck.write_text(text.replace("rudder_rate_deg = 15.68", "rudder_rate_deg = 31.36"))
+    out = tmp_path / "fast.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    t, _, yaw, rudder, _, switch = manoeuvre.load(out)
+    got = manoeuvre.overshoots(t, yaw, rudder, switch)
+    rt, _, ryaw, rrudder = reference(20.0, True, 100.0, rate=2 * RATE)
+    ref = manoeuvre.overshoots(rt, ryaw, rrudder, 20.0)
+    st, _, syaw, srudder = reference(20.0, True, 100.0)
+    slow = manoeuvre.overshoots(st, syaw, srudder, 20.0)
+    for g, r, s in zip(got, ref, slow):
+        assert g == pytest.approx(r, abs=0.15)
+        assert s - r > 1.5
+
+
 def test_measures_of_analytic_paths():
     """A circle of radius R entered at t = 1 s (heading psi = w (t - 1)): advance and
     transfer R, tactical diameter 2 R; a heading A sin(w t) with the rudder reversing at
@@ -200,7 +222,12 @@ def test_cli_prints_measures(runs):
     ("rudder_mode = 'spiral'",
      "&mmg: rudder_mode = 'spiral': unknown choice; allowed: one of 'autopilot' 'fixed' "
      "'turning' 'zigzag'"),
-    ("y_v = -12.0", "&mmg: y_v = -12.0: out of range; allowed: -10 <= y_v <= 10")])
+    ("y_v = -12.0", "&mmg: y_v = -12.0: out of range; allowed: -10 <= y_v <= 10"),
+    ("autopilot_notch = 'sometimes'",
+     "&mmg: autopilot_notch = 'sometimes': unknown choice; allowed: one of 'off' 'encounter'"),
+    ("autopilot_filter_order = 4",
+     "&mmg: autopilot_filter_order = 4: out of range; allowed: 1 <= autopilot_filter_order "
+     "<= 3 (integer)")])
 def test_bad_mmg_key_is_named(davit, tmp_path, line, message):
     """A bad &mmg key: exit 1, one error naming the file, line, group, key and the
     allowed range; no output file."""
