@@ -12,7 +12,7 @@ module test_mmg_bem
   use davit_ship_ship_model, only: ship_system_type, ship_loads
   use davit_core_slow_clock, only: slow_clock_type
   use davit_ship_rudder, only: rudder_type, rudder_order, autopilot_integral_rate, &
-                               autopilot_order, autopilot_states
+                               autopilot_order, autopilot_states, notch_period
   use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -31,10 +31,13 @@ contains
     type(suite_type) :: suite
     suite%name = "mmg_bem"
     suite%cases = [new_case("encounter_frequency_head_and_following", encounter), &
+                   new_case("encounter_frequency_kijima_ship", encounter_kijima), &
                    new_case("encounter_rate_in_the_wave_clock", wave_clock), &
                    new_case("calm_water_speed_held_at_self_propulsion", calm_speed), &
                    new_case("autopilot_integral_by_hand", integral_orders), &
-                   new_case("autopilot_wave_filter_by_hand", wave_filter)]
+                   new_case("autopilot_wave_filter_by_hand", wave_filter), &
+                   new_case("autopilot_cascade_by_hand", cascade), &
+                   new_case("autopilot_notch_gain_and_period", notch)]
   end function collect_mmg_bem
 
   !> The SOLAS headway deck as the ship alone ('ship' scene), its text with each
@@ -114,17 +117,38 @@ contains
   !> ship; with U left out of the phase it would be 12.72 s (checked > 5 % away).
   subroutine encounter(state)
     type(case_state), intent(inout) :: state
+    call encounter_periods(state, "mmg")
+  end subroutine encounter
+
+  !> The same with `&ship manoeuvring = 'kijima'` (linear derivatives, cross-flow drag and
+  !> a constant thrust instead of the MMG model): a ship making way meets the waves at
+  !> omega_e whatever its manoeuvring model (before, the 'kijima' ship's phases stayed at
+  !> its initial position and it met them at omega: 12.72 s).
+  subroutine encounter_kijima(state)
+    type(case_state), intent(inout) :: state
+    call encounter_periods(state, "kijima")
+  end subroutine encounter_kijima
+
+  !> The heave-force period of the encounter cases with `manoeuvring` as the ship's model.
+  subroutine encounter_periods(state, manoeuvring)
+    type(case_state), intent(inout) :: state
+    character(len=*), intent(in) :: manoeuvring
     character(len=6), parameter :: models(2) = [character(len=6) :: "bem", "fk_box"]
     real(wp), parameter :: directions(2) = [180.0_wp, 0.0_wp], dt = 0.02_wp
     type(ship_system_type) :: ship
     real(wp), allocatable :: y(:)
+    character(len=160) :: edits(2, 4)
     real(wp) :: f(10000), omega, k, we, tp, c(3, 3), q(6), u(6), load(6)
     integer :: i, j, m
     omega = 2.0_wp*pi/period
     k = omega**2/gravity
     do m = 1, 2
       do j = 1, 2
-        call headway_ship(wave_edits(directions(j), trim(models(m)), ""), ship, y)
+        edits(:, 1:3) = wave_edits(directions(j), trim(models(m)), "")
+        edits(:, 4) = [character(len=160) :: "manoeuvring = 'mmg'", &
+                       "manoeuvring = '"//manoeuvring//"'"]
+        call headway_ship(edits, ship, y)
+        call check_true(state, ship%par%mmg_on .eqv. manoeuvring == "mmg", "manoeuvring model")
         q = y(ship%par%body%q(1):ship%par%body%q(2))
         u = y(ship%par%body%u(1):ship%par%body%u(2))
         c = rotation_matrix(q(1:3))
@@ -134,14 +158,14 @@ contains
         end do
         we = omega - k*headway*cos(directions(j)*deg)
         tp = crossing_period(f, dt)
-        call note(state, trim(models(m))//" heave-force period [s]", tp)
+        call note(state, manoeuvring//" "//trim(models(m))//" heave-force period [s]", tp)
         call check(state, tp, 2.0_wp*pi/we, trim(models(m))//": period 2 pi/omega_e", &
                    rel_tol=0.01_wp)
         call check_true(state, abs(tp/period - 1.0_wp) > 0.05_wp, &
                         "encounter period apart from the wave's")
       end do
     end do
-  end subroutine encounter
+  end subroutine encounter_periods
 
   !> With `&simulation wave_update = 0.1` the BEM ship's wave loads come from cubic Hermite
   !> interpolation of samples and their rates; the rates are those of the encounter phase
@@ -283,5 +307,99 @@ contains
     call check(state, real(autopilot_states(s), wp), 3.0_wp, "filtered PD: three", &
                abs_tol=0.0_wp)
   end subroutine wave_filter
+
+  !> Two low-pass stages (filter_order = 2, T = 5 s) by hand: x = (z, e_1, e_2, r_1, r_2),
+  !> rates (e_2, (e - e_1)/T, (e_1 - e_2)/T, (r - r_1)/T, (r_1 - r_2)/T), the order
+  !> -kp e_2 - kd r_2 - ki z on the last stages; five states.
+  subroutine cascade(state)
+    type(case_state), intent(inout) :: state
+    type(rudder_type) :: s
+    real(wp) :: order, xdot(5), x(5)
+    s%mode = "autopilot"
+    s%kp = 10.0_wp
+    s%kd = 20.0_wp
+    s%ki = 0.1_wp
+    s%max_angle = 35.0_wp*deg
+    s%heading = 0.1_wp
+    s%filter = 5.0_wp
+    s%filter_order = 2
+    x = [0.2_wp, 0.01_wp, 0.02_wp, -0.002_wp, 0.001_wp]
+    call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
+    call check(state, order, -10.0_wp*0.02_wp - 20.0_wp*0.001_wp - 0.1_wp*0.2_wp, &
+               "order on the last stages", abs_tol=1e-14_wp)
+    call check(state, xdot(1), 0.02_wp, "integral of the filtered error", abs_tol=1e-14_wp)
+    call check(state, xdot(2), (0.03_wp - 0.01_wp)/5.0_wp, "first error stage", &
+               abs_tol=1e-14_wp)
+    call check(state, xdot(3), (0.01_wp - 0.02_wp)/5.0_wp, "second error stage", &
+               abs_tol=1e-14_wp)
+    call check(state, xdot(4), (0.004_wp + 0.002_wp)/5.0_wp, "first rate stage", &
+               abs_tol=1e-14_wp)
+    call check(state, xdot(5), (-0.002_wp - 0.001_wp)/5.0_wp, "second rate stage", &
+               abs_tol=1e-14_wp)
+    call check(state, real(autopilot_states(s), wp), 5.0_wp, "five states", abs_tol=0.0_wp)
+  end subroutine cascade
+
+  !> The autopilot's notch (a P on the heading error, kp = 1, no low-pass) driven by a
+  !> heading error A sin(w t), integrated by RK4: the steady order's amplitude is A |N(i w)|
+  !> with N(s) = (s^2 + w0^2)/(s^2 + 2 zeta w0 s + w0^2), zeta = 0.5: zero at w = w0 (below
+  !> 1 % of A), 0.9949 A at w0/10 and 0.9949 A at 10 w0 (within 0.5 %); seven states. The
+  !> notch's period for a wave of 12.72 s towards 45 deg met at 2.57 m/s along x:
+  !> 2 pi/(w - k U cos 45) = 14.00 s; for waves met from ahead, 2 pi/(w + k U).
+  subroutine notch(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: w0 = 0.45_wp, ratio(3) = [1.0_wp, 0.1_wp, 10.0_wp]
+    real(wp), parameter :: gain(3) = [0.0_wp, 0.99_wp/sqrt(0.99_wp**2 + 0.01_wp), &
+                                      99.0_wp/sqrt(99.0_wp**2 + 100.0_wp)]
+    type(rudder_type) :: s
+    real(wp) :: w, omega, k, amp
+    integer :: j
+    s%mode = "autopilot"
+    s%kp = 1.0_wp
+    s%kd = 0.0_wp
+    s%max_angle = 35.0_wp*deg
+    s%notch = 2.0_wp*pi/w0
+    call check(state, real(autopilot_states(s), wp), 7.0_wp, "seven states", abs_tol=0.0_wp)
+    do j = 1, 3
+      w = ratio(j)*w0
+      amp = steady_amplitude(s, w)
+      call note(state, "order amplitude / A", amp/0.01_wp)
+      call check(state, amp/0.01_wp, gain(j), "|N(i w)|", abs_tol=merge(0.01_wp, 0.005_wp, j == 1))
+    end do
+    omega = 2.0_wp*pi/12.72_wp
+    k = omega**2/gravity
+    call check(state, notch_period([omega], [k*cos(45.0_wp*deg)], [k*sin(45.0_wp*deg)], &
+                                   [2.0_wp], [2.57_wp, 0.0_wp]), &
+               2.0_wp*pi/(omega - k*2.57_wp*cos(45.0_wp*deg)), "encounter period 45 deg", &
+               rel_tol=1e-12_wp)
+    call check(state, notch_period([omega, 2.0_wp*omega], [-k, -4.0_wp*k], [0.0_wp, 0.0_wp], &
+                                   [2.0_wp, 0.1_wp], [2.57_wp, 0.0_wp]), &
+               2.0_wp*pi/(omega + k*2.57_wp), "the largest component, head sea", &
+               rel_tol=1e-12_wp)
+  end subroutine notch
+
+  !> Amplitude of the autopilot's order over the second half of 40 periods (of w or of the
+  !> notch, the longer; RK4, 400 steps each) of a heading error 0.01 sin(w t).
+  real(wp) function steady_amplitude(s, w) result(amp)
+    type(rudder_type), intent(in) :: s
+    real(wp), intent(in) :: w
+    real(wp) :: x(7), k1(7), k2(7), k3(7), k4(7), order, t, h, tp
+    integer :: i, n
+    tp = max(2.0_wp*pi/w, s%notch)
+    h = tp/400.0_wp
+    n = 40*400
+    x = 0.0_wp
+    t = 0.0_wp
+    amp = 0.0_wp
+    do i = 1, n
+      call autopilot_order(s, t, 0.01_wp*sin(w*t), 0.0_wp, x, order, k1)
+      call autopilot_order(s, t, 0.01_wp*sin(w*(t + h/2)), 0.0_wp, x + h/2*k1, order, k2)
+      call autopilot_order(s, t, 0.01_wp*sin(w*(t + h/2)), 0.0_wp, x + h/2*k2, order, k3)
+      call autopilot_order(s, t, 0.01_wp*sin(w*(t + h)), 0.0_wp, x + h*k3, order, k4)
+      x = x + h/6*(k1 + 2*k2 + 2*k3 + k4)
+      t = t + h
+      call autopilot_order(s, t, 0.01_wp*sin(w*t), 0.0_wp, x, order, k1)
+      if (i > n/2) amp = max(amp, abs(order))
+    end do
+  end function steady_amplitude
 
 end module test_mmg_bem

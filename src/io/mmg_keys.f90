@@ -163,9 +163,19 @@ contains
                 "Autopilot: rudder angle per time integral of the heading error (the I "// &
                 "of a PID, against steady yaw moments such as the wind's); 0 = PD only.")
     call r%real(g, "autopilot_filter", s%filter, 0.0_wp, 0.0_wp, 100.0_wp, "s", &
-                "Autopilot: time constant of its wave filter, a first-order low-pass on "// &
+                "Autopilot: time constant of its wave filter, first-order low-pass stages on "// &
                 "the heading error and yaw rate it steers by, so that the rudder does not "// &
                 "chase the wave-frequency yaw; 0 = unfiltered.")
+    call r%int(g, "autopilot_filter_order", s%filter_order, 1, 1, 3, "-", &
+               "Autopilot: how many such low-pass stages in cascade (1: -20 dB/decade "// &
+               "above 1/autopilot_filter, 2: -40, 3: -60), for a wave frequency close "// &
+               "to the steering's.")
+    call r%choice(g, "autopilot_notch", mode, "off", [character(len=9) :: "off", "encounter"], &
+                  "Autopilot: 'encounter' passes the heading error and yaw rate through a "// &
+                  "notch filter at the encounter period of the sea's largest wave "// &
+                  "component at the headway, 2 pi/(omega - k U cos(beta)), so that the "// &
+                  "rudder does not answer the wave-frequency yaw; 'off': no notch.")
+    s%notch_encounter = mode == "encounter"
   end subroutine read_steering
 
 end module davit_io_mmg_keys

@@ -14,7 +14,7 @@
 !> BEM ship ('bem', davit_ship_bem_loads: Cummins' equation from a Capytaine database,
 !> whose radiation memory adds a second part "ship_radiation" of states to the layout).
 !> The manoeuvring, cross-flow, resistance, wind and heading-keeping loads serve both.
-!> With the MMG model (set_mmg) the ship making way is split in two time scales: the
+!> A ship making way (either manoeuvring model) is split in two time scales: the
 !> manoeuvring forces in the horizontal-body frame, the linear seakeeping (wave loads,
 !> radiation memory) about a frame moving at the headway along the initial heading, so
 !> the waves are met at their encounter frequencies and the memory (zero-speed kernels)
@@ -119,6 +119,10 @@ contains
       air = ship_wind_load(hull%wind, [-headway, 0.0_wp, 0.0_wp])
       par%thrust = 0.0_wp
       if (hull%empirical) par%thrust = -(water(1) + air(1))
+      ! a ship making way (either manoeuvring model) meets the waves at omega_e: the
+      ! seakeeping frame moves at the headway along the initial heading
+      par%frame_speed = headway
+      par%frame_velocity = headway*[cos(heading), sin(heading)]
       allocate (self%hist%fk_sin(6, sea%n), self%hist%fk_cos(6, sea%n))
       call refresh_heading(self%hist, par, heading)
       call par%layout%add("ship", 6, 6, par%body)
@@ -180,9 +184,9 @@ contains
 
   !> Switch to the MMG manoeuvring model p with the steering `steer` (its heading: the
   !> initial one) and the propeller at `rps` (0: the self-propulsion point at `headway`);
-  !> the rudder angle joins the state as part "ship_rudder". The seakeeping frame then
-  !> moves at `headway` along the initial heading (the two-time-scale split: manoeuvring
-  !> in the horizontal-body frame, seakeeping about this steady motion).
+  !> the rudder angle joins the state as part "ship_rudder". The seakeeping frame moves at
+  !> `headway` along the initial heading (new_ship_system; the two-time-scale split:
+  !> manoeuvring in the horizontal-body frame, seakeeping about this steady motion).
   subroutine set_mmg(self, p, steer, rps, headway)
     class(ship_system_type), intent(inout) :: self
     type(mmg_type), intent(in) :: p
@@ -202,9 +206,6 @@ contains
         extra = -air(1)
       end if
       if (rps <= 0.0_wp) par%rps = mmg_self_propulsion(p, headway, extra)
-      ! the seakeeping frame moves with the ship's mean heading and speed
-      par%frame_speed = headway
-      par%frame_velocity = headway*[cos(psi), sin(psi)]
       call par%layout%add("ship_rudder", 1, 0, par%rudder)
       if (autopilot_states(steer) > 0) then
         call par%layout%add("ship_autopilot", autopilot_states(steer), 0, par%autopilot)
@@ -332,7 +333,7 @@ contains
     real(wp), intent(in) :: t, q(6), u(6), c(3, 3), y(:)
     real(wp), intent(inout) :: load(6), dydt(:)
     real(wp) :: a(2), order
-    integer :: k
+    integer :: k, j
     ! the horizontal added masses that the ship's mass matrix holds: the MMG set's on the
     ! box (davit_ship_hull), the BEM ship's A(inf) (its memory adds the rest at low frequency)
     a = par%hull%added_mass(1:2)
@@ -342,7 +343,8 @@ contains
                                   level_to_body(q(3), c), u, delta, par%rps)
       if (par%autopilot%q(2) >= par%autopilot%q(1)) then
         k = par%autopilot%q(1)
-        call autopilot_order(steer, t, q(3), u(3), y(k:k + 2), order, dydt(k:k + 2))
+        j = par%autopilot%q(2)
+        call autopilot_order(steer, t, q(3), u(3), y(k:j), order, dydt(k:j))
       else
         order = rudder_order(steer, t, q(3), u(3))
       end if

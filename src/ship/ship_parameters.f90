@@ -36,8 +36,8 @@ module davit_ship_ship_parameters
     logical :: phase_at_initial = .true.
     !> That initial horizontal position [m] (box: O'; BEM ship: the CG).
     real(wp) :: origin(2) = 0.0_wp
-    !> The seakeeping frame of a ship making way (set_mmg): it moves at the headway U along
-    !> the initial heading, frame_velocity = U (cos psi_0, sin psi_0) [m/s], so the linear
+    !> The seakeeping frame of a ship making way (any headway): it moves at the headway U
+    !> along the initial heading, frame_velocity = U (cos psi_0, sin psi_0) [m/s], so the linear
     !> wave loads see the phase at origin + frame_velocity t, hence the encounter
     !> frequency omega_e = omega - k U cos(beta); the radiation memory is fed the speeds
     !> relative to it, (u - U, v, w) (frame_speed = U [m/s]). Zero: the frame at rest.

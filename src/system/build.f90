@@ -23,6 +23,7 @@ module davit_system_build
   use davit_rigging_rigging, only: new_rigging
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_mmg, only: mmg_type
+  use davit_ship_rudder, only: rudder_type, notch_period
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
   use davit_ship_bem_database, only: bem_database_type, read_bem_database
   use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
@@ -190,11 +191,18 @@ contains
     type(ship_system_type), intent(inout) :: ship
     type(config_type), intent(in) :: cfg
     type(mmg_type) :: p
+    type(rudder_type) :: steer
     associate (s => cfg%ship)
       p = s%mmg
       p%lpp = s%lpp
       p%draught = s%draught
-      call ship%set_mmg(p, s%rudder, s%rps, s%headway)
+      steer = s%rudder
+      ! the autopilot's notch at the waves' encounter period (the frame moves at the headway)
+      if (steer%notch_encounter .and. ship%par%sea%n > 0) then
+        steer%notch = notch_period(ship%par%sea%omega, ship%par%sea%kx, ship%par%sea%ky, &
+                                   ship%par%sea%amplitude, ship%par%frame_velocity)
+      end if
+      call ship%set_mmg(p, steer, s%rps, s%headway)
     end associate
   end subroutine new_mmg
 

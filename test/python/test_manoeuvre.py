@@ -30,9 +30,8 @@ TR, AH, XH, XR, EPS, KAPPA, LR, FA = 0.387, 0.312, -0.464 * L, -0.5 * L, 1.09, 0
 U0, RATE, START = 1.176, np.radians(15.68), 1.0
 
 
-def _forces(u, vm, r, delta, n):
-    """X, Y, N about midship (Yasukawa & Yoshimura 2015 eqs. 5-27)."""
-    h = HULL
+def _forces(u, vm, r, delta, n, h):
+    """X, Y, N about midship (Yasukawa & Yoshimura 2015 eqs. 5-27) with hull derivatives h."""
     speed = np.hypot(u, vm)
     v, rp, beta = vm / speed, r * L / speed, np.arctan(-vm / u)
     q = 0.5 * RHO * L * D * speed ** 2
@@ -65,26 +64,28 @@ def _self_propulsion():
     return (-b + np.sqrt(b * b - 4 * a * c)) / (2 * a)
 
 
-def reference(angle_deg, zigzag, t_end):
-    """Time, CG position (n, 2), heading, rudder of eq. 4's 3-DOF ship."""
+def reference(angle_deg, zigzag, t_end, gyradius=0.25, rps=None, rate=RATE, hull=None):
+    """Time, CG position (n, 2), heading, rudder of eq. 4's 3-DOF ship (yaw gyradius in
+    L, propeller revolutions [1/s] (None: self-propulsion), rudder rate [rad/s] and hull
+    derivatives as given: the deck's by default)."""
     m = RHO * VOL
     q2 = 0.5 * RHO * L ** 2 * D
     mx, my, jz = 0.022 * q2, 0.223 * q2, 0.011 * q2 * L ** 2
-    izg = m * (0.25 * L) ** 2
+    izg = m * (gyradius * L) ** 2
     mass = np.array([[m + mx, 0, 0], [0, m + my, XG * m], [0, XG * m, izg + XG ** 2 * m + jz]])
-    n = _self_propulsion()
+    n = rps or _self_propulsion()
     angle = np.radians(angle_deg)
 
     def rhs(t, y, side):
         u, vm, r, _, _, psi, delta = y
-        x, yf, nf = _forces(u, vm, r, delta, n)
+        x, yf, nf = _forces(u, vm, r, delta, n, hull or HULL)
         acc = np.linalg.solve(mass, [x + (m + my) * vm * r + XG * m * r ** 2,
                                      yf - (m + mx) * u * r, nf - XG * m * u * r])
         order = side * angle if t >= START else 0.0
-        rate = np.clip((order - delta) / 0.1, -RATE, RATE)
+        steer = np.clip((order - delta) / 0.1, -rate, rate)
         vg = vm + XG * r
         return [*acc, u * np.cos(psi) - vg * np.sin(psi), u * np.sin(psi) + vg * np.cos(psi),
-                r, rate]
+                r, steer]
 
     y = np.array([U0, 0, 0, 0, 0, 0, 0.0])
     pieces, t0, side = [], 0.0, 1.0
@@ -149,6 +150,28 @@ def test_zigzag_overshoots_against_reference(runs, angle):
         assert g == pytest.approx(r, abs=0.15)
 
 
+def test_zigzag_faster_rudder_against_reference(davit, tmp_path):
+    """The 20/20 zig-zag with the steering gear twice as fast (31.36 deg/s): davit's
+    overshoots equal the reference solver's at that rate within 0.15 deg, and both are
+    more than 1.5 deg smaller than at 15.68 deg/s (the rudder checks the swing sooner)."""
+    deck = tmp_path / "fast.nml"
+    text = (ROOT / "input" / "kvlcc2_zigzag_20.nml").read_text()
+    assert "rudder_rate_deg = 15.68" in text
+    deck.write_text(text.replace("rudder_rate_deg = 15.68", "rudder_rate_deg = 31.36"))
+    out = tmp_path / "fast.h5"
+    result = davit("run", deck, "-o", out)
+    assert result.returncode == 0, result.stderr
+    t, _, yaw, rudder, _, switch = manoeuvre.load(out)
+    got = manoeuvre.overshoots(t, yaw, rudder, switch)
+    rt, _, ryaw, rrudder = reference(20.0, True, 100.0, rate=2 * RATE)
+    ref = manoeuvre.overshoots(rt, ryaw, rrudder, 20.0)
+    st, _, syaw, srudder = reference(20.0, True, 100.0)
+    slow = manoeuvre.overshoots(st, syaw, srudder, 20.0)
+    for g, r, s in zip(got, ref, slow):
+        assert g == pytest.approx(r, abs=0.15)
+        assert s - r > 1.5
+
+
 def test_measures_of_analytic_paths():
     """A circle of radius R entered at t = 1 s (heading psi = w (t - 1)): advance and
     transfer R, tactical diameter 2 R; a heading A sin(w t) with the rudder reversing at
@@ -199,7 +222,12 @@ def test_cli_prints_measures(runs):
     ("rudder_mode = 'spiral'",
      "&mmg: rudder_mode = 'spiral': unknown choice; allowed: one of 'autopilot' 'fixed' "
      "'turning' 'zigzag'"),
-    ("y_v = -12.0", "&mmg: y_v = -12.0: out of range; allowed: -10 <= y_v <= 10")])
+    ("y_v = -12.0", "&mmg: y_v = -12.0: out of range; allowed: -10 <= y_v <= 10"),
+    ("autopilot_notch = 'sometimes'",
+     "&mmg: autopilot_notch = 'sometimes': unknown choice; allowed: one of 'off' 'encounter'"),
+    ("autopilot_filter_order = 4",
+     "&mmg: autopilot_filter_order = 4: out of range; allowed: 1 <= autopilot_filter_order "
+     "<= 3 (integer)")])
 def test_bad_mmg_key_is_named(davit, tmp_path, line, message):
     """A bad &mmg key: exit 1, one error naming the file, line, group, key and the
     allowed range; no output file."""
