@@ -34,6 +34,7 @@ module davit_ship_rudder
     !> unfiltered). A cascade of two or three rolls off the encounter-frequency yaw
     !> (-40, -60 dB/decade) that one stage passes to a rate-limited rudder.
     real(wp) :: filter = 0.0_wp
+    !> Low-pass stages in cascade on the heading error and on the yaw rate (1-3).
     integer :: filter_order = 1
     !> Period [s] of the autopilot's notch filter, the encounter period of the waves whose
     !> yaw the rudder is not to answer (0: off): N(s) = (s^2 + w0^2)/(s^2 + 2 zeta w0 s +
@@ -56,8 +57,11 @@ contains
   !> out a steady yaw moment such as the wind's); before `start` the manoeuvres hold the
   !> rudder amidships.
   pure real(wp) function rudder_order(self, t, psi, r, z) result(order)
+    !> The steering (mode, gains, limits, set-point).
     type(rudder_type), intent(in) :: self
+    !> Time [s], heading psi [rad] and yaw rate r [rad/s] (ship's horizontal frame).
     real(wp), intent(in) :: t, psi, r
+    !> Time integral of the heading error [rad s] (PID autopilot; absent: PD).
     real(wp), intent(in), optional :: z
     select case (self%mode)
     case ("autopilot")
@@ -76,7 +80,9 @@ contains
   !> The rate of the autopilot's integral z of the heading error psi - psi_0, held while
   !> its share of the order alone passes the angle limit in the same sense (anti-windup).
   pure real(wp) function autopilot_integral_rate(self, psi, z) result(zdot)
+    !> The autopilot (gains, set-point, angle limit).
     type(rudder_type), intent(in) :: self
+    !> Heading [rad] and the integral of its error so far [rad s].
     real(wp), intent(in) :: psi, z
     zdot = psi - self%heading
     if (self%ki*abs(z) >= self%max_angle .and. zdot*z > 0.0_wp) zdot = 0.0_wp
@@ -86,6 +92,7 @@ contains
   !> filter stages of the heading error and of the yaw rate (filter_order each), or none
   !> for a plain PD.
   pure integer function autopilot_states(self) result(n)
+    !> The steering whose autopilot's state count is asked.
     type(rudder_type), intent(in) :: self
     n = 0
     if (self%mode == "autopilot" .and. (self%ki > 0.0_wp .or. self%filter > 0.0_wp .or. &
@@ -100,8 +107,13 @@ contains
   !> (e_(k-1) - e_k)/T, the same for r (T = filter; off: the stages unused), the PID on the
   !> last stages e_m, r_m, the integral of e_m.
   pure subroutine autopilot_order(self, t, psi, r, x, order, xdot)
+    !> The autopilot (gains, filters, notch, set-point, limits).
     type(rudder_type), intent(in) :: self
+    !> Time [s], heading [rad], yaw rate [rad/s] and the autopilot's states x = (z, e_1 ..
+    !> e_m, r_1 .. r_m[, notch states]) [rad s, rad, rad/s].
     real(wp), intent(in) :: t, psi, r, x(:)
+    !> The rudder order [rad], within the angle limit (the sign convention of
+    !> rudder_order), and the states' rates.
     real(wp), intent(out) :: order, xdot(size(x))
     real(wp) :: e, rf
     integer :: m, k
@@ -145,6 +157,8 @@ contains
   !> wave numbers kx, ky, amplitudes a) met by a frame moving at `velocity` (x, y):
   !> 2 pi/|omega - kx U_x - ky U_y|; 0 for no waves or a component met at zero frequency.
   pure real(wp) function notch_period(omega, kx, ky, a, velocity) result(period)
+    !> The sea's components: frequencies [rad/s], wave numbers along x and y [1/m],
+    !> amplitudes [m]; the frame's velocity (x, y) [m/s], inertial.
     real(wp), intent(in) :: omega(:), kx(:), ky(:), a(:), velocity(2)
     real(wp) :: we
     integer :: i
@@ -157,7 +171,9 @@ contains
 
   !> The steering gear: delta' = (order - delta)/tau within +-rate.
   pure real(wp) function rudder_rate(self, delta, order) result(rate)
+    !> The steering gear (its rate limit).
     type(rudder_type), intent(in) :: self
+    !> Rudder angle and its order [rad].
     real(wp), intent(in) :: delta, order
     rate = max(-self%rate, min(self%rate, (order - delta)/rudder_servo_time))
   end function rudder_rate
@@ -165,7 +181,9 @@ contains
   !> Zig-zag logic after each step: the order goes to port once the heading has changed by
   !> +switch (to starboard), and back to starboard at -switch.
   pure subroutine rudder_switch(self, t, psi)
+    !> The zig-zag steering, its order switched.
     type(rudder_type), intent(inout) :: self
+    !> Time [s] and heading [rad] after the step.
     real(wp), intent(in) :: t, psi
     if (self%mode /= "zigzag" .or. t < self%start) return
     if (self%side > 0.0_wp .and. psi - self%heading >= self%switch) self%side = -1.0_wp

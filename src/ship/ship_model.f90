@@ -86,14 +86,21 @@ contains
                              phase_at_initial, headway, clock, bem)
     ! 11 arguments: the ship's parts as the deck gives them (hull, sea, wind, pose, switches,
     ! slow clock)
+    !> The ship built.
     type(ship_system_type), intent(out) :: self
+    !> Its hull: dimensions, mass and inertia, empirical load coefficients.
     type(hull_type), intent(in) :: hull
+    !> The sea it floats in.
     type(wave_field_type), intent(in) :: sea
+    !> The wind on its superstructure.
     type(wind_type), intent(in) :: wind
+    !> A ship held still (no rates); wave phases taken at the initial position.
     logical, intent(in) :: frozen, phase_at_initial
+    !> Initial CG position (inertial) [m], heading [rad] and headway [m/s].
     real(wp), intent(in) :: position(3), heading, headway
     !> The slow clock of the Froude-Krylov loads (rule clock_grid; interval 0: off).
     type(slow_clock_type), intent(in) :: clock
+    !> The BEM hydrodynamics (absent: the box ship's).
     type(bem_ship_type), intent(in), optional :: bem
     real(wp) :: water(6), air(6)
     self%hist%clock = clock
@@ -135,7 +142,10 @@ contains
   !> The state part of a ship at attitude euler, CG position, angular velocity omega and
   !> velocity v (ship axes): q then u, as the layout registers them.
   pure function ship_state(self, euler, position, omega, v) result(y)
+    !> The ship (its state layout).
     class(ship_system_type), intent(in) :: self
+    !> Euler angles [rad], CG position (inertial) [m], angular velocity [rad/s] and CG
+    !> velocity [m/s] (ship axes).
     real(wp), intent(in) :: euler(3), position(3), omega(3), v(3)
     real(wp) :: y(self%par%layout%n)
     y = 0.0_wp
@@ -145,7 +155,9 @@ contains
   !> Switch the BEM ship's wave drift to `level` (its database must hold the coefficients:
   !> davit_system_build checks).
   pure subroutine set_drift(self, level)
+    !> The BEM ship whose drift level is set.
     class(ship_system_type), intent(inout) :: self
+    !> drift_none, drift_mean or drift_newman (davit_ship_wave_drift).
     integer, intent(in) :: level
     self%par%drift = level
     if (level == drift_none .or. .not. self%par%bem) return
@@ -158,8 +170,11 @@ contains
   !> anchored at the current state; with `integral`, a PID: integral gain k w/10 (integral
   !> time 10/w, slow against the period), its states registered as part "ship_control".
   subroutine set_mooring(self, period, zeta, y, integral)
+    !> The ship moored (its gains and, with `integral`, its control states).
     class(ship_system_type), intent(inout) :: self
+    !> Natural periods of surge, sway and yaw [s], damping ratio [-], the state anchored at.
     real(wp), intent(in) :: period(3), zeta, y(:)
+    !> Whether to add the integral term (a PID autopilot or DP).
     logical, intent(in), optional :: integral
     real(wp) :: inertia(3)
     associate (par => self%par)
@@ -188,9 +203,13 @@ contains
   !> `headway` along the initial heading (new_ship_system; the two-time-scale split:
   !> manoeuvring in the horizontal-body frame, seakeeping about this steady motion).
   subroutine set_mmg(self, p, steer, rps, headway)
+    !> The ship switched to MMG manoeuvring.
     class(ship_system_type), intent(inout) :: self
+    !> The MMG coefficients (hull, propeller, rudder).
     type(mmg_type), intent(in) :: p
+    !> The steering: manoeuvre or autopilot, gains, limits.
     type(rudder_type), intent(in) :: steer
+    !> Propeller revolutions [1/s] (0: self-propulsion) and headway [m/s].
     real(wp), intent(in) :: rps, headway
     real(wp) :: air(6), extra
     associate (par => self%par, psi => self%hist%psi_ref)
@@ -216,6 +235,7 @@ contains
   !> Move the heading set-point of the heading keeping to psi [rad] (an operator turning
   !> the ship between steps).
   pure subroutine set_heading(self, psi)
+    !> The ship whose set-point moves.
     class(ship_system_type), intent(inout) :: self
     !> New set-point [rad].
     real(wp), intent(in) :: psi
@@ -224,18 +244,21 @@ contains
 
   !> The heading set-point of the heading keeping [rad].
   pure real(wp) function heading_setpoint(self)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
     heading_setpoint = self%hist%anchor(3)
   end function heading_setpoint
 
   !> The heading [rad] the wave coefficients are computed for.
   pure real(wp) function heading_reference(self)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
     heading_reference = self%hist%psi_ref
   end function heading_reference
 
   !> The slow clock of the Froude-Krylov loads (a copy: its window and whether it holds).
   pure function wave_clock(self) result(clock)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
     type(slow_clock_type) :: clock
     clock = self%hist%clock
@@ -244,6 +267,7 @@ contains
   !> Froude-Krylov coefficients (sin, cos parts) of DOF j for wave component i at the
   !> reference heading [N, N m].
   pure function wave_coefficients(self, j, i) result(coef)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
     !> DOF (1..6: X, Y, Z, K, M, N) and wave component.
     integer, intent(in) :: j, i
@@ -254,7 +278,9 @@ contains
   !> The after-step hook: the steering's switches, the heading-dependent coefficients when
   !> the yaw has drifted, and the slow clock of the Froude-Krylov loads.
   subroutine ship_after_step(self, t, y)
+    !> The ship, its history advanced.
     class(ship_system_type), intent(inout) :: self
+    !> Time [s] and the accepted state.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: yaw
     associate (par => self%par, hist => self%hist)
@@ -271,9 +297,13 @@ contains
 
   !> The ship alone: its Kane blocks and eq. 89.
   subroutine ship_rhs(self, t, y, dydt)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
+    !> Time [s].
     real(wp), intent(in) :: t
+    !> The ship's state.
     real(wp), intent(in) :: y(:)
+    !> Its rates.
     real(wp), intent(out) :: dydt(:)
     real(wp) :: kane(3, size(y))
     call self%kane_blocks(t, y, dydt, kane)
@@ -287,8 +317,11 @@ contains
   !> BEM ship's minus its radiation memory, whose states it advances). A frozen ship has
   !> no rates.
   subroutine ship_kane_blocks(self, t, y, dydt, kane)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
+    !> Time [s] and the state.
     real(wp), intent(in) :: t, y(:)
+    !> The rates of its q and of its other states, and its Kane blocks (davit_core_kane).
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     real(wp) :: c(3, 3), m(3, 3), load(6), mu(6), vh(3)
     if (self%par%frozen) then
@@ -366,7 +399,10 @@ contains
 
   !> All external loads (X, Y, Z, K, M, N) in ship axes about G.
   function ship_loads(self, t, q, u, c) result(load)
+    !> The ship.
     class(ship_system_type), intent(in) :: self
+    !> Time [s], Euler angles and CG position [rad, m], speeds (Kane order), rotation ship
+    !> -> inertial.
     real(wp), intent(in) :: t, q(6), u(6), c(3, 3)
     real(wp) :: load(6)
     real(wp) :: fz, wz, p, vrel(3), o(2)

@@ -46,8 +46,11 @@ contains
 
   !> Build the system from a validated configuration.
   subroutine new_system(self, cfg, error)
+    !> The system built: parameters, history, layout and integrator choices.
     type(system_type), intent(out) :: self
+    !> The deck's configuration, validated.
     type(config_type), intent(in) :: cfg
+    !> Allocated when a part cannot be built (e.g. a database that cannot be read).
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: ea
     associate (par => self%par, s => cfg%slings)
@@ -141,10 +144,15 @@ contains
   !> The ship of the deck in the sea and wind given: the paper's box or (&ship model =
   !> 'bem') the BEM ship of its database.
   subroutine new_ship(ship, cfg, sea, wind, error)
+    !> The ship built.
     type(ship_system_type), intent(out) :: ship
+    !> The deck's configuration (&ship, &simulation).
     type(config_type), intent(in) :: cfg
+    !> The sea the ship floats in.
     type(wave_field_type), intent(in) :: sea
+    !> The wind on it.
     type(wind_type), intent(in) :: wind
+    !> Allocated when its BEM database cannot be read or does not fit the deck.
     type(error_type), allocatable, intent(out) :: error
     type(hull_type) :: hull
     type(bem_database_type) :: db
@@ -284,9 +292,13 @@ contains
   !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as
   !> &rigging initial says; the quasi-static sheaves' unstretched lengths are set here).
   subroutine initial_state(self, cfg, y, error)
+    !> The system (the rigging's unstretched lengths set here).
     type(system_type), intent(inout) :: self
+    !> The deck's configuration (initial pose, rigging start).
     type(config_type), intent(in) :: cfg
+    !> The initial state vector.
     real(wp), allocatable, intent(out) :: y(:)
+    !> Allocated when the rigging's start cannot be balanced.
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: c(3, 3), hook_pos(3, nslings), hook_vel(3, nslings), residual
     real(wp) :: heads(3, nslings), head_vel(3, nslings)
@@ -350,7 +362,9 @@ contains
   !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's
   !> position; making its headway; no radiation memory yet.
   pure function ship_initial_state(ship, cfg) result(y)
+    !> The ship (its state layout).
     type(ship_system_type), intent(in) :: ship
+    !> The deck's configuration (&ship pose and headway).
     type(config_type), intent(in) :: cfg
     real(wp) :: y(ship%par%layout%n)
     y = ship_state(ship, [cfg%ship%list, cfg%ship%trim, cfg%ship%heading], &
