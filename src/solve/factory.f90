@@ -74,27 +74,13 @@ contains
     case ("multirate")
       allocate (multirate_type :: integrator)
     case ("multirate2")
-      allocate (multirate_type :: integrator)
-      select type (integrator)
-      type is (multirate_type)
-        integrator%c = [0.5_wp, 1.0_wp]
-      end select
+      allocate (integrator, source=multirate_type(c=[0.5_wp, 1.0_wp]))
     case ("mri2")
-      allocate (multirate_type :: integrator)
-      select type (integrator)
-      type is (multirate_type)
-        integrator%c = [0.5_wp, 1.0_wp]
-        integrator%chained = .true.
-        integrator%gamma = reshape([0.5_wp, -0.5_wp, 0.0_wp, 1.0_wp], [2, 2])
-      end select
+      ! MRI-GARK-ERK22a: stage ends 1/2, 1; gamma rows [1/2, 0], [-1/2, 1]
+      allocate (integrator, source=chained([0.5_wp, 1.0_wp], [0.5_wp, -0.5_wp, 0.0_wp, 1.0_wp]))
     case ("mri2b")
-      allocate (multirate_type :: integrator)
-      select type (integrator)
-      type is (multirate_type)
-        integrator%c = [1.0_wp, 1.0_wp]
-        integrator%chained = .true.
-        integrator%gamma = reshape([1.0_wp, -0.5_wp, 0.0_wp, 0.5_wp], [2, 2])
-      end select
+      ! MRI-GARK-ERK22b: stage ends 1, 1 (the second of zero length); rows [1, 0], [-1/2, 1/2]
+      allocate (integrator, source=chained([1.0_wp, 1.0_wp], [1.0_wp, -0.5_wp, 0.0_wp, 0.5_wp]))
     case default
       call fatal_error(error, "unknown integrator '"//name//"' (rk4, dopri5, rosenbrock, "// &
                        "rosw, multirate, multirate2, mri2, mri2b)")
@@ -110,5 +96,16 @@ contains
       if (present(substeps)) integrator%substeps = substeps
     end select
   end subroutine new_integrator
+
+  !> A chained MRI-GARK integrator (davit_solve_multirate) with stage ends c and the
+  !> coupling coefficients gamma (2 x 2, column-major).
+  pure function chained(c, gamma) result(m)
+    !> Stage ends (fractions of the macro step) and gamma's entries, column by column.
+    real(wp), intent(in) :: c(2), gamma(4)
+    type(multirate_type) :: m
+    m%c = c
+    m%chained = .true.
+    m%gamma = reshape(gamma, [2, 2])
+  end function chained
 
 end module davit_solve_factory
