@@ -269,6 +269,19 @@ contains
                "free when the error turns", abs_tol=1e-14_wp)
   end subroutine integral_orders
 
+  !> The autopilot of the by-hand cases: a PID (kp 10, kd 20 s, ki 0.1 1/s) on a set-point
+  !> of 0.1 rad, 35 deg angle limit, one 5 s low-pass stage.
+  pure function filtered_pid() result(s)
+    type(rudder_type) :: s
+    s%mode = "autopilot"
+    s%kp = 10.0_wp
+    s%kd = 20.0_wp
+    s%ki = 0.1_wp
+    s%max_angle = 35.0_wp*deg
+    s%heading = 0.1_wp
+    s%filter = 5.0_wp
+  end function filtered_pid
+
   !> The autopilot's wave filter by hand (time constant T = 5 s): states x = (z, e_f, r_f)
   !> with rates ((e_f), (psi - psi_0 - e_f)/T, (r - r_f)/T), the order -kp e_f - kd r_f -
   !> ki z on the filtered error and rate; unfiltered (T = 0) the order takes psi and r and
@@ -277,13 +290,7 @@ contains
     type(case_state), intent(inout) :: state
     type(rudder_type) :: s
     real(wp) :: order, xdot(3), x(3)
-    s%mode = "autopilot"
-    s%kp = 10.0_wp
-    s%kd = 20.0_wp
-    s%ki = 0.1_wp
-    s%max_angle = 35.0_wp*deg
-    s%heading = 0.1_wp
-    s%filter = 5.0_wp
+    s = filtered_pid()
     x = [0.2_wp, 0.01_wp, -0.002_wp]
     call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
     call check(state, order, -10.0_wp*0.01_wp - 20.0_wp*(-0.002_wp) - 0.1_wp*0.2_wp, &
@@ -315,13 +322,7 @@ contains
     type(case_state), intent(inout) :: state
     type(rudder_type) :: s
     real(wp) :: order, xdot(5), x(5)
-    s%mode = "autopilot"
-    s%kp = 10.0_wp
-    s%kd = 20.0_wp
-    s%ki = 0.1_wp
-    s%max_angle = 35.0_wp*deg
-    s%heading = 0.1_wp
-    s%filter = 5.0_wp
+    s = filtered_pid()
     s%filter_order = 2
     x = [0.2_wp, 0.01_wp, 0.02_wp, -0.002_wp, 0.001_wp]
     call autopilot_order(s, 3.0_wp, 0.13_wp, 0.004_wp, x, order, xdot)
