@@ -56,7 +56,7 @@ module davit_bench_suite
   !> regular and irregular seas; the same scenes with the Rosenbrock-W method (the
   !> rigging implicit) and with the fast level of detail (quasi-static blocks, RK4 1e-2
   !> s); the paper-literal level of detail (2 lumps per sling, rotating sheaves) at RK4's
-  !> stability limit and with the Rosenbrock-W method (rtol 1e-4, and 1e-3 as
+  !> stability limit and with the Rosenbrock-W method (rtol 1e-4, and 3e-3 as
   !> `paper_literal_rosw_loose`), 20 s (its explicit step is 13x smaller). Quick: the
   !> start of each.
   !> The single-summation sea (100 components, one direction per frequency, instead of
@@ -110,7 +110,7 @@ module davit_bench_suite
     scene_spec("paper_literal_rosw", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
                .false., "paper_literal", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
     scene_spec("paper_literal_rosw_loose", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
-               .false., "paper_literal", "rosw", 1.0e-3_wp, 1.0e-4_wp, 0.02_wp)]
+               .false., "paper_literal", "rosw", 3.0e-3_wp, 3.0e-4_wp, 0.02_wp)]
 
   !> The scenes' converged references (davit_bench_accuracy), in the decks folder.
   character(len=*), parameter :: reference_file = "bench_reference.h5"
