@@ -67,13 +67,18 @@ def sea_deck(level, angle):
     return text
 
 
-def run(davit, folder, name, text):
+def run_deck(davit, folder, name, text):
+    """Write the deck `text` as folder/name.nml, run it, return its record's path."""
     deck = folder / f"{name}.nml"
     deck.write_text(text)
     out = folder / f"{name}.h5"
     result = davit("run", deck, "-o", out)
     assert result.returncode == 0, result.stderr
-    with h5py.File(out) as h5:
+    return out
+
+
+def run(davit, folder, name, text):
+    with h5py.File(run_deck(davit, folder, name, text)) as h5:
         return h5["time"][()], h5["ship/euler"][()], h5["ship/position"][()]
 
 
@@ -99,12 +104,7 @@ def ship_alone(davit, folder, name, text, t_end):
     """Time, heading error [deg], rudder [deg] of the deck `text` as the ship alone."""
     text = re.sub(r"&simulation.*?\n/\n", f"&simulation\n  scene = 'ship'\n  t_end = {t_end}\n"
                   "  dt = 0.01\n  output_interval = 0.1\n/\n", text, flags=re.S)
-    deck = folder / f"{name}.nml"
-    deck.write_text(text)
-    out = folder / f"{name}.h5"
-    result = davit("run", deck, "-o", out)
-    assert result.returncode == 0, result.stderr
-    with h5py.File(out) as h5:
+    with h5py.File(run_deck(davit, folder, name, text)) as h5:
         return (h5["time"][()], np.degrees(h5["ship/euler"][:, 2]),
                 np.degrees(h5["ship/rudder"][()]).ravel())
 
