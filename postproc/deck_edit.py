@@ -13,9 +13,9 @@ KEY_GROUPS = {"dt": "simulation", "dt_contact": "simulation", "rtol": "simulatio
               "frozen": "ship", "n_frequencies": "sea", "n_directions": "sea",
               "wave_type": "sea", "seed": "simulation", "water_model": "boat",
               "blocks": "rigging", "contact_approach": "simulation",
-              "summation": "sea", "substeps": "simulation"}
+              "summation": "sea", "substeps": "simulation", "kinematics": "sea"}
 STRING_KEYS = {"sheaves", "integrator", "wave_type", "water_model", "blocks",
-               "contact_approach", "summation"}
+               "contact_approach", "summation", "kinematics"}
 
 
 def override(deck, group, key, value):
