@@ -8,7 +8,7 @@ module test_boat_water
   use davit_core_rotation, only: rotation_matrix
   use davit_core_body, only: body_qdot
   use davit_boat_strip_loads, only: strip_velocity, strip_partial_velocities, strip_loads
-  use davit_boat_surface_watch, only: watch_refresh, surely_dry
+  use davit_boat_surface_watch, only: watch_refresh, watch_due, surely_dry
   use davit_boat_contact, only: hertz_elastoplastic_law_type, hertz_stiffness
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, fender_probe
   use davit_core_rotation, only: cross
@@ -46,6 +46,7 @@ contains
                    new_case("fender_impact_in_system", fender_impact), &
                    new_case("approach_rate_eq33_moving_side_vs_fd", moving_side_rate), &
                    new_case("surface_watch_never_skips_a_wet_hull", surface_watch), &
+                   new_case("surface_watch_kept_high_refreshed_low", watch_kept), &
                    new_case("contact_approach_graded_vs_window", contact_approach), &
                    new_case("strip_sway_drag_half_rho_cd_a_v2", sway_drag)]
   end function collect_boat_water
@@ -441,6 +442,48 @@ contains
     call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
     call check_true(state, dry > 1000, "the watch skips the high poses")
   end subroutine surface_watch
+
+  !> An old watch is kept while it proves the hull dry two intervals ahead (watch_due): a
+  !> boat 12 m above the Level 5 sea (1300 components) keeps a watch sampled 0.06 s
+  !> before; 0.5 m above the water it is refreshed. A kept watch stays rigorous at any
+  !> age: 2000 poses around the high one, 0-1 s after the sample, called dry by it, all
+  !> have zero strip force and volume.
+  subroutine watch_kept(state)
+    type(case_state), intent(inout) :: state
+    type(config_type) :: cfg
+    type(system_type) :: sys
+    real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), u(6), f(6), volume, t, x(5)
+    real(wp), allocatable :: y0(:)
+    integer :: i, dry, missed
+    logical :: due_high, due_low
+    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
+                      "&slings attached = .false. / &contact enabled = .false. /")
+    y0 = new_test_system(sys, cfg)
+    c0 = rotation_matrix([0.05_wp, -0.02_wp, 0.3_wp])
+    r0 = [5.0_wp, -3.0_wp, -12.0_wp]
+    call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 30.0_wp, c0, r0)
+    call watch_due(sys%hist%watch, sys%par%water, 30.06_wp, c0, &
+                   [r0(1), r0(2), -0.5_wp], due_low)
+    call watch_due(sys%hist%watch, sys%par%water, 30.06_wp, c0, r0, due_high)
+    call check_true(state, .not. due_high, "kept 12 m above the water")
+    call check_true(state, due_low, "refreshed 0.5 m above the water")
+    dry = 0
+    missed = 0
+    u = 0.0_wp
+    do i = 1, 2000
+      call random_number(x)
+      t = 30.0_wp + 0.3_wp*x(1)
+      c = matmul(rotation_matrix(0.1_wp*[x(2), 1.0_wp - x(2), x(3)]), c0)
+      r = r0 + [0.5_wp*(x(4) - 0.5_wp), 0.5_wp*(x(3) - 0.5_wp), 6.0_wp*x(5)]
+      if (.not. surely_dry(sys%hist%watch, sys%par%water, t, c, r)) cycle
+      dry = dry + 1
+      call strip_loads(sys%par%water, sys%par%sea, t, c, r, u, f, volume)
+      if (volume /= 0.0_wp .or. any(f /= 0.0_wp)) missed = missed + 1
+    end do
+    call note(state, "poses called dry by the old watch", real(dry, wp))
+    call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
+    call check_true(state, dry > 200, "the old watch still skips high poses")
+  end subroutine watch_kept
 
   !> The strips' quadratic drag (eq. 20's drag term, 0.5 rho C_D A |v| v) in sway: the
   !> boat upright in calm water with its keel 0.6 m deep, moving sideways at +-V: the odd

@@ -1,6 +1,7 @@
 !> Slow clock of the water at the boat's strips (davit_boat_strip_waves) against the exact
 !> sums of the wave field: the cubic Hermite time error bound and its fourth order, the
-!> first-order spatial expansion's second-order remainder, and the coupled boat in an
+!> first-order spatial expansion's second-order remainder, the window's far end (turned
+!> from its near end) against the sums evaluated there, and the coupled boat in an
 !> irregular sea with and without the clock.
 module test_strip_waves
   use davit_kinds, only: wp, pi
@@ -10,10 +11,12 @@ module test_strip_waves
   use davit_core_rotation, only: rotation_matrix
   use davit_sea_wave_field, only: wave_field_type, new_irregular_sea, wave_elevation, &
                                   wave_kinematics
-  use davit_boat_hull, only: boat_hull_type, new_boat_hull
+  use davit_boat_hull, only: boat_hull_type, new_boat_hull, section_wet_type, section_immersion
+  use davit_boat_strip_pressure, only: section_wave_load
   use davit_core_slow_clock, only: new_slow_clock, clock_reach
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
-                                    strip_waves_refresh, cached_elevation, cached_kinematics
+                                    strip_waves_refresh, cached_elevation, cached_kinematics, &
+                                    strip_waves_surface
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -28,6 +31,7 @@ contains
     suite%name = "strip_waves"
     suite%cases = [new_case("hermite_time_error_bound_and_order4", time_order), &
                    new_case("spatial_expansion_remainder_order2", space_order), &
+                   new_case("window_far_end_equals_sums_there", far_end), &
                    new_case("coupled_boat_with_and_without_clock", coupled_boat)]
   end function collect_strip_waves
 
@@ -141,6 +145,68 @@ contains
     call check(state, log(e_v(1)/e_v(2))/log(2.0_wp), 2.0_wp, "velocity order in dx", &
                abs_tol=0.3_wp)
   end subroutine space_order
+
+  !> One pass samples both ends of a window: the far end's phases are the near end's turned
+  !> by w h (angle addition), the sums run in vector lanes. At t2 = t1 + h the Hermite
+  !> interpolant returns the far end's samples, which must be the sums evaluated at t2 by
+  !> the wave field (its own phases and sines, summed one by one) to rounding: elevation
+  !> at every strip centre, velocity at the wet references, each wet section's pressure
+  !> load (section_wave_load at t2 alone, its phases from the sine); and the elevation
+  !> handed to the surface watch is the field's at t1.
+  subroutine far_end(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(boat_hull_type) :: hull
+    type(strip_wave_cache_type) :: cache
+    type(section_wet_type) :: wet
+    real(wp) :: c(3, 3), r(3), t2, p(3), pt(3), eta, eta_x, v(3), v_x(3), a(3), pw
+    real(wp) :: err_eta, err_v, err_load, err_watch, scale, grad(3), d0, load(3), rate(3)
+    real(wp) :: xy(2, 20), eta1(20), grad1(2, 20)
+    integer :: k, nload
+    call level5_sea(field)
+    call afloat(hull, c, r)
+    cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.05_wp, clock_reach))
+    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
+    t2 = cache%clock%window(2)
+    err_eta = 0.0_wp
+    err_v = 0.0_wp
+    err_load = 0.0_wp
+    scale = 0.0_wp
+    nload = 0
+    call strip_waves_surface(cache, field, xy, eta1, grad1)
+    err_watch = 0.0_wp
+    do k = 1, hull%n
+      p = r + c(:, 1)*hull%x(k)
+      err_watch = max(err_watch, abs(eta1(k) - wave_elevation(field, 20.0_wp, p(1), p(2))))
+      err_eta = max(err_eta, abs(cached_elevation(cache, field, k, t2, p(1), p(2)) - &
+                                 wave_elevation(field, t2, p(1), p(2))))
+      if (cache%q(3, k) < 0.05_wp) cycle
+      pt = [cache%q(1, k), cache%q(2, k), 0.0_wp]
+      pt(3) = cache%q(3, k) - wave_elevation(field, t2, pt(1), pt(2))
+      call cached_kinematics(cache, field, k, t2, pt, eta, v)
+      call wave_kinematics(field, t2, pt, eta_x, v_x, a, pw)
+      err_v = max(err_v, norm2(v - v_x))
+      if (.not. cache%loaded(k)) cycle
+      ! the window's wet polygon (tangent plane at t1), loaded at t2 from the sines
+      grad = c(3, :) + cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :)
+      d0 = p(3) + cache%ep(1, 1, k)
+      wet = section_immersion(hull, k, d0, grad(2), grad(3))
+      call section_wave_load(field, t2, hull, wet, c, p, d0, grad(2), grad(3), load, rate)
+      nload = nload + 1
+      scale = max(scale, maxval(abs(load)))
+      err_load = max(err_load, maxval(abs(cache%fk(:, 1, 2, k) - load)), &
+                     maxval(abs(cache%fk(:, 2, 2, k) - rate))/maxval(field%omega))
+    end do
+    call note(state, "far-end elevation error (m)", err_eta)
+    call note(state, "far-end velocity error (m/s)", err_v)
+    call note(state, "far-end section load error (N/m)", err_load)
+    call check_true(state, nload >= 5, "wet sections compared")
+    call check(state, err_watch, 0.0_wp, "watch's elevation at t1 (m)", abs_tol=1e-11_wp)
+    call check(state, err_eta, 0.0_wp, "elevation at t2 (m)", abs_tol=1e-11_wp)
+    call check(state, err_v, 0.0_wp, "velocity at t2 (m/s)", abs_tol=1e-11_wp)
+    call check(state, err_load/scale, 0.0_wp, "section load at t2 (relative)", &
+               abs_tol=1e-11_wp)
+  end subroutine far_end
 
   !> The paper's strips (water_model = 'paper': the clock's elevation and velocity; the
   !> pressure level's sampled section loads freeze the wet geometry over a window, README).

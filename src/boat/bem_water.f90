@@ -231,13 +231,10 @@ contains
     real(wp), intent(in) :: r(3), psi
     !> The window sampled.
     type(diffraction_cache_type), intent(out) :: cache
-    integer :: j
     cache%clock = clock
     cache%r0 = r(1:2)
     cache%psi0 = psi
-    do j = 1, 2
-      call diffraction_sums(self, sea, cache%clock%window(j), r, psi, cache%d(:, :, j))
-    end do
+    call diffraction_sums(self, sea, cache%clock%window, r, psi, cache%d)
   end subroutine diffraction_refresh
 
   !> The unramped load at t and CG position r from the window.
@@ -257,32 +254,41 @@ contains
     end associate
   end function cached_diffraction
 
-  !> The unramped diffraction load at (t, r, psi) with its time rate and horizontal
-  !> gradient: with D e^(i Phi) = P + i Q per component (Phi = w t + eps - kx x - ky y),
+  !> The unramped diffraction load at the times t (position r, yaw psi) with its time rate
+  !> and horizontal gradient, d(DOF, (value, d/dt, d/dx, d/dy), time): with D e^(i Phi) = P + i Q per component (Phi = w t + eps - kx x - ky y),
   !> the load is sum P, d/dt = -sum w Q, d/dx = sum kx Q, d/dy = sum ky Q.
   pure subroutine diffraction_sums(self, sea, t, r, psi, d)
     type(boat_bem_type), intent(in) :: self
     type(wave_field_type), intent(in) :: sea
-    real(wp), intent(in) :: t, r(3), psi
-    real(wp), intent(out) :: d(6, 4)
-    real(wp) :: sn(wave_chunk), cs(wave_chunk), beta, w, p(6), q(6)
-    complex(wp) :: dc(6)
-    integer :: i, k, i0, m
+    real(wp), intent(in) :: t(:), r(3), psi
+    real(wp), intent(out) :: d(6, 4, size(t))
+    real(wp) :: sn(wave_chunk, size(t)), cs(wave_chunk, size(t)), beta, w, p(6), q(6)
+    real(wp) :: dr(6), di(6)
+    integer :: i, k, i0, m, j, l
     d = 0.0_wp
     associate (h => self%db%heading)
       do i0 = 1, sea%n, wave_chunk
         m = min(wave_chunk, sea%n - i0 + 1)
-        call component_phases(sea, i0, m, t, r(1), r(2), sn, cs)
+        do j = 1, size(t)
+          call component_phases(sea, i0, m, t(j), r(1), r(2), sn(:, j), cs(:, j))
+        end do
         do i = i0, i0 + m - 1
+          ! the heading interpolation is the same at every time: once per component
           beta = modulo(sea%direction(i) - psi - h(1), 2.0_wp*pi) + h(1)
           call bracket(h, beta, k, w)
-          dc = (1.0_wp - w)*self%diffraction(:, k, i) + w*self%diffraction(:, k + 1, i)
-          p = real(dc, wp)*cs(i - i0 + 1) - aimag(dc)*sn(i - i0 + 1)
-          q = real(dc, wp)*sn(i - i0 + 1) + aimag(dc)*cs(i - i0 + 1)
-          d(:, 1) = d(:, 1) + p
-          d(:, 2) = d(:, 2) - sea%omega(i)*q
-          d(:, 3) = d(:, 3) + sea%kx(i)*q
-          d(:, 4) = d(:, 4) + sea%ky(i)*q
+          dr = (1.0_wp - w)*real(self%diffraction(:, k, i), wp) + &
+               w*real(self%diffraction(:, k + 1, i), wp)
+          di = (1.0_wp - w)*aimag(self%diffraction(:, k, i)) + &
+               w*aimag(self%diffraction(:, k + 1, i))
+          l = i - i0 + 1
+          do j = 1, size(t)
+            p = dr*cs(l, j) - di*sn(l, j)
+            q = dr*sn(l, j) + di*cs(l, j)
+            d(:, 1, j) = d(:, 1, j) + p
+            d(:, 2, j) = d(:, 2, j) - sea%omega(i)*q
+            d(:, 3, j) = d(:, 3, j) + sea%kx(i)*q
+            d(:, 4, j) = d(:, 4, j) + sea%ky(i)*q
+          end do
         end do
       end do
     end associate
@@ -295,9 +301,9 @@ contains
     type(boat_bem_type), intent(in) :: self
     type(wave_field_type), intent(in) :: sea
     real(wp), intent(in) :: t, r(3), psi
-    real(wp) :: load(6), d(6, 4)
-    call diffraction_sums(self, sea, t, r, psi, d)
-    load = d(:, 1)
+    real(wp) :: load(6), d(6, 4, 1)
+    call diffraction_sums(self, sea, [t], r, psi, d)
+    load = d(:, 1, 1)
   end function diffraction_load
 
 end module davit_boat_bem_water

@@ -51,19 +51,24 @@ contains
     real(wp), intent(in) :: t, x, y
     !> Surface elevation [m] (up) and its horizontal gradient.
     real(wp), intent(out) :: eta, grad(2)
-    real(wp) :: th(wave_chunk), r, s2, th1
-    integer :: i0, i1
+    real(wp) :: th(wave_chunk), sn(wave_chunk), cs(wave_chunk), r, s2, th1
+    integer :: i0, i1, m
     eta = 0.0_wp
     grad = 0.0_wp
     if (field%kind == wave_none) return
     r = wave_ramp(field, t)
     do i0 = 1, field%n, wave_chunk
       i1 = min(field%n, i0 + wave_chunk - 1)
-      associate (a => field%amplitude(i0:i1), th => th(1:i1 - i0 + 1))
-        th = field%omega(i0:i1)*t + field%phase(i0:i1) - field%kx(i0:i1)*x - field%ky(i0:i1)*y
-        eta = eta + sum(a*cos(th))
-        grad(1) = grad(1) + sum(a*sin(th)*field%kx(i0:i1))
-        grad(2) = grad(2) + sum(a*sin(th)*field%ky(i0:i1))
+      m = i1 - i0 + 1
+      associate (a => field%amplitude(i0:i1))
+        th(1:m) = field%omega(i0:i1)*t + field%phase(i0:i1) - field%kx(i0:i1)*x - &
+                  field%ky(i0:i1)*y
+        ! one vectorised sine and cosine per component (the watch samples every strip)
+        call fast_sincos(th(1:m), sn(1:m), cs(1:m))
+        sn(1:m) = a*sn(1:m)
+        eta = eta + sum(a*cs(1:m))
+        grad(1) = grad(1) + sum(sn(1:m)*field%kx(i0:i1))
+        grad(2) = grad(2) + sum(sn(1:m)*field%ky(i0:i1))
       end associate
     end do
     eta = r*eta
@@ -105,7 +110,8 @@ contains
   !> Components are processed in blocks of wave_chunk with real arithmetic in loops over
   !> the block (vectorised: exp and fast_sincos have SIMD forms, complex exp and libm
   !> sincos do not), summed per lane and reduced once at the end.
-  pure subroutine section_wave_loads(field, times, hull, wet, c, pk, d0, gy, gz, load, rate)
+  pure subroutine section_wave_loads(field, times, hull, wet, c, pk, d0, gy, gz, load, rate, &
+                                     cr, sr)
     !> The sea.
     type(wave_field_type), intent(in) :: field
     !> Sample times [s].
@@ -119,6 +125,9 @@ contains
     real(wp), intent(in) :: c(3, 3), pk(3), d0, gy, gz
     !> Load per unit length (3, time) [N/m] and its time rate at each sample.
     real(wp), intent(out) :: load(:, :), rate(:, :)
+    !> With two times t2 = t1 + h: cos(w h) and sin(w h) of every component, which turn
+    !> the phasors of t1 into those of t2 (no second sine and cosine).
+    real(wp), intent(in), optional :: cr(:), sr(:)
     real(wp) :: depth(5), dxy(2, 5), geo(5, 5), j(4)
     ! per block: lags and vertex factors f_v = exp(-k d_v) (cos lag_v, -sin lag_v), time
     ! phasors (qr, qi) per time, edge integrals, and the per-lane partial sums
@@ -155,6 +164,12 @@ contains
           fi(1:nc, v) = -th(1:nc)*sn(1:nc)
         end do
         do it = 1, nt
+          if (it == 2 .and. present(cr)) then
+            ! a (cos, sin)(theta + w h) by angle addition
+            qr(1:nc, 2) = qr(1:nc, 1)*cr(i0:i1) - qi(1:nc, 1)*sr(i0:i1)
+            qi(1:nc, 2) = qi(1:nc, 1)*cr(i0:i1) + qr(1:nc, 1)*sr(i0:i1)
+            cycle
+          end if
           th(1:nc) = w*times(it) + field%phase(i0:i1) - kx*pk(1) - ky*pk(2)
           call fast_sincos(th(1:nc), sn(1:nc), cs(1:nc))
           qr(1:nc, it) = a*cs(1:nc)

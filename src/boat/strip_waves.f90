@@ -23,7 +23,7 @@
 module davit_boat_strip_waves
   use davit_kinds, only: wp
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, wave_chunk, &
-                                  component_phases
+                                  component_phases, rotation_phasors, advance_phasors
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
   use davit_core_slow_clock, only: slow_clock_type, clock_renewed
@@ -33,10 +33,13 @@ module davit_boat_strip_waves
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
   public :: strip_waves_due, strip_waves_cover, cached_elevation
   public :: cached_kinematics, cached_slope, cached_wave_load
-  public :: elevation_sums, kinematic_sums
+  public :: elevation_sums, kinematic_sums, strip_waves_surface
 
   !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
   integer, parameter :: ne = 4, nv = 5
+  !> Partial sums per accumulated term (8: one AVX-512 register of doubles), and the
+  !> terms of the kinematic sums: ne elevation terms, then 3 x nv velocity terms.
+  integer, parameter :: lanes = 8, nk = ne + 3*nv
 
   type :: strip_wave_cache_type
     !> Whether the slow clock is on.
@@ -56,6 +59,9 @@ module davit_boat_strip_waves
     real(wp), allocatable :: fk(:, :, :, :)
     !> Per strip, whether its samples were taken (it was possibly wet).
     logical, allocatable :: loaded(:)
+    !> Per component, cos(w h) and sin(w h): the window's far end from its near end by
+    !> angle addition, one sine and cosine per component for both ends.
+    real(wp), allocatable :: cr(:), sr(:)
   end type strip_wave_cache_type
 
 contains
@@ -75,6 +81,8 @@ contains
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n))
+    allocate (cache%cr(field%n), cache%sr(field%n))
+    call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%sampled = .false.
     cache%loaded = .false.
   end function new_strip_wave_cache
@@ -125,7 +133,7 @@ contains
     type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
     real(wp) :: p(3), q(3), eta, ramp
-    integer :: k, j
+    integer :: k
     if (.not. cache%enabled) return
     call cache%clock%open(t)
     ramp = wave_ramp(field, t)
@@ -134,10 +142,7 @@ contains
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
       cache%p(:, k) = p(1:2)
-      do j = 1, 2
-        call elevation_terms(field, cache%clock%window(j), p(1), p(2), cache%ep(:, j, k), &
-                             surface)
-      end do
+      call elevation_ends(cache, field, p(1), p(2), cache%ep(:, :, k), surface)
       if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
       call sample_section_load(cache, hull, field, k, c, p, ramp)
@@ -149,43 +154,68 @@ contains
       end if
       eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
       cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
-      do j = 1, 2
-        call kinematic_terms(field, cache%clock%window(j), q(1), q(2), cache%q(3, k), &
-                             cache%eq(:, j, k), cache%vq(:, :, j, k), volume)
-      end do
+      call kinematic_ends(cache, field, q(1), q(2), cache%q(3, k), cache%eq(:, :, k), &
+                          cache%vq(:, :, :, k), volume)
     end do
   end subroutine strip_waves_refresh
 
-  !> Elevation terms from the grid where it holds (t, x, y), else the exact sums.
-  pure subroutine elevation_terms(field, t, x, y, e, grid)
+  !> The ramped elevation and its gradient at the strip centres at the window's start, as
+  !> sampled by the last refresh (exact sums: the surface watch takes them).
+  pure subroutine strip_waves_surface(cache, field, xy, eta, grad)
+    !> The strips' window.
+    type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (its start-up ramp).
     type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: t, x, y
-    real(wp), intent(out) :: e(ne)
-    type(wave_grid_type), intent(in), optional :: grid
-    if (present(grid)) then
-      if (grid_covers(grid, t, x, y)) then
-        call grid_elevation(grid, t, x, y, e)
-        return
-      end if
-    end if
-    call elevation_sums(field, t, x, y, e)
-  end subroutine elevation_terms
+    !> Per strip: centre (x, y) (inertial) [m], elevation [m] and its gradient.
+    real(wp), intent(out) :: xy(:, :), eta(:), grad(:, :)
+    real(wp) :: ramp
+    ramp = wave_ramp(field, cache%clock%window(1))
+    xy = cache%p
+    eta = ramp*cache%ep(1, 1, :)
+    grad = ramp*cache%ep(3:4, 1, :)
+  end subroutine strip_waves_surface
 
-  !> Elevation and velocity terms from the grid where it holds (t, x, y, d), else the
-  !> exact sums.
-  pure subroutine kinematic_terms(field, t, x, y, d, e, v, grid)
+  !> Elevation terms at both ends of the window at (x, y): from the grid where it holds
+  !> both, else the exact sums in one pass.
+  pure subroutine elevation_ends(cache, field, x, y, e, grid)
+    type(strip_wave_cache_type), intent(in) :: cache
     type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: t, x, y, d
-    real(wp), intent(out) :: e(ne), v(3, nv)
+    real(wp), intent(in) :: x, y
+    real(wp), intent(out) :: e(ne, 2)
     type(wave_grid_type), intent(in), optional :: grid
+    integer :: j
     if (present(grid)) then
-      if (grid_covers(grid, t, x, y, d)) then
-        call grid_kinematics(grid, t, x, y, d, e, v)
+      if (grid_covers(grid, cache%clock%window(1), x, y) .and. &
+          grid_covers(grid, cache%clock%window(2), x, y)) then
+        do j = 1, 2
+          call grid_elevation(grid, cache%clock%window(j), x, y, e(:, j))
+        end do
         return
       end if
     end if
-    call kinematic_sums(field, t, x, y, d, e, v)
-  end subroutine kinematic_terms
+    call elevation_pass(field, cache%clock%window(1), x, y, 2, cache%cr, cache%sr, e)
+  end subroutine elevation_ends
+
+  !> Elevation and velocity terms at both ends of the window at (x, y, d): from the grid
+  !> where it holds both, else the exact sums in one pass.
+  pure subroutine kinematic_ends(cache, field, x, y, d, e, v, grid)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: x, y, d
+    real(wp), intent(out) :: e(ne, 2), v(3, nv, 2)
+    type(wave_grid_type), intent(in), optional :: grid
+    integer :: j
+    if (present(grid)) then
+      if (grid_covers(grid, cache%clock%window(1), x, y, d) .and. &
+          grid_covers(grid, cache%clock%window(2), x, y, d)) then
+        do j = 1, 2
+          call grid_kinematics(grid, cache%clock%window(j), x, y, d, e(:, j), v(:, :, j))
+        end do
+        return
+      end if
+    end if
+    call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v)
+  end subroutine kinematic_ends
 
   !> Dynamic section load of strip k (centre p) at both ends of the window, for its wet
   !> polygon under the tangent plane at t1.
@@ -203,14 +233,13 @@ contains
     if (wet%area <= 0.0_wp) return
     ! both window ends in one pass: they share the edge integrals, only the phase differs
     call section_wave_loads(field, cache%clock%window, hull, wet, c, p, d0, grad(2), grad(3), &
-                            load, rate)
+                            load, rate, cache%cr, cache%sr)
     cache%fk(:, 1, :, k) = load
     cache%fk(:, 2, :, k) = rate
     cache%loaded(k) = .true.
   end subroutine sample_section_load
 
   !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
-  !> One pass with independent accumulators: the sums are latency-bound one at a time.
   pure subroutine elevation_sums(field, t, x, y, e)
     !> The sea.
     type(wave_field_type), intent(in) :: field
@@ -218,75 +247,151 @@ contains
     real(wp), intent(in) :: t, x, y
     !> Unramped elevation [m] and its derivatives in t, x, y.
     real(wp), intent(out) :: e(ne)
-    real(wp) :: s(wave_chunk), cs(wave_chunk), as
-    integer :: i, i0, m
-    e = 0.0_wp
-    do i0 = 1, field%n, wave_chunk
-    m = min(wave_chunk, field%n - i0 + 1)
-    call component_phases(field, i0, m, t, x, y, s, cs)
-    do i = i0, i0 + m - 1
-      as = field%amplitude(i)*s(i - i0 + 1)
-      e(1) = e(1) + field%amplitude(i)*cs(i - i0 + 1)
-      e(2) = e(2) - as*field%omega(i)
-      e(3) = e(3) + as*field%kx(i)
-      e(4) = e(4) + as*field%ky(i)
-    end do
-    end do
+    real(wp) :: none(0)
+    call elevation_pass(field, t, x, y, 1, none, none, e)
   end subroutine elevation_sums
+
+  !> Elevation terms at nt times: t, and with nt = 2 also t + h, whose phases are those
+  !> at t turned by w h (rotation factors cr, sr of every component). The sums run in
+  !> `lanes` partial sums each, added at the end: independent lanes vectorise (one sum
+  !> at a time is bound by the adder's latency).
+  pure subroutine elevation_pass(field, t, x, y, nt, cr, sr, e)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y
+    integer, intent(in) :: nt
+    real(wp), intent(in) :: cr(:), sr(:)
+    real(wp), intent(out) :: e(ne, nt)
+    real(wp) :: s(wave_chunk), cs(wave_chunk), acc(lanes, ne, nt)
+    integer :: i0, m, q, j
+    acc = 0.0_wp
+    do i0 = 1, field%n, wave_chunk
+      m = min(wave_chunk, field%n - i0 + 1)
+      call component_phases(field, i0, m, t, x, y, s, cs)
+      call add_elevation(field, i0, m, s, cs, acc(:, :, 1))
+      if (nt < 2) cycle
+      call advance_phasors(cs(1:m), s(1:m), cr(i0:i0 + m - 1), sr(i0:i0 + m - 1))
+      call add_elevation(field, i0, m, s, cs, acc(:, :, 2))
+    end do
+    do j = 1, nt
+      do q = 1, ne
+        e(q, j) = sum(acc(:, q, j))
+      end do
+    end do
+  end subroutine elevation_pass
+
+  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs) to the lanes' partial
+  !> sums of the elevation terms.
+  pure subroutine add_elevation(field, i0, m, s, cs, acc)
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: i0, m
+    real(wp), intent(in) :: s(:), cs(:)
+    real(wp), intent(inout) :: acc(lanes, ne)
+    real(wp) :: as
+    integer :: i, j, l, b
+    do b = 0, m - 1, lanes
+      do l = 1, min(lanes, m - b)
+        j = b + l
+        i = i0 + j - 1
+        as = field%amplitude(i)*s(j)
+        acc(l, 1) = acc(l, 1) + field%amplitude(i)*cs(j)
+        acc(l, 2) = acc(l, 2) - as*field%omega(i)
+        acc(l, 3) = acc(l, 3) + as*field%kx(i)
+        acc(l, 4) = acc(l, 4) + as*field%ky(i)
+      end do
+    end do
+  end subroutine add_elevation
 
   !> Elevation terms as elevation_sums, and the unramped water velocity (inertial, z down)
   !> at (x, y) and stretched depth d with its derivatives (t, x, y, d): per component
   !> v = a w exp(-k d) (cos theta cos g, cos theta sin g, sin theta), with
   !> theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin,
-  !> d(sin)/dx = -kx cos, d/dd = -k. One pass, independent accumulators.
+  !> d(sin)/dx = -kx cos, d/dd = -k.
   pure subroutine kinematic_sums(field, t, x, y, d, e, v)
     !> The sea.
     type(wave_field_type), intent(in) :: field
     !> Time [s], horizontal position (inertial) [m], stretched depth [m].
     real(wp), intent(in) :: t, x, y, d
-    !> Unramped elevation terms (as elevation_sums) and water velocity (inertial, z down) [m/s]
-    !> with its derivatives in t, x, y, d.
+    !> Unramped elevation terms (as elevation_sums) and water velocity (inertial, z down)
+    !> [m/s] with its derivatives in t, x, y, d.
     real(wp), intent(out) :: e(ne), v(3, nv)
-    real(wp) :: s(wave_chunk), cs(wave_chunk), w(wave_chunk), as, wc, ws, wcg, wsg, wsc, wss
-    integer :: i, i0, m, l
-    e = 0.0_wp
-    v = 0.0_wp
-    do i0 = 1, field%n, wave_chunk
-    m = min(wave_chunk, field%n - i0 + 1)
-    call component_phases(field, i0, m, t, x, y, s, cs)
-    w(1:m) = field%amplitude(i0:i0 + m - 1)*field%omega(i0:i0 + m - 1)* &
-             exp(-field%k(i0:i0 + m - 1)*d)
-    do i = i0, i0 + m - 1
-      l = i - i0 + 1
-      as = field%amplitude(i)*s(l)
-      e(1) = e(1) + field%amplitude(i)*cs(l)
-      e(2) = e(2) - as*field%omega(i)
-      e(3) = e(3) + as*field%kx(i)
-      e(4) = e(4) + as*field%ky(i)
-      wc = w(l)*cs(l)
-      ws = w(l)*s(l)
-      wcg = wc*field%cos_dir(i)
-      wsg = wc*field%sin_dir(i)
-      wsc = ws*field%cos_dir(i)
-      wss = ws*field%sin_dir(i)
-      v(1, 1) = v(1, 1) + wcg
-      v(2, 1) = v(2, 1) + wsg
-      v(3, 1) = v(3, 1) + ws
-      v(1, 2) = v(1, 2) - wsc*field%omega(i)
-      v(2, 2) = v(2, 2) - wss*field%omega(i)
-      v(3, 2) = v(3, 2) + wc*field%omega(i)
-      v(1, 3) = v(1, 3) + wsc*field%kx(i)
-      v(2, 3) = v(2, 3) + wss*field%kx(i)
-      v(3, 3) = v(3, 3) - wc*field%kx(i)
-      v(1, 4) = v(1, 4) + wsc*field%ky(i)
-      v(2, 4) = v(2, 4) + wss*field%ky(i)
-      v(3, 4) = v(3, 4) - wc*field%ky(i)
-      v(1, 5) = v(1, 5) - wcg*field%k(i)
-      v(2, 5) = v(2, 5) - wsg*field%k(i)
-      v(3, 5) = v(3, 5) - ws*field%k(i)
-    end do
-    end do
+    real(wp) :: none(0)
+    call kinematic_pass(field, t, x, y, d, 1, none, none, e, v)
   end subroutine kinematic_sums
+
+  !> Elevation and velocity terms at nt times as elevation_pass (lanes' partial sums): the
+  !> depth decay a w exp(-k d) is formed once for both.
+  pure subroutine kinematic_pass(field, t, x, y, d, nt, cr, sr, e, v)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, x, y, d
+    integer, intent(in) :: nt
+    real(wp), intent(in) :: cr(:), sr(:)
+    real(wp), intent(out) :: e(ne, nt), v(3, nv, nt)
+    real(wp) :: s(wave_chunk), cs(wave_chunk), w(wave_chunk), acc(lanes, nk, nt)
+    integer :: i0, m, q, j
+    acc = 0.0_wp
+    do i0 = 1, field%n, wave_chunk
+      m = min(wave_chunk, field%n - i0 + 1)
+      call component_phases(field, i0, m, t, x, y, s, cs)
+      w(1:m) = field%amplitude(i0:i0 + m - 1)*field%omega(i0:i0 + m - 1)* &
+               exp(-field%k(i0:i0 + m - 1)*d)
+      call add_kinematics(field, i0, m, s, cs, w, acc(:, :, 1))
+      if (nt < 2) cycle
+      call advance_phasors(cs(1:m), s(1:m), cr(i0:i0 + m - 1), sr(i0:i0 + m - 1))
+      call add_kinematics(field, i0, m, s, cs, w, acc(:, :, 2))
+    end do
+    do j = 1, nt
+      do q = 1, ne
+        e(q, j) = sum(acc(:, q, j))
+      end do
+      do q = 1, 3*nv
+        v(mod(q - 1, 3) + 1, (q - 1)/3 + 1, j) = sum(acc(:, ne + q, j))
+      end do
+    end do
+  end subroutine kinematic_pass
+
+  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs, decayed amplitudes
+  !> w = a w exp(-k d)) to the lanes' partial sums: the elevation terms, then the velocity
+  !> terms v(1:3, 1:nv) in column order.
+  pure subroutine add_kinematics(field, i0, m, s, cs, w, acc)
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: i0, m
+    real(wp), intent(in) :: s(:), cs(:), w(:)
+    real(wp), intent(inout) :: acc(lanes, nk)
+    real(wp) :: as, wc, ws, wcg, wsg, wsc, wss
+    integer :: i, j, l, b
+    do b = 0, m - 1, lanes
+      do l = 1, min(lanes, m - b)
+        j = b + l
+        i = i0 + j - 1
+        as = field%amplitude(i)*s(j)
+        acc(l, 1) = acc(l, 1) + field%amplitude(i)*cs(j)
+        acc(l, 2) = acc(l, 2) - as*field%omega(i)
+        acc(l, 3) = acc(l, 3) + as*field%kx(i)
+        acc(l, 4) = acc(l, 4) + as*field%ky(i)
+        wc = w(j)*cs(j)
+        ws = w(j)*s(j)
+        wcg = wc*field%cos_dir(i)
+        wsg = wc*field%sin_dir(i)
+        wsc = ws*field%cos_dir(i)
+        wss = ws*field%sin_dir(i)
+        acc(l, 5) = acc(l, 5) + wcg
+        acc(l, 6) = acc(l, 6) + wsg
+        acc(l, 7) = acc(l, 7) + ws
+        acc(l, 8) = acc(l, 8) - wsc*field%omega(i)
+        acc(l, 9) = acc(l, 9) - wss*field%omega(i)
+        acc(l, 10) = acc(l, 10) + wc*field%omega(i)
+        acc(l, 11) = acc(l, 11) + wsc*field%kx(i)
+        acc(l, 12) = acc(l, 12) + wss*field%kx(i)
+        acc(l, 13) = acc(l, 13) - wc*field%kx(i)
+        acc(l, 14) = acc(l, 14) + wsc*field%ky(i)
+        acc(l, 15) = acc(l, 15) + wss*field%ky(i)
+        acc(l, 16) = acc(l, 16) - wc*field%ky(i)
+        acc(l, 17) = acc(l, 17) - wcg*field%k(i)
+        acc(l, 18) = acc(l, 18) - wsg*field%k(i)
+        acc(l, 19) = acc(l, 19) - ws*field%k(i)
+      end do
+    end do
+  end subroutine add_kinematics
 
   !> Unramped value at t and offset dx from elevation terms e(ne, 2).
   pure real(wp) function expand_elevation(e, hw, lam, dx) result(f)

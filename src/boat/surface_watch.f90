@@ -24,7 +24,9 @@ module davit_boat_surface_watch
   use davit_sea_wave_field, only: wave_ramp
   implicit none
   private
-  public :: surface_watch_type, new_surface_watch, watch_refresh, surely_dry, strip_surely_dry
+  public :: surface_watch_type, new_surface_watch, watch_refresh, watch_set, watch_due, &
+            surely_dry, &
+            strip_surely_dry
 
   type :: surface_watch_type
     !> Whether the samples below have been taken.
@@ -45,6 +47,9 @@ module davit_boat_surface_watch
     real(wp) :: grid_error(2) = 0.0_wp
     !> Per strip, whether its surface came from the precomputed grid.
     logical, allocatable :: from_grid(:)
+    !> Until this time [s] the watch, though older than its interval, still proves the hull
+    !> dry (checked an interval ahead): no refresh needed before (see watch_due).
+    real(wp) :: kept_until = -huge(1.0_wp)
   end type surface_watch_type
 
 contains
@@ -112,7 +117,51 @@ contains
     end do
     w%t = t
     w%valid = .true.
+    w%kept_until = -huge(1.0_wp)
   end subroutine watch_refresh
+
+  !> Whether the watch must be refreshed after a step ending at t (boat at (c, r)): it is
+  !> older than its interval and no longer proves every strip dry two intervals ahead at
+  !> today's pose. A hull high above the waves keeps an old watch (its bound grows with
+  !> its age, eq. in strip_surely_dry), checked once per interval, instead of summing the
+  !> sea at every strip each interval; the bound is rigorous at any age, so what the
+  !> stages find dry is dry either way.
+  pure subroutine watch_due(w, s, t, c, r, due)
+    !> The watch (kept_until advanced when it is kept).
+    type(surface_watch_type), intent(inout) :: w
+    !> The strip model.
+    type(strip_model_type), intent(in) :: s
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> Whether to refresh now.
+    logical, intent(out) :: due
+    due = .not. w%valid
+    if (due .or. t - w%t < w%interval .or. t < w%kept_until) return
+    due = .not. surely_dry(w, s, t + 2.0_wp*w%interval, c, r)
+    if (.not. due) w%kept_until = t + w%interval
+  end subroutine watch_due
+
+  !> The watch refreshed from elevations sampled elsewhere (the strips' slow clock samples
+  !> the exact sums at the same strip centres when it opens a window): no second sum.
+  pure subroutine watch_set(w, t, xy, eta, grad)
+    !> The watch, refreshed.
+    type(surface_watch_type), intent(inout) :: w
+    !> Time of the samples [s].
+    real(wp), intent(in) :: t
+    !> Per strip: its centre (x, y) (inertial) [m], the ramped elevation [m] and its
+    !> gradient there.
+    real(wp), intent(in) :: xy(:, :), eta(:), grad(:, :)
+    integer :: k
+    w%xy = xy
+    w%eta = eta
+    do k = 1, size(eta)
+      w%slope(k) = norm2(grad(:, k))
+    end do
+    w%from_grid = .false.
+    w%t = t
+    w%valid = .true.
+    w%kept_until = -huge(1.0_wp)
+  end subroutine watch_set
 
   !> True only if no strip can touch the water at time t with the boat at (c, r).
   pure logical function surely_dry(w, s, t, c, r)

@@ -6,8 +6,8 @@ module davit_system_events
   use davit_kinds, only: wp, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact_law, only: phase_compression
-  use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh
-  use davit_boat_surface_watch, only: watch_refresh, strip_surely_dry
+  use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh, strip_waves_surface
+  use davit_boat_surface_watch, only: watch_refresh, watch_set, watch_due, strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, &
                                      hook_kinematics, fender_gaps
@@ -33,9 +33,11 @@ contains
     !> Time [s] and state of the accepted step's end.
     real(wp), intent(in) :: t, y(:)
     real(wp) :: c(3, 3)
+    logical :: due
     associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
-      if (.not. hist%watch%valid .or. t - hist%watch%t >= hist%watch%interval) then
-        c = rotation_matrix(q(1:3))
+      c = rotation_matrix(q(1:3))
+      call watch_due(hist%watch, par%water, t, c, matmul(c, q(4:6)), due)
+      if (due) then
         if (hist%surface_grid%enabled) then
           call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, &
                             hist%watch%interval, c, matmul(c, q(4:6)))
@@ -78,6 +80,7 @@ contains
                                hist%surface_grid, hist%volume_grid)
     else if (any(maybe_wet)) then
       call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet)
+      call refresh_watch_from_strips(par, hist, t)
     end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
@@ -86,6 +89,18 @@ contains
       call hist%diffraction%clock%invalidate()
     end if
   end subroutine refresh_strip_waves
+
+  !> The window just opened sampled the exact elevation at every strip centre at t: the
+  !> surface watch takes it instead of summing the sea again (its next refresh comes an
+  !> interval later; the strips' windows, renewed at least as often, keep it fresh).
+  subroutine refresh_watch_from_strips(par, hist, t)
+    type(system_params_type), intent(in) :: par
+    type(system_history_type), intent(inout) :: hist
+    real(wp), intent(in) :: t
+    real(wp) :: xy(2, par%water%hull%n), eta(par%water%hull%n), grad(2, par%water%hull%n)
+    call strip_waves_surface(hist%waves, par%sea, xy, eta, grad)
+    call watch_set(hist%watch, t, xy, eta, grad)
+  end subroutine refresh_watch_from_strips
 
   !> Make grid g of the sea hold the footprint of the boat's strip hull h (the corners of
   !> its strips, or of those in `only`; boat at (c, r)) over [t, t + span].
