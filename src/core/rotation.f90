@@ -5,6 +5,7 @@
 !> inertial ones, v_N = C v_b.
 module davit_core_rotation
   use davit_kinds, only: wp
+  use davit_core_fastmath, only: fast_sincos
   implicit none
   private
   public :: rotation_matrix, euler_rates, cross, skew
@@ -16,10 +17,13 @@ contains
     !> Euler angles (roll, pitch, yaw) [rad].
     real(wp), intent(in) :: theta(3)
     real(wp) :: c(3, 3)
-    real(wp) :: s1, s2, s3, c1, c2, c3
-    s1 = sin(theta(1)); c1 = cos(theta(1))
-    s2 = sin(theta(2)); c2 = cos(theta(2))
-    s3 = sin(theta(3)); c3 = cos(theta(3))
+    real(wp) :: s1, s2, s3, c1, c2, c3, sn(3), cs(3)
+    ! the three angles' sines and cosines in one branch-free pass: every right-hand side
+    ! forms several of these matrices, and libm's sincos is a call per angle
+    call fast_sincos(theta, sn, cs)
+    s1 = sn(1); c1 = cs(1)
+    s2 = sn(2); c2 = cs(2)
+    s3 = sn(3); c3 = cs(3)
     c(1, :) = [c2*c3, s1*s2*c3 - s3*c1, c1*s2*c3 + s3*s1]
     c(2, :) = [c2*s3, s1*s2*s3 + c1*c3, c1*s2*s3 - c3*s1]
     c(3, :) = [-s2, s1*c2, c1*c2]
@@ -32,10 +36,11 @@ contains
     !> components [rad/s].
     real(wp), intent(in) :: theta(3), omega(3)
     real(wp) :: rates(3)
-    real(wp) :: s1, c1, c2, t
-    s1 = sin(theta(1)); c1 = cos(theta(1)); c2 = cos(theta(2))
+    real(wp) :: s1, c1, c2, t, sn(2), cs(2)
+    call fast_sincos(theta(1:2), sn, cs)
+    s1 = sn(1); c1 = cs(1); c2 = cs(2)
     t = omega(2)*s1 + omega(3)*c1
-    rates(1) = omega(1) + tan(theta(2))*t
+    rates(1) = omega(1) + sn(2)/c2*t
     rates(2) = omega(2)*c1 - omega(3)*s1
     rates(3) = t/c2
   end function euler_rates
