@@ -218,8 +218,8 @@ contains
     integer, intent(in) :: nc
     real(wp), intent(in) :: k(nc), dd, phi_a(nc), phi_b(nc), far(nc), fai(nc), fbr(nc), fbi(nc)
     real(wp), intent(out) :: w0r(nc), w0i(nc), w1r(nc), w1i(nc)
-    real(wp) :: zr, zi, z2, rz, ir, ii, dr, di
-    complex(wp) :: term, e1, e2, z, fa
+    real(wp) :: zr, zi, z2, rz, ir, ii, dr, di, t0
+    real(wp) :: zr_(nc), zi_(nc), tr(nc), ti(nc), e1r(nc), e1i(nc), e2r(nc), e2i(nc)
     logical :: small(nc)
     integer :: l, n
     do l = 1, nc
@@ -242,25 +242,35 @@ contains
       w1i(l) = dr*ii + di*ir
     end do
     if (any(small)) then
+      ! E1 = sum z^n/(n+1)!, E2 = sum z^n/(n! (n+2)); w0 = fa E1, w1 = fa E2: the terms
+      ! in lockstep over every lane (independent lanes vectorise), kept where the lane
+      ! is small. Real arithmetic: a link-time-optimised build applies C's complex rules
+      ! (NaN checks in every product) where Fortran's need none
+      zr_(1:nc) = -k*dd
+      zi_(1:nc) = phi_a - phi_b
+      tr(1:nc) = 1.0_wp
+      ti(1:nc) = 0.0_wp
+      e1r(1:nc) = 1.0_wp
+      e1i(1:nc) = 0.0_wp
+      e2r(1:nc) = 0.5_wp
+      e2i(1:nc) = 0.0_wp
+      do n = 1, series_terms
+        do l = 1, nc
+          t0 = (tr(l)*zr_(l) - ti(l)*zi_(l))*inv_n(n)
+          ti(l) = (tr(l)*zi_(l) + ti(l)*zr_(l))*inv_n(n)
+          tr(l) = t0
+          e1r(l) = e1r(l) + tr(l)*inv_n1(n)
+          e1i(l) = e1i(l) + ti(l)*inv_n1(n)
+          e2r(l) = e2r(l) + tr(l)*inv_n2(n)
+          e2i(l) = e2i(l) + ti(l)*inv_n2(n)
+        end do
+      end do
       do l = 1, nc
         if (.not. small(l)) cycle
-        ! E1 = sum z^n/(n+1)!, E2 = sum z^n/(n! (n+2)); w0 = fa E1, w1 = fa E2
-        z = cmplx(-k(l)*dd, phi_a(l) - phi_b(l), wp)
-        term = (1.0_wp, 0.0_wp)
-        e1 = term
-        e2 = 0.5_wp*term
-        do n = 1, series_terms
-          term = term*z*inv_n(n)
-          e1 = e1 + term*inv_n1(n)
-          e2 = e2 + term*inv_n2(n)
-        end do
-        fa = cmplx(far(l), fai(l), wp)
-        e1 = fa*e1
-        e2 = fa*e2
-        w0r(l) = real(e1, wp)
-        w0i(l) = aimag(e1)
-        w1r(l) = real(e2, wp)
-        w1i(l) = aimag(e2)
+        w0r(l) = far(l)*e1r(l) - fai(l)*e1i(l)
+        w0i(l) = far(l)*e1i(l) + fai(l)*e1r(l)
+        w1r(l) = far(l)*e2r(l) - fai(l)*e2i(l)
+        w1i(l) = far(l)*e2i(l) + fai(l)*e2r(l)
       end do
     end if
     ! less the tangent plane's share 1 - i phi (weights 1 and s)
