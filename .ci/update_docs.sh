@@ -4,5 +4,5 @@
 # The tables made from runs: davit-post readme-tables out --run --write (minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin="${DAVIT_BIN:-$PWD/$(fpm run --profile release --flag "-march=native -fstack-arrays" --runner echo 2>/dev/null | tail -n 1)}"
+bin="${DAVIT_BIN:-$PWD/$(fpm run --profile release --flag "-march=native -fstack-arrays -flto=auto" --runner echo 2>/dev/null | tail -n 1)}"
 python3 -m postproc.doc_blocks --write --davit "$bin"

@@ -20,6 +20,7 @@ import tempfile
 import numpy as np
 
 from . import bem_db, bem_rao, layout
+from .build_flags import fpm_release
 
 AMPLITUDE = 0.02
 DOFS = {"heave": 2, "roll": 3, "pitch": 4}
@@ -113,8 +114,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     davit_bin = a.davit
     if davit_bin is None:
-        out = subprocess.run(["fpm", "run", "--profile", "release", "--flag",
-                              "-march=native -fstack-arrays", "--runner", "echo"],
+        out = subprocess.run(["fpm", "run", *fpm_release(), "--runner", "echo"],
                              capture_output=True, text=True, check=True)
         davit_bin = out.stdout.strip().splitlines()[-1]
     td, ref = compare(davit_bin, a.database, a.omegas, a.headings_deg, a.roll_damping)

@@ -9,6 +9,7 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
+from postproc.build_flags import fpm_release  # noqa: E402
 # Decks copied to temporary folders still find their data files (the BEM database of
 # &ship model = 'bem') in the project's input/ (davit searches DAVIT_PATH after the
 # deck's own folder).
@@ -25,8 +26,7 @@ def _find_binary():
     env = os.environ.get("DAVIT_BIN")
     if env:
         return env
-    out = subprocess.run(["fpm", "run", "--profile", "release",
-                          "--flag", "-march=native -fstack-arrays", "--runner", "echo"],
+    out = subprocess.run(["fpm", "run", *fpm_release(), "--runner", "echo"],
                          cwd=ROOT, capture_output=True, text=True, check=True)
     return str(ROOT / out.stdout.strip().splitlines()[-1])
 

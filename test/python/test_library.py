@@ -1,6 +1,7 @@
 """davit as a library (include/davit.h, python/davit): a launch stepped in pieces equals
-`davit run` bit for bit (the same objects: make.sh links build/libdavit.so from the archive
-fpm links the binary from), a save / restore pair reproduces the run it left, handles on
+`davit run` to rounding (the same objects: make.sh links build/libdavit.so from the archive
+fpm links the binary from; each link optimises them on its own, -flto, so their inlining and
+hence their last bits may differ), a save / restore pair reproduces the run it left, handles on
 several threads equal their serial runs, the controls act as their physics says, and bad
 input is refused with the code and a message naming file, line, group and key."""
 import concurrent.futures
@@ -42,9 +43,11 @@ def stepped(run, piece, t_stop=None):
     return np.array(times), np.array(pos).T, np.array(ten).T
 
 
-def test_stepped_launch_equals_davit_run_bitwise(default_run):
+def test_stepped_launch_equals_davit_run(default_run):
     """The default launch (lowering, contacts, waterborne, release, 5 s after) in 0.02 s
-    pieces: every sample of /boat/position and /slings/tension equal to the bit."""
+    pieces: the same samples, every /boat/position within 1e-9 m and /slings/tension within
+    1e-9 of its peak of `davit run`'s (the two links' rounding: 3e-13 m and 4.5e-11 measured;
+    a wrong step, piece or event would move them by millimetres)."""
     time, position, tension = default_run
     with davit.Launch.from_file(DEFAULT_DECK) as run:
         t, p, s = stepped(run, 0.02)
@@ -52,8 +55,8 @@ def test_stepped_launch_equals_davit_run_bitwise(default_run):
     assert events["release"] is not None and events["waterborne"] is not None
     assert t.shape == time.shape, (t[-3:], time[-3:])
     assert np.array_equal(t, time)
-    assert np.array_equal(p, position)
-    assert np.array_equal(s, tension)
+    assert np.abs(p - position).max() <= 1e-9
+    assert np.abs(s - tension).max() <= 1e-9*np.abs(tension).max()
 
 
 def test_pieces_of_other_lengths_reach_the_same_state():

@@ -16,11 +16,12 @@ import numpy as np
 import pytest
 
 from postproc import layout
+from postproc.build_flags import fpm_release
 from test_sweep import BASE, SWEEP, _setup
 from test_sweep_shards import _assert_bitwise, _attrs
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-MPI_FLAGS = ["--profile", "release", "--flag", "-march=native -fstack-arrays -DDAVIT_MPI"]
+MPI_FLAGS = fpm_release("-DDAVIT_MPI")
 # Open MPI refuses root unless told (containers, CI); --oversubscribe: 3 ranks on 2 cores
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
