@@ -255,8 +255,9 @@ contains
   end function cached_diffraction
 
   !> The unramped diffraction load at the times t (position r, yaw psi) with its time rate
-  !> and horizontal gradient, d(DOF, (value, d/dt, d/dx, d/dy), time): with D e^(i Phi) = P + i Q per component (Phi = w t + eps - kx x - ky y),
-  !> the load is sum P, d/dt = -sum w Q, d/dx = sum kx Q, d/dy = sum ky Q.
+  !> and horizontal gradient, d(DOF, (value, d/dt, d/dx, d/dy), time): with
+  !> D e^(i Phi) = P + i Q per component (Phi = w t + eps - kx x - ky y), the load is
+  !> sum P, d/dt = -sum w Q, d/dx = sum kx Q, d/dy = sum ky Q.
   pure subroutine diffraction_sums(self, sea, t, r, psi, d)
     type(boat_bem_type), intent(in) :: self
     type(wave_field_type), intent(in) :: sea
