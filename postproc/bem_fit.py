@@ -325,20 +325,21 @@ def _min_fit_damping(poles, coef, omega_max, damping):
                  / max(np.max(np.abs(damping)), 1e-300))
 
 
+MIN_RESOLVED = 4    # fewer resolved frequencies than this: the grid is kept whole
+
+
 def resolved_frequencies(omega, damping):
     """(nw,) bool: the frequencies a fit uses. A diagonal damping B_ii < 0 is impossible for a
     body that radiates (the mean power it radiates, w^2 B_ii |xi_i|^2 / 2, is >= 0): the
     mesh does not resolve that wave (the 288-panel Wigley hull at 16 rad/s: a 0.24 m wave on
     0.125 m panels, B_55 < 0 and B_33 a sixth of its trend). That frequency and every higher
-    one are left out; the lower ones are kept."""
+    one are left out, the lower ones kept; if fewer than MIN_RESOLVED would be left (a grid
+    too short to fit without them) all are kept."""
     diag = np.diagonal(np.asarray(damping, float), axis1=1, axis2=2)
     bad = np.nonzero(np.any(diag < 0.0, axis=1))[0]
     keep = np.ones(len(omega), bool)
-    if bad.size:
+    if bad.size and bad[0] >= MIN_RESOLVED:
         keep[bad[0]:] = False
-    if keep.sum() < 4:
-        raise ValueError(f"radiation damping B_ii < 0 from {omega[bad[0]]:g} rad/s on: fewer "
-                         f"than 4 resolved frequencies left to fit (refine the mesh)")
     return keep
 
 
