@@ -14,6 +14,11 @@ on the residues in the final least-squares step). The order grows until the freq
 error drops below a tolerance. The realisation is real and block-diagonal: a real pole p
 with residue c gives [p], [1], [c]; a complex pair p, conj(p) with residue c gives
 A = [[Re p, -Im p], [Im p, Re p]], B = [1, 0], C = [2 Re c, -2 Im c].
+A diagonal pair whose fit misses the tolerance is refitted for the RAO instead
+(fit_impedance): frequencies weighted by w / |Z(w)|, A_inf shifted by a fitted constant e
+(the model's A(w) = A_inf + e + Im K_fit(i w) / w), the residues perturbed to passivity.
+Frequencies beyond the first with a negative diagonal damping are not fitted
+(resolved_frequencies).
 numpy only (no scipy), so that the RAO tool and the tests need no more than numpy and h5py.
 """
 from dataclasses import dataclass
