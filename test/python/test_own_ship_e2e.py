@@ -84,6 +84,35 @@ def test_symmetry_zero_pairs_are_not_fitted_and_diagonal_fits_are_passive(wigley
         assert bfit.min() >= -1.001e-3 * np.abs(base.damping[:, i, i]).max(), db.DOFS[i]
 
 
+def test_heave_and_pitch_memory_reproduces_the_impedance_through_resonance(wigley_db):
+    """The fitted model of heave and pitch (Cummins' A_inf from davit_ss_added_mass_inf,
+    the state-space memory K_fit) against the BEM's own A(w), B(w): the relative error of
+    the one-DOF impedance, w |K_fit - K| / |C - w^2 (M + A) + i w B|, is below 2 % at every
+    grid frequency the fits use (<= 15 rad/s), 1 % at 3..8 rad/s; the shift is on the
+    heave and pitch diagonals only (their impedance fits), below 3 % of A_inf."""
+    folder, base, _ = wigley_db
+    with h5py.File(folder / "wigley_bem.nc", "r") as f:
+        a_inf = f["davit_ss_added_mass_inf"][()]
+        assert f.attrs["fit_last_omega"] == pytest.approx(15.0)
+    shift = a_inf - base.added_mass_inf
+    assert np.count_nonzero(shift) == 2 and shift[2, 2] != 0 and shift[4, 4] != 0
+    assert np.all(np.abs(np.diag(shift)) < 0.03 * np.diag(base.added_mass_inf))
+    w = base.omega[base.omega <= 15.0]
+    band = (w >= 3.0) & (w <= 8.0)
+    for i in (2, 4):
+        n = base[db.SS_ORDER][i, i]
+        kfit = bem_fit.transfer(base[db.SS_A][i, i, :n, :n], base[db.SS_B][i, i, :n],
+                                base[db.SS_C][i, i, :n], 1j * w)
+        a = base.added_mass[:w.size, i, i]
+        b = base.damping[:w.size, i, i]
+        model = 1j * w * kfit - w**2 * a_inf[i, i]
+        bem = 1j * w * b - w**2 * a
+        z = base.stiffness[i, i] - w**2 * (base.mass[i, i] + a) + 1j * w * b
+        err = np.abs(model - bem) / np.abs(z)
+        assert err.max() < 0.02, db.DOFS[i]
+        assert err[band].max() < 0.01, db.DOFS[i]
+
+
 def test_time_domain_heave_and_pitch_equal_the_frequency_domain(wigley_db, davit):
     """davit rao (Cummins' equation, the fitted memory) against bem rao (the database's
     A(w), B(w) themselves) at 3..8 rad/s, through the heave and pitch resonances."""
