@@ -28,6 +28,16 @@ FIT_WINDOW = 30.0                # [s] of the K(t) error
 LIFEBOAT_RETARDATION = (0.02, 20.0, 10.0)
 # and its fits see the data extended past 8 rad/s (postproc.bem_fit.fit_all, tail)
 LIFEBOAT_FIT_TAIL = (1.25, 1.5, 2.0, 3.0, 4.0, 6.0)
+# the infinite-frequency added mass of the fitted model (Cummins' mass M + A_inf): the BEM's
+# davit_added_mass_inf but where an impedance fit shifted it (postproc.bem_fit.fit_impedance);
+# davit reads it when present (databases without it: davit_added_mass_inf)
+SS_ADDED_MASS_INF = "davit_ss_added_mass_inf"
+FIT_VARIABLES = {
+    SS_ADDED_MASS_INF: ((db.DIM_I, db.DIM_J), db._UNITS_6x6,
+                        "A_inf of the fitted memory model (Cummins' mass M + A_inf): "
+                        "davit_added_mass_inf plus the diagonal shift e_ii of impedance fits "
+                        "(A_fit(w) = A_inf + e + Im K_fit(i w) / w)"),
+}
 
 
 def default_omegas():
@@ -216,11 +226,22 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
 
     dt, end, window = retardation
     time = np.arange(0.0, end + 0.5 * dt, dt)
-    kernel = bem_fit.retardation(omega, damping, time)
-    fits = bem_fit.fit_all(omega, added_mass, damping, a_inf, time, kernel, nmax=nmax,
-                           tol=tol, window=window, tail=tail, zero=zero)
+    # the fits (and K(t)) see the frequencies the mesh resolves (bem_fit.resolved_frequencies)
+    keep = bem_fit.resolved_frequencies(omega, damping)
+    if progress and not keep.all():
+        print(f"bem: radiation damping B_ii < 0 at {omega[~keep][0]:g} rad/s (the mesh does not "
+              f"resolve that wave): the fits use {keep.sum()} frequencies up to "
+              f"{omega[keep][-1]:g} rad/s", file=sys.stderr)
+    kernel = bem_fit.retardation(omega[keep], damping[keep], time)
+    fits = bem_fit.fit_all(omega[keep], added_mass[keep], damping[keep], a_inf, time, kernel,
+                           nmax=nmax, tol=tol, window=window, tail=tail, zero=zero, mass=m6,
+                           stiffness=stiffness, omega_max=omega[-1])
     order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
+    # Cummins' mass: A_inf plus the shifts that impedance fits took (bem_fit.fit_impedance)
+    a_inf_fit = a_inf + np.diag([fits[(i, i)].added_mass_shift if (i, i) in fits else 0.0
+                                 for i in range(6)])
     hydro["min_eigen_damping"] = bem_fit.min_eigen_damping(fits, omega[-1], damping)
+    hydro["fit_last_omega"] = float(omega[keep][-1])
     if progress:
         print_fit_report(fits)
         print(f"bem: fitted damping matrix, smallest eigenvalue over 0..20 w_N (scaled by "
@@ -242,6 +263,7 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
         db.SS_FIT_ERROR_ADDED_MASS: err[0], db.SS_FIT_ERROR_DAMPING: err[1],
         db.SS_FIT_ERROR_RETARDATION: err[2],
         db.RETARDATION_TIME: time, db.RETARDATION: kernel,
+        SS_ADDED_MASS_INF: a_inf_fit,
     }
 
 
@@ -288,7 +310,10 @@ def print_fit_report(fits, file=sys.stderr):
               f"A {f.error_added_mass:7.2%}  B {f.error_damping:7.2%}  "
               f"K(t) {f.error_retardation:7.2%}  max Re(pole) "
               f"{max(p.real for p in f.poles):.3g}  min B_fit/max B {f.min_damping:.3f}"
-              f"{'  (tail)' if f.tail else ''}", file=file)
+              f"{'  (tail)' if f.tail else ''}"
+              + (f"  RAO err {f.error_impedance:.2%}" if np.isfinite(f.error_impedance) else "")
+              + (f"  A_inf {f.added_mass_shift:+.4g} (impedance fit)"
+                 if f.added_mass_shift else ""), file=file)
 
 
 def write(path, ds, variables, attrs):
@@ -300,7 +325,8 @@ def write(path, ds, variables, attrs):
     out["radiating_dof"] = out["radiating_dof"].astype(str)
     out["influenced_dof"] = out["influenced_dof"].astype(str)
     for name, value in variables.items():
-        dims, units, description = db.VARIABLES.get(name) or db.DRIFT_VARIABLES[name]
+        dims, units, description = (db.VARIABLES.get(name) or db.DRIFT_VARIABLES.get(name)
+                                    or FIT_VARIABLES[name])
         value = np.asarray(value)
         if name == db.SS_ORDER:
             value = value.astype(np.int32)
@@ -353,6 +379,7 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
         "fit_min_eigen_damping": hydro["min_eigen_damping"],
+        "fit_last_omega": hydro["fit_last_omega"],
         "retardation_dt_end_window": np.asarray(retardation, float),
         db.ATTR_DRIFT_ROLL_DAMPING: drift_roll_damping, "drift_roll_damping_visc": b44,
         "drift_theta_points": np.int32(bem_drift.N_THETA),

@@ -14,6 +14,11 @@ on the residues in the final least-squares step). The order grows until the freq
 error drops below a tolerance. The realisation is real and block-diagonal: a real pole p
 with residue c gives [p], [1], [c]; a complex pair p, conj(p) with residue c gives
 A = [[Re p, -Im p], [Im p, Re p]], B = [1, 0], C = [2 Re c, -2 Im c].
+A diagonal pair whose fit misses the tolerance is refitted for the RAO instead
+(fit_impedance): frequencies weighted by w / |Z(w)|, A_inf shifted by a fitted constant e
+(the model's A(w) = A_inf + e + Im K_fit(i w) / w), the residues perturbed to passivity.
+Frequencies beyond the first with a negative diagonal damping are not fitted
+(resolved_frequencies).
 numpy only (no scipy), so that the RAO tool and the tests need no more than numpy and h5py.
 """
 from dataclasses import dataclass
@@ -215,15 +220,17 @@ class PairFit:
     error_retardation: float    # ||K_ss - K|| / ||K|| (L2 over 0..30 s), nan if not computed
     min_damping: float = float("nan")   # min over 0..20 w_N of B_fit / max |B| (diagonal)
     tail: bool = False          # fitted with the tail beyond the grid (fit_all)
+    added_mass_shift: float = 0.0   # fitted A_inf - BEM A_inf (fit_impedance; else 0)
+    error_impedance: float = float("nan")   # max w |K_fit - K| / |Z| (diagonal, impedance)
 
     @property
     def error(self):
         return max(self.error_added_mass, self.error_damping)
 
 
-def fit_errors(poles, coef, omega, added_mass, damping, added_mass_inf):
+def fit_errors(poles, coef, omega, added_mass, damping, added_mass_inf, shift=0.0):
     kf = evaluate(poles, coef, 1j * omega)
-    a_fit = added_mass_inf + kf.imag / omega
+    a_fit = added_mass_inf + shift + kf.imag / omega
     b_fit = kf.real
     scale_a = max(np.max(np.abs(added_mass - added_mass_inf)), 1e-300)
     scale_b = max(np.max(np.abs(damping)), 1e-300)
@@ -323,6 +330,135 @@ def _min_fit_damping(poles, coef, omega_max, damping):
                  / max(np.max(np.abs(damping)), 1e-300))
 
 
+MIN_RESOLVED = 4    # fewer resolved frequencies than this: the grid is kept whole
+
+
+def resolved_frequencies(omega, damping):
+    """(nw,) bool: the frequencies a fit uses. A diagonal damping B_ii < 0 is impossible for a
+    body that radiates (the mean power it radiates, w^2 B_ii |xi_i|^2 / 2, is >= 0): the
+    mesh does not resolve that wave (the 288-panel Wigley hull at 16 rad/s: a 0.24 m wave on
+    0.125 m panels, B_55 < 0 and B_33 a sixth of its trend). That frequency and every higher
+    one are left out, the lower ones kept; if fewer than MIN_RESOLVED would be left (a grid
+    too short to fit without them) all are kept."""
+    diag = np.diagonal(np.asarray(damping, float), axis1=1, axis2=2)
+    bad = np.nonzero(np.any(diag < 0.0, axis=1))[0]
+    keep = np.ones(len(omega), bool)
+    if bad.size and bad[0] >= MIN_RESOLVED:
+        keep[bad[0]:] = False
+    return keep
+
+
+def _impedance(omega, added_mass, damping, mass, stiffness):
+    """|Z(w)| = |C - w^2 (M + A) + i w B| of one degree of freedom."""
+    return np.abs(stiffness - omega**2 * (mass + added_mass) + 1j * omega * damping)
+
+
+def impedance_error(fit, omega, added_mass, damping, added_mass_inf, mass, stiffness):
+    """max over the grid of w |K_fit(i w) - K(i w)| / |Z(w)|: the relative error of a
+    one-degree-of-freedom RAO that the fit's error makes (xi = X / Z and Z = C - w^2 (M +
+    A_inf) + i w K, so d xi / xi = -i w dK / Z); largest near the resonance, where |Z| is
+    the damping alone."""
+    kf = evaluate(fit.poles, fit.coef, 1j * omega) + 1j * omega * fit.added_mass_shift
+    k = damping + 1j * omega * (added_mass - added_mass_inf)
+    return float(np.max(omega * np.abs(kf - k)
+                        / _impedance(omega, added_mass, damping, mass, stiffness)))
+
+
+def _vector_fit_shifted(s, f, order, weight, cap, iterations=40, min_damping=1e-3):
+    """vector_fit of f(s) ~ sum_k r_k / (s - p_k) + e s with the rows weighted, e real (a
+    shift of A_inf: the BEM's A_inf and a coarse mesh's A(w) near its last frequency need
+    not agree with Kramers-Kronig, Perez and Fossen, Ocean Eng. 36, 2009) and the poles
+    kept within |p| <= cap (a pole beyond the grid only extrapolates). Returns poles, null
+    (columns: coefficients, e last, with K(0) = 0) and y (coefficients = null @ y)."""
+    wpos = np.abs(s.imag)[np.abs(s.imag) > 0]
+    poles = _initial_poles(order, wpos.min(), wpos.max())
+    for _ in range(iterations):
+        phi = _basis(s, poles)
+        x = _lstsq_real(np.hstack([phi, s[:, None], -f[:, None] * phi]) * weight[:, None],
+                        f * weight)
+        a, b, c = realisation(poles, x[order + 1:])
+        new = _relocate(np.linalg.eigvals(a - np.outer(b, c)), min_damping)
+        new = [p * cap / abs(p) if abs(p) > cap else p for p in new]
+        if sum(m for _, m in _split_poles(new)) != order:
+            break
+        poles = new
+    g = np.concatenate([_basis(np.array([0.0 + 0.0j]), poles).real[0], [0.0]])
+    null = np.linalg.svd(g[None, :])[2][1:].T
+    phi = np.hstack([_basis(s, poles), s[:, None]]) @ null
+    return poles, null, _lstsq_real(phi * weight[:, None], f * weight)
+
+
+def _passive_kkt(s, f, poles, null, weight, omega_max, slack=PASSIVE_SLACK, iterations=50):
+    """Residue perturbation (Gustavsen and Semlyen, IEEE Trans. Power Syst. 16(1), 2001):
+    the weighted least-squares residues of _vector_fit_shifted (same poles) with Re K(i w_m)
+    = 0 imposed exactly (Lagrange multipliers) at each local minimum w_m over 0..20
+    omega_max where Re K < -slack max |Re f|, the set growing until no minimum is below.
+    Returns the coefficients (e last), or None."""
+    phi = np.hstack([_basis(s, poles), s[:, None]]) @ null * weight[:, None]
+    m = np.vstack([phi.real, phi.imag])
+    r = np.concatenate([(f * weight).real, (f * weight).imag])
+    w = np.linspace(1e-3, 20.0 * omega_max, 20000)
+    scale = np.linalg.norm(m, axis=0)
+    scale[scale == 0.0] = 1.0
+    m = m / scale
+    dense = (np.hstack([_basis(1j * w, poles).real, np.zeros((w.size, 1))]) @ null) / scale
+    tol = slack * np.max(np.abs(f.real))
+    z = np.linalg.lstsq(m, r, rcond=None)[0]
+    active = []
+    for _ in range(iterations):
+        excess = -tol - dense @ z
+        peak = (excess > 0) & (excess >= np.roll(excess, 1)) & (excess >= np.roll(excess, -1))
+        new = [k for k in np.nonzero(peak)[0] if k not in active]
+        if not new:
+            return null @ (z / scale)
+        active += new
+        g = dense[active]
+        kkt = np.block([[m.T @ m, g.T], [g, np.zeros((len(active), len(active)))]])
+        z = np.linalg.lstsq(kkt, np.concatenate([m.T @ r, np.zeros(len(active))]),
+                            rcond=None)[0][:m.shape[1]]
+    return None
+
+
+def fit_impedance(omega, added_mass, damping, added_mass_inf, mass, stiffness, nmax=12,
+                  omega_max=None):
+    """A passive fit of a diagonal pair that minimises impedance_error: vector fitting with
+    each frequency weighted by w / |Z(w)| (the RAO's sensitivity to K), A_inf shifted by a
+    fitted e, the poles within the grid's band, and the residues perturbed to passivity
+    (_passive_kkt) where the fit's damping dips below -PASSIVE_SLACK max B over 0..20
+    omega_max; of orders 2..nmax the passive one with the least impedance_error. None if
+    no order gives a passive fit."""
+    omega = np.asarray(omega, float)
+    w_top = omega[-1] if omega_max is None else omega_max
+    s = np.concatenate([[0.0], omega]) * 1j
+    k = np.concatenate([[0.0], damping + 1j * omega * (added_mass - added_mass_inf)])
+    scale = np.max(np.abs(k))
+    weight = omega / _impedance(omega, added_mass, damping, mass, stiffness)
+    weight = np.concatenate([[weight[0]], weight]) / weight.max()
+    best = None
+    for order in range(2, nmax + 1):
+        try:
+            poles, null, y = _vector_fit_shifted(s, k / scale, order, weight, omega[-1])
+            coef = null @ y
+            if _min_fit_damping(poles, coef[:-1], w_top, damping / scale) < -PASSIVE_SLACK:
+                coef = _passive_kkt(s, k / scale, poles, null, weight, w_top)
+        except np.linalg.LinAlgError:
+            continue
+        if coef is None:
+            continue
+        coef = coef * scale
+        fit = PairFit(order, *realisation(poles, coef[:-1]), poles, coef[:-1],
+                      *fit_errors(poles, coef[:-1], omega, added_mass, damping,
+                                  added_mass_inf, coef[-1]), float("nan"),
+                      added_mass_shift=float(coef[-1]))
+        if _min_fit_damping(poles, fit.coef, w_top, damping) < -PASSIVE_SLACK:
+            continue
+        fit.error_impedance = impedance_error(fit, omega, added_mass, damping,
+                                              added_mass_inf, mass, stiffness)
+        if best is None or fit.error_impedance < best.error_impedance:
+            best = fit
+    return best
+
+
 def min_damping(fit, omega_max, damping):
     """min over 0..20 omega_max of B_fit(w) / max |B| (negative: the fit makes energy)."""
     return _min_fit_damping(fit.poles, fit.coef, omega_max, damping)
@@ -340,7 +476,8 @@ def _with_tail(omega, added_mass, damping, added_mass_inf, tail):
 
 
 def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, tol=0.02,
-            relative=1e-3, window=30.0, tail=None, zero=None):
+            relative=1e-3, window=30.0, tail=None, zero=None, mass=None, stiffness=None,
+            omega_max=None):
     """Fits of every significant pair: dict (i, j) -> PairFit, with the retardation error
     over 0..window s filled in. Pairs that `zero` ((6, 6) bool: symmetry_zero_pairs) marks
     are not fitted. Diagonal pairs are fitted passive (fit_pair).
@@ -352,8 +489,15 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
     Where that fit misses tol on the grid, the plain fit replaces it if it is better and,
     for a diagonal pair, passive (min B_fit >= -PASSIVITY_FLOOR max B): e.g. a damping
     still rising at the grid's end (the lifeboat's roll) does not follow the assumed tail.
-    The errors are always those on the grid."""
+    The errors are always those on the grid.
+
+    With mass and stiffness ((6, 6): the rigid-body mass and hydrostatic matrices), a
+    diagonal fit that still misses tol is replaced by fit_impedance's if that one's
+    impedance_error (the RAO error it makes) is smaller. Passivity is checked over 0..20
+    omega_max (default the last frequency: give the database's when omega is the part of
+    it that resolved_frequencies keeps)."""
     sig = significant_pairs(kernel, relative)
+    w_top = omega[-1] if omega_max is None else omega_max
     if zero is not None:
         sig &= ~np.asarray(zero, bool)
     mask = time <= window
@@ -367,25 +511,40 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
             if tail is not None:
                 fit = fit_pair(*_with_tail(*data, added_mass_inf[i, j], tail),
                                added_mass_inf[i, j], nmax=nmax, tol=tol, passive=i == j,
-                               omega_max=omega[-1])
+                               omega_max=w_top)
                 fit.error_added_mass, fit.error_damping = fit_errors(
                     fit.poles, fit.coef, *data, added_mass_inf[i, j])
                 fit.tail = True
             if fit is None or fit.error > tol:
                 plain = fit_pair(*data, added_mass_inf[i, j], nmax=nmax, tol=tol,
-                                 passive=i == j)
-                passive = (i != j or min_damping(plain, omega[-1], data[2])
+                                 passive=i == j, omega_max=w_top)
+                passive = (i != j or min_damping(plain, w_top, data[2])
                            >= -PASSIVITY_FLOOR)
                 if fit is None or (passive and plain.error < fit.error):
                     fit = plain
+            if i == j and mass is not None:
+                fit = _better_impedance(fit, data, added_mass_inf[i, i], mass[i, i],
+                                        stiffness[i, i], nmax, tol, w_top)
             fits[(i, j)] = fit
     for (i, j), fit in fits.items():
-        fit.min_damping = min_damping(fit, omega[-1], damping[:, i, j])
+        fit.min_damping = min_damping(fit, w_top, damping[:, i, j])
         kss = impulse_response(fit.poles, fit.coef, time[mask])
         kref = kernel[mask, i, j]
         fit.error_retardation = float(np.linalg.norm(kss - kref) /
                                       max(np.linalg.norm(kref), 1e-300))
     return fits
+
+
+def _better_impedance(fit, data, added_mass_inf, mass, stiffness, nmax, tol, omega_max):
+    """fit, or fit_impedance's fit of the same data if fit misses tol and that one's
+    impedance error is smaller (both with error_impedance filled in)."""
+    fit.error_impedance = impedance_error(fit, *data, added_mass_inf, mass, stiffness)
+    if fit.error <= tol:
+        return fit
+    other = fit_impedance(*data, added_mass_inf, mass, stiffness, nmax, omega_max)
+    if other is not None and other.error_impedance < fit.error_impedance:
+        return other
+    return fit
 
 
 def min_eigen_damping(fits, omega_max, damping, points=4000):

@@ -45,7 +45,8 @@ module davit_ship_bem_database
     real(wp), allocatable :: exc_re(:, :, :), exc_im(:, :, :)
     !> Its Froude-Krylov part, as (i, beta, omega).
     real(wp), allocatable :: fk_re(:, :, :), fk_im(:, :, :)
-    !> Infinite-frequency added mass A(inf) [kg, kg m, kg m^2] and hydrostatic stiffness C
+    !> Infinite-frequency added mass A(inf) of the memory model (davit_ss_added_mass_inf,
+    !> else davit_added_mass_inf) [kg, kg m, kg m^2] and hydrostatic stiffness C
     !> [N/m, N, N m/rad], 6 x 6 about the CG in body axes.
     real(wp) :: added_mass_inf(6, 6) = 0.0_wp, stiffness(6, 6) = 0.0_wp
     !> Rigid-body mass matrix [kg, kg m, kg m^2] (6 x 6 about the CG) and displaced volume
@@ -146,6 +147,13 @@ contains
     call read_shaped(h5, "davit_added_mass_inf", [6, 6], x, dims, error)
     if (allocated(error)) return
     db%added_mass_inf = transpose(reshape(x, [6, 6]))
+    ! the memory fits' A_inf where the build wrote it: an impedance fit may shift the BEM's
+    ! A_inf (postproc.bem_fit.fit_impedance), and Cummins' mass must be the fitted model's
+    if (h5%has_dataset("davit_ss_added_mass_inf")) then
+      call read_shaped(h5, "davit_ss_added_mass_inf", [6, 6], x, dims, error)
+      if (allocated(error)) return
+      db%added_mass_inf = transpose(reshape(x, [6, 6]))
+    end if
     call read_shaped(h5, "davit_hydrostatic_stiffness", [6, 6], x, dims, error)
     if (allocated(error)) return
     db%stiffness = transpose(reshape(x, [6, 6]))
