@@ -357,17 +357,13 @@ contains
     integer, intent(in) :: i0, m
     real(wp), intent(in) :: s(:), cs(:), w(:)
     real(wp), intent(inout) :: acc(lanes, nk)
-    real(wp) :: as, wc, ws, wcg, wsg, wsc, wss
+    real(wp) :: wc, ws, wcg, wsg, wsc, wss
     integer :: i, j, l, b
+    call add_elevation(field, i0, m, s, cs, acc(:, 1:ne))
     do b = 0, m - 1, lanes
       do l = 1, min(lanes, m - b)
         j = b + l
         i = i0 + j - 1
-        as = field%amplitude(i)*s(j)
-        acc(l, 1) = acc(l, 1) + field%amplitude(i)*cs(j)
-        acc(l, 2) = acc(l, 2) - as*field%omega(i)
-        acc(l, 3) = acc(l, 3) + as*field%kx(i)
-        acc(l, 4) = acc(l, 4) + as*field%ky(i)
         wc = w(j)*cs(j)
         ws = w(j)*s(j)
         wcg = wc*field%cos_dir(i)
