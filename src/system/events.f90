@@ -134,8 +134,9 @@ contains
     integer :: j
     do j = 1, fenders%nf
       call fenders%law%update(states(j), delta(j), delta_dot(j))
-      if (states(j)%phase == phase_compression .and. first_contact_time < 0.0_wp) &
+      if (states(j)%phase == phase_compression .and. first_contact_time < 0.0_wp) then
         first_contact_time = t
+      end if
     end do
   end subroutine advance_contact
 
