@@ -1,7 +1,8 @@
 !> Small laws tested directly, each against its closed form: the foundation sling's Hooke
 !> spring and axial dashpot (tension-only), the wire's dashpot as a fraction of critical, the
 !> seafarer's words for where the waves come from, a path's folder, and the peak-load watch
-!> on a tension history whose exceedances are known in closed form.
+!> on a tension history whose exceedances are known in closed form, and the contact step
+!> policy's rules on gaps whose time to contact is known.
 module test_small_laws
   use davit_kinds, only: wp, pi
   use davit_rigging_elastic_sling, only: elastic_sling_type, sling_hook_force, sling_energy
@@ -9,6 +10,8 @@ module test_small_laws
   use davit_run_scenario, only: coming_from
   use davit_io_search_path, only: folder_of
   use davit_run_load_peaks, only: load_peaks
+  use davit_boat_contact_law, only: fender_state_type, phase_compression
+  use davit_system_contact_policy, only: contact_policy_type, limits_steps, contact_max_step
   use harness, only: suite_type, case_state, new_case, check, check_true
   implicit none
   private
@@ -23,7 +26,8 @@ contains
                    new_case("wire_dashpot_fraction_of_critical", wire_critical), &
                    new_case("waves_coming_from_in_eight_sectors", coming_from_sectors), &
                    new_case("folder_of_a_path", folder_of_paths), &
-                   new_case("load_peaks_half_sine_exceedances", half_sine_peaks)]
+                   new_case("load_peaks_half_sine_exceedances", half_sine_peaks), &
+                   new_case("contact_step_policy_window_graded_located", contact_steps)]
   end function collect_small_laws
 
   !> A sling of l0 = 1 m, EA = 1e6 N (k = EA/l0 = 1e6 N/m), c = 100 N s/m from an anchor at
@@ -128,5 +132,44 @@ contains
     call check_true(state, p%swl%count == 2, "two excursions above the SWL")
     call check_true(state, p%mbl%count == 0 .and. p%mbl%first < 0.0_wp, "MBL never reached")
   end subroutine half_sine_peaks
+
+  !> The contact step policy with dt = 0.1 s and dt_contact = 0.01 s. It acts only with
+  !> contact on and 0 < dt_contact < dt. 'window': a fender 0.15 m off approaching at 1 m/s
+  !> reaches the side within two steps (-0.15 + 2 x 0.1 x 1 > 0): dt_contact; 0.25 m off it
+  !> does not, nor does a receding one: dt. 'graded': half the time to contact, 0.15/1/2 =
+  !> 0.075 s, never below dt_contact (0.015 m off: 0.0075 -> 0.01 s), the nearest fender's.
+  !> A fender in contact: dt_contact; 'event' (located): dt while every fender is free.
+  subroutine contact_steps(state)
+    type(case_state), intent(inout) :: state
+    type(contact_policy_type) :: p
+    type(fender_state_type) :: free(2), touching(2)
+    real(wp), parameter :: dt = 0.1_wp
+    p%dt_contact = 0.01_wp
+    touching(2)%phase = phase_compression
+    call check_true(state, limits_steps(p, .true., dt), "limits with contact on")
+    call check_true(state, .not. limits_steps(p, .false., dt), "no limit with contact off")
+    call check_true(state, .not. limits_steps(p, .true., 0.01_wp), "no limit at dt_contact = dt")
+    call check_true(state, .not. limits_steps(contact_policy_type(), .true., dt), &
+                    "no limit at dt_contact = 0")
+    call check(state, contact_max_step(p, free, [-0.15_wp, -1.0_wp], [1.0_wp, 0.0_wp], dt), &
+               0.01_wp, "window: contact within two steps", abs_tol=0.0_wp)
+    call check(state, contact_max_step(p, free, [-0.25_wp, -1.0_wp], [1.0_wp, 0.0_wp], dt), &
+               dt, "window: contact beyond two steps", abs_tol=0.0_wp)
+    call check(state, contact_max_step(p, free, [-0.05_wp, -1.0_wp], [-1.0_wp, 0.0_wp], dt), &
+               dt, "window: receding", abs_tol=0.0_wp)
+    call check(state, contact_max_step(p, touching, [-0.5_wp, -1.0_wp], [0.0_wp, 0.0_wp], dt), &
+               0.01_wp, "in contact", abs_tol=0.0_wp)
+    p%graded = .true.
+    call check(state, contact_max_step(p, free, [-0.15_wp, -1.0_wp], [1.0_wp, 0.0_wp], dt), &
+               0.075_wp, "graded: half the time to contact", rel_tol=1.0e-14_wp)
+    call check(state, contact_max_step(p, free, [-0.15_wp, -0.015_wp], [1.0_wp, 1.0_wp], dt), &
+               0.01_wp, "graded: the nearest fender, not below dt_contact", abs_tol=0.0_wp)
+    p%graded = .false.
+    p%located = .true.
+    call check(state, contact_max_step(p, free, [-0.15_wp, -1.0_wp], [1.0_wp, 0.0_wp], dt), &
+               dt, "event: dt while free", abs_tol=0.0_wp)
+    call check(state, contact_max_step(p, touching, [-0.5_wp, -1.0_wp], [0.0_wp, 0.0_wp], dt), &
+               0.01_wp, "event: in contact", abs_tol=0.0_wp)
+  end subroutine contact_steps
 
 end module test_small_laws

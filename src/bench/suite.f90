@@ -28,11 +28,30 @@ module davit_bench_suite
     character(len=:), allocatable :: decks
   end type bench_options
 
+  !> An integrator override: the integrator ("" keeps the deck's) with its tolerances, largest
+  !> step and fast substeps.
+  type :: method_spec
+    !> Integrator override ("" keeps the deck's).
+    character(len=16) :: integrator = ""
+    !> Relative and absolute tolerances and largest step dt [s] of the override.
+    real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, dt = 0.0_wp
+    !> Fast substeps of a multirate method (0: the deck's).
+    integer :: substeps = 0
+  end type method_spec
+
+  !> A variant the three seas are run in: the suffix of the scene's label, the deck's suffix
+  !> ("_fast": the fast level of detail) and the method.
+  type :: variant_spec
+    !> Suffix of the scene's label and of its deck's name.
+    character(len=12) :: suffix, deck_suffix = ""
+    !> The integrator override.
+    type(method_spec) :: method = method_spec()
+  end type variant_spec
+
   !> A scene: label, deck (in the decks folder), simulated time of the full and of the
   !> quick bench [s] (0: the deck's own, i.e. the whole launch to hook release + 5 s), step
   !> at the RK4 stability limit or the deck's, the reference group it is measured against
-  !> (bench_reference.h5) and an integrator override ("" keeps the deck's; with rtol,
-  !> atol and the largest step dt).
+  !> (bench_reference.h5) and an integrator override (method_spec).
   type :: scene_spec
     !> Label of the scene.
     character(len=32) :: name
@@ -44,73 +63,33 @@ module davit_bench_suite
     logical :: at_limit
     !> Group of the converged reference (bench_reference.h5).
     character(len=16) :: reference
-    !> Integrator override ("" keeps the deck's).
-    character(len=16) :: integrator = ""
-    !> Relative and absolute tolerances and largest step dt [s] of the override.
-    real(wp) :: rtol = 0.0_wp, atol = 0.0_wp, dt = 0.0_wp
-    !> Fast substeps of a multirate scene (0: the deck's).
-    integer :: substeps = 0
+    !> Integrator override (the default keeps the deck's).
+    type(method_spec) :: method = method_spec()
   end type scene_spec
 
-  !> The default level of detail (RK4 1e-3 s, massive blocks, events located) in the
-  !> regular and irregular seas; the same scenes with the Rosenbrock-W method (the
-  !> rigging implicit) and with the fast level of detail (quasi-static blocks, RK4 1e-2
-  !> s); the paper-literal level of detail (2 lumps per sling, rotating sheaves) at RK4's
-  !> stability limit and with the Rosenbrock-W method (rtol 1e-4, and 3e-3 as
-  !> `paper_literal_rosw_loose`), 20 s (its explicit step is 13x smaller). Quick: the
-  !> start of each.
-  !> The single-summation sea (100 components, one direction per frequency, instead of
-  !> 100 x 13) at the default level of detail, with Rosenbrock-W, and at the fast level
-  !> for irregular sweeps (quasi-static blocks, Rosenbrock-W), measured against the
-  !> converged reference of that sea. The multirate method (MIS: the ship, the boat's
-  !> water and wind once per 0.02 s stage, the rigging, hooks and fenders in 10 RK4
-  !> substeps) in the regular and single-summation seas; its chained variant mri2 (one
-  !> fast sweep per step) at 0.01 s steps with 5 substeps (run as 3 + 3) in the regular
-  !> sea and both irregular ones (the Figs. 20-23 sweeps' integrator), and mri2b (one
-  !> fast sweep of exactly 5 substeps of 2e-3 s per 0.01 s step) in the same three.
-  type(scene_spec), parameter :: scenes(20) = [ &
-    scene_spec("regular", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., "regular"), &
-    scene_spec("regular_rosw", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
-               "regular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
-    scene_spec("regular_fast", "iiib_level5_090_fast.nml", 0.0_wp, 20.0_wp, .false., &
-               "regular"), &
-    scene_spec("irregular", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, .false., &
-               "irregular"), &
-    scene_spec("irregular_rosw", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, &
-               .false., "irregular", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
-    scene_spec("irregular_fast", "iiib_level5_090_irregular_fast.nml", 0.0_wp, 20.0_wp, &
-               .false., "irregular"), &
-    scene_spec("irregular_single", "iiib_level5_090_irregular_single.nml", 0.0_wp, 20.0_wp, &
-               .false., "irregular_single"), &
-    scene_spec("irregular_single_rosw", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
-               20.0_wp, .false., "irregular_single", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
-    scene_spec("irregular_single_fast", "iiib_level5_090_irregular_single_fast.nml", 0.0_wp, &
-               20.0_wp, .false., "irregular_single"), &
-    scene_spec("regular_multirate", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
-               "regular", "multirate", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
-    scene_spec("irregular_single_multirate", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
-               20.0_wp, .false., "irregular_single", "multirate", 1.0e-4_wp, 1.0e-5_wp, &
-               0.02_wp), &
-    scene_spec("regular_mri2", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
-               "regular", "mri2", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
-    scene_spec("irregular_mri2", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, &
-               .false., "irregular", "mri2", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
-    scene_spec("irregular_single_mri2", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
-               20.0_wp, .false., "irregular_single", "mri2", 1.0e-4_wp, 1.0e-5_wp, &
-               0.01_wp, 5), &
-    scene_spec("regular_mri2b", "iiib_level5_090.nml", 0.0_wp, 20.0_wp, .false., &
-               "regular", "mri2b", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
-    scene_spec("irregular_mri2b", "iiib_level5_090_irregular.nml", 0.0_wp, 20.0_wp, &
-               .false., "irregular", "mri2b", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5), &
-    scene_spec("irregular_single_mri2b", "iiib_level5_090_irregular_single.nml", 0.0_wp, &
-               20.0_wp, .false., "irregular_single", "mri2b", 1.0e-4_wp, 1.0e-5_wp, &
-               0.01_wp, 5), &
+  !> The seas of the default level of detail: each the label of its reference and its deck.
+  character(len=*), parameter :: seas(3) = [character(len=16) :: "regular", "irregular", &
+                                            "irregular_single"]
+  character(len=*), parameter :: sea_decks(3) = [character(len=32) :: "iiib_level5_090", &
+                                                 "iiib_level5_090_irregular", &
+                                                 "iiib_level5_090_irregular_single"]
+  type(method_spec), parameter :: rosw_tight = method_spec("rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp)
+  type(variant_spec), parameter :: plain = variant_spec(""), fast = variant_spec("_fast", "_fast")
+  type(variant_spec), parameter :: rosw = variant_spec("_rosw", "", rosw_tight)
+  type(variant_spec), parameter :: multirate = &
+    variant_spec("_multirate", "", method_spec("multirate", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp))
+  type(variant_spec), parameter :: mri2 = &
+    variant_spec("_mri2", "", method_spec("mri2", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5))
+  type(variant_spec), parameter :: mri2b = &
+    variant_spec("_mri2b", "", method_spec("mri2b", 1.0e-4_wp, 1.0e-5_wp, 0.01_wp, 5))
+  !> The paper-literal level of detail, 20 s at most (its explicit step is 13x smaller).
+  type(scene_spec), parameter :: literal_scenes(3) = [ &
     scene_spec("paper_literal", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, .true., &
                "paper_literal"), &
     scene_spec("paper_literal_rosw", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
-               .false., "paper_literal", "rosw", 1.0e-4_wp, 1.0e-5_wp, 0.02_wp), &
+               .false., "paper_literal", rosw_tight), &
     scene_spec("paper_literal_rosw_loose", "iiib_level5_090_literal.nml", 20.0_wp, 2.0_wp, &
-               .false., "paper_literal", "rosw", 3.0e-3_wp, 3.0e-4_wp, 0.02_wp)]
+               .false., "paper_literal", method_spec("rosw", 3.0e-3_wp, 3.0e-4_wp, 0.02_wp))]
 
   !> The scenes' converged references (davit_bench_accuracy), in the decks folder.
   character(len=*), parameter :: reference_file = "bench_reference.h5"
@@ -165,18 +144,21 @@ contains
     type(error_type), allocatable, intent(out) :: error
     type(timed_run) :: run
     type(scene_spec) :: sc
+    type(scene_spec), allocatable :: scenes(:)
     real(wp) :: rate_max
     character(len=:), allocatable :: reference
     integer :: i
     ! a quick run's shortened scenes have no reference to be measured against
     reference = opts%decks//"/"//reference_file
     if (opts%quick) reference = ""
+    scenes = bench_scene_list()
     do i = 1, size(scenes)
       sc = scenes(i)
       call time_deck(trim(sc%name), opts%decks//"/"//trim(sc%deck), &
                      merge(sc%t_quick, sc%t_full, opts%quick), sc%at_limit, &
-                     reference, trim(sc%reference), trim(sc%integrator), sc%rtol, sc%atol, &
-                     sc%dt, run, rate_max, error, sc%substeps)
+                     reference, trim(sc%reference), trim(sc%method%integrator), &
+                     sc%method%rtol, sc%method%atol, sc%method%dt, run, rate_max, error, &
+                     sc%method%substeps)
       if (allocated(error)) return
       if (sc%at_limit) then
         rec%rate_max = rate_max
@@ -187,6 +169,42 @@ contains
       rec%runs = [rec%runs, run]
     end do
   end subroutine bench_scenes
+
+  !> The bench's scenes in the order they run and print.
+  !> The default level of detail (RK4 1e-3 s, massive blocks, events located) in the
+  !> regular and irregular seas; the same scenes with the Rosenbrock-W method (the
+  !> rigging implicit) and with the fast level of detail (quasi-static blocks, RK4 1e-2
+  !> s); the paper-literal level of detail (2 lumps per sling, rotating sheaves) at RK4's
+  !> stability limit and with the Rosenbrock-W method (rtol 1e-4, and 3e-3 as
+  !> `paper_literal_rosw_loose`), 20 s (its explicit step is 13x smaller). Quick: the
+  !> start of each.
+  !> The single-summation sea (100 components, one direction per frequency, instead of
+  !> 100 x 13) at the default level of detail, with Rosenbrock-W, and at the fast level
+  !> for irregular sweeps (quasi-static blocks, Rosenbrock-W), measured against the
+  !> converged reference of that sea. The multirate method (MIS: the ship, the boat's
+  !> water and wind once per 0.02 s stage, the rigging, hooks and fenders in 10 RK4
+  !> substeps) in the regular and single-summation seas; its chained variant mri2 (one
+  !> fast sweep per step) at 0.01 s steps with 5 substeps (run as 3 + 3) in the regular
+  !> sea and both irregular ones (the Figs. 20-23 sweeps' integrator), and mri2b (one
+  !> fast sweep of exactly 5 substeps of 2e-3 s per 0.01 s step) in the same three.
+  pure function bench_scene_list() result(list)
+    type(scene_spec), allocatable :: list(:)
+    integer :: i
+    list = [(on_sea(i, plain), on_sea(i, rosw), on_sea(i, fast), i = 1, size(seas))]
+    list = [list, on_sea(1, multirate), on_sea(3, multirate)]
+    list = [list, [(on_sea(i, mri2), i = 1, size(seas))]]
+    list = [list, [(on_sea(i, mri2b), i = 1, size(seas))]]
+    list = [list, literal_scenes]
+  end function bench_scene_list
+
+  !> Sea `i` run in variant `v`: the whole launch in the full bench, 20 s in the quick one,
+  !> measured against the sea's reference.
+  pure type(scene_spec) function on_sea(i, v) result(sc)
+    integer, intent(in) :: i
+    type(variant_spec), intent(in) :: v
+    sc = scene_spec(trim(seas(i))//trim(v%suffix), trim(sea_decks(i))//trim(v%deck_suffix)// &
+                    ".nml", 0.0_wp, 20.0_wp, .false., seas(i), v%method)
+  end function on_sea
 
   subroutine bench_sweep(opts, rec, error)
     !> Bench options.

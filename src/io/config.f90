@@ -458,14 +458,8 @@ contains
   pure real(wp) function level_wave_height(level)
     !> Sea-state level.
     integer, intent(in) :: level
-    select case (level)
-    case (3)
-      level_wave_height = 1.25_wp
-    case (4)
-      level_wave_height = 2.5_wp
-    case default
-      level_wave_height = 4.0_wp
-    end select
+    real(wp), parameter :: height(3:5) = [1.25_wp, 2.5_wp, 4.0_wp]
+    level_wave_height = height(preset_level(level))
   end function level_wave_height
 
   !> Wind speed of a sea-state level's preset [m/s] (review G19; Level 3: the upper bound of
@@ -473,15 +467,15 @@ contains
   pure real(wp) function level_wind_speed(level)
     !> Sea-state level.
     integer, intent(in) :: level
-    select case (level)
-    case (3)
-      level_wind_speed = 5.5_wp
-    case (4)
-      level_wind_speed = 8.0_wp
-    case default
-      level_wind_speed = 10.0_wp
-    end select
+    real(wp), parameter :: speed(3:5) = [5.5_wp, 8.0_wp, 10.0_wp]
+    level_wind_speed = speed(preset_level(level))
   end function level_wind_speed
+
+  !> The preset a level takes: 3 and 4 their own, any other the Level 5 one.
+  pure integer function preset_level(level)
+    integer, intent(in) :: level
+    preset_level = merge(level, 5, level == 3 .or. level == 4)
+  end function preset_level
 
   !> Checks that involve more than one key.
   !> Each message names the line of one of the keys involved (the first the deck sets).

@@ -55,15 +55,14 @@ contains
     call r%real(g, "fender_reaction", s%fender_reaction, 182.0e3_wp, 1.0e2_wp, 1.0e8_wp, "N", &
                 "rubber_fender: rated reaction R_r at the rated 60 % deflection (ISO "// &
                 "17357-1, 1000 x 1500 at 50 kPa: 182 kN, 32 kJ).")
-    call r%real(g, "youngs_boat", s%youngs_boat, 55.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
-                "Hertz laws: Young's modulus E_b of the fender (the paper's value; 55 GPa "// &
-                "gives 100+ g impacts).")
-    call r%real(g, "poisson_boat", s%poisson_boat, 0.45_wp, 0.0_wp, 0.5_wp, "-", &
-                "Poisson's ratio nu_b of the fender (paper).")
-    call r%real(g, "youngs_ship", s%youngs_ship, 200.0e9_wp, 1.0e5_wp, 1.0e12_wp, "Pa", &
-                "Young's modulus E_s of the ship's side (steel).")
-    call r%real(g, "poisson_ship", s%poisson_ship, 0.3_wp, 0.0_wp, 0.5_wp, "-", &
-                "Poisson's ratio nu_s of the ship's side (0.3; the paper's 0.6 is impossible).")
+    call read_material(r, "boat", s%youngs_boat, s%poisson_boat, [55.0e9_wp, 0.45_wp], &
+                       "Hertz laws: Young's modulus E_b of the fender (the paper's value; "// &
+                       "55 GPa gives 100+ g impacts).", &
+                       "Poisson's ratio nu_b of the fender (paper).")
+    call read_material(r, "ship", s%youngs_ship, s%poisson_ship, [200.0e9_wp, 0.3_wp], &
+                       "Young's modulus E_s of the ship's side (steel).", &
+                       "Poisson's ratio nu_s of the ship's side (0.3; the paper's 0.6 is "// &
+                       "impossible).")
     call r%real(g, "radius_boat", s%radius_boat, 0.15_wp, 0.0_wp, 10.0_wp, "m", &
                 "Fender radius of curvature R_b.", lo_open=.true.)
     call r%real(g, "radius_ship", s%radius_ship, 0.0_wp, 0.0_wp, 1.0e3_wp, "m", &
@@ -84,5 +83,24 @@ contains
                 "the paper's y1 = 10.5 m (III.B; starboard, so +): half the "// &
                 "&ship beam plus 0.1 m.", default_text="&ship beam/2 + 0.1 (10.5)")
   end subroutine read_contact
+
+  !> One body's elastic material in the Hertz laws (eq. 28's E and nu): keys youngs_<body> and
+  !> poisson_<body>, with the same ranges for the fender and the ship's side.
+  subroutine read_material(r, body, youngs, poisson, defaults, youngs_text, poisson_text)
+    !> The deck's reader, positioned at the &contact group.
+    type(deck_reader_type), intent(inout) :: r
+    !> The body's suffix of the keys: 'boat' or 'ship'.
+    character(len=*), intent(in) :: body
+    !> Young's modulus [Pa] and Poisson's ratio [-] read.
+    real(wp), intent(out) :: youngs, poisson
+    !> Their defaults.
+    real(wp), intent(in) :: defaults(2)
+    !> The two keys' descriptions.
+    character(len=*), intent(in) :: youngs_text, poisson_text
+    call r%real("contact", "youngs_"//body, youngs, defaults(1), 1.0e5_wp, 1.0e12_wp, "Pa", &
+                youngs_text)
+    call r%real("contact", "poisson_"//body, poisson, defaults(2), 0.0_wp, 0.5_wp, "-", &
+                poisson_text)
+  end subroutine read_material
 
 end module davit_io_contact_keys

@@ -195,24 +195,15 @@ contains
     integer, intent(in) :: default, lo, hi
     !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
-    character(len=:), allocatable :: allowed, value
-    integer :: ios, line
+    character(len=:), allocatable :: allowed, value, problem
+    integer :: line
     allowed = int_to_str(lo)//" <= "//key//" <= "//int_to_str(hi)//" (integer)"
     call self_doc(self, group, key, optional_text(default_text, int_to_str(default)), &
                   allowed, units, description)
     n = default
     if (.not. lookup(self, group, key, value, line)) return
-    if (.not. is_integer(value)) then
-      call self%fail(line, group, key, value, "not an integer", allowed, units)
-      return
-    end if
-    read (value, *, iostat=ios) n
-    if (ios /= 0) then
-      ! well-formed but beyond the default integer
-      call self%fail(line, group, key, value, "out of range", allowed, units)
-      return
-    end if
-    if (n < lo .or. n > hi) call self%fail(line, group, key, value, "out of range", allowed, units)
+    problem = int_problem(value, lo, hi, n)
+    if (len(problem) > 0) call self%fail(line, group, key, value, problem, allowed, units)
   end subroutine get_int
 
   subroutine get_logical(self, group, key, flag, default, description)
@@ -224,22 +215,14 @@ contains
     logical, intent(out) :: flag
     !> Default value.
     logical, intent(in) :: default
-    character(len=:), allocatable :: value, v
+    character(len=:), allocatable :: value
     integer :: line
     call self_doc(self, group, key, trim(merge(".true. ", ".false.", default)), &
                   ".true. or .false.", "-", description)
     flag = default
     if (.not. lookup(self, group, key, value, line)) return
-    v = to_lower(value)
-    select case (v)
-    case (".true.", "t", ".t.", "true")
-      flag = .true.
-    case (".false.", "f", ".f.", "false")
-      flag = .false.
-    case default
-      call self%fail(line, group, key, value, "not a logical", &
-                     ".true. or .false.", "-")
-    end select
+    if (.not. parse_logical(value, flag)) call self%fail(line, group, key, value, &
+                                                         "not a logical", ".true. or .false.", "-")
   end subroutine get_logical
 
   !> String restricted to a list of choices (case-insensitive, quotes optional).
@@ -256,10 +239,7 @@ contains
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: value, allowed
     integer :: line, i
-    allowed = "one of"
-    do i = 1, size(choices)
-      allowed = allowed//" '"//trim(choices(i))//"'"
-    end do
+    allowed = "one of"//quoted_list(choices)
     call self_doc(self, group, key, optional_text(default_text, "'"//default//"'"), &
                   allowed, "-", description)
     s = default
@@ -306,8 +286,8 @@ contains
     integer, intent(in) :: default(:), lo, hi, min_count, max_count
     !> The default as documented, when it depends on other keys.
     character(len=*), intent(in), optional :: default_text
-    character(len=:), allocatable :: allowed, value, items(:)
-    integer :: i, ios, line
+    character(len=:), allocatable :: allowed, value, items(:), problem
+    integer :: i, line
     allowed = int_to_str(lo)//" <= "//key//" <= "//int_to_str(hi)//" (integers, "// &
               count_range(min_count, max_count)//" values)"
     call self_doc(self, group, key, optional_text(default_text, join_ints(default)), &
@@ -318,18 +298,11 @@ contains
     deallocate (x)
     allocate (x(size(items)))
     do i = 1, size(items)
-      if (.not. is_integer(items(i))) then
-        call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
-                       shown(trim(items(i)))//"') is not an integer", allowed, units)
-        return
-      end if
-      read (items(i), *, iostat=ios) x(i)
-      if (ios /= 0) then
-        call self%fail(line, group, key, value, "out of range", allowed, units)
-        return
-      end if
-      if (x(i) < lo .or. x(i) > hi) then
-        call self%fail(line, group, key, value, "out of range", allowed, units)
+      problem = int_problem(trim(items(i)), lo, hi, x(i))
+      if (problem == "not an integer") problem = "item "//int_to_str(i)//" ('"// &
+                                                 shown(trim(items(i)))//"') is not an integer"
+      if (len(problem) > 0) then
+        call self%fail(line, group, key, value, problem, allowed, units)
         return
       end if
     end do
@@ -361,16 +334,11 @@ contains
     deallocate (x)
     allocate (x(size(items)))
     do i = 1, size(items)
-      select case (to_lower(trim(items(i))))
-      case (".true.", "t", ".t.", "true")
-        x(i) = .true.
-      case (".false.", "f", ".f.", "false")
-        x(i) = .false.
-      case default
+      if (.not. parse_logical(trim(items(i)), x(i))) then
         call self%fail(line, group, key, value, "item "//int_to_str(i)//" ('"// &
                        shown(trim(items(i)))//"') is not a logical", allowed, "-")
         return
-      end select
+      end if
     end do
   end subroutine get_logical_list
 
@@ -392,11 +360,8 @@ contains
     character(len=*), intent(in), optional :: default_text
     character(len=:), allocatable :: allowed, value, items(:), defaults, item
     integer :: i, line
-    allowed = "each one of"
-    do i = 1, size(choices)
-      allowed = allowed//" '"//trim(choices(i))//"'"
-    end do
-    allowed = allowed//" ("//count_range(min_count, max_count)//" values)"
+    allowed = "each one of"//quoted_list(choices)//" ("//count_range(min_count, max_count)// &
+              " values)"
     defaults = ""
     do i = 1, size(default)
       defaults = defaults//trim(merge(", ", "  ", i > 1))//" '"//trim(default(i))//"'"
@@ -449,9 +414,49 @@ contains
     end if
   end function list_items
 
+  !> A deck's logical (.true., t, .t., true or the .false. forms, any case); false when
+  !> `text` is none of them.
+  logical function parse_logical(text, flag) result(ok)
+    character(len=*), intent(in) :: text
+    logical, intent(inout) :: flag
+    ok = .true.
+    select case (to_lower(text))
+    case (".true.", "t", ".t.", "true")
+      flag = .true.
+    case (".false.", "f", ".f.", "false")
+      flag = .false.
+    case default
+      ok = .false.
+    end select
+  end function parse_logical
 
+  !> What is wrong with an integer item ("" when it reads and lies in lo..hi): not an
+  !> integer, or out of range (also a well-formed one beyond the default integer).
+  function int_problem(text, lo, hi, n) result(problem)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: lo, hi
+    integer, intent(inout) :: n
+    character(len=:), allocatable :: problem
+    integer :: ios
+    problem = ""
+    if (.not. is_integer(text)) then
+      problem = "not an integer"
+      return
+    end if
+    read (text, *, iostat=ios) n
+    if (ios /= 0 .or. n < lo .or. n > hi) problem = "out of range"
+  end function int_problem
 
-
+  !> The choices, each quoted, each after a blank: " 'a' 'b'".
+  pure function quoted_list(choices) result(s)
+    character(len=*), intent(in) :: choices(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ""
+    do i = 1, size(choices)
+      s = s//" '"//trim(choices(i))//"'"
+    end do
+  end function quoted_list
 
   !> Record the first error with file, line, group and key.
   subroutine reader_fail(self, line, group, key, value, problem, allowed, units)
@@ -578,9 +583,4 @@ contains
       end do
     end do
   end subroutine split_items
-
-
-
-
-
 end module davit_io_deck_reader

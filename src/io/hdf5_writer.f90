@@ -144,8 +144,8 @@ contains
     character(len=*), intent(in), optional :: dims
     real(wp), allocatable, target :: buf(:)
     buf = data
-    call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description, &
-                    dims)
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
   end subroutine writer_write_1d
 
   subroutine writer_write_2d(self, name, data, units, description, dims)
@@ -159,8 +159,8 @@ contains
     character(len=*), intent(in), optional :: dims
     real(wp), allocatable, target :: buf(:, :)
     buf = data
-    call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description, &
-                    dims)
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
   end subroutine writer_write_2d
 
   subroutine writer_write_3d(self, name, data, units, description, dims)
@@ -174,8 +174,8 @@ contains
     character(len=*), intent(in), optional :: dims
     real(wp), allocatable, target :: buf(:, :, :)
     buf = data
-    call write_real(self, name, shape(data, kind=hsize_t), c_loc(buf), units, description, &
-                    dims)
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
   end subroutine writer_write_3d
 
   !> 64-bit integer dataset (codes, counts, flags), with its units and description.
@@ -189,22 +189,10 @@ contains
     !> The dimensions' names, comma-separated, slowest first (absent: unnamed).
     character(len=*), intent(in), optional :: dims
     integer(i8), allocatable, target :: buf(:)
-    integer(hid_t) :: space, dset
-    integer(hsize_t) :: extent(1)
-    integer :: hdferr
     buf = data
-    extent = size(data, kind=hsize_t)
-    call h5screate_simple_f(1, extent, space, hdferr)
-    call h5dcreate_f(self%file, name, H5T_STD_I64LE, space, dset, hdferr)
-    call note_failure(self%failed_what, hdferr, name)
-    if (hdferr /= 0) return
-    call h5dwrite_f(dset, h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(buf), hdferr)
-    call note_failure(self%failed_what, hdferr, name)
-    call describe(dset, units, description, self%failed_what)
-    if (present(dims)) call self%scales%attach(self%file, name, dset, dims, extent, &
-                                             self%failed_what)
-    call h5dclose_f(dset, hdferr)
-    call h5sclose_f(space, hdferr)
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_STD_I64LE, &
+                       h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(buf), units, &
+                       description, dims)
   end subroutine writer_write_1d_int
 
   !> Variable-length UTF-8 string dataset, one string per entry with its trailing blanks
@@ -254,28 +242,29 @@ contains
     if (hdferr == 0) call h5tset_cset_f(atype, H5T_CSET_UTF8_F, hdferr)
   end subroutine vlen_text_type
 
-  !> One double-precision dataset of any rank from a contiguous buffer, with its
-  !> units and description.
-  subroutine write_real(self, name, extent, buf, units, description, dims)
+  !> One dataset of any rank from a contiguous buffer of memory type `mtype`, stored as
+  !> `ftype`, with its units and description.
+  subroutine write_dataset(self, name, extent, ftype, mtype, buf, units, description, dims)
     type(h5_writer_type), intent(inout) :: self
     character(len=*), intent(in) :: name, units, description
     integer(hsize_t), intent(in) :: extent(:)
+    integer(hid_t), intent(in) :: ftype, mtype
     type(c_ptr), intent(in) :: buf
     character(len=*), intent(in), optional :: dims
     integer(hid_t) :: space, dset
     integer :: hdferr
     call h5screate_simple_f(size(extent), extent, space, hdferr)
-    call h5dcreate_f(self%file, name, H5T_NATIVE_DOUBLE, space, dset, hdferr)
+    call h5dcreate_f(self%file, name, ftype, space, dset, hdferr)
     call note_failure(self%failed_what, hdferr, name)
     if (hdferr /= 0) return
-    call h5dwrite_f(dset, H5T_NATIVE_DOUBLE, buf, hdferr)
+    call h5dwrite_f(dset, mtype, buf, hdferr)
     call note_failure(self%failed_what, hdferr, name)
     call describe(dset, units, description, self%failed_what)
     if (present(dims)) call self%scales%attach(self%file, name, dset, dims, extent, &
                                              self%failed_what)
     call h5dclose_f(dset, hdferr)
     call h5sclose_f(space, hdferr)
-  end subroutine write_real
+  end subroutine write_dataset
 
   !> String attribute on the object `obj` ("/" for the root).
   subroutine writer_attr_str(self, obj, name, value)
@@ -292,6 +281,7 @@ contains
     call h5oclose_f(oid, hdferr)
   end subroutine writer_attr_str
 
+  !> 64-bit integer attribute on the object `obj` ("/" for the root).
   subroutine writer_attr_int(self, obj, name, value)
     !> The writer.
     class(h5_writer_type), intent(inout) :: self
@@ -299,42 +289,41 @@ contains
     character(len=*), intent(in) :: obj, name
     !> The attribute's value.
     integer(i8), intent(in), target :: value
-    integer(hid_t) :: oid, space, attr
-    integer :: hdferr
-    call h5oopen_f(self%file, obj, oid, hdferr)
-    call h5screate_f(H5S_SCALAR_F, space, hdferr)
-    call h5acreate_f(oid, name, H5T_STD_I64LE, space, attr, hdferr)
-    call note_failure(self%failed_what, hdferr, obj//"@"//name)
-    if (hdferr == 0) then
-      call h5awrite_f(attr, h5kind_to_type(i8, H5_INTEGER_KIND), c_loc(value), hdferr)
-      call note_failure(self%failed_what, hdferr, obj//"@"//name)
-      call h5aclose_f(attr, hdferr)
-    end if
-    call h5sclose_f(space, hdferr)
-    call h5oclose_f(oid, hdferr)
+    call write_attr(self, obj, name, H5T_STD_I64LE, h5kind_to_type(i8, H5_INTEGER_KIND), &
+                    c_loc(value))
   end subroutine writer_attr_int
 
+  !> Double-precision attribute on the object `obj` ("/" for the root).
   subroutine writer_attr_real(self, obj, name, value)
     !> The writer.
     class(h5_writer_type), intent(inout) :: self
     !> The object's path ("/" for the root); the attribute's name.
     character(len=*), intent(in) :: obj, name
     !> The attribute's value.
-    real(wp), intent(in) :: value
+    real(wp), intent(in), target :: value
+    call write_attr(self, obj, name, H5T_NATIVE_DOUBLE, H5T_NATIVE_DOUBLE, c_loc(value))
+  end subroutine writer_attr_real
+
+  !> One scalar attribute from memory of type `mtype`, stored as `ftype`.
+  subroutine write_attr(self, obj, name, ftype, mtype, buf)
+    type(h5_writer_type), intent(inout) :: self
+    character(len=*), intent(in) :: obj, name
+    integer(hid_t), intent(in) :: ftype, mtype
+    type(c_ptr), intent(in) :: buf
     integer(hid_t) :: oid, space, attr
-    integer(hsize_t), parameter :: dims(1) = [1]
     integer :: hdferr
     call h5oopen_f(self%file, obj, oid, hdferr)
     call h5screate_f(H5S_SCALAR_F, space, hdferr)
-    call h5acreate_f(oid, name, H5T_NATIVE_DOUBLE, space, attr, hdferr)
+    call h5acreate_f(oid, name, ftype, space, attr, hdferr)
     call note_failure(self%failed_what, hdferr, obj//"@"//name)
     if (hdferr == 0) then
-      call h5awrite_f(attr, H5T_NATIVE_DOUBLE, value, dims, hdferr)
+      call h5awrite_f(attr, mtype, buf, hdferr)
+      call note_failure(self%failed_what, hdferr, obj//"@"//name)
       call h5aclose_f(attr, hdferr)
     end if
     call h5sclose_f(space, hdferr)
     call h5oclose_f(oid, hdferr)
-  end subroutine writer_attr_real
+  end subroutine write_attr
 
   !> Close the file and rename it into place; reports any write failure, after which the
   !> temporary file is removed and any earlier file under the name is left as it was.

@@ -10,10 +10,11 @@ module davit_system_boat_loads
   use davit_core_kane, only: kane_v, kane_w_phi, kane_f
   use davit_core_body, only: body_mass_diagonal, body_w_phi, body_qdot, &
                              body_gravity_force, body_point_force, body_point_velocity
-  use davit_rigging_elastic_sling, only: sling_hook_force
+  use davit_rigging_elastic_sling, only: elastic_sling_type, sling_hook_force
   use davit_sea_wind, only: wind_velocity
   use davit_boat_strip_loads, only: strip_loads
-  use davit_boat_fenders, only: side_plane_type, fender_loads
+  use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_loads
+  use davit_boat_contact_law, only: fender_state_type
   use davit_boat_surface_watch, only: surely_dry
   use davit_boat_bem_water, only: boat_bem_loads, boat_bem_immersion
   use davit_system_parameters, only: system_params_type, nslings
@@ -88,7 +89,7 @@ contains
     r = matmul(c, q(4:6))
     if (fast) then
       f = body_gravity_force(par%boat, c)
-      call sling_forces(par, c, r, u, f)
+      if (par%slings_attached) call sling_forces(par%slings, par%hooks, c, r, u, f)
     else
       f = 0.0_wp
     end if
@@ -98,23 +99,27 @@ contains
       xdot = 0.0_wp
       if (par%bem_water) v = 1.0_wp + x(1)*par%bem%lambda
     end if
-    if (fast .and. par%contact) call fender_forces(par, hist, side, c, r, u, f)
+    if (fast .and. par%contact) call fender_forces(par%fenders, hist%fender_states, side, c, r, &
+                                                  u, f)
   end subroutine boat_forces
 
   !> The foundation slings' hook forces (eq. 26) added to f.
-  pure subroutine sling_forces(par, c, r, u, f)
-    type(system_params_type), intent(in) :: par
+  pure subroutine sling_forces(slings, hooks, c, r, u, f)
+    !> The slings, one per hook.
+    type(elastic_sling_type), intent(in) :: slings(nslings)
+    !> Hook points in the boat frame [m], one column per sling.
+    real(wp), intent(in) :: hooks(3, nslings)
+    !> The boat's rotation (body -> inertial), CG position (inertial) [m] and speeds.
     real(wp), intent(in) :: c(3, 3), r(3), u(6)
+    !> Generalized forces (Kane order), the slings' added.
     real(wp), intent(inout) :: f(6)
     real(wp) :: fh(3), tension
     integer :: i
-    if (par%slings_attached) then
-      do i = 1, nslings
-        call sling_hook_force(par%slings(i), r + matmul(c, par%hooks(:, i)), &
-                              matmul(c, body_point_velocity(u, par%hooks(:, i))), fh, tension)
-        f = f + body_point_force(par%hooks(:, i), matmul(transpose(c), fh))
-      end do
-    end if
+    do i = 1, nslings
+      call sling_hook_force(slings(i), r + matmul(c, hooks(:, i)), &
+                            matmul(c, body_point_velocity(u, hooks(:, i))), fh, tension)
+      f = f + body_point_force(hooks(:, i), matmul(transpose(c), fh))
+    end do
   end subroutine sling_forces
 
   !> Water (strips, BEM) and wind added to f, the BEM states' rates and modal masses.
@@ -138,14 +143,19 @@ contains
   end subroutine slow_forces
 
   !> The fenders' contact loads (eq. 34) added to f.
-  pure subroutine fender_forces(par, hist, side, c, r, u, f)
-    type(system_params_type), intent(in) :: par
-    type(system_history_type), intent(in) :: hist
+  pure subroutine fender_forces(fenders, states, side, c, r, u, f)
+    !> The fenders and their contact law.
+    type(fender_set_type), intent(in) :: fenders
+    !> Each fender's contact phase (the history's).
+    type(fender_state_type), intent(in) :: states(:)
+    !> The ship's side plane the fenders touch (inertial).
     type(side_plane_type), intent(in) :: side
+    !> The boat's rotation (body -> inertial), CG position (inertial) [m] and speeds.
     real(wp), intent(in) :: c(3, 3), r(3), u(6)
+    !> Generalized forces (Kane order), the contact's added.
     real(wp), intent(inout) :: f(6)
-    real(wp) :: fw(6), force(par%fenders%nf)
-    call fender_loads(par%fenders, hist%fender_states, side, c, r, u, fw, force)
+    real(wp) :: fw(6), force(fenders%nf)
+    call fender_loads(fenders, states, side, c, r, u, fw, force)
     f = f + fw
   end subroutine fender_forces
 

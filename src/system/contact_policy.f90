@@ -12,12 +12,10 @@
 !> event (davit_solve_event_location): the step is cut exactly at it.
 module davit_system_contact_policy
   use davit_kinds, only: wp
-  use davit_boat_contact_law, only: phase_free
-  use davit_system_parameters, only: system_params_type, fender_gaps
-  use davit_system_history, only: system_history_type
+  use davit_boat_contact_law, only: phase_free, fender_state_type
   implicit none
   private
-  public :: contact_policy_type, contact_max_step
+  public :: contact_policy_type, limits_steps, contact_max_step
 
   !> How steps are limited around fender contact (&simulation's contact keys).
   type :: contact_policy_type
@@ -32,30 +30,40 @@ module davit_system_contact_policy
 
 contains
 
-  !> Largest step from state (t, y) when the deck's step is dt.
-  pure real(wp) function contact_max_step(policy, par, hist, y, dt) result(h)
+  !> Whether the policy limits steps at all: contact acts and 0 < dt_contact < dt.
+  pure logical function limits_steps(policy, contact, dt)
     !> The deck's contact step policy.
     type(contact_policy_type), intent(in) :: policy
-    !> The system's parameters (contact switch, fenders, side plane).
-    type(system_params_type), intent(in) :: par
-    !> The history (the fenders' contact phases).
-    type(system_history_type), intent(in) :: hist
-    !> The system's state and the deck's step dt [s].
-    real(wp), intent(in) :: y(:), dt
-    real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+    !> Whether the fenders' contact with the ship's side acts (&contact enabled).
+    logical, intent(in) :: contact
+    !> The deck's step [s].
+    real(wp), intent(in) :: dt
+    limits_steps = contact .and. policy%dt_contact > 0.0_wp .and. policy%dt_contact < dt
+  end function limits_steps
+
+  !> Largest step from a state where each fender is in its contact phase `states` at
+  !> indentation delta [m] (> 0 into the side) with rate delta_dot [m/s] (> 0 approaching),
+  !> when the deck's step is dt and the policy limits steps (limits_steps).
+  pure real(wp) function contact_max_step(policy, states, delta, delta_dot, dt) result(h)
+    !> The deck's contact step policy.
+    type(contact_policy_type), intent(in) :: policy
+    !> Each fender's contact phase (the history's).
+    type(fender_state_type), intent(in) :: states(:)
+    !> Each fender's indentation [m] and its rate [m/s] (fender_gaps).
+    real(wp), intent(in) :: delta(:), delta_dot(:)
+    !> The deck's step [s].
+    real(wp), intent(in) :: dt
     integer :: j
     h = dt
-    if (.not. par%contact .or. policy%dt_contact <= 0.0_wp .or. policy%dt_contact >= dt) return
-    if (any(hist%fender_states%phase /= phase_free)) then
+    if (any(states%phase /= phase_free)) then
       h = policy%dt_contact
       return
     end if
     if (policy%located) return
-    call fender_gaps(par, y, delta, delta_dot)
     if (policy%graded) then
       ! half the predicted time to contact -delta/delta_dot of each approaching fender:
       ! the gap is halved each step, down to dt_contact
-      do j = 1, par%fenders%nf
+      do j = 1, size(delta)
         if (delta_dot(j) > 0.0_wp .and. delta(j) + 2.0_wp*dt*delta_dot(j) > 0.0_wp) then
           h = min(h, max(policy%dt_contact, -0.5_wp*delta(j)/delta_dot(j)))
         end if

@@ -5,7 +5,8 @@
 module davit_system_events
   use davit_kinds, only: wp, gravity, rho_water
   use davit_core_rotation, only: rotation_matrix
-  use davit_boat_contact_law, only: phase_compression
+  use davit_boat_contact_law, only: phase_compression, fender_state_type
+  use davit_boat_fenders, only: fender_set_type
   use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh, strip_waves_surface
   use davit_boat_surface_watch, only: watch_refresh, watch_set, watch_due, strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
@@ -50,7 +51,14 @@ contains
       call refresh_strip_waves(par, hist, t, q)
     end associate
     if (par%on_davit .and. hist%release_time < 0.0_wp) call watch_waterborne(par, hist, t, y)
-    if (par%contact) call advance_contact(par, hist, t, y)
+    if (par%contact) then
+      block
+        real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+        call fender_gaps(par, y, delta, delta_dot)
+        call advance_contact(par%fenders, t, delta, delta_dot, hist%fender_states, &
+                             hist%first_contact_time)
+      end block
+    end if
   end subroutine advance_history
 
   !> Sample the water at the strips the hull may wet within the window (the watch's bound
@@ -125,18 +133,25 @@ contains
     if (m > 0) call grid_prepare(g, sea, t, t + span, xy(:, 1:m))
   end subroutine prepare_grid
 
-  !> Each fender's contact phase on the accepted state; the first contact.
-  subroutine advance_contact(par, hist, t, y)
-    type(system_params_type), intent(in) :: par
-    type(system_history_type), intent(inout) :: hist
-    real(wp), intent(in) :: t, y(:)
-    real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+  !> Each fender's contact phase on the accepted state, from its indentation and rate
+  !> (eqs. 29-33); the first contact.
+  subroutine advance_contact(fenders, t, delta, delta_dot, states, first_contact_time)
+    !> The fenders and their contact law.
+    type(fender_set_type), intent(in) :: fenders
+    !> Time of the accepted state [s].
+    real(wp), intent(in) :: t
+    !> Each fender's indentation [m] and its rate [m/s] (fender_gaps).
+    real(wp), intent(in) :: delta(:), delta_dot(:)
+    !> Each fender's contact phase, advanced.
+    type(fender_state_type), intent(inout) :: states(:)
+    !> Time of the first contact [s] (negative until then), set at it.
+    real(wp), intent(inout) :: first_contact_time
     integer :: j
-    call fender_gaps(par, y, delta, delta_dot)
-    do j = 1, par%fenders%nf
-      call par%fenders%law%update(hist%fender_states(j), delta(j), delta_dot(j))
-      if (hist%fender_states(j)%phase == phase_compression .and. &
-          hist%first_contact_time < 0.0_wp) hist%first_contact_time = t
+    do j = 1, fenders%nf
+      call fenders%law%update(states(j), delta(j), delta_dot(j))
+      if (states(j)%phase == phase_compression .and. first_contact_time < 0.0_wp) then
+        first_contact_time = t
+      end if
     end do
   end subroutine advance_contact
 

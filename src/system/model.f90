@@ -18,7 +18,7 @@ module davit_system_model
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      hook_kinematics, fender_gaps
   use davit_system_history, only: system_history_type
-  use davit_system_contact_policy, only: contact_policy_type, contact_max_step
+  use davit_system_contact_policy, only: contact_policy_type, limits_steps, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks, loads_all, loads_slow, loads_fast
   use davit_system_events, only: advance_history
   use davit_system_observables, only: boat_kinematics, rigging_state, sling_tensions, &
@@ -188,7 +188,11 @@ contains
     class(system_type), intent(in) :: self
     !> Time [s], state vector and the deck's step dt [s].
     real(wp), intent(in) :: t, y(:), dt
-    h = contact_max_step(self%policy, self%par, self%hist, y, dt)
+    real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
+    h = dt
+    if (.not. limits_steps(self%policy, self%par%contact, dt)) return
+    call fender_gaps(self%par, y, delta, delta_dot)
+    h = contact_max_step(self%policy, self%hist%fender_states, delta, delta_dot, dt)
   end function system_max_step
 
   !> The rigging's states (blocks, lumps, sheaves, drum): their axial springs are the

@@ -245,6 +245,14 @@ def test_sweep_usage_errors_exit_2(davit, args):
      "sweep.nml:1: &sweep: levels = 4, 6: out of range; allowed: 3 <= levels <= 5"),
     ("&sweep base_deck = 'base.nml', wave_types = 'stokes3' /",
      "item 1 ('stokes3') is an unknown choice"),
+    ("&sweep base_deck = 'base.nml', levels = 4, x /",
+     "levels = 4, x: item 2 ('x') is not an integer; allowed: 3 <= levels <= 5 (integers, "
+     "1-10 values)"),
+    ("&sweep base_deck = 'base.nml', levels = 4, 99999999999 /",
+     "levels = 4, 99999999999: out of range; allowed: 3 <= levels <= 5"),
+    ("&sweep base_deck = 'base.nml', wind = .true., maybe /",
+     "wind = .true., maybe: item 2 ('maybe') is not a logical; allowed: .true. or .false. "
+     "(1-2 values)"),
     ("&sweep base_deck = 'missing.nml' /", "base_deck = 'missing.nml': no such file in"),
     ("&sweep levels = 4 /", "base_deck is required"),
     ("&sweep base_deck = 'base.nml', dts = 0.05 /", "must be <= the base deck's"),
