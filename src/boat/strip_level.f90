@@ -135,12 +135,19 @@ contains
 
   !> The paper's strips see a level surface: elevation only, zero slope.
   pure subroutine paper_surfaces(self, s, field, t, c, r, window, cache, eta, slope)
+    !> The level.
     class(paper_strip_level_type), intent(in) :: self
+    !> The strip model's data.
     type(strip_data_type), intent(in) :: s
+    !> The sea at the strips.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> Whether the cache covers t.
     logical, intent(in) :: window
+    !> The water at the strips on the slow clock.
     type(strip_wave_cache_type), intent(in), optional :: cache
+    !> Elevation [m] and slope of the surface at each strip centre.
     real(wp), intent(out) :: eta(s%hull%n), slope(2, s%hull%n)
     real(wp) :: p(3)
     integer :: k
@@ -157,12 +164,19 @@ contains
 
   !> The pressure level's strips see the surface's tangent plane at their centre.
   pure subroutine pressure_surfaces(self, s, field, t, c, r, window, cache, eta, slope)
+    !> The level.
     class(pressure_strip_level_type), intent(in) :: self
+    !> The strip model's data.
     type(strip_data_type), intent(in) :: s
+    !> The sea at the strips.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> Whether the cache covers t.
     logical, intent(in) :: window
+    !> The water at the strips on the slow clock.
     type(strip_wave_cache_type), intent(in), optional :: cache
+    !> Elevation [m] and slope of the surface at each strip centre.
     real(wp), intent(out) :: eta(s%hull%n), slope(2, s%hull%n)
     real(wp) :: p(3)
     integer :: k
@@ -181,15 +195,24 @@ contains
   !> strip; then the metacentric roll moment T1 = -rho g h sin(phi) V (eq. 24 corrected).
   pure subroutine paper_sections(self, s, field, t, c, r, wet, vrel, a1max, d0, grad_d, &
                                  volume, window, cache, f)
+    !> The level.
     class(paper_strip_level_type), intent(in) :: self
+    !> The strip model's data.
     type(strip_data_type), intent(in) :: s
+    !> The sea at the strips.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> The wet sections.
     type(section_wet_type), intent(in) :: wet(s%hull%n)
+    !> Relative velocities [m/s], largest wet area [m^2], depths [m] and their gradients, wet volume [m^3].
     real(wp), intent(in) :: vrel(3, s%hull%n), a1max, d0(s%hull%n), grad_d(3, s%hull%n), &
                             volume
+    !> Whether the cache covers t.
     logical, intent(in) :: window
+    !> The water at the strips on the slow clock.
     type(strip_wave_cache_type), intent(in), optional :: cache
+    !> Generalized forces (Kane order) [N m, N], added to.
     real(wp), intent(inout) :: f(6)
     real(wp) :: fk(3), n3(3), sn
     integer :: k
@@ -211,15 +234,24 @@ contains
   !> stiffness of the paper's h_m beyond the hull's own (pressure_roll).
   pure subroutine pressure_sections(self, s, field, t, c, r, wet, vrel, a1max, d0, grad_d, &
                                     volume, window, cache, f)
+    !> The level.
     class(pressure_strip_level_type), intent(in) :: self
+    !> The strip model's data.
     type(strip_data_type), intent(in) :: s
+    !> The sea at the strips.
     type(wave_field_type), intent(in) :: field
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
+    !> The wet sections.
     type(section_wet_type), intent(in) :: wet(s%hull%n)
+    !> Relative velocities [m/s], largest wet area [m^2], depths [m] and their gradients, wet volume [m^3].
     real(wp), intent(in) :: vrel(3, s%hull%n), a1max, d0(s%hull%n), grad_d(3, s%hull%n), &
                             volume
+    !> Whether the cache covers t.
     logical, intent(in) :: window
+    !> The water at the strips on the slow clock.
     type(strip_wave_cache_type), intent(in), optional :: cache
+    !> Generalized forces (Kane order) [N m, N], added to.
     real(wp), intent(inout) :: f(6)
     real(wp) :: fk(3), area(3), chord(4)
     integer :: k

@@ -105,8 +105,12 @@ contains
 
   !> The mean load sum_i D_i a_i^2 = sum_i sign(c_i) c_i^2 (exact in a regular wave).
   pure function mean_force(self, sea, coef, t, x, y) result(f)
+    !> The level.
     class(mean_drift_type), intent(in) :: self
+    !> The sea (phases).
     type(wave_field_type), intent(in) :: sea
+    !> The coefficients (3, number of components), time t [s] and the horizontal
+    !> position x, y [m] (earth frame) the phases are taken at.
     real(wp), intent(in) :: coef(:, :), t, x, y
     real(wp) :: f(3)
     f = sum(sign(coef**2, coef), dim=2)
@@ -115,8 +119,12 @@ contains
   !> Newman's load as the single sums F = |P+|^2 - |P-|^2, P+- = sum_{+-c_i > 0} |c_i|
   !> exp(i Phi_i) (O(N), not O(N^2)).
   pure function newman_force(self, sea, coef, t, x, y) result(f)
+    !> The level.
     class(newman_drift_type), intent(in) :: self
+    !> The sea (phases).
     type(wave_field_type), intent(in) :: sea
+    !> The coefficients (3, number of components), time t [s] and the horizontal
+    !> position x, y [m] (earth frame) the phases are taken at.
     real(wp), intent(in) :: coef(:, :), t, x, y
     real(wp) :: f(3)
     real(wp) :: s(wave_chunk), c(wave_chunk), pc(3, 2), ps(3, 2)
