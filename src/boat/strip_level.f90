@@ -205,7 +205,8 @@ contains
     real(wp), intent(in) :: t, c(3, 3), r(3)
     !> The wet sections.
     type(section_wet_type), intent(in) :: wet(s%hull%n)
-    !> Relative velocities [m/s], largest wet area [m^2], depths [m] and their gradients, wet volume [m^3].
+    !> Relative velocities [m/s], largest wet area [m^2], depths [m] and their gradients,
+    !> wet volume [m^3].
     real(wp), intent(in) :: vrel(3, s%hull%n), a1max, d0(s%hull%n), grad_d(3, s%hull%n), &
                             volume
     !> Whether the cache covers t.
@@ -244,7 +245,8 @@ contains
     real(wp), intent(in) :: t, c(3, 3), r(3)
     !> The wet sections.
     type(section_wet_type), intent(in) :: wet(s%hull%n)
-    !> Relative velocities [m/s], largest wet area [m^2], depths [m] and their gradients, wet volume [m^3].
+    !> Relative velocities [m/s], largest wet area [m^2], depths [m] and their gradients,
+    !> wet volume [m^3].
     real(wp), intent(in) :: vrel(3, s%hull%n), a1max, d0(s%hull%n), grad_d(3, s%hull%n), &
                             volume
     !> Whether the cache covers t.
