@@ -10,6 +10,7 @@ program main
   use test_boat, only: collect_boat
   use test_fenders, only: collect_fenders
   use test_contact_laws, only: collect_contact_laws
+  use test_strip_levels, only: collect_strip_levels
   use test_boat_water, only: collect_boat_water
   use test_rigging, only: collect_rigging
   use test_rigging_static, only: collect_rigging_static
@@ -58,7 +59,8 @@ program main
             collect_integrators(), collect_sweep(), &
             collect_strip_waves(), collect_bem_ship(), collect_ship_drift(), &
             collect_launch_log(), &
-            collect_boat_bem(), collect_strip_pressure(), collect_events(), &
+            collect_boat_bem(), collect_strip_pressure(), collect_strip_levels(), &
+            collect_events(), &
             collect_assess(), collect_adaptive(), collect_core(), &
             collect_wave_grid(), collect_multirate(), collect_block_balance(), &
             collect_capi(), collect_mmg(), collect_mmg_bem(), collect_small_laws()]

@@ -1,13 +1,16 @@
 !> The BEM ship's second-order wave drift (davit_ship_wave_drift, `&ship drift`): the load
 !> model against its closed forms, the database's coefficients against the physics of
-!> reflection, and the ship in regular beam waves against the coefficient and Newton's law.
+!> reflection, and the ship in regular beam waves against the coefficient and Newton's law;
+!> the factory (davit_system_law_factory) builds each level from its deck name.
 module test_ship_drift
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
   use davit_ship_bem_database, only: bem_database_type, read_bem_database, bem_drift
   use davit_ship_ship_model, only: ship_system_type, ship_loads
-  use davit_ship_wave_drift, only: drift_mean, drift_newman, drift_coefficients, drift_load
+  use davit_ship_wave_drift, only: drift_mean, drift_newman, drift_coefficients, drift_load, &
+                                   wave_drift_type, mean_drift_type, newman_drift_type
+  use davit_system_law_factory, only: new_wave_drift
   use davit_sea_wave_field, only: wave_field_type, wave_irregular
   use davit_core_rotation, only: rotation_matrix
   use davit_run_ship_scene, only: build_ship_scene
@@ -30,7 +33,8 @@ contains
                    new_case("database_down_wave_and_reflection_limit", database_physics), &
                    new_case("beam_sea_mean_sway_force_is_the_drift", beam_sea_force), &
                    new_case("beam_sea_sway_after_100s_newton", beam_sea_sway), &
-                   new_case("yawed_ship_drift_along_the_waves", yawed_ship)]
+                   new_case("yawed_ship_drift_along_the_waves", yawed_ship), &
+                   new_case("factory_builds_each_drift_level", factory_levels)]
   end function collect_ship_drift
 
   !> Two components (0.5 and 1.0 rad/s, amplitudes 1.5 and 0.7 m, phases 0.3 and 1.1 rad)
@@ -110,6 +114,69 @@ contains
   end function pairing
 
   !> Components of frequencies w, amplitudes a, phases e travelling along x (deep water).
+  !> `&ship drift` names: 'none' builds no level (no drift load) and no error; 'mean' the
+  !> mean level, which gives sum_i D_i a_i^2 on the two components of closed_forms (sway
+  !> -3e4 x 1.5^2 - 1e4 x 0.7^2 = -72400 N, yaw 5e5 x 2.25 - 2e5 x 0.49 = 1027000 N m); 'newman'
+  !> Newman's level, which in a regular wave (the first component alone) is D a^2 (sway
+  !> -67500 N); an unknown name is an error naming the key, the value and the levels.
+  subroutine factory_levels(state)
+    type(case_state), intent(inout) :: state
+    class(wave_drift_type), allocatable :: drift
+    type(error_type), allocatable :: error
+    type(bem_database_type) :: db
+    type(wave_field_type) :: sea
+    real(wp) :: coef(3, 2), f(6)
+    logical :: ok
+    db%omega = [0.5_wp, 1.0_wp]
+    db%heading = [0.0_wp, 2.0_wp*pi]
+    allocate (db%drift(3, 2, 2))
+    db%drift(:, 1, 1) = [2.0e4_wp, -3.0e4_wp, 5.0e5_wp]
+    db%drift(:, 1, 2) = [6.0e4_wp, -1.0e4_wp, -2.0e5_wp]
+    db%drift(:, 2, :) = db%drift(:, 1, :)
+    db%has_drift = .true.
+    call new_wave_drift("none", drift, error)
+    call check_true(state, .not. allocated(drift) .and. .not. allocated(error), &
+                    "none -> no level, no error")
+    call new_wave_drift("mean", drift, error)
+    ok = .false.
+    if (allocated(drift)) then
+      select type (drift)
+      type is (mean_drift_type)
+        ok = .true.
+      end select
+    end if
+    call check_true(state, ok .and. .not. allocated(error), "mean -> mean_drift_type")
+    if (.not. ok) return
+    call two_component_sea(sea, [0.5_wp, 1.0_wp], [1.5_wp, 0.7_wp], [0.3_wp, 1.1_wp])
+    call drift_coefficients(db, sea, 0.0_wp, coef)
+    f = drift_load(drift, sea, coef, 2.0_wp, 0.0_wp, 0.0_wp)
+    call check(state, f(2), -72400.0_wp, "mean: sway sum D a^2", rel_tol=1.0e-12_wp)
+    call check(state, f(6), 1027000.0_wp, "mean: yaw sum D a^2", rel_tol=1.0e-12_wp)
+    call new_wave_drift("newman", drift, error)
+    ok = .false.
+    if (allocated(drift)) then
+      select type (drift)
+      type is (newman_drift_type)
+        ok = .true.
+      end select
+    end if
+    call check_true(state, ok .and. .not. allocated(error), "newman -> newman_drift_type")
+    if (.not. ok) return
+    call two_component_sea(sea, [0.5_wp], [1.5_wp], [0.3_wp])
+    call drift_coefficients(db, sea, 0.0_wp, coef(:, 1:1))
+    f = drift_load(drift, sea, coef(:, 1:1), 3.7_wp, 0.0_wp, 0.0_wp)
+    call check(state, f(2), -67500.0_wp, "newman, regular wave: D a^2", rel_tol=1.0e-12_wp)
+    call new_wave_drift("stokes", drift, error)
+    call check_true(state, allocated(error) .and. .not. allocated(drift), "stokes -> error")
+    if (.not. allocated(error)) return
+    call check_true(state, index(error%message, "&ship drift") > 0 .and. &
+                    index(error%message, "'stokes'") > 0, "names key and value: "// &
+                    error%message)
+    call check_true(state, index(error%message, "none") > 0 .and. &
+                    index(error%message, "mean") > 0 .and. &
+                    index(error%message, "newman") > 0, "lists the levels")
+  end subroutine factory_levels
+
   pure subroutine two_component_sea(sea, w, a, e)
     type(wave_field_type), intent(out) :: sea
     real(wp), intent(in) :: w(:), a(:), e(:)

@@ -11,7 +11,7 @@ module davit_ship_ship_history
   use davit_ship_bem_loads, only: bem_wave_coefficients
   use davit_ship_froude_krylov, only: fk_box_load, fk_transfer
   use davit_ship_rudder, only: rudder_type
-  use davit_ship_wave_drift, only: drift_none, drift_coefficients
+  use davit_ship_wave_drift, only: drift_coefficients
   use davit_ship_ship_parameters, only: ship_params_type, phase_origin
   implicit none
   private
@@ -60,8 +60,8 @@ contains
     hist%psi_ref = psi
     if (par%bem) then
       call bem_wave_coefficients(par%hydro, par%sea, psi, hist%fk_sin, hist%fk_cos)
-      if (par%drift /= drift_none) call drift_coefficients(par%hydro%db, par%sea, psi, &
-                                                           hist%drift_coef)
+      if (allocated(par%drift)) call drift_coefficients(par%hydro%db, par%sea, psi, &
+                                                        hist%drift_coef)
       return
     end if
     associate (s => par%sea, h => par%hull)

@@ -43,7 +43,7 @@ module davit_ship_ship_model
   use davit_ship_mmg_loads, only: mmg_body_load
   use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
                                autopilot_order, autopilot_states
-  use davit_ship_wave_drift, only: drift_none, drift_load
+  use davit_ship_wave_drift, only: wave_drift_type, drift_load
   implicit none
   private
   public :: ship_system_type, new_ship_system, ship_loads, ship_state
@@ -154,13 +154,14 @@ contains
 
   !> Switch the BEM ship's wave drift to `level` (its database must hold the coefficients:
   !> davit_system_build checks).
-  pure subroutine set_drift(self, level)
+  subroutine set_drift(self, level)
     !> The BEM ship whose drift level is set.
     class(ship_system_type), intent(inout) :: self
-    !> drift_none, drift_mean or drift_newman (davit_ship_wave_drift).
-    integer, intent(in) :: level
-    self%par%drift = level
-    if (level == drift_none .or. .not. self%par%bem) return
+    !> drift_mean or drift_newman (davit_ship_wave_drift).
+    class(wave_drift_type), intent(in) :: level
+    if (allocated(self%par%drift)) deallocate (self%par%drift)
+    allocate (self%par%drift, source=level)
+    if (.not. self%par%bem) return
     if (allocated(self%hist%drift_coef)) deallocate (self%hist%drift_coef)
     allocate (self%hist%drift_coef(3, self%par%sea%n))
     call refresh_heading(self%hist, self%par, self%hist%psi_ref)
@@ -435,7 +436,7 @@ contains
       if (par%sea%kind /= wave_none) load = load + &
                                             heading_to_body(wave_loads(par, self%hist, t, q, c), &
                                                             q(1:3), c)
-      if (par%drift /= drift_none .and. par%sea%kind /= wave_none) then
+      if (allocated(par%drift) .and. par%sea%kind /= wave_none) then
         o = phase_origin(par, t)
         load = load + heading_to_body(drift_load(par%drift, par%sea, self%hist%drift_coef, t, &
                                                  o(1), o(2)), q(1:3), c)

@@ -11,7 +11,7 @@ module davit_ship_ship_parameters
   use davit_ship_hull, only: hull_type
   use davit_ship_bem_loads, only: bem_ship_type
   use davit_ship_mmg, only: mmg_type
-  use davit_ship_wave_drift, only: drift_none
+  use davit_ship_wave_drift, only: wave_drift_type
   implicit none
   private
   public :: ship_params_type, phase_origin
@@ -69,9 +69,9 @@ module davit_ship_ship_parameters
     type(mmg_type) :: mmg
     !> Propeller revolutions [1/s].
     real(wp) :: rps = 0.0_wp
-    !> The BEM ship's wave drift (davit_ship_wave_drift: drift_none, drift_mean,
-    !> drift_newman); its heading-dependent coefficients are in the history.
-    integer :: drift = drift_none
+    !> The BEM ship's wave drift level (davit_ship_wave_drift: drift_mean, drift_newman;
+    !> not allocated: no drift load); its heading-dependent coefficients are in the history.
+    class(wave_drift_type), allocatable :: drift
   end type ship_params_type
 
 contains

@@ -2,7 +2,8 @@
 !> the database's mean drift coefficients D(omega, beta) (far-field momentum flux, Maruo 1960,
 !> per unit amplitude squared; postproc.bem_drift).
 !>
-!> Levels of detail (`&ship drift`):
+!> Levels of detail (`&ship drift`), extensions of wave_drift_type chosen once at build
+!> (davit_system_law_factory; 'none' builds none, and the ship adds no drift load):
 !>  * 'mean': the mean load sum_i D_i a_i^2 (exact in a regular wave; in an irregular sea the
 !>    mean of the slowly varying load).
 !>  * 'newman': Newman's (1974) approximation of the difference-frequency load,
@@ -20,27 +21,51 @@ module davit_ship_wave_drift
   use davit_sea_wave_field, only: wave_field_type, wave_ramp, wave_chunk, component_phases
   implicit none
   private
-  public :: drift_none, drift_mean, drift_newman, drift_level, drift_coefficients, drift_load
+  public :: wave_drift_type, mean_drift_type, newman_drift_type, drift_mean, drift_newman, &
+            drift_names, drift_coefficients, drift_load
 
-  !> The levels of `&ship drift`: none, the mean load, Newman's slowly varying load.
-  integer, parameter :: drift_none = 0, drift_mean = 1, drift_newman = 2
+  !> The values of `&ship drift`: none, the mean load, Newman's slowly varying load.
+  character(len=*), parameter :: drift_names(3) = [character(len=6) :: "none", "mean", &
+                                                   "newman"]
+
+  !> A level of the second-order drift load: (X, Y, N) from the signed coefficients.
+  type, abstract :: wave_drift_type
+  contains
+    procedure(drift_force_i), deferred :: force
+  end type wave_drift_type
+
+  !> The mean load sum_i D_i a_i^2.
+  type, extends(wave_drift_type) :: mean_drift_type
+  contains
+    procedure :: force => mean_force
+  end type mean_drift_type
+
+  !> Newman's (1974) slowly varying load |P+|^2 - |P-|^2.
+  type, extends(wave_drift_type) :: newman_drift_type
+  contains
+    procedure :: force => newman_force
+  end type newman_drift_type
+
+  !> The two levels, as the values drift_load and the ship's set_drift take.
+  type(mean_drift_type), parameter :: drift_mean = mean_drift_type()
+  type(newman_drift_type), parameter :: drift_newman = newman_drift_type()
+
+  abstract interface
+    !> Surge, sway [N] and yaw [N m] of the drift load at time t without the start-up
+    !> ramp, from the coefficients of drift_coefficients, the phases taken at (x, y).
+    pure function drift_force_i(self, sea, coef, t, x, y) result(f)
+      import :: wp, wave_drift_type, wave_field_type
+      class(wave_drift_type), intent(in) :: self
+      !> The sea (phases).
+      type(wave_field_type), intent(in) :: sea
+      !> The coefficients (3, number of components), time t [s] and the horizontal
+      !> position x, y [m] (earth frame) the phases are taken at.
+      real(wp), intent(in) :: coef(:, :), t, x, y
+      real(wp) :: f(3)
+    end function drift_force_i
+  end interface
 
 contains
-
-  !> The level of the key's value ('none', 'mean', 'newman'; anything else: none, the deck
-  !> reader has checked it).
-  pure integer function drift_level(name) result(level)
-    !> The value of `&ship drift`.
-    character(len=*), intent(in) :: name
-    select case (name)
-    case ("mean")
-      level = drift_mean
-    case ("newman")
-      level = drift_newman
-    case default
-      level = drift_none
-    end select
-  end function drift_level
 
   !> a_i sqrt(|D_i|) sign(D_i) of each component (surge, sway, yaw) for the ship at heading
   !> psi: the signed square roots that both levels sum.
@@ -63,44 +88,66 @@ contains
   end subroutine drift_coefficients
 
   !> The drift load (X, Y, Z, K, M, N; Z, K, M zero) in the seakeeping frame at time t of
-  !> level `level` from the coefficients of drift_coefficients, the phases taken at (x, y).
+  !> level `level` from the coefficients of drift_coefficients, the phases taken at (x, y),
+  !> grown with the square of the sea's start-up ramp.
   pure function drift_load(level, sea, coef, t, x, y) result(load)
-    !> drift_none, drift_mean or drift_newman.
-    integer, intent(in) :: level
+    !> drift_mean or drift_newman (or another extension of wave_drift_type).
+    class(wave_drift_type), intent(in) :: level
     !> The sea (phases, start-up ramp).
     type(wave_field_type), intent(in) :: sea
     !> The coefficients of drift_coefficients (3, number of components), time t [s] and the
     !> horizontal position x, y [m] (earth frame) the phases are taken at.
     real(wp), intent(in) :: coef(:, :), t, x, y
     real(wp) :: load(6)
-    real(wp) :: f(3), s(wave_chunk), c(wave_chunk), pc(3, 2), ps(3, 2)
-    integer :: i0, i, m, j
     load = 0.0_wp
-    if (level == drift_none) return
-    if (level == drift_mean) then
-      f = sum(sign(coef**2, coef), dim=2)
-    else
-      pc = 0.0_wp
-      ps = 0.0_wp
-      do i0 = 1, sea%n, wave_chunk
-        m = min(wave_chunk, sea%n - i0 + 1)
-        call component_phases(sea, i0, m, t, x, y, s, c)
-        do i = 1, m
-          do j = 1, 3
-            ! column 1 the positive coefficients, column 2 the negative ones
-            if (coef(j, i0 + i - 1) >= 0.0_wp) then
-              pc(j, 1) = pc(j, 1) + coef(j, i0 + i - 1)*c(i)
-              ps(j, 1) = ps(j, 1) + coef(j, i0 + i - 1)*s(i)
-            else
-              pc(j, 2) = pc(j, 2) - coef(j, i0 + i - 1)*c(i)
-              ps(j, 2) = ps(j, 2) - coef(j, i0 + i - 1)*s(i)
-            end if
-          end do
+    load([1, 2, 6]) = wave_ramp(sea, t)**2*level%force(sea, coef, t, x, y)
+  end function drift_load
+
+  !> The mean load sum_i D_i a_i^2 = sum_i sign(c_i) c_i^2 (exact in a regular wave).
+  pure function mean_force(self, sea, coef, t, x, y) result(f)
+    !> The level.
+    class(mean_drift_type), intent(in) :: self
+    !> The sea (phases).
+    type(wave_field_type), intent(in) :: sea
+    !> The coefficients (3, number of components), time t [s] and the horizontal
+    !> position x, y [m] (earth frame) the phases are taken at.
+    real(wp), intent(in) :: coef(:, :), t, x, y
+    real(wp) :: f(3)
+    f = sum(sign(coef**2, coef), dim=2)
+  end function mean_force
+
+  !> Newman's load as the single sums F = |P+|^2 - |P-|^2, P+- = sum_{+-c_i > 0} |c_i|
+  !> exp(i Phi_i) (O(N), not O(N^2)).
+  pure function newman_force(self, sea, coef, t, x, y) result(f)
+    !> The level.
+    class(newman_drift_type), intent(in) :: self
+    !> The sea (phases).
+    type(wave_field_type), intent(in) :: sea
+    !> The coefficients (3, number of components), time t [s] and the horizontal
+    !> position x, y [m] (earth frame) the phases are taken at.
+    real(wp), intent(in) :: coef(:, :), t, x, y
+    real(wp) :: f(3)
+    real(wp) :: s(wave_chunk), c(wave_chunk), pc(3, 2), ps(3, 2)
+    integer :: i0, i, m, j
+    pc = 0.0_wp
+    ps = 0.0_wp
+    do i0 = 1, sea%n, wave_chunk
+      m = min(wave_chunk, sea%n - i0 + 1)
+      call component_phases(sea, i0, m, t, x, y, s, c)
+      do i = 1, m
+        do j = 1, 3
+          ! column 1 the positive coefficients, column 2 the negative ones
+          if (coef(j, i0 + i - 1) >= 0.0_wp) then
+            pc(j, 1) = pc(j, 1) + coef(j, i0 + i - 1)*c(i)
+            ps(j, 1) = ps(j, 1) + coef(j, i0 + i - 1)*s(i)
+          else
+            pc(j, 2) = pc(j, 2) - coef(j, i0 + i - 1)*c(i)
+            ps(j, 2) = ps(j, 2) - coef(j, i0 + i - 1)*s(i)
+          end if
         end do
       end do
-      f = pc(:, 1)**2 + ps(:, 1)**2 - pc(:, 2)**2 - ps(:, 2)**2
-    end if
-    load([1, 2, 6]) = wave_ramp(sea, t)**2*f
-  end function drift_load
+    end do
+    f = pc(:, 1)**2 + ps(:, 1)**2 - pc(:, 2)**2 - ps(:, 2)**2
+  end function newman_force
 
 end module davit_ship_wave_drift

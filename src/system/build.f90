@@ -10,12 +10,14 @@ module davit_system_build
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
-  use davit_boat_strip_loads, only: new_strip_model, strip_level_paper, strip_level_pressure
+  use davit_boat_strip_loads, only: new_strip_model
+  use davit_boat_strip_level, only: strip_level_type
   use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
   use davit_boat_contact_law, only: contact_law_type
-  use davit_system_law_factory, only: new_contact_law, new_boat_wind
+  use davit_system_law_factory, only: new_contact_law, new_boat_wind, new_strip_level, &
+                                      new_wave_drift
   use davit_boat_fenders, only: new_fender_set
   use davit_boat_strip_waves, only: new_strip_wave_cache
   use davit_boat_surface_watch, only: new_surface_watch
@@ -27,7 +29,7 @@ module davit_system_build
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
   use davit_ship_bem_database, only: bem_database_type, read_bem_database
   use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
-  use davit_ship_wave_drift, only: drift_level
+  use davit_ship_wave_drift, only: wave_drift_type
   use davit_sea_wave_field, only: wave_field_type
   use davit_sea_wave_grid, only: new_wave_grid, grid_error_bounds
   use davit_sea_wind, only: wind_type
@@ -158,6 +160,7 @@ contains
     type(bem_database_type) :: db
     type(bem_ship_type) :: bem
     type(slow_clock_type) :: clock
+    class(wave_drift_type), allocatable :: drift
     call new_hull(hull, cfg%ship, error)
     if (allocated(error)) return
     clock = new_slow_clock(cfg%simulation%wave_update, clock_grid)
@@ -180,7 +183,12 @@ contains
                            "or set drift = 'none'")
           return
         end if
-        call ship%set_drift(drift_level(s%drift))
+        call new_wave_drift(s%drift, drift, error)
+        if (allocated(error)) then
+          error%message = cfg%filename//": "//error%message
+          return
+        end if
+        if (allocated(drift)) call ship%set_drift(drift)
       else if (s%drift /= "none") then
         call fatal_error(error, cfg%filename//": &ship: drift = '"//s%drift//"' needs "// &
                          "model = 'bem' (allowed with model = '"//s%model//"': 'none'): "// &
@@ -229,13 +237,13 @@ contains
     type(system_type), intent(inout) :: self
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
+    class(strip_level_type), allocatable :: level
     associate (b => cfg%boat, par => self%par)
+      call new_strip_level(b, level)
       par%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
                                                 b%breadth_exponent, b%strips), &
                                   b%drag_coefficients, b%metacentric_height, b%zeta, &
-                                  b%mass, b%inertia, &
-                                  merge(strip_level_paper, strip_level_pressure, &
-                                        b%water_model == "paper"), b%roll_restoring == "paper")
+                                  b%mass, b%inertia, level, b%roll_restoring == "paper")
       par%hull_volume = sum(par%water%hull%breadth)*par%water%hull%thickness*b%height
       call new_boat_wind(b, par%air, error)
       if (allocated(error)) then
