@@ -45,6 +45,7 @@ contains
                    new_case("free_fall_and_terminal_velocity", free_fall), &
                    new_case("fender_impact_in_system", fender_impact), &
                    new_case("approach_rate_eq33_moving_side_vs_fd", moving_side_rate), &
+                   new_case("fender_probe_deepest_point_vs_every_point", probe_deepest), &
                    new_case("surface_watch_never_skips_a_wet_hull", surface_watch), &
                    new_case("surface_watch_kept_high_refreshed_low", watch_kept), &
                    new_case("contact_approach_graded_vs_window", contact_approach), &
@@ -385,6 +386,45 @@ contains
       call fender_probe(fs, moved, c, matmul(c, qs(4:6)), u, deepest, delta, delta_dot)
     end subroutine probe_at
   end subroutine moving_side_rate
+
+  !> The probe takes a fender's deepest point from its segment's two ends (the penetration is
+  !> linear along it): over 2000 random boat poses against a tilted side plane, its deepest
+  !> point and penetration equal those of a search over all 7 points of each fender.
+  subroutine probe_deepest(state)
+    type(case_state), intent(inout) :: state
+    type(fender_set_type) :: fs
+    type(side_plane_type) :: plane
+    real(wp) :: c(3, 3), r(3), u(6), x(7), delta(2), rate(2), d, best, err
+    integer :: deepest(2), i, j, k, kbest, wrong
+    fs = new_fender_set([3.0_wp, -3.0_wp], -1.4_wp, [-0.8_wp, 0.2_wp], 7, &
+                        hertz_elastoplastic_law_type(restitution=0.8_wp, k=1.0e6_wp))
+    plane%normal = [0.05_wp, 0.99_wp, 0.1_wp]/norm2([0.05_wp, 0.99_wp, 0.1_wp])
+    plane%point = [0.0_wp, 2.0_wp, 0.0_wp]
+    u = 0.0_wp
+    wrong = 0
+    err = 0.0_wp
+    do i = 1, 2000
+      call random_number(x)
+      c = rotation_matrix(0.6_wp*(x(1:3) - 0.5_wp))
+      r = [4.0_wp*(x(4) - 0.5_wp), 1.0_wp*x(5), 2.0_wp*(x(6) - 0.5_wp)]
+      call fender_probe(fs, plane, c, r, u, deepest, delta, rate)
+      do j = 1, 2
+        best = -huge(1.0_wp)
+        kbest = 0
+        do k = 1, fs%nd
+          d = -dot_product(plane%normal, r + matmul(c, fs%points(:, k, j)) - plane%point)
+          if (d > best + 1e-12_wp) then
+            best = d
+            kbest = k
+          end if
+        end do
+        if (deepest(j) /= kbest) wrong = wrong + 1
+        err = max(err, abs(delta(j) - best))
+      end do
+    end do
+    call check(state, real(wrong, wp), 0.0_wp, "deepest point differs", abs_tol=0.0_wp)
+    call check(state, err, 0.0_wp, "penetration vs every point (m)", abs_tol=1e-12_wp)
+  end subroutine probe_deepest
 
   !> Rotation by the angle |w| s about w (Rodrigues).
   pure function rotation_about(w, s) result(r)

@@ -25,7 +25,8 @@ module davit_boat_fenders
   type :: fender_set_type
     !> Number of fenders and of contact points per fender.
     integer :: nf = 0, nd = 0
-    !> Fender points in the boat frame, (3, nd, nf) [m].
+    !> Fender points in the boat frame, (3, nd, nf) [m]: each fender's evenly on one
+    !> segment (fender_probe relies on it).
     real(wp), allocatable :: points(:, :, :)
     !> The contact law, chosen once at build (davit_system_law_factory).
     class(contact_law_type), allocatable :: law
@@ -75,16 +76,18 @@ contains
     real(wp) :: p(3), d, v_point(3), v_plane(3)
     integer :: i, j
     do j = 1, fs%nf
-      delta(j) = -huge(1.0_wp)
+      ! a fender's points lie evenly on one segment (new_fender_set), where the
+      ! penetration is linear: its deepest point is an end (the first on a tie)
       deepest(j) = 1
-      do i = 1, fs%nd
-        p = r + matmul(c, fs%points(:, i, j))
-        d = -dot_product(plane%normal, p - plane%point)
-        if (d > delta(j)) then
-          delta(j) = d
-          deepest(j) = i
-        end if
-      end do
+      p = r + matmul(c, fs%points(:, 1, j))
+      delta(j) = -dot_product(plane%normal, p - plane%point)
+      i = fs%nd
+      p = r + matmul(c, fs%points(:, i, j))
+      d = -dot_product(plane%normal, p - plane%point)
+      if (d > delta(j)) then
+        delta(j) = d
+        deepest(j) = i
+      end if
       p = r + matmul(c, fs%points(:, deepest(j), j))
       v_point = matmul(c, body_point_velocity(u, fs%points(:, deepest(j), j)))
       v_plane = plane%velocity + cross(plane%angular_velocity, p - plane%origin)
