@@ -8,7 +8,7 @@ module davit_core_rotation
   use davit_core_fastmath, only: fast_sincos
   implicit none
   private
-  public :: rotation_matrix, euler_rates, cross, skew
+  public :: rotation_matrix, euler_rates, cross, skew, length3
 
 contains
 
@@ -51,6 +51,15 @@ contains
     real(wp) :: c(3)
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
   end function cross
+
+  !> Euclidean length of a 3-vector, sqrt(a . a): the rigging's hot paths take it per
+  !> segment and evaluation, and gfortran's NORM2 guards against overflow with a scaled
+  !> sum (divisions per element) that lengths in metres never need.
+  pure real(wp) function length3(a) result(l)
+    !> The vector.
+    real(wp), intent(in) :: a(3)
+    l = sqrt(a(1)*a(1) + a(2)*a(2) + a(3)*a(3))
+  end function length3
 
   !> Skew matrix: skew(a) b = a x b.
   pure function skew(a) result(s)

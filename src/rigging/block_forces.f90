@@ -5,6 +5,7 @@
 !> dashpots' share. davit_rigging_block_balance solves the balance by Newton on these.
 module davit_rigging_block_forces
   use davit_kinds, only: wp, gravity
+  use davit_core_rotation, only: length3
   use davit_rigging_sling_chain, only: sling_chain_type, top_segment_tangent
   use davit_rigging_cable, only: cable_type, cable_eval_type, max_nodes, node_block, &
                                  cable_node_forces, cable_block_tangent_rotating, &
@@ -143,7 +144,7 @@ contains
     real(wp), intent(inout) :: k(3, 3)
     real(wp) :: e(3), dist
     integer :: j
-    dist = norm2(r_top - r_low)
+    dist = length3(r_top - r_low)
     e = (r_top - r_low)/dist
     do j = 1, 3
       k(:, j) = k(:, j) - f/dist*e(j)*e

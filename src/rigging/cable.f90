@@ -9,7 +9,7 @@
 !> lengths L0_i = L0_i(0) + s_i - s_(i+1) (eqs. 66-67 read as in §1.10) and k_i = EA/L0_i.
 module davit_rigging_cable
   use davit_kinds, only: wp
-  use davit_core_rotation, only: cross
+  use davit_core_rotation, only: cross, length3
   use davit_core_pose, only: pose_type
   implicit none
   private
@@ -122,7 +122,7 @@ contains
     ldot = 0.0_wp
     do i = 1, cab%nnode - 1
       d = p(:, i + 1) - p(:, i)
-      l(i) = max(norm2(d), tiny(1.0_wp))
+      l(i) = max(length3(d), tiny(1.0_wp))
       lam(:, i) = d/l(i)
       ldot(i) = dot_product(v(:, i + 1) - v(:, i), lam(:, i))
     end do

@@ -4,6 +4,7 @@
 !> position and velocity, return the force on the hook.
 module davit_rigging_elastic_sling
   use davit_kinds, only: wp
+  use davit_core_rotation, only: length3
   implicit none
   private
   public :: elastic_sling_type, sling_hook_force, sling_energy
@@ -34,7 +35,7 @@ contains
     real(wp), intent(out) :: force(3), tension
     real(wp) :: d(3), dist, e(3), stretch, rate
     d = r_hook - sling%anchor
-    dist = norm2(d)
+    dist = length3(d)
     stretch = dist - sling%length
     if (stretch <= 0.0_wp .or. dist <= 0.0_wp) then
       force = 0.0_wp
@@ -54,7 +55,7 @@ contains
     !> Hook position, inertial [m].
     real(wp), intent(in) :: r_hook(3)
     real(wp) :: e, stretch
-    stretch = max(0.0_wp, norm2(r_hook - sling%anchor) - sling%length)
+    stretch = max(0.0_wp, length3(r_hook - sling%anchor) - sling%length)
     e = 0.5_wp*sling%ea/sling%length*stretch**2
   end function sling_energy
 

@@ -6,6 +6,7 @@
 !> mass block m I (eq. 53). n = 0 gives a massless spring hook-block.
 module davit_rigging_sling_chain
   use davit_kinds, only: wp, gravity
+  use davit_core_rotation, only: length3
   use davit_rigging_cable, only: ramp_factor, ramp_slope
   implicit none
   private
@@ -56,7 +57,7 @@ contains
     real(wp), intent(out) :: f, e(3)
     real(wp) :: d(3), dist
     d = rb - ra
-    dist = norm2(d)
+    dist = length3(d)
     f = 0.0_wp
     e = 0.0_wp
     if (dist <= ch%l0_seg) return
@@ -120,7 +121,7 @@ contains
     r(:, n + 1) = r_top
     en = 0.5_wp*ch%m_lump*sum(v_lump**2) - ch%m_lump*gravity*sum(r_lump(3, :))
     do k = 1, n + 1
-      stretch = max(0.0_wp, norm2(r(:, k) - r(:, k - 1)) - ch%l0_seg)
+      stretch = max(0.0_wp, length3(r(:, k) - r(:, k - 1)) - ch%l0_seg)
       en = en + 0.5_wp*ch%k_seg*stretch**2
     end do
   end function chain_energy
@@ -146,7 +147,7 @@ contains
     real(wp) :: e(3), k_geo, dist, g(3), dv(3), phi, dphi
     integer :: j
     call segment(ch, ch%c_top, r_low, v_low, r_top, v_top, f_real, e)
-    dist = norm2(r_top - r_low)
+    dist = length3(r_top - r_low)
     e = (r_top - r_low)/dist
     dv = v_top - v_low
     ! the dashpot ramps in over ch%ramp of stretch (none in compression)
