@@ -25,8 +25,7 @@ module davit_boat_surface_watch
   implicit none
   private
   public :: surface_watch_type, new_surface_watch, watch_refresh, watch_set, watch_due, &
-            surely_dry, &
-            strip_surely_dry
+            surely_dry, strip_surely_dry
 
   type :: surface_watch_type
     !> Whether the samples below have been taken.
