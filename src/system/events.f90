@@ -33,22 +33,23 @@ contains
     type(system_history_type), intent(inout) :: hist
     !> Time [s] and state of the accepted step's end.
     real(wp), intent(in) :: t, y(:)
-    real(wp) :: c(3, 3)
+    real(wp) :: c(3, 3), r(3)
     logical :: due
     associate (q => y(par%boat_part%q(1):par%boat_part%q(2)))
+      ! the boat's pose, once for the watch and the strips' window
       c = rotation_matrix(q(1:3))
-      call watch_due(hist%watch, par%water, t, c, matmul(c, q(4:6)), due)
+      r = matmul(c, q(4:6))
+      call watch_due(hist%watch, par%water, t, c, r, due)
       if (due) then
         if (hist%surface_grid%enabled) then
           call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, &
-                            hist%watch%interval, c, matmul(c, q(4:6)))
-          call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)), &
-                             hist%surface_grid)
+                            hist%watch%interval, c, r)
+          call watch_refresh(hist%watch, par%water, par%sea, t, c, r, hist%surface_grid)
         else
-          call watch_refresh(hist%watch, par%water, par%sea, t, c, matmul(c, q(4:6)))
+          call watch_refresh(hist%watch, par%water, par%sea, t, c, r)
         end if
       end if
-      call refresh_strip_waves(par, hist, t, q)
+      call refresh_strip_waves(par, hist, t, c, r, q(3))
     end associate
     if (par%on_davit .and. hist%release_time < 0.0_wp) call watch_waterborne(par, hist, t, y)
     if (par%contact) then
@@ -64,17 +65,15 @@ contains
   !> Sample the water at the strips the hull may wet within the window (the watch's bound
   !> at its far end): otherwise the stages of a hull just above the crests would all take
   !> the exact sums.
-  subroutine refresh_strip_waves(par, hist, t, q)
+  subroutine refresh_strip_waves(par, hist, t, c, r, yaw)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(inout) :: hist
-    real(wp), intent(in) :: t, q(6)
-    real(wp) :: c(3, 3), r(3)
+    !> Time [s], the boat's rotation (boat -> inertial), CG position (inertial) [m], yaw [rad].
+    real(wp), intent(in) :: t, c(3, 3), r(3), yaw
     logical :: due, maybe_wet(par%water%hull%n)
     integer :: j
     call strip_waves_due(hist%waves, t, due)
     if (.not. due) return
-    c = rotation_matrix(q(1:3))
-    r = matmul(c, q(4:6))
     do j = 1, par%water%hull%n
       maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
                                             t + hist%waves%clock%interval, c, r)
@@ -92,7 +91,7 @@ contains
     end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
-      call diffraction_refresh(par%bem, par%sea, hist%waves%clock, r, q(3), hist%diffraction)
+      call diffraction_refresh(par%bem, par%sea, hist%waves%clock, r, yaw, hist%diffraction)
     else
       call hist%diffraction%clock%invalidate()
     end if
