@@ -41,6 +41,7 @@ contains
                    new_case("first_contact_is_continuous", first_contact), &
                    new_case("drop_from_1m_entry_depth_vs_energy", drop_test), &
                    new_case("irregular_section_load_vs_edge_quadrature", irregular_section), &
+                   new_case("section_load_derivatives_vs_central_differences", section_sens), &
                    new_case("calm_horizontal_drag_is_morison", calm_drag)]
   end function collect_strip_pressure
 
@@ -353,6 +354,63 @@ contains
     call check_true(state, zmin < 0.5_wp .and. zmax > 0.5_wp, "both edge branches exercised")
     call check(state, err, 0.0_wp, "section load vs edge quadrature", abs_tol=1e-12_wp)
   end subroutine irregular_section
+
+  !> The section load's first derivatives (section_wave_loads' sens, with which the strips'
+  !> window expands the load about its sampled geometry) against central differences of the
+  !> load with the wet polygon found again at each perturbed geometry: the section's
+  !> immersion d0, its centre's horizontal travel, the tangent plane's slopes gy, gz across
+  !> it (the fixed polygon's depths and the waterline moving along the hull's sides) and the
+  !> horizontal parts of the rotation's columns b2, b3 (the lags of its points); e = 1e-5,
+  !> so the differences' truncation is ~1e-9 of a derivative. The Level 5 sea (1300
+  !> components) on the section heeled so that the surface cuts both sides; agreement to
+  !> 1e-6 of each derivative's largest term. Dropping the waterline's share fails the
+  !> immersion and slope rows (0.5 and 0.3 here), the rotation's share the last four.
+  subroutine section_sens(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(rng_type) :: rng
+    type(boat_hull_type) :: h
+    real(wp), parameter :: times(2) = [37.3_wp, 37.45_wp], e = 1.0e-5_wp
+    real(wp) :: c(3, 3), load(3, 2), sens(3, 9, 2), lp(3, 2), lm(3, 2)
+    real(wp) :: fd(3, 9, 2), err, g(9), dg(9)
+    character(len=*), parameter :: names(9) = [character(len=9) :: "immersion", "x-travel", &
+                                                "y-travel", "gy-slope", "gz-slope", "c12", &
+                                                "c22", "c13", "c23"]
+    integer :: i
+    c = rotation_matrix([0.1_wp, 0.05_wp, 0.3_wp])
+    h = paper_hull(20)
+    rng = new_rng(11)
+    call new_irregular_sea(field, 4.0_wp, pi/2, 2, pi/2, 100, 13, 0.3_wp, 3.0_wp, &
+                           .true., .true., rng, 0.0_wp)
+    g = [0.6_wp, 1.7_wp, 13.3_wp, 0.3_wp, 0.95_wp, c(1:2, 2), c(1:2, 3)]
+    call loads_at(g, load, sens)
+    do i = 1, 9
+      dg = 0.0_wp
+      dg(i) = e
+      call loads_at(g + dg, lp)
+      call loads_at(g - dg, lm)
+      fd(:, i, :) = (lp - lm)/(2.0_wp*e)
+      err = maxval(abs(sens(:, i, :) - fd(:, i, :)))/maxval(abs(fd(:, i, :)))
+      call check(state, err, 0.0_wp, trim(names(i))//" derivative vs differences", &
+                 abs_tol=1e-6_wp)
+    end do
+    call note(state, "immersion derivative, largest term (N/m/m)", maxval(abs(fd(:, 1, :))))
+    call note(state, "gy-slope derivative, largest term (N/m)", maxval(abs(fd(:, 4, :))))
+  contains
+    subroutine loads_at(geo, out, ds)
+      real(wp), intent(in) :: geo(9)
+      real(wp), intent(out) :: out(3, 2)
+      real(wp), intent(out), optional :: ds(3, 9, 2)
+      type(section_wet_type) :: wet
+      real(wp) :: cg(3, 3), rate(3, 2)
+      cg = c
+      cg(1:2, 2) = geo(6:7)
+      cg(1:2, 3) = geo(8:9)
+      wet = section_immersion(h, 10, geo(1), geo(4), geo(5))
+      call section_wave_loads(field, times, h, wet, cg, [geo(2), geo(3), -0.4_wp], geo(1), &
+                              geo(4), geo(5), out, rate, sens=ds)
+    end subroutine loads_at
+  end subroutine section_sens
 
   !> The reference of irregular_section: p' summed per component at the quadrature points of
   !> each wet hull edge (the waterline, both ends cut, is no hull); zmin, zmax track the

@@ -314,7 +314,7 @@ contains
     logical, intent(in) :: window
     type(strip_wave_cache_type), intent(in), optional :: cache
     real(wp), intent(inout) :: f(6)
-    real(wp) :: fb(3), load(3), rate(3)
+    real(wp) :: fb(3), load(3), rate(3), pc(3)
     logical :: found
     associate (h => s%hull)
       fb = -rho_water*gravity*wet%area*h%thickness*grad_d
@@ -322,10 +322,11 @@ contains
       f(4:6) = f(4:6) + fb
       if (field%kind == wave_none) return
       found = .false.
-      if (window) call cached_wave_load(cache, field, k, t, load, found)
+      pc = r + c(:, 1)*h%x(k)
+      if (window) call cached_wave_load(cache, field, k, t, [d0, grad_d(2:3), c(1:2, 2), &
+                                         c(1:2, 3)], pc(1:2), load, found)
       if (.not. found) then
-        call section_wave_load(field, t, h, wet, c, r + c(:, 1)*h%x(k), d0, grad_d(2), &
-                               grad_d(3), load, rate)
+        call section_wave_load(field, t, h, wet, c, pc, d0, grad_d(2), grad_d(3), load, rate)
         load = wave_ramp(field, t)*load
       end if
       f(5:6) = f(5:6) + load(1:2)

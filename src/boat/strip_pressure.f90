@@ -33,11 +33,12 @@ module davit_boat_strip_pressure
   real(wp), parameter :: series_limit = 0.5_wp
   integer, parameter :: series_terms = 14
   integer :: n_
-  !> 1/n, 1/(n + 1), 1/(n + 2) for n = 1 .. series_terms: the series multiplies by them (a
+  !> 1/n, 1/(n + 1), 1/(n + 2), 1/(n + 3) for n = 1 .. series_terms: the series multiplies by them (a
   !> division per term would dominate the vectorised block).
   real(wp), parameter :: inv_n(series_terms) = [(1.0_wp/real(n_, wp), n_ = 1, series_terms)]
   real(wp), parameter :: inv_n1(series_terms) = [(1.0_wp/real(n_ + 1, wp), n_ = 1, series_terms)]
   real(wp), parameter :: inv_n2(series_terms) = [(1.0_wp/real(n_ + 2, wp), n_ = 1, series_terms)]
+  real(wp), parameter :: inv_n3(series_terms) = [(1.0_wp/real(n_ + 3, wp), n_ = 1, series_terms)]
 
 contains
 
@@ -111,7 +112,7 @@ contains
   !> the block (vectorised: exp and fast_sincos have SIMD forms, complex exp and libm
   !> sincos do not), summed per lane and reduced once at the end.
   pure subroutine section_wave_loads(field, times, hull, wet, c, pk, d0, gy, gz, load, rate, &
-                                     cr, sr)
+                                     cr, sr, sens)
     !> The sea.
     type(wave_field_type), intent(in) :: field
     !> Sample times [s].
@@ -128,6 +129,11 @@ contains
     !> With two times t2 = t1 + h: cos(w h) and sin(w h) of every component, which turn
     !> the phasors of t1 into those of t2 (no second sine and cosine).
     real(wp), intent(in), optional :: cr(:), sr(:)
+    !> The load's first derivatives at each sample, (load, (d0, x, y, gy, gz), time): with
+    !> respect to the section's immersion below the tangent plane (all depths by one step),
+    !> its horizontal travel (every phase by -k . dx) and the plane's slopes across it
+    !> (depths by gy y + gz z), at fixed wet polygon [N/m per m, or per unit slope].
+    real(wp), intent(out), optional :: sens(:, :, :)
     real(wp) :: depth(5), dxy(2, 5), geo(5, 5), j(4)
     ! per block: lags and vertex factors f_v = exp(-k d_v) (cos lag_v, -sin lag_v), time
     ! phasors (qr, qi) per time, edge integrals, and the per-lane partial sums
@@ -136,11 +142,13 @@ contains
     real(wp) :: sn(wave_chunk), cs(wave_chunk), th(wave_chunk)
     real(wp) :: qr(wave_chunk, size(times)), qi(wave_chunk, size(times))
     real(wp) :: w0r(wave_chunk), w0i(wave_chunk), w1r(wave_chunk), w1i(wave_chunk)
-    real(wp) :: acc(wave_chunk, 4, 5, size(times))
+    real(wp) :: acc(wave_chunk, 4, 5, size(times)), accs(wave_chunk, 16, 5, size(times))
+    real(wp) :: w2r(wave_chunk), w2i(wave_chunk), accw(wave_chunk, 5, size(times))
     integer :: i0, i1, nc, nt, v, e, m, it, l, lanes
     nt = size(times)
     load = 0.0_wp
     rate = 0.0_wp
+    if (present(sens)) sens = 0.0_wp
     if (field%kind == wave_none .or. wet%m < 3) return
     m = wet%m
     call edge_geometry(hull, wet, geo)
@@ -151,6 +159,8 @@ contains
     ! only the lanes a block fills are used (a regular sea has one component)
     lanes = min(wave_chunk, field%n)
     acc(1:lanes, :, :, :) = 0.0_wp
+    if (present(sens)) accs(1:lanes, :, :, :) = 0.0_wp
+    if (present(sens)) accw(1:lanes, :, :) = 0.0_wp
     do i0 = 1, field%n, wave_chunk
       nc = min(wave_chunk, field%n - i0 + 1)
       i1 = i0 + nc - 1
@@ -179,7 +189,8 @@ contains
           if (geo(1, v) == 0.0_wp) cycle
           e = merge(1, v + 1, v == m)
           call edge_integrals(nc, k, depth(e) - depth(v), lag(:, v), lag(:, e), fr(:, v), &
-                              fi(:, v), fr(:, e), fi(:, e), w0r, w0i, w1r, w1i)
+                              fi(:, v), fr(:, e), fi(:, e), w0r, w0i, w1r, w1i, &
+                              merge(2, 1, present(sens)), w2r, w2i)
           ! J = Re(q w) and dJ/dt = Re(i omega q w) = -omega Im(q w) (sign at the end)
           do it = 1, nt
             do l = 1, nc
@@ -189,7 +200,23 @@ contains
               acc(l, 4, v, it) = acc(l, 4, v, it) + w(l)*(qr(l, it)*w1i(l) + qi(l, it)*w1r(l))
             end do
           end do
+          if (present(sens)) call add_sensitivities(nc, k, kx, ky, lag(:, v), lag(:, e), &
+                                                    wet%poly(:, v), wet%poly(:, e), qr, qi, &
+                                                    w0r, w0i, w1r, w1i, w2r, w2i, &
+                                                    accs(:, :, v, :))
         end do
+        if (present(sens)) then
+          ! p' at the waterline's corners (depth 0): what a moving waterline adds or takes
+          do v = 1, m
+            if (.not. wet%cut(v)) cycle
+            do it = 1, nt
+              do l = 1, nc
+                accw(l, v, it) = accw(l, v, it) + (qr(l, it)*(fr(l, v) - 1.0_wp) - &
+                                                   qi(l, it)*(fi(l, v) + lag(l, v)))
+              end do
+            end do
+          end do
+        end if
       end associate
     end do
     do it = 1, nt
@@ -202,9 +229,126 @@ contains
                                                geo(4, v)*j(1) + geo(5, v)*j(2)]
         rate(:, it) = rate(:, it) + geo(1, v)*[geo(2, v)*j(3), geo(3, v)*j(3), &
                                                geo(4, v)*j(3) + geo(5, v)*j(4)]
+        if (.not. present(sens)) cycle
+        do l = 1, 5
+          j(1:2) = sum(accs(1:lanes, 2*l - 1:2*l, v, it), dim=1)
+          sens(:, l, it) = sens(:, l, it) + geo(1, v)*[geo(2, v)*j(1), geo(3, v)*j(1), &
+                                                       geo(4, v)*j(1) + geo(5, v)*j(2)]
+        end do
+        call add_rotation_terms(v, merge(1, v + 1, v == m), wet, geo(:, v), &
+                                sum(accs(1:lanes, 11:16, v, it), dim=1), sens(:, :, it))
       end do
+      if (present(sens)) call add_waterline_terms(wet, geo, depth, &
+                                                  sum(accw(1:lanes, :, it), dim=1), sens(:, :, it))
     end do
   end subroutine section_wave_loads
+
+  !> The turning section's share: a change of the rotation's columns b2, b3 (their
+  !> horizontal parts c12, c22, c13, c23) moves the horizontal offset of the section point
+  !> (y, z) by (dc12 y + dc13 z, dc22 y + dc23 z), its lag by k . that, and d Re(q w)/d eps
+  !> = Im(q int phi_eps (E - 1) ds), phi_eps = k_x y(s) for c12 and so on, from the sums
+  !> x(n) = sum k_x Im(q A_n), y(n) = sum k_y Im(q A_n), A_n = int s^n (E - 1) ds.
+  pure subroutine add_rotation_terms(v, e, wet, geo, x, sens)
+    integer, intent(in) :: v, e
+    type(section_wet_type), intent(in) :: wet
+    real(wp), intent(in) :: geo(5), x(6)
+    real(wp), intent(inout) :: sens(:, :)
+    real(wp) :: u0, du, j(2)
+    integer :: i, kk, uu
+    do i = 1, 4
+      ! 6: c12 (k_x, y), 7: c22 (k_y, y), 8: c13 (k_x, z), 9: c23 (k_y, z)
+      kk = merge(0, 3, mod(i, 2) == 1)
+      uu = merge(1, 2, i <= 2)
+      u0 = wet%poly(uu, v)
+      du = wet%poly(uu, e) - u0
+      j = [u0*x(kk + 1) + du*x(kk + 2), u0*x(kk + 2) + du*x(kk + 3)]
+      sens(:, 5 + i) = sens(:, 5 + i) + geo(1)*[geo(2)*j(1), geo(3)*j(1), &
+                                                geo(4)*j(1) + geo(5)*j(2)]
+    end do
+  end subroutine add_rotation_terms
+
+  !> The moving waterline's share of the load's derivatives: where the surface line cuts a
+  !> hull edge V -> W (V on the line, W at depth d_W), a depth change dd at V wets (or
+  !> dries) a further dd L/d_W of that edge, carrying p' of the waterline corner: the load
+  !> changes by geo1 p'_V dd/d_W (n2, n3, y_V n3 - z_V n2) (geo1 = -rho g t_s L, p'_V per
+  !> unit rho g), with dd = 1, y_V, z_V for the immersion and the slopes gy, gz.
+  pure subroutine add_waterline_terms(wet, geo, depth, pv, sens)
+    type(section_wet_type), intent(in) :: wet
+    real(wp), intent(in) :: geo(5, 5), depth(5), pv(5)
+    real(wp), intent(inout) :: sens(:, :)
+    real(wp) :: f(3)
+    integer :: v, ie, iw, m
+    m = wet%m
+    do v = 1, m
+      if (.not. wet%cut(v)) cycle
+      ! its hull edge: v -> v + 1, unless that is the waterline, else v - 1 -> v
+      ie = v
+      iw = merge(1, v + 1, v == m)
+      if (geo(1, ie) == 0.0_wp) then
+        ie = merge(m, v - 1, v == 1)
+        iw = ie
+      end if
+      if (geo(1, ie) == 0.0_wp .or. depth(iw) <= 0.0_wp) cycle
+      f = geo(1, ie)*pv(v)/depth(iw)*[geo(2, ie), geo(3, ie), &
+                                      wet%poly(1, v)*geo(3, ie) - wet%poly(2, v)*geo(2, ie)]
+      sens(:, 1) = sens(:, 1) + f
+      sens(:, 4) = sens(:, 4) + f*wet%poly(1, v)
+      sens(:, 5) = sens(:, 5) + f*wet%poly(2, v)
+    end do
+  end subroutine add_waterline_terms
+
+  !> The load's derivatives per component of a block along one edge A -> B (weights 1 and
+  !> s): a depth change dd(s) at fixed polygon changes p' by -k rho g a exp(-k d) cos theta dd
+  !> (the tangent plane's terms do not depend on depth), so the immersion (dd = 1) gives
+  !> -k Re(q W0), -k Re(q W1) and the slopes (dd = y(s), z(s), linear from A to B)
+  !> -k Re(q (y_A W0 + (y_B - y_A) W1)) and with s -k Re(q (y_A W1 + (y_B - y_A) W2)), W_n
+  !> the edge integrals with weight s^n before the plane's share 1 - i phi is taken off;
+  !> travel dx turns every phase (the plane's with them) by -k . dx: d Re(q w)/dx =
+  !> k_x Im(q w). Accumulated per lane in acc(lane, (d0, x, y, gy, gz) x (w0, w1), time).
+  pure subroutine add_sensitivities(nc, k, kx, ky, phi_a, phi_b, pa, pb, qr, qi, w0r, w0i, &
+                                    w1r, w1i, w2r, w2i, acc)
+    ! 17 arguments: a block's wavenumbers, the edge's lags and ends, the time phasors, the
+    ! edge integrals and the accumulator (the hot loop's operands, passed as they lie).
+    integer, intent(in) :: nc
+    real(wp), intent(in) :: k(nc), kx(nc), ky(nc), phi_a(:), phi_b(:), pa(2), pb(2)
+    real(wp), intent(in) :: qr(:, :), qi(:, :), w0r(:), w0i(:), w1r(:), w1i(:), w2r(:), w2i(:)
+    real(wp), intent(inout) :: acc(:, :, :)
+    real(wp) :: im0, im1, re0, re1, re2, dy, dz
+    integer :: it, l
+    dy = pb(1) - pa(1)
+    dz = pb(2) - pa(2)
+    do it = 1, size(acc, 3)
+      do l = 1, nc
+        im0 = qr(l, it)*w0i(l) + qi(l, it)*w0r(l)
+        im1 = qr(l, it)*w1i(l) + qi(l, it)*w1r(l)
+        re0 = -k(l)*(qr(l, it)*(w0r(l) + 1.0_wp) - &
+                     qi(l, it)*(w0i(l) - 0.5_wp*(phi_a(l) + phi_b(l))))
+        re1 = -k(l)*(qr(l, it)*(w1r(l) + 0.5_wp) - &
+                     qi(l, it)*(w1i(l) - (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)))
+        re2 = -k(l)*(qr(l, it)*w2r(l) - qi(l, it)*w2i(l))
+        acc(l, 1, it) = acc(l, 1, it) + re0
+        acc(l, 2, it) = acc(l, 2, it) + re1
+        acc(l, 3, it) = acc(l, 3, it) + kx(l)*im0
+        acc(l, 4, it) = acc(l, 4, it) + kx(l)*im1
+        acc(l, 5, it) = acc(l, 5, it) + ky(l)*im0
+        acc(l, 6, it) = acc(l, 6, it) + ky(l)*im1
+        acc(l, 7, it) = acc(l, 7, it) + (pa(1)*re0 + dy*re1)
+        acc(l, 8, it) = acc(l, 8, it) + (pa(1)*re1 + dy*re2)
+        acc(l, 9, it) = acc(l, 9, it) + (pa(2)*re0 + dz*re1)
+        acc(l, 10, it) = acc(l, 10, it) + (pa(2)*re1 + dz*re2)
+        ! turning the section (lags k . dx of its points): Im(q A_n), A_n = W_n - 1/(n+1)
+        im0 = qr(l, it)*(w0i(l) - 0.5_wp*(phi_a(l) + phi_b(l))) + qi(l, it)*w0r(l)
+        im1 = qr(l, it)*(w1i(l) - (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)) + qi(l, it)*w1r(l)
+        re2 = qr(l, it)*w2i(l) + qi(l, it)*(w2r(l) - 1.0_wp/3.0_wp)
+        acc(l, 11, it) = acc(l, 11, it) + kx(l)*im0
+        acc(l, 12, it) = acc(l, 12, it) + kx(l)*im1
+        acc(l, 13, it) = acc(l, 13, it) + kx(l)*re2
+        acc(l, 14, it) = acc(l, 14, it) + ky(l)*im0
+        acc(l, 15, it) = acc(l, 15, it) + ky(l)*im1
+        acc(l, 16, it) = acc(l, 16, it) + ky(l)*re2
+      end do
+    end do
+  end subroutine add_sensitivities
 
   !> For the nc components of a block, int_0^1 (exp(-k d(s) - i phi(s)) - (1 - i phi(s))) ds
   !> (w0) and the same with the weight s (w1), d and phi linear from the edge's start A to
@@ -214,12 +358,19 @@ contains
   !> safe divisor (one loop, vectorised); the few components with |z| below series_limit
   !> are then overwritten by the series.
   pure subroutine edge_integrals(nc, k, dd, phi_a, phi_b, far, fai, fbr, fbi, &
-                                 w0r, w0i, w1r, w1i)
+                                 w0r, w0i, w1r, w1i, order, w2r, w2i)
+    ! 15 arguments: the block's wavenumbers, the edge's depth step, lags and vertex factors,
+    ! and the integrals it returns (the hot loop's operands, passed as they lie).
     integer, intent(in) :: nc
     real(wp), intent(in) :: k(nc), dd, phi_a(nc), phi_b(nc), far(nc), fai(nc), fbr(nc), fbi(nc)
     real(wp), intent(out) :: w0r(nc), w0i(nc), w1r(nc), w1i(nc)
+    !> 2: also w2 = int s^2 exp(-k d(s) - i phi(s)) ds (the whole integrand, no plane's share
+    !> taken off), by w2 = (fb - 2 w1)/z, or the series E3 = sum z^n/(n! (n + 3)).
+    integer, intent(in) :: order
+    real(wp), intent(out) :: w2r(:), w2i(:)
     real(wp) :: zr, zi, z2, rz, ir, ii, dr, di, t0
     real(wp) :: zr_(nc), zi_(nc), tr(nc), ti(nc), e1r(nc), e1i(nc), e2r(nc), e2i(nc)
+    real(wp) :: e3r(nc), e3i(nc)
     logical :: small(nc)
     integer :: l, n
     do l = 1, nc
@@ -241,6 +392,18 @@ contains
       w1r(l) = dr*ir - di*ii
       w1i(l) = dr*ii + di*ir
     end do
+    if (order >= 2) then
+      do l = 1, nc
+        z2 = (-k(l)*dd)**2 + (phi_a(l) - phi_b(l))**2
+        rz = 1.0_wp/merge(1.0_wp, z2, small(l))
+        ir = -k(l)*dd*rz
+        ii = -(phi_a(l) - phi_b(l))*rz
+        dr = fbr(l) - 2.0_wp*w1r(l)
+        di = fbi(l) - 2.0_wp*w1i(l)
+        w2r(l) = dr*ir - di*ii
+        w2i(l) = dr*ii + di*ir
+      end do
+    end if
     if (any(small)) then
       ! E1 = sum z^n/(n+1)!, E2 = sum z^n/(n! (n+2)); w0 = fa E1, w1 = fa E2: the terms
       ! in lockstep over every lane (independent lanes vectorise), kept where the lane
@@ -254,6 +417,8 @@ contains
       e1i(1:nc) = 0.0_wp
       e2r(1:nc) = 0.5_wp
       e2i(1:nc) = 0.0_wp
+      e3r(1:nc) = 1.0_wp/3.0_wp
+      e3i(1:nc) = 0.0_wp
       do n = 1, series_terms
         do l = 1, nc
           t0 = (tr(l)*zr_(l) - ti(l)*zi_(l))*inv_n(n)
@@ -263,6 +428,8 @@ contains
           e1i(l) = e1i(l) + ti(l)*inv_n1(n)
           e2r(l) = e2r(l) + tr(l)*inv_n2(n)
           e2i(l) = e2i(l) + ti(l)*inv_n2(n)
+          e3r(l) = e3r(l) + tr(l)*inv_n3(n)
+          e3i(l) = e3i(l) + ti(l)*inv_n3(n)
         end do
       end do
       do l = 1, nc
@@ -271,6 +438,9 @@ contains
         w0i(l) = far(l)*e1i(l) + fai(l)*e1r(l)
         w1r(l) = far(l)*e2r(l) - fai(l)*e2i(l)
         w1i(l) = far(l)*e2i(l) + fai(l)*e2r(l)
+        if (order < 2) cycle
+        w2r(l) = far(l)*e3r(l) - fai(l)*e3i(l)
+        w2i(l) = far(l)*e3i(l) + fai(l)*e3r(l)
       end do
     end if
     ! less the tangent plane's share 1 - i phi (weights 1 and s)
