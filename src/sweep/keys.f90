@@ -113,12 +113,9 @@ contains
   subroutine document_sweep_keys(docs)
     !> One entry per &sweep key.
     type(key_doc), allocatable, intent(out) :: docs(:)
-    type(nml_deck) :: deck
     type(deck_reader_type) :: reader
     type(sweep_config) :: sweep
-    type(error_type), allocatable :: error
-    call parse_deck("(defaults)", "", deck, error)
-    call reader%init(deck)
+    call reader%init_defaults()
     call read_keys(reader, sweep)
     docs = reader%docs
   end subroutine document_sweep_keys
