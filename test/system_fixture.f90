@@ -5,7 +5,7 @@ module system_fixture
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
   use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
+  use davit_run_scene, only: new_boat_system
   use davit_solve_rk4, only: rk4_type
   use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact, only: hertz_law_type, hertz_peak
@@ -23,8 +23,7 @@ contains
     type(config_type), intent(in) :: cfg
     real(wp), allocatable :: y(:)
     type(error_type), allocatable :: error
-    call new_system(sys, cfg, error)
-    if (.not. allocated(error)) call initial_state(sys, cfg, y, error)
+    call new_boat_system(cfg, sys, y, error)
     if (allocated(error)) error stop "test system: "//error%message
   end function new_test_system
 

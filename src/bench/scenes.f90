@@ -8,7 +8,7 @@ module davit_bench_scenes
   use davit_io_config, only: config_type, read_config
   use davit_io_deck_reader, only: fmt_real
   use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
+  use davit_run_scene, only: scene_type, new_scene
   use davit_run_recorders, only: boat_recorder
   use davit_run_run_summary, only: run_summary
   use davit_run_driver, only: integrate
@@ -118,17 +118,16 @@ contains
     type(error_type), allocatable :: run_error
     real(wp), allocatable :: y(:)
     real(wp) :: start
-    select case (cfg%simulation%scene)
-    case ("hanging_boat", "lowering", "launch")
-    case default
+    class(scene_type), allocatable :: scene
+    call new_scene(cfg%simulation%scene, scene, error)
+    if (allocated(error)) return
+    if (.not. scene%has_boat()) then
       call fatal_error(error, cfg%filename//": bench scenes run the boat scenes, not '"// &
                        cfg%simulation%scene//"'")
       return
-    end select
+    end if
     start = wall_seconds()
-    call new_system(sys, cfg, error)
-    if (allocated(error)) return
-    call initial_state(sys, cfg, y, error)
+    call scene%build_boat(cfg, sys, y, error)
     if (allocated(error)) return
     log = new_launch_log(cfg, sys)
     run%setup = wall_seconds() - start

@@ -15,6 +15,12 @@ module davit_bench_sea
   private
   public :: bench_result, bench_sea
 
+  !> The sea module's kernels timed by bench_sea.
+  integer, parameter :: elevation = 1, kinematics = 2, probes = 3, libm_cos = 4
+  !> The strip's sea terms timed by bench_grid.
+  integer, parameter :: grid_kinematic = 1, exact_kinematic = 2, exact_elevation = 3, &
+                        grid_elevation_terms = 4
+
   !> One timing: what was timed, its cost and the unit of the cost.
   type :: bench_result
     !> What was timed, and the unit of its cost.
@@ -35,9 +41,9 @@ contains
     integer, parameter :: np = 20
     type(wave_field_type) :: field
     type(rng_type) :: rng
-    real(wp) :: x(np), y(np), z(np), eta(np), v(3), a(3), p, sink, per
+    real(wp) :: x(np), y(np), z(np), eta(np), v(3), a(3), p, sink
     real(wp), allocatable :: cb(:, :), sb(:, :), ca(:), sa(:), cr(:), sr(:), th(:), c(:)
-    integer(i8) :: reps, r
+    integer(i8) :: r
     integer :: j
     allocate (results(0))
     rng = new_rng(1)
@@ -51,14 +57,12 @@ contains
     sink = 0.0_wp
 
     ! 1. elevation at arbitrary (moving) points: one phase evaluation per component-point
-    reps = scaled(budget, timed_ns(10_i8)*1.0e-9_wp*field%n*np)
-    per = timed_ns(reps)
-    call add(results, "sea: elevation, arbitrary points", "ns/(component*point)", per)
+    call add(results, "sea: elevation, arbitrary points", "ns/(component*point)", &
+             measured(elevation))
 
     ! 2. kinematics (elevation + velocity + acceleration + pressure, Wheeler stretching)
-    reps = scaled(budget, timed_kin_ns(10_i8)*1.0e-9_wp*field%n*np)
-    per = timed_kin_ns(reps)
-    call add(results, "sea: kinematics, arbitrary points", "ns/(component*point)", per)
+    call add(results, "sea: kinematics, arbitrary points", "ns/(component*point)", &
+             measured(kinematics))
 
     ! 3. fixed probes: precomputed spatial phasors, time phasors advanced by rotation
     allocate (cb(field%n, np), sb(field%n, np), ca(field%n), sa(field%n), cr(field%n), &
@@ -66,15 +70,12 @@ contains
     call point_phasors(field, x, y, cb, sb)
     call time_phasors(field, 0.0_wp, ca, sa)
     call rotation_phasors(field, 0.01_wp, cr, sr)
-    reps = scaled(budget, timed_probe_ns(10_i8)*1.0e-9_wp*field%n*np)
-    per = timed_probe_ns(reps)
-    call add(results, "sea: elevation, fixed probes (phasors)", "ns/(component*point)", per)
+    call add(results, "sea: elevation, fixed probes (phasors)", "ns/(component*point)", &
+             measured(probes))
 
     ! 4. reference: the libm cosine alone, per phase
     allocate (th(field%n), c(field%n))
-    reps = scaled(budget, timed_libm_ns(10_i8)*1.0e-9_wp*field%n)
-    per = timed_libm_ns(reps)
-    call add(results, "reference: libm cos per phase", "ns/phase", per)
+    call add(results, "reference: libm cos per phase", "ns/phase", measured(libm_cos))
 
     ! 5-8. the interpolated sea (&sea kinematics = 'grid', defaults h = 1 m, dt = 0.1 s,
     ! velocity to 3 m): its build per node and sample, and a strip's sea terms per point
@@ -84,70 +85,51 @@ contains
 
   contains
 
-    !> Repetitions that fill `seconds` given the time of one repetition.
-    integer(i8) function scaled(seconds, one) result(n)
-      !> Seconds to fill, and the time of one repetition [s].
-      real(wp), intent(in) :: seconds, one
-      n = max(1_i8, int(seconds/max(one, 1.0e-12_wp), i8))
-    end function scaled
+    !> Kernel `which` timed for about `budget` seconds (the count set by a 10-repetition
+    !> probe) [ns per unit: component-point, or phase for the libm reference].
+    real(wp) function measured(which) result(ns)
+      !> The kernel (elevation, kinematics, probes, libm_cos).
+      integer, intent(in) :: which
+      integer(i8) :: units
+      units = int(np, i8)*field%n
+      if (which == libm_cos) units = field%n
+      ns = timed_ns(which, 10_i8, units)
+      ns = timed_ns(which, scaled(budget, ns*1.0e-9_wp*real(units, wp)), units)
+    end function measured
 
-    real(wp) function timed_ns(n) result(ns)
-      !> Repetitions timed.
-      integer(i8), intent(in) :: n
-      integer(i8) :: c0, c1, rate
-      call system_clock(c0, rate)
-      do r = 1, n
-        do j = 1, np
-          sink = sink + wave_elevation(field, 0.01_wp*r, x(j), y(j))
-        end do
-      end do
-      call system_clock(c1)
-      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*np*field%n, wp)*1.0e9_wp
-    end function timed_ns
-
-    real(wp) function timed_kin_ns(n) result(ns)
-      !> Repetitions timed.
-      integer(i8), intent(in) :: n
+    !> Kernel `which` repeated n times [ns per unit, `units` per repetition].
+    real(wp) function timed_ns(which, n, units) result(ns)
+      !> The kernel.
+      integer, intent(in) :: which
+      !> Repetitions timed, and units of work per repetition.
+      integer(i8), intent(in) :: n, units
       integer(i8) :: c0, c1, rate
       real(wp) :: e
       call system_clock(c0, rate)
       do r = 1, n
-        do j = 1, np
-          call wave_kinematics(field, 0.01_wp*r, [x(j), y(j), z(j)], e, v, a, p)
-          sink = sink + v(1) + p
-        end do
+        select case (which)
+        case (elevation)
+          do j = 1, np
+            sink = sink + wave_elevation(field, 0.01_wp*r, x(j), y(j))
+          end do
+        case (kinematics)
+          do j = 1, np
+            call wave_kinematics(field, 0.01_wp*r, [x(j), y(j), z(j)], e, v, a, p)
+            sink = sink + v(1) + p
+          end do
+        case (probes)
+          call advance_phasors(ca, sa, cr, sr)
+          call elevation_from_phasors(field, 0.01_wp*r, ca, sa, cb, sb, eta)
+          sink = sink + eta(1)
+        case default
+          th = field%omega*(0.01_wp*r) + field%phase
+          c = cos(th)
+          sink = sink + c(1)
+        end select
       end do
       call system_clock(c1)
-      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*np*field%n, wp)*1.0e9_wp
-    end function timed_kin_ns
-
-    real(wp) function timed_probe_ns(n) result(ns)
-      !> Repetitions timed.
-      integer(i8), intent(in) :: n
-      integer(i8) :: c0, c1, rate
-      call system_clock(c0, rate)
-      do r = 1, n
-        call advance_phasors(ca, sa, cr, sr)
-        call elevation_from_phasors(field, 0.01_wp*r, ca, sa, cb, sb, eta)
-        sink = sink + eta(1)
-      end do
-      call system_clock(c1)
-      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*np*field%n, wp)*1.0e9_wp
-    end function timed_probe_ns
-
-    real(wp) function timed_libm_ns(n) result(ns)
-      !> Repetitions timed.
-      integer(i8), intent(in) :: n
-      integer(i8) :: c0, c1, rate
-      call system_clock(c0, rate)
-      do r = 1, n
-        th = field%omega*(0.01_wp*r) + field%phase
-        c = cos(th)
-        sink = sink + c(1)
-      end do
-      call system_clock(c1)
-      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*field%n, wp)*1.0e9_wp
-    end function timed_libm_ns
+      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*units, wp)*1.0e9_wp
+    end function timed_ns
 
   end subroutine bench_sea
 
@@ -165,7 +147,7 @@ contains
     real(wp), intent(inout) :: sink
     type(wave_grid_type) :: g
     real(wp) :: xy(2, 2), e(4), v(3, 5), seconds, t
-    integer(i8) :: c0, c1, rate, reps, r
+    integer(i8) :: c0, c1, rate, r
     integer :: j, builds
     xy = reshape([minval(x) - 1.4_wp, minval(y) - 1.4_wp, maxval(x) + 1.4_wp, &
                   maxval(y) + 1.4_wp], [2, 2])
@@ -185,52 +167,64 @@ contains
     call add(results, "sea grid: build (22 fields)", "ns/(node*sample)", &
              seconds/real(builds, wp)*1.0e9_wp)
     call grid_prepare(g, field, t - 2.0_wp, t - 1.0_wp, xy)
-    reps = max(1_i8, int(budget/(size(x)*2.0e-7_wp), i8))
-    call system_clock(c0, rate)
-    do r = 1, reps
-      do j = 1, size(x)
-        call grid_kinematics(g, t - 1.9_wp + 1.0e-4_wp*mod(r, 1000_i8), x(j), y(j), 0.5_wp, &
-                             e, v)
-        sink = sink + e(1) + v(1, 1)
-      end do
-    end do
-    call system_clock(c1)
+    ! each repetition's count from a guess of one point's cost [s]
     call add(results, "sea grid: kinematic terms from the grid", "ns/point", &
-             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
-    reps = max(1_i8, int(budget/(size(x)*field%n*5.0e-9_wp), i8))
-    call system_clock(c0, rate)
-    do r = 1, reps
-      do j = 1, size(x)
-        call kinematic_sums(field, 1.0e-3_wp*r, x(j), y(j), 0.5_wp, e, v)
-        sink = sink + e(1) + v(1, 1)
-      end do
-    end do
-    call system_clock(c1)
+             grid_ns(grid_kinematic, reps_for(2.0e-7_wp)))
     call add(results, "sea grid: kinematic terms, exact sum", "ns/point", &
-             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
-    reps = max(1_i8, int(budget/(size(x)*field%n*2.0e-9_wp), i8))
-    call system_clock(c0, rate)
-    do r = 1, reps
-      do j = 1, size(x)
-        call elevation_sums(field, 1.0e-3_wp*r, x(j), y(j), e)
-        sink = sink + e(1)
-      end do
-    end do
-    call system_clock(c1)
+             grid_ns(exact_kinematic, reps_for(field%n*5.0e-9_wp)))
     call add(results, "sea grid: elevation terms, exact sum", "ns/point", &
-             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
-    reps = max(1_i8, int(budget/(size(x)*1.0e-7_wp), i8))
-    call system_clock(c0, rate)
-    do r = 1, reps
-      do j = 1, size(x)
-        call grid_elevation(g, t - 1.9_wp + 1.0e-4_wp*mod(r, 1000_i8), x(j), y(j), e)
-        sink = sink + e(1)
-      end do
-    end do
-    call system_clock(c1)
+             grid_ns(exact_elevation, reps_for(field%n*2.0e-9_wp)))
     call add(results, "sea grid: elevation terms from the grid", "ns/point", &
-             real(c1 - c0, wp)/real(rate, wp)/real(reps*size(x), wp)*1.0e9_wp)
+             grid_ns(grid_elevation_terms, reps_for(1.0e-7_wp)))
+
+  contains
+
+    !> Repetitions over all the points that fill the budget at `per_point` seconds a point.
+    integer(i8) function reps_for(per_point) result(n)
+      !> Guessed cost of one point [s].
+      real(wp), intent(in) :: per_point
+      n = max(1_i8, int(budget/(size(x)*per_point), i8))
+    end function reps_for
+
+    !> The strip's sea terms at every point by `which`, `n` times [ns per point].
+    real(wp) function grid_ns(which, n) result(ns)
+      !> The terms and their source (grid_kinematic, exact_kinematic, exact_elevation,
+      !> grid_elevation_terms).
+      integer, intent(in) :: which
+      !> Repetitions.
+      integer(i8), intent(in) :: n
+      call system_clock(c0, rate)
+      do r = 1, n
+        do j = 1, size(x)
+          select case (which)
+          case (grid_kinematic)
+            call grid_kinematics(g, t - 1.9_wp + 1.0e-4_wp*mod(r, 1000_i8), x(j), y(j), &
+                                 0.5_wp, e, v)
+            sink = sink + e(1) + v(1, 1)
+          case (exact_kinematic)
+            call kinematic_sums(field, 1.0e-3_wp*r, x(j), y(j), 0.5_wp, e, v)
+            sink = sink + e(1) + v(1, 1)
+          case (exact_elevation)
+            call elevation_sums(field, 1.0e-3_wp*r, x(j), y(j), e)
+            sink = sink + e(1)
+          case default
+            call grid_elevation(g, t - 1.9_wp + 1.0e-4_wp*mod(r, 1000_i8), x(j), y(j), e)
+            sink = sink + e(1)
+          end select
+        end do
+      end do
+      call system_clock(c1)
+      ns = real(c1 - c0, wp)/real(rate, wp)/real(n*size(x), wp)*1.0e9_wp
+    end function grid_ns
+
   end subroutine bench_grid
+
+  !> Repetitions that fill `seconds` given the time of one repetition.
+  pure integer(i8) function scaled(seconds, one) result(n)
+    !> Seconds to fill, and the time of one repetition [s].
+    real(wp), intent(in) :: seconds, one
+    n = max(1_i8, int(seconds/max(one, 1.0e-12_wp), i8))
+  end function scaled
 
   subroutine add(results, name, unit, value)
     !> The timings, extended with one.

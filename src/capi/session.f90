@@ -16,7 +16,7 @@ module davit_capi_session
   use davit_solve_step_control, only: stretch_to
   use davit_solve_event_location, only: event_stepper_type
   use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
+  use davit_run_scene, only: scene_type, new_scene
   use davit_system_events, only: release_hooks
   use davit_rigging_winch, only: winch_command
   use davit_run_driver, only: first_bad, speed_limit
@@ -77,6 +77,7 @@ contains
     character(len=*), intent(in) :: name, text
     !> Set when the deck is not a boat scene, exceeds the run budget or its system fails.
     type(error_type), allocatable, intent(out) :: error
+    class(scene_type), allocatable :: scene
     ! as davit does at its start: OpenBLAS's threads would split its sums differently from
     ! davit run's (and only compete for the cores on the small matrices davit solves)
     call single_threaded_blas()
@@ -84,20 +85,17 @@ contains
     s%deck_name = name
     s%deck_text = text
     allocate (s%ctrl_pass(8), s%ctrl_kind(8), s%ctrl_value(2, 8))
-    select case (cfg%simulation%scene)
-    case ("sea", "ship")
+    call new_scene(cfg%simulation%scene, scene, error)
+    if (allocated(error)) return
+    if (.not. scene%has_boat()) then
       call fatal_error(error, "deck '"//name//"': &simulation scene = '"// &
                        trim(cfg%simulation%scene)//"' has no boat; the library runs the "// &
                        "scenes with one (hanging_boat, lowering, launch)")
       return
-    case default
-      ! hanging_boat, lowering, launch: the scenes with the boat
-    end select
+    end if
     call check_run_budget(cfg, error)
     if (allocated(error)) return
-    call new_system(s%sys, cfg, error)
-    if (allocated(error)) return
-    call initial_state(s%sys, cfg, s%y, error)
+    call scene%build_boat(cfg, s%sys, s%y, error)
     if (allocated(error)) return
     s%log = new_launch_log(cfg, s%sys)
     associate (sim => cfg%simulation)

@@ -155,12 +155,9 @@ contains
   subroutine document_keys(docs)
     !> Every key of every group with its default, range, units and description.
     type(key_doc), allocatable, intent(out) :: docs(:)
-    type(nml_deck) :: deck
     type(config_type) :: cfg
     type(deck_reader_type) :: reader
-    type(error_type), allocatable :: error
-    call parse_deck("(defaults)", "", deck, error)
-    call reader%init(deck)
+    call reader%init_defaults()
     call read_all(reader, cfg)
     docs = reader%docs
   end subroutine document_keys

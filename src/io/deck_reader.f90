@@ -5,7 +5,7 @@ module davit_io_deck_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
-  use davit_io_namelist, only: nml_deck, to_lower, int_to_str, find_entry, shown
+  use davit_io_namelist, only: nml_deck, to_lower, int_to_str, find_entry, shown, parse_deck
   use davit_io_text, only: count_range, optional_text, join_ints, join_logicals, is_number, &
                            is_integer, &
                            unquote, join_reals, fmt_real
@@ -30,6 +30,7 @@ module davit_io_deck_reader
     type(error_type), allocatable :: error
   contains
     procedure :: init => reader_init
+    procedure :: init_defaults => reader_init_defaults
     procedure :: real => get_real
     procedure :: real_vec => get_real_vec
     procedure :: real_list => get_real_list
@@ -56,6 +57,17 @@ contains
     allocate (self%known(0), self%docs(0))
     if (allocated(self%error)) deallocate (self%error)
   end subroutine reader_init
+
+  !> The reader over an empty deck: every key read takes its default and is documented
+  !> (the key tables of `davit keys` and the README).
+  subroutine reader_init_defaults(self)
+    !> The reader, reset.
+    class(deck_reader_type), intent(inout) :: self
+    type(nml_deck) :: deck
+    type(error_type), allocatable :: error
+    call parse_deck("(defaults)", "", deck, error)
+    call self%init(deck)
+  end subroutine reader_init_defaults
 
   !> Real scalar with range lo..hi (open at an end where lo_open/hi_open).
   !> `default_text` documents a default that depends on other keys.

@@ -11,6 +11,7 @@ module davit_run_budget
   use davit_io_config, only: config_type
   use davit_io_deck_reader, only: fmt_real
   use davit_io_namelist, only: to_lower, line_end
+  use davit_run_scene, only: scene_type, new_scene
   implicit none
   private
   public :: check_run_budget, run_memory_estimate, memory_limit
@@ -25,14 +26,6 @@ module davit_run_budget
   real(wp), parameter :: max_wave_ratio = 1.0e9_wp
   !> Recorded samples are indexed by default integers.
   real(wp), parameter :: max_samples = 2.0e9_wp
-  !> The seat trace's grid interval [s] (davit_run_seat_trace).
-  real(wp), parameter :: seat_dt = 1.0e-3_wp
-  !> Bytes per wave component beyond the sea's own tables, measured (peak resident set over
-  !> the component count, 3e5 and 1.8e6 components): the boat's BEM diffraction table
-  !> interpolated per component and the ship's Froude-Krylov tables (2600 B), the ship's
-  !> tables alone (200 B).
-  real(wp), parameter :: bytes_component_boat = 2600.0_wp, bytes_component_ship = 200.0_wp
-  real(wp), parameter :: bytes_component_sea = 12.0_wp*8.0_wp
   !> Fixed part: the program, HDF5, the BEM databases.
   real(wp), parameter :: bytes_fixed = 200.0e6_wp
   real(wp), parameter :: gib = 1024.0_wp**3
@@ -118,7 +111,7 @@ contains
   end subroutine check_run_budget
 
   !> Memory the run holds [bytes]: samples x fields recorded, the seat trace, the waves.
-  pure real(wp) function run_memory_estimate(cfg) result(bytes)
+  real(wp) function run_memory_estimate(cfg) result(bytes)
     !> The run's configuration.
     type(config_type), intent(in) :: cfg
     real(wp) :: terms(3)
@@ -126,55 +119,25 @@ contains
     bytes = bytes_fixed + sum(terms)
   end function run_memory_estimate
 
-  !> (recorded samples, seat trace, wave components) [bytes].
-  pure function memory_parts(cfg) result(parts)
+  !> (recorded samples, seat trace, wave components) [bytes], as the deck's scene holds
+  !> them (none for a scene the deck reader would have refused).
+  function memory_parts(cfg) result(parts)
     type(config_type), intent(in) :: cfg
     real(wp) :: parts(3)
-    real(wp) :: samples, per_sample, n_comp, np
+    class(scene_type), allocatable :: scene
+    type(error_type), allocatable :: error
+    real(wp) :: samples, n_comp
+    parts = 0.0_wp
+    call new_scene(cfg%simulation%scene, scene, error)
+    if (allocated(error)) return
     samples = cfg%simulation%t_end/cfg%simulation%output_interval + 1.0_wp
-    np = real(size(cfg%sea%probes_x), wp)
     n_comp = 1.0_wp
     if (cfg%sea%wave_type == "irregular") then
       n_comp = real(cfg%sea%n_frequencies, wp)
       if (cfg%sea%summation == "double") n_comp = n_comp*real(cfg%sea%n_directions, wp)
     end if
-    parts = 0.0_wp
-    select case (cfg%simulation%scene)
-    case ("sea")
-      ! elevation (probes, samples) and time; spatial phasors (components, probes) x 2
-      per_sample = np + 1.0_wp
-      parts(3) = n_comp*(bytes_component_sea + 16.0_wp*np + 32.0_wp)
-    case ("ship")
-      per_sample = 32.0_wp
-      parts(3) = n_comp*(bytes_component_sea + bytes_component_ship)
-    case default
-      ! the boat recorder's fields (position, Euler angles, velocities, accelerations,
-      ! tensions, energy, clearance, fender forces, cable segments, sheaves, ship pose) and
-      ! the sling lumps; the seat trace: 3 velocities per ms, doubled while it grows, and
-      ! the filter's copies
-      per_sample = 96.0_wp + 6.0_wp*real(cfg%rigging%lumps, wp)
-      parts(2) = 8.0_wp*3.0_wp*4.0_wp*cfg%simulation%t_end/seat_dt
-      parts(3) = n_comp*(bytes_component_sea + bytes_component_boat) + grid_bytes(cfg, n_comp)
-    end select
-    parts(1) = 8.0_wp*per_sample*samples
+    parts = scene%memory_parts(cfg, samples, n_comp)
   end function memory_parts
-
-  !> The interpolated sea's two grids (davit_sea_wave_grid; `&sea kinematics = 'grid'`):
-  !> spatial phasors (2 n per node) over a box of side (L + B + 2 margin)/h + 4 nodes (the
-  !> boat's footprint at any heading) and the block's time phasors (2 n per field and
-  !> sample, 16 samples; 4 + 4 + 3 nl fields), and the fields themselves [bytes].
-  pure real(wp) function grid_bytes(cfg, n_comp) result(bytes)
-    type(config_type), intent(in) :: cfg
-    real(wp), intent(in) :: n_comp
-    real(wp) :: nodes, fields
-    bytes = 0.0_wp
-    if (cfg%sea%grid%kinematics /= "grid" .or. cfg%sea%wave_type /= "irregular") return
-    associate (g => cfg%sea%grid)
-      nodes = ((cfg%boat%length + cfg%boat%beam + 2.0_wp*g%margin)/g%spacing + 4.0_wp)**2
-      fields = 8.0_wp + 3.0_wp*(real(ceiling(g%depth/g%spacing), wp) + 3.0_wp)
-    end associate
-    bytes = 8.0_wp*(2.0_wp*n_comp*(2.0_wp*nodes + 16.0_wp*fields) + 16.0_wp*fields*nodes)
-  end function grid_bytes
 
   !> The estimate's terms in words.
   function memory_terms(cfg) result(s)

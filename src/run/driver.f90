@@ -15,20 +15,16 @@ module davit_run_driver
   use davit_solve_factory, only: new_integrator
   use davit_solve_step_control, only: stretch_to
   use davit_solve_event_location, only: event_stepper_type
-  use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
-  use davit_run_run_summary, only: run_summary, write_root_attributes
-  use davit_run_sea_run, only: run_sea
-  use davit_run_recorders, only: recorder_type, boat_recorder, ship_recorder
-  use davit_run_ship_scene, only: build_ship_scene
+  use davit_run_run_summary, only: run_summary
+  use davit_run_scenario, only: write_root_attributes
+  use davit_run_recorders, only: recorder_type
   use davit_run_step_monitor, only: step_monitor
-  use davit_run_launch_log, only: launch_log, new_launch_log
-  use davit_ship_ship_model, only: ship_system_type
   use davit_run_budget, only: check_run_budget
+  use davit_run_scene, only: scene_type, new_scene
   use davit_run_progress, only: progress_meter
   implicit none
   private
-  public :: run_simulation, integrate, first_bad, speed_limit
+  public :: run_simulation, integrate_scene, integrate, first_bad, speed_limit
 
   !> Speeds beyond this (m/s, rad/s) are a numerical blow-up, not a lifeboat or a ship.
   real(wp), parameter :: speed_limit = 1.0e3_wp
@@ -49,45 +45,35 @@ contains
     type(error_type), allocatable, intent(out) :: error
     !> Progress line at a terminal (absent: none).
     type(progress_meter), intent(inout), optional :: progress
-    type(system_type) :: boat
-    type(ship_system_type) :: ship
-    type(boat_recorder) :: brec
-    type(ship_recorder) :: srec
-    type(launch_log) :: log
-    real(wp), allocatable :: y(:)
+    class(scene_type), allocatable :: scene
     ! a run that cannot finish or cannot fit is refused before anything is built or written
     call check_run_budget(cfg, error)
     if (allocated(error)) return
-    select case (cfg%simulation%scene)
-    case ("sea")
-      call run_sea(cfg, out_path, summary, error)
-    case ("ship")
-      call build_ship_scene(cfg, ship, y, error)
-      if (allocated(error)) return
-      call integrate_scene(cfg, ship, y, srec, out_path, summary, error, &
-                           progress=progress)
-    case default
-      call new_system(boat, cfg, error)
-      if (allocated(error)) return
-      call initial_state(boat, cfg, y, error)
-      if (allocated(error)) return
-      log = new_launch_log(cfg, boat)
-      call integrate_scene(cfg, boat, y, brec, out_path, summary, error, log, progress)
-      if (.not. allocated(error)) summary%report = log%report(boat)
-    end select
+    call new_scene(cfg%simulation%scene, scene, error)
+    if (allocated(error)) return
+    call scene%run(cfg, out_path, summary, error, progress)
   end subroutine run_simulation
 
-  !> Integrate a scene into its recorder and write `out_path`.
+  !> Integrate a scene into its recorder and write `out_path` (the scenes' `run` bindings).
   subroutine integrate_scene(cfg, problem, y, rec, out_path, summary, error, monitor, &
                              progress)
+    !> The checked configuration of the run.
     type(config_type), intent(in) :: cfg
+    !> The scene's system.
     class(ode_problem), intent(inout) :: problem
+    !> Its state: initial, then at the run's end.
     real(wp), intent(inout) :: y(:)
+    !> The scene's recorder.
     class(recorder_type), intent(inout) :: rec
+    !> Path of the HDF5 file written.
     character(len=*), intent(in) :: out_path
+    !> Steps, evaluations, wall time and completion of the run.
     type(run_summary), intent(out) :: summary
+    !> Set when the run cannot be set up, its file not written or it diverged.
     type(error_type), allocatable, intent(out) :: error
+    !> Watches the accepted steps and may end the run (the boat scenes' launch log).
     class(step_monitor), intent(inout), optional :: monitor
+    !> Progress line at a terminal (absent: none).
     type(progress_meter), intent(inout), optional :: progress
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: run_error, io_error

@@ -4,11 +4,7 @@ module davit_run_linear_modes
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
-  use davit_solve_modes, only: jacobian_spectrum
-  use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
-  use davit_run_ship_scene, only: build_ship_scene
-  use davit_ship_ship_model, only: ship_system_type
+  use davit_run_scene, only: scene_type, new_scene
   implicit none
   private
   public :: linear_modes
@@ -23,28 +19,14 @@ contains
     real(wp), intent(out) :: rate_max, omega_max
     !> Set when the system cannot be built or the eigenvalues not found.
     type(error_type), allocatable, intent(out) :: error
-    type(system_type) :: sys
-    type(ship_system_type) :: ship
-    real(wp), allocatable :: y(:)
+    class(scene_type), allocatable :: scene
     integer :: info
     rate_max = 0.0_wp
     omega_max = 0.0_wp
-    select case (cfg%simulation%scene)
-    case ("sea")
-      call fatal_error(error, cfg%filename//": &simulation: scene = 'sea' has no dynamics "// &
-                       "to linearise")
-      return
-    case ("ship")
-      call build_ship_scene(cfg, ship, y, error)
-      if (allocated(error)) return
-      call jacobian_spectrum(ship, 0.0_wp, y, rate_max, omega_max, info)
-    case default
-      call new_system(sys, cfg, error)
-      if (allocated(error)) return
-      call initial_state(sys, cfg, y, error)
-      if (allocated(error)) return
-      call jacobian_spectrum(sys, 0.0_wp, y, rate_max, omega_max, info)
-    end select
+    call new_scene(cfg%simulation%scene, scene, error)
+    if (allocated(error)) return
+    call scene%linear_modes(cfg, rate_max, omega_max, info, error)
+    if (allocated(error)) return
     if (info /= 0) call fatal_error(error, "LAPACK dgeev failed on the Jacobian")
   end subroutine linear_modes
 

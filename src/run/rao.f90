@@ -24,7 +24,8 @@ module davit_run_rao
   use davit_solve_rk4, only: rk4_type
   use davit_ship_ship_model, only: ship_system_type
   use davit_run_ship_scene, only: build_ship_scene
-  use davit_run_run_summary, only: run_summary, write_root_attributes
+  use davit_run_run_summary, only: run_summary
+  use davit_run_scenario, only: write_root_attributes
   implicit none
   private
   public :: rao_case, run_rao

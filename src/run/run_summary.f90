@@ -1,14 +1,10 @@
-!> What every run reports: integrator statistics, completion, and the root attributes of
-!> the output file, shared by all scenes.
+!> What every run reports: integrator statistics and completion, shared by all scenes
+!> (written as the output file's root attributes by davit_run_scenario).
 module davit_run_run_summary
-  use davit_kinds, only: wp, i8, davit_version
-  use davit_error, only: error_type
-  use davit_io_config, only: config_type
-  use davit_io_hdf5_writer, only: h5_writer_type
-  use davit_run_scenario, only: write_scenario
+  use davit_kinds, only: wp, i8
   implicit none
   private
-  public :: run_summary, write_root_attributes
+  public :: run_summary
 
   type :: run_summary
     !> Accepted steps and right-hand-side evaluations.
@@ -61,48 +57,5 @@ contains
     worst = wall
     at = t
   end subroutine keep_worst
-
-  !> davit_version, input file and deck text, seed, integrator statistics, completion;
-  !> and /scenario (what the run simulated, davit_run_scenario) unless `scenario` is false
-  !> (the RAO runs, which sweep their own waves).
-  subroutine write_root_attributes(w, cfg, summary, integrator, run_error, scenario)
-    !> The open output file.
-    type(h5_writer_type), intent(inout) :: w
-    !> The run's configuration.
-    type(config_type), intent(in) :: cfg
-    !> The run's statistics.
-    type(run_summary), intent(in) :: summary
-    !> Name of the integrator used.
-    character(len=*), intent(in) :: integrator
-    !> Why the run ended early (unallocated: it did not).
-    type(error_type), allocatable, intent(in) :: run_error
-    !> Write /scenario (default: yes).
-    logical, intent(in), optional :: scenario
-    call w%attr_str("/", "davit_version", davit_version)
-    call w%attr_str("/", "input_file", cfg%filename)
-    call w%attr_str("/", "input_namelist", cfg%deck_text)
-    call w%attr_str("/", "scene", cfg%simulation%scene)
-    call w%attr_int("/", "seed", int(cfg%simulation%seed, i8))
-    call w%attr_str("/", "integrator", integrator)
-    call w%attr_real("/", "dt", cfg%simulation%dt)
-    call w%attr_int("/", "steps", summary%steps)
-    call w%attr_int("/", "rhs_evaluations", summary%rhs_evaluations)
-    call w%attr_real("/", "wall_time", summary%wall_time)
-    call w%attr_real("/", "worst_step_wall", summary%worst_step)
-    call w%attr_real("/", "worst_step_at", summary%worst_step_time)
-    call w%attr_real("/", "worst_interval_wall", summary%worst_interval)
-    call w%attr_real("/", "worst_interval_at", summary%worst_interval_time)
-    call w%attr_int("/", "complete", merge(1_i8, 0_i8, summary%complete))
-    if (allocated(run_error)) then
-      call w%attr_str("/", "status", run_error%message)
-    else
-      call w%attr_str("/", "status", "ok")
-    end if
-    if (.not. present(scenario)) then
-      call write_scenario(w, cfg)
-    else if (scenario) then
-      call write_scenario(w, cfg)
-    end if
-  end subroutine write_root_attributes
 
 end module davit_run_run_summary

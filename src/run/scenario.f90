@@ -5,15 +5,19 @@
 !> convention: direction_deg is the direction the waves (or the wind) travel towards,
 !> measured from N1 towards N2; the ship heads along N1 at heading_deg = 0 and its s2 axis
 !> points to starboard, so 0 deg is a following sea, 90 deg comes from port, 180 deg is a
-!> head sea and 270 deg comes from starboard.
+!> head sea and 270 deg comes from starboard. The run's root attributes (version, deck,
+!> integrator statistics, completion) are written here with it.
 module davit_run_scenario
-  use davit_kinds, only: wp, i8, pi
+  use davit_kinds, only: wp, i8, pi, davit_version
+  use davit_error, only: error_type
   use davit_io_config, only: config_type
   use davit_io_hdf5_writer, only: h5_writer_type
+  use davit_run_run_summary, only: run_summary
+  use davit_run_scene, only: scene_type, new_scene
   use davit_sea_spectrum, only: spectrum_m0, spectrum_peak_omega
   implicit none
   private
-  public :: scenario_text, write_scenario, coming_from
+  public :: scenario_text, write_scenario, write_root_attributes, coming_from
 
   character(len=*), parameter :: convention = "direction travelled towards, from N1 "// &
     "towards N2 (the ship heads along N1 at heading_deg 0; N2 is to starboard): "// &
@@ -21,18 +25,73 @@ module davit_run_scenario
 
 contains
 
+  !> davit_version, input file and deck text, seed, integrator statistics, completion;
+  !> and /scenario (what the run simulated, davit_run_scenario) unless `scenario` is false
+  !> (the RAO runs, which sweep their own waves).
+  subroutine write_root_attributes(w, cfg, summary, integrator, run_error, scenario)
+    !> The open output file.
+    type(h5_writer_type), intent(inout) :: w
+    !> The run's configuration.
+    type(config_type), intent(in) :: cfg
+    !> The run's statistics.
+    type(run_summary), intent(in) :: summary
+    !> Name of the integrator used.
+    character(len=*), intent(in) :: integrator
+    !> Why the run ended early (unallocated: it did not).
+    type(error_type), allocatable, intent(in) :: run_error
+    !> Write /scenario (default: yes).
+    logical, intent(in), optional :: scenario
+    call w%attr_str("/", "davit_version", davit_version)
+    call w%attr_str("/", "input_file", cfg%filename)
+    call w%attr_str("/", "input_namelist", cfg%deck_text)
+    call w%attr_str("/", "scene", cfg%simulation%scene)
+    call w%attr_int("/", "seed", int(cfg%simulation%seed, i8))
+    call w%attr_str("/", "integrator", integrator)
+    call w%attr_real("/", "dt", cfg%simulation%dt)
+    call w%attr_int("/", "steps", summary%steps)
+    call w%attr_int("/", "rhs_evaluations", summary%rhs_evaluations)
+    call w%attr_real("/", "wall_time", summary%wall_time)
+    call w%attr_real("/", "worst_step_wall", summary%worst_step)
+    call w%attr_real("/", "worst_step_at", summary%worst_step_time)
+    call w%attr_real("/", "worst_interval_wall", summary%worst_interval)
+    call w%attr_real("/", "worst_interval_at", summary%worst_interval_time)
+    call w%attr_int("/", "complete", merge(1_i8, 0_i8, summary%complete))
+    if (allocated(run_error)) then
+      call w%attr_str("/", "status", run_error%message)
+    else
+      call w%attr_str("/", "status", "ok")
+    end if
+    if (.not. present(scenario)) then
+      call write_scenario(w, cfg)
+    else if (scenario) then
+      call write_scenario(w, cfg)
+    end if
+  end subroutine write_root_attributes
+
   !> The scenario as a short block of lines (no trailing newline).
   function scenario_text(cfg) result(text)
     !> The run's configuration.
     type(config_type), intent(in) :: cfg
     character(len=:), allocatable :: text
     character(len=*), parameter :: nl = new_line("a")
+    class(scene_type), allocatable :: scene
+    type(error_type), allocatable :: error
+    logical :: boat, wind
+    ! the deck reader admits only the scenes; were it another, the text says no boat
+    call new_scene(cfg%simulation%scene, scene, error)
+    boat = .false.
+    wind = .true.
+    if (allocated(scene)) then
+      boat = scene%has_boat()
+      wind = scene%feels_wind()
+    end if
     text = "scenario of '"//cfg%filename//"' (scene "//cfg%simulation%scene//")"//nl// &
            "sea:   "//sea_words(cfg)
     if (cfg%sea%wave_type /= "calm") text = text//nl//"waves: travel towards "// &
       fixed(deg(cfg%sea%direction), 1)//" deg (from N1 towards N2; 0 = following, 90 = "// &
-      "from port, 180 = head): "//coming_from(relative(cfg, cfg%sea%direction))//boat_side(cfg)
-    text = text//nl//"wind:  "//wind_words(cfg)//nl// &
+      "from port, 180 = head): "//coming_from(relative(cfg, cfg%sea%direction))// &
+      boat_side(cfg, boat)
+    text = text//nl//"wind:  "//wind_words(cfg, wind)//nl// &
            "model: ship "//cfg%ship%model//", heading "//fixed(deg(cfg%ship%heading), 1)// &
            " deg; boat water model "//cfg%boat%water_model//"; integrator "// &
            cfg%simulation%integrator//", dt = "//trimmed(cfg%simulation%dt)//" s"
@@ -92,11 +151,13 @@ contains
     end select
   end function sea_words
 
-  function wind_words(cfg) result(text)
+  !> The wind in words; `wind`: whether the scene feels it.
+  function wind_words(cfg, wind) result(text)
     type(config_type), intent(in) :: cfg
+    logical, intent(in) :: wind
     character(len=:), allocatable :: text
-    if (cfg%simulation%scene == "sea") then
-      text = "not used by the 'sea' scene"
+    if (.not. wind) then
+      text = "not used by the '"//cfg%simulation%scene//"' scene"
     else if (cfg%wind%speed <= 0.0_wp) then
       text = "none, 0 m/s ("//cfg%wind%speed_source//")"
     else
@@ -127,12 +188,14 @@ contains
     if (cfg%sea%wave_type == "irregular") text = "eq. 44's peak for H"
   end function period_source
 
-  !> ", the boat hangs on the starboard side" for scenes with a boat at the ship's side.
-  function boat_side(cfg) result(text)
+  !> ", the boat hangs on the starboard side" for scenes with a boat (`boat`) at the ship's
+  !> side.
+  function boat_side(cfg, boat) result(text)
     type(config_type), intent(in) :: cfg
+    logical, intent(in) :: boat
     character(len=:), allocatable :: text
     text = ""
-    if (cfg%simulation%scene == "sea" .or. cfg%simulation%scene == "ship") return
+    if (.not. boat) return
     text = "; the boat hangs on the "//trim(merge("starboard", "port     ", &
            cfg%contact%side_y >= 0.0_wp))//" side"
   end function boat_side

@@ -10,7 +10,8 @@ module davit_run_sea_run
   use davit_sea_wave_field, only: wave_field_type, point_phasors, time_phasors, &
                                   rotation_phasors, advance_phasors, elevation_from_phasors
   use davit_system_sea_builder, only: build_wave_field
-  use davit_run_run_summary, only: run_summary, write_root_attributes
+  use davit_run_run_summary, only: run_summary
+  use davit_run_scenario, only: write_root_attributes
   implicit none
   private
   public :: run_sea, write_components

@@ -23,7 +23,7 @@ module davit_solve_rosenbrock
   use davit_solve_adaptive, only: adaptive_integrator, adaptive_step
   implicit none
   private
-  public :: rosenbrock_type
+  public :: rosenbrock_type, stage_argument, stage_right_side, stage_combination
 
   integer, parameter :: ns = 4
   !> Stage coefficients a_ij, c_ij (strictly lower triangular, row i = stage i).
@@ -206,32 +206,78 @@ contains
     real(wp), intent(in) :: t, y(:), h
     !> Whether the error vector is wanted (it is formed either way).
     logical, intent(in) :: with_error
-    integer :: i, j, n, info
+    integer :: i, n, info
     n = size(y)
     self%fcn = self%f0
     do i = 1, ns
       if (i > 1 .and. new_f(i)) then
-        self%ytmp = y
-        do j = 1, i - 1
-          if (ra(i, j) /= 0.0_wp) self%ytmp = self%ytmp + ra(i, j)*self%k(:, j)
-        end do
+        call stage_argument(y, ra(i, :), self%k, i, self%ytmp)
         call problem%rhs(t + ralpha(i)*h, self%ytmp, self%fcn)
         self%rhs_evaluations = self%rhs_evaluations + 1
       end if
-      self%k(:, i) = self%fcn
-      do j = 1, i - 1
-        self%k(:, i) = self%k(:, i) + (rc(i, j)/h)*self%k(:, j)
-      end do
+      call stage_right_side(self%fcn, rc(i, :), h, self%k, i)
       if (rgamma(i) /= 0.0_wp) self%k(:, i) = self%k(:, i) + (h*rgamma(i))*self%dfdt
       call dgetrs("N", n, 1, self%lu, n, self%ipiv, self%k(:, i), n, info)
     end do
-    self%ynew = y
-    self%yerr = 0.0_wp
-    do i = 1, ns
-      if (rm(i) /= 0.0_wp) self%ynew = self%ynew + rm(i)*self%k(:, i)
-      if (re(i) /= 0.0_wp) self%yerr = self%yerr + re(i)*self%k(:, i)
-    end do
+    call stage_combination(y, rm, re, self%k, self%ynew, self%yerr)
   end subroutine stages
+
+  !> Stage i's argument y + sum_{j < i} a_ij K_j (zero coefficients skipped), shared by the
+  !> Rosenbrock methods (RODAS3 here, ROS34PW2 in davit_solve_rosenbrock_w).
+  pure subroutine stage_argument(y, a, k, i, x)
+    !> State at the trial's start.
+    real(wp), intent(in) :: y(:)
+    !> Row i of the stage coefficients a_ij.
+    real(wp), intent(in) :: a(:)
+    !> The stages K_j (n, stages); those before i are used.
+    real(wp), intent(in) :: k(:, :)
+    !> The stage.
+    integer, intent(in) :: i
+    !> The argument.
+    real(wp), intent(out) :: x(:)
+    integer :: j
+    x = y
+    do j = 1, i - 1
+      if (a(j) /= 0.0_wp) x = x + a(j)*k(:, j)
+    end do
+  end subroutine stage_argument
+
+  !> Stage i's right-hand side before its solve, f + sum_{j < i} (c_ij/h) K_j, into K_i.
+  pure subroutine stage_right_side(f, c, h, k, i)
+    !> f at stage i's argument.
+    real(wp), intent(in) :: f(:)
+    !> Row i of the coefficients c_ij, and the step h [s].
+    real(wp), intent(in) :: c(:), h
+    !> The stages (n, stages); column i written.
+    real(wp), intent(inout) :: k(:, :)
+    !> The stage.
+    integer, intent(in) :: i
+    integer :: j
+    k(:, i) = f
+    do j = 1, i - 1
+      k(:, i) = k(:, i) + (c(j)/h)*k(:, j)
+    end do
+  end subroutine stage_right_side
+
+  !> The new state y + sum_i m_i K_i and the error vector sum_i e_i K_i (zero weights
+  !> skipped).
+  pure subroutine stage_combination(y, m, e, k, ynew, yerr)
+    !> State at the trial's start.
+    real(wp), intent(in) :: y(:)
+    !> Solution weights m_i and error weights e_i.
+    real(wp), intent(in) :: m(:), e(:)
+    !> The stages (n, stages).
+    real(wp), intent(in) :: k(:, :)
+    !> The new state and the error vector.
+    real(wp), intent(out) :: ynew(:), yerr(:)
+    integer :: i
+    ynew = y
+    yerr = 0.0_wp
+    do i = 1, size(m)
+      if (m(i) /= 0.0_wp) ynew = ynew + m(i)*k(:, i)
+      if (e(i) /= 0.0_wp) yerr = yerr + e(i)*k(:, i)
+    end do
+  end subroutine stage_combination
 
   pure function rosenbrock_name(self) result(name)
     !> The integrator.

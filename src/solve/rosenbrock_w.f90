@@ -32,6 +32,7 @@ module davit_solve_rosenbrock_w
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem
   use davit_solve_adaptive, only: adaptive_integrator
+  use davit_solve_rosenbrock, only: stage_argument, stage_right_side, stage_combination
   implicit none
   private
   public :: rosenbrock_w_type
@@ -336,31 +337,20 @@ contains
     real(wp), intent(in) :: t, y(:), h
     !> Whether the error vector is wanted (it is formed either way).
     logical, intent(in) :: with_error
-    integer :: i, j
+    integer :: i
     do i = 1, ns
       if (i == 1) then
         self%fcn = self%f0
       else
-        self%ytmp = y
-        do j = 1, i - 1
-          if (self%a(i, j) /= 0.0_wp) self%ytmp = self%ytmp + self%a(i, j)*self%u(:, j)
-        end do
+        call stage_argument(y, self%a(i, :), self%u, i, self%ytmp)
         call problem%rhs(t + self%alpha(i)*h, self%ytmp, self%fcn)
         self%rhs_evaluations = self%rhs_evaluations + 1
       end if
-      self%u(:, i) = self%fcn
-      do j = 1, i - 1
-        self%u(:, i) = self%u(:, i) + (self%c(i, j)/h)*self%u(:, j)
-      end do
+      call stage_right_side(self%fcn, self%c(i, :), h, self%u, i)
       call solve_stage(self%stiff, self%coupled, self%wc, self%lu, self%piv, h, &
                        self%u(:, i))
     end do
-    self%ynew = y
-    self%yerr = 0.0_wp
-    do i = 1, ns
-      self%ynew = self%ynew + self%m(i)*self%u(:, i)
-      self%yerr = self%yerr + self%e(i)*self%u(:, i)
-    end do
+    call stage_combination(y, self%m, self%e, self%u, self%ynew, self%yerr)
   end subroutine stages
 
   pure function rosw_name(self) result(name)

@@ -19,7 +19,7 @@ module davit_sweep_cases
   use davit_core_rotation, only: rotation_matrix
   use davit_sea_spectrum, only: spectrum_peak_omega
   use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
+  use davit_run_scene, only: new_boat_system
   use davit_sweep_keys, only: sweep_config, wave_type_names, case_count
   implicit none
   private
@@ -211,9 +211,7 @@ contains
     type(system_type) :: sys
     real(wp), allocatable :: y(:), force(:)
     clearance = 0.0_wp
-    call new_system(sys, cfg, error)
-    if (allocated(error)) return
-    call initial_state(sys, cfg, y, error)
+    call new_boat_system(cfg, sys, y, error)
     if (allocated(error)) return
     allocate (force(sys%par%fenders%nf))
     call sys%contact_state(y, clearance, force)

@@ -20,9 +20,10 @@ module davit_sweep_driver
   use davit_io_namelist, only: int_to_str
   use davit_io_deck_reader, only: fmt_real
   use davit_system_model, only: system_type
-  use davit_system_build, only: new_system, initial_state
+  use davit_run_scene, only: new_boat_system
   use davit_run_recorders, only: boat_recorder
-  use davit_run_run_summary, only: run_summary, write_root_attributes
+  use davit_run_run_summary, only: run_summary
+  use davit_run_scenario, only: write_root_attributes
   use davit_run_driver, only: integrate
   use davit_run_launch_log, only: new_launch_log
   use davit_run_budget, only: check_run_budget, memory_limit, run_memory_estimate
@@ -376,8 +377,7 @@ contains
     ! thread-safe.
     !$omp critical (davit_sweep_io)
     call check_run_budget(cfg, error, in_sweep=.true.)
-    if (.not. allocated(error)) call new_system(sys, cfg, error)
-    if (.not. allocated(error)) call initial_state(sys, cfg, y, error)
+    if (.not. allocated(error)) call new_boat_system(cfg, sys, y, error)
     if (.not. allocated(error)) then
       metrics%stop_at_release = stop_at_release
       metrics%log = new_launch_log(cfg, sys)

@@ -21,6 +21,7 @@ module davit_sweep_keys
   use davit_solve_factory, only: integrator_names
   use davit_io_text, only: int_text, fmt_fixed
   use davit_run_budget, only: memory_limit
+  use davit_run_scene, only: scene_type, new_scene
   use davit_io_search_path, only: find_file, folder_of
   implicit none
   private
@@ -112,12 +113,9 @@ contains
   subroutine document_sweep_keys(docs)
     !> One entry per &sweep key.
     type(key_doc), allocatable, intent(out) :: docs(:)
-    type(nml_deck) :: deck
     type(deck_reader_type) :: reader
     type(sweep_config) :: sweep
-    type(error_type), allocatable :: error
-    call parse_deck("(defaults)", "", deck, error)
-    call reader%init(deck)
+    call reader%init_defaults()
     call read_keys(reader, sweep)
     docs = reader%docs
   end subroutine document_sweep_keys
@@ -257,15 +255,16 @@ contains
     !> Set when the sweep and its base deck disagree.
     type(error_type), allocatable, intent(out) :: error
     integer :: i
-    select case (s%base%simulation%scene)
-    case ("hanging_boat", "lowering", "launch")
-    case default
+    class(scene_type), allocatable :: scene
+    call new_scene(s%base%simulation%scene, scene, error)
+    if (allocated(error)) return
+    if (.not. scene%has_boat()) then
       call fatal_error(error, key_at(deck, "sweep", ["base_deck"])//"&sweep: base deck '"// &
                        s%base_deck// &
                        "' has scene '"//s%base%simulation%scene//"'; sweeps run the boat "// &
                        "scenes 'hanging_boat', 'lowering' and 'launch'")
       return
-    end select
+    end if
     do i = 1, size(s%dts)
       if (s%dts(i) > s%base%simulation%output_interval .or. &
           s%dts(i) > s%base%simulation%t_end) then
@@ -280,8 +279,7 @@ contains
     if (allocated(error)) return
     call check_case_count(s, deck, error)
     if (allocated(error)) return
-    if (s%has_clearances .and. s%base%simulation%scene == "hanging_boat" .and. &
-        .not. s%base%slings%attached) then
+    if (s%has_clearances .and. .not. scene%on_davit() .and. .not. s%base%slings%attached) then
       call fatal_error(error, key_at(deck, "sweep", ["clearances_b"])// &
                        "&sweep: clearances_b needs a hanging boat "// &
                        "(the base deck's slings are detached)")

@@ -1,5 +1,6 @@
 !> Build a launch system from a validated configuration: parameters and layout, history,
-!> contact step policy and (in the 'launch' scene) the 6-DOF ship; and its initial state.
+!> contact step policy and (where the scene moves the ship: 'launch') the 6-DOF ship; and its
+!> initial state.
 module davit_system_build
   use davit_kinds, only: wp, gravity, rho_water
   use davit_error, only: error_type, fatal_error
@@ -46,12 +47,17 @@ module davit_system_build
 
 contains
 
-  !> Build the system from a validated configuration.
-  subroutine new_system(self, cfg, error)
+  !> Build the system from a validated configuration, for the scene that asks
+  !> (davit_run_scene: where the boat hangs, whether the ship moves).
+  subroutine new_system(self, cfg, on_davit, with_ship, error)
     !> The system built: parameters, history, layout and integrator choices.
     type(system_type), intent(out) :: self
     !> The deck's configuration, validated.
     type(config_type), intent(in) :: cfg
+    !> The boat hangs on the davit's full rigging (else on the foundation slings).
+    logical, intent(in) :: on_davit
+    !> The 6-DOF ship moves in the sea with the boat (else it stays in its &ship pose).
+    logical, intent(in) :: with_ship
     !> Allocated when a part cannot be built (e.g. a database that cannot be read).
     type(error_type), allocatable, intent(out) :: error
     real(wp) :: ea
@@ -64,7 +70,7 @@ contains
       ea = s%youngs_modulus*acos(-1.0_wp)*s%diameter**2/4.0_wp
       par%slings(1) = elastic_sling_type(s%anchor_fore, s%length, ea, s%damping)
       par%slings(2) = elastic_sling_type(s%anchor_aft, s%length, ea, s%damping)
-      par%on_davit = cfg%simulation%scene == "lowering" .or. cfg%simulation%scene == "launch"
+      par%on_davit = on_davit
       par%slings_attached = s%attached .and. .not. par%on_davit
     end associate
     call new_boat_environment(self, cfg, error)
@@ -79,7 +85,7 @@ contains
       call new_davit(self%par, cfg, error)
       if (allocated(error)) return
     end if
-    if (cfg%simulation%scene == "launch") call new_moving_ship(self, cfg, error)
+    if (with_ship) call new_moving_ship(self, cfg, error)
   end subroutine new_system
 
   !> The boat's BEM water model (&boat water_model = 'bem'): its database, its states
