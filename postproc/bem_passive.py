@@ -182,16 +182,15 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
     g = np.zeros((0, n))
     y = y0
     for it in range(1, iterations + 1):
-        wm, vm = _violations(fits, wd, damping, tol)
+        # constraints where it dips below -tol / 2: a margin for grids other than wd
+        wm, vm = _violations(fits, wd, damping, 0.5 * tol)
         if wm.size == 0:
-            result.converged = True
             break
         g = np.vstack([g, rows(wm, vm)])
         y = y0 + r_inv @ _min_norm(g @ r_inv, -(g @ y0))
         apply(y)
         result.iterations = it
-    else:
-        result.converged = _violations(fits, wd, damping, tol)[0].size == 0
+    result.converged = _violations(fits, wd, damping, tol)[0].size == 0
     result.min_eigenvalue_after = min_eigenvalue(fits, w_top, damping, wd)[0]
     for (i, j) in pairs:
         f = fits[(i, j)]
