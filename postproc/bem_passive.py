@@ -34,6 +34,7 @@ TOLERANCE = 1e-3          # smallest eigenvalue allowed (scaled matrix): -TOLERA
 OMEGA_FACTOR = 20.0
 POLE_FACTOR = 10.0
 POINTS = 20000
+SS_ADDED_MASS_INF = "davit_ss_added_mass_inf"     # postproc.bem_build.SS_ADDED_MASS_INF
 REGULARISATION = 1e-9     # of the residues' change, relative (rank-deficient directions)
 
 
@@ -156,13 +157,15 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
     n = offsets[-1]
     # least change || M (y - y0) ||^2, M block-diagonal over the pairs, = ||z||^2 with
     # z = R (y - y0), M = Q R (R regularised where M does not see a direction)
-    r = np.zeros((n, n))
+    # (columns scaled to unit norm first: the weights span orders of magnitude)
+    r_inv = np.zeros((n, n))
     for k, m in enumerate(blocks):
-        rk = np.linalg.qr(m, mode="r")
-        reg = REGULARISATION * max(np.abs(rk).max(), 1e-300)
-        rk = np.linalg.qr(np.vstack([rk, reg * np.eye(rk.shape[1])]), mode="r")
-        r[offsets[k]:offsets[k + 1], offsets[k]:offsets[k + 1]] = rk
-    r_inv = np.linalg.inv(r)
+        col = np.linalg.norm(m, axis=0)
+        col[col == 0.0] = 1.0
+        rk = np.linalg.qr(np.vstack([m / col, REGULARISATION * np.eye(m.shape[1])]),
+                          mode="r")
+        r_inv[offsets[k]:offsets[k + 1], offsets[k]:offsets[k + 1]] = (
+            np.linalg.inv(rk) / col[:, None])
     y0 = np.concatenate(y0)
 
     def rows(wm, vm):
@@ -187,7 +190,9 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
         if wm.size == 0:
             break
         g = np.vstack([g, rows(wm, vm)])
-        y = y0 + r_inv @ _min_norm(g @ r_inv, -(g @ y0))
+        # v^T B v >= -tol / 4 there (not >= 0: where B_fit -> 0, w -> 0 or beyond the
+        # poles, exact zero can cost the fit far more than the tolerance allows for)
+        y = y0 + r_inv @ _min_norm(g @ r_inv, -(g @ y0) - 0.25 * tol)
         apply(y)
         result.iterations = it
     result.converged = _violations(fits, wd, damping, tol)[0].size == 0
@@ -203,31 +208,24 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
     return result
 
 
-def _min_norm(g, b, sweeps=200):
-    """min ||z|| subject to g z >= b (each row), by an active set: the rows held as
-    equalities (z = g_a^T lam, the minimum-norm solution), a row whose multiplier lam is
-    negative (it pulls z the wrong way) dropped, a row violated again taken back."""
+def _min_norm(g, b):
+    """min ||z|| subject to g z >= b (each row): least-distance programming by
+    non-negative least squares (Lawson and Hanson, Solving Least Squares Problems, 1974,
+    ch. 23): u >= 0 minimising ||E u - f|| with E = [g^T; b^T], f = (0, .., 0, 1) gives
+    z = -r[:n] / r[n], r = E u - f. Raises ValueError if the rows cannot all hold."""
+    from scipy.optimize import nnls
     norm = np.linalg.norm(g, axis=1)
     norm[norm == 0.0] = 1.0
     g, b = g / norm[:, None], b / norm
-    active = list(np.nonzero(b > 0)[0])
-    z = np.zeros(g.shape[1])
-    for _ in range(sweeps):
-        if active:
-            ga = g[active]
-            lam = np.linalg.lstsq(ga @ ga.T, b[active], rcond=None)[0]
-            z = ga.T @ lam
-        else:
-            lam, z = np.zeros(0), np.zeros(g.shape[1])
-        back = [k for k in range(g.shape[0])
-                if k not in active and g[k] @ z < b[k] - 1e-12 * max(abs(b[k]), 1.0)]
-        if back:
-            active += back
-            continue
-        if lam.size == 0 or lam.min() >= -1e-12 * max(np.abs(lam).max(), 1e-300):
-            break
-        active.pop(int(np.argmin(lam)))
-    return z
+    n = g.shape[1]
+    e = np.vstack([g.T, b[None, :]])
+    f = np.zeros(n + 1)
+    f[n] = 1.0
+    u = nnls(e, f, maxiter=50 * e.shape[1])[0]
+    r = e @ u - f
+    if abs(r[n]) < 1e-12:
+        raise ValueError("passivity constraints that cannot all hold with these poles")
+    return -r[:n] / r[n]
 
 
 def fits_from_database(base):
@@ -257,3 +255,34 @@ def fits_from_database(base):
             fits[(i, j)] = bem_fit.PairFit(n, am, bm, cm, poles, coef, float("nan"),
                                            float("nan"), float("nan"))
     return fits
+
+
+def enforce_file(source, target, tol=TOLERANCE):
+    """A copy of database `source` at `target` whose stored fits (davit_ss_c) are made
+    passive as a matrix (enforce, RAO-weighted as the build does, on the frequencies
+    bem_fit.resolved_frequencies keeps); the poles, everything else unchanged. Returns the
+    Result."""
+    import shutil
+    import h5py
+    from . import bem_db as db
+    base = db.Database(source)
+    fits = fits_from_database(base)
+    keep = bem_fit.resolved_frequencies(base.omega, base.damping)
+    with h5py.File(source, "r") as f:
+        a_fit = f[SS_ADDED_MASS_INF][()] if SS_ADDED_MASS_INF in f else base.added_mass_inf
+    for i in range(6):
+        if (i, i) in fits:
+            fits[(i, i)].added_mass_shift = float(a_fit[i, i] - base.added_mass_inf[i, i])
+    om, am, bd = base.omega[keep], base.added_mass[keep], base.damping[keep]
+    result = enforce(fits, om, am, bd, base.added_mass_inf, omega_max=base.omega[-1], tol=tol,
+                     weights=rao_weights(om, am, bd, base.mass, base.stiffness, fits))
+    shutil.copy(source, target)
+    with h5py.File(target, "r+") as f:
+        c = f[db.SS_C][()]
+        for (i, j), fit in fits.items():
+            c[i, j, :fit.order] = fit.c
+        f[db.SS_C][...] = c
+        f.attrs["fit_min_eigen_damping"] = result.min_eigenvalue_after
+        f.attrs["fit_min_eigen_damping_unenforced"] = result.min_eigenvalue_before
+        f.attrs["fit_passive_matrix"] = np.int32(1)
+    return result

@@ -157,6 +157,7 @@ def test_matrix_passivity_restored_with_no_more_change_than_the_defect():
     the defect would be (the closed form is passive with the same poles, so the least
     change cannot exceed it; measured: 0.44 of it), and the diagonal dampings stay within
     1 % of the closed form's peak (measured 0.13 %)."""
+    pytest.importorskip("scipy")
     from postproc import bem_passive
     omega = np.arange(1.0, 15.01, 0.25)
     da, b2 = _closed_form(omega)
@@ -196,6 +197,7 @@ def test_matrix_passivity_restored_with_no_more_change_than_the_defect():
 
 def test_matrix_passivity_leaves_a_passive_fit_alone():
     """The exact realisation of the closed form is passive: enforce changes nothing."""
+    pytest.importorskip("scipy")
     from postproc import bem_passive
     omega = np.arange(1.0, 15.01, 0.25)
     da, b2 = _closed_form(omega)
@@ -211,6 +213,7 @@ def test_matrix_passivity_leaves_a_passive_fit_alone():
 def test_least_norm_under_inequalities_has_its_closed_form():
     """min |z| subject to z_1 >= 1 and z_1 + z_2 >= -5: (1, 0), the second inactive; with
     z_1 - z_2 >= 3 too: its projection (1.5, -1.5), which satisfies the other two."""
+    pytest.importorskip("scipy")
     from postproc import bem_passive
     g = np.array([[1.0, 0.0], [1.0, 1.0], [1.0, -1.0]])
     np.testing.assert_allclose(bem_passive._min_norm(g[:2], np.array([1.0, -5.0])),
