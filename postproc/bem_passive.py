@@ -1,26 +1,25 @@
 """Passivity of the fitted radiation memory as a matrix (postproc.bem_fit's fits).
 
-Cummins' memory force mu = int K(t - tau) u(tau) dtau dissipates the energy the body
-radiates: over a period of a harmonic motion u = Re[U e^{i w t}] the mean power it absorbs
-is w^2/2 ... = 1/2 U^H B(w) U with B(w) the symmetric part of Re K(i w). The memory as a
-whole makes no energy if and only if B(w) is positive semi-definite at every w (Cummins'
-model is then passive). postproc.bem_fit fits each pair K_ij on its own and makes only the
-diagonal fits passive (B_ii >= 0); the couplings can still make B indefinite, e.g. a
-surge-pitch pole beyond the grid.
+Cummins' memory force mu(t) = int K(t - tau) u(tau) dtau absorbs, over a period of a
+harmonic motion u = Re[U e^{i w t}], the mean power 1/2 U^H B(w) U, B(w) the symmetric part
+of Re K(i w). The memory as a whole makes no energy (the model is passive) if and only if
+B(w) is positive semi-definite at every w. postproc.bem_fit fits each pair K_ij on its own
+and makes only the diagonal fits passive (B_ii >= 0); the couplings can still make B
+indefinite, e.g. a surge-pitch pole beyond the grid.
 
 enforce() restores it by residue perturbation for the matrix case (Gustavsen and Semlyen,
 IEEE Trans. Power Syst. 16(1), 2001; Grivet-Talocia, IEEE Trans. Circuits Syst. I 51(9),
-2004): the poles stay, the residues move by the least change of the fits in a weighted norm (the
-sum over pairs and the grid the fits used of |weight (K_fit - K_before)|^2: by default
-relative to each pair's largest |K|; the build weights each pair by the RAO error it makes,
-rao_weights; K(0) = 0 kept) subject to v_m^T B(w_m) v_m >= 0 at each frequency
-w_m where the smallest eigenvalue of the scaled matrix dips below -tol, v_m its eigenvector
-there. v^T B v is linear in the residues, so each constraint is exact for its v; new
-(w_m, v_m) join until no eigenvalue on the dense grid is below -tol (an active set: a
-constraint whose multiplier says it pulls the wrong way is dropped). Pairs absent from the
-fits (zero by symmetry, or insignificant) stay exactly zero. The matrix is scaled by
-D = diag(sqrt(max B_ii)) (D^-1 B D^-1: the same definiteness), so tol is relative to the
-diagonal's peaks.
+2004): the poles stay, the residues move by the least change of the fits in a weighted
+norm (the sum over pairs and the grid the fits used of |weight (K_fit - K_before)|^2: by
+default relative to each pair's largest |K|; the build weights each pair by the RAO error
+it makes, rao_weights; K(0) = 0 kept) subject to v_m^T B(w_m) v_m >= -tol/4 at each
+frequency w_m where the smallest eigenvalue of the scaled matrix dips below -tol/2, v_m its
+eigenvector there. v^T B v is linear in the residues, so each constraint is exact for its
+v; new (w_m, v_m) join until no eigenvalue on the dense grid is below -tol/2, each step a
+least-distance problem solved by non-negative least squares (_min_norm). Pairs absent
+from the fits (zero by symmetry, or insignificant) stay exactly zero. The matrix is scaled
+by D = diag(sqrt(max B_ii)) (D^-1 B D^-1: the same definiteness), so tol is relative to
+the diagonal's peaks.
 """
 from dataclasses import dataclass, field
 
@@ -125,10 +124,10 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
     """Perturb the residues of `fits` (dict (i, j) -> PairFit, changed in place: coef, c,
     the grid errors, min_damping) until the symmetric part of the fitted damping matrix
     has no eigenvalue below -tol (scaled) over dense_grid. omega, added_mass, damping: the
-    grid and data the fits used; weights: dict (i, j) -> (nw,) the weight each frequency had
-    in the least change, each pair's error K_fit - K multiplied by it (default 1 / max |K_ij|:
-    the relative error; rao_weights: the RAO's); omega_max: the database's last frequency (default omega[-1]).
-    Returns a Result."""
+    grid and data the fits used; weights: dict (i, j) -> (nw,), each pair's error K_fit - K
+    multiplied by it in the least change (default 1 / max |K_ij|: the relative error;
+    rao_weights: the RAO's); omega_max: the database's last frequency (default omega[-1]).
+    Always feasible (zero residues satisfy every constraint). Returns a Result."""
     omega = np.asarray(omega, float)
     w_top = omega[-1] if omega_max is None else omega_max
     wd = dense_grid(fits, w_top)
