@@ -281,7 +281,7 @@ def enforce_file(source, target, tol=TOLERANCE):
         for (i, j), fit in fits.items():
             c[i, j, :fit.order] = fit.c
         f[db.SS_C][...] = c
-        f.attrs["fit_min_eigen_damping"] = result.min_eigenvalue_after
-        f.attrs["fit_min_eigen_damping_unenforced"] = result.min_eigenvalue_before
-        f.attrs["fit_passive_matrix"] = np.int32(1)
+        f.attrs[db.ATTR_FIT_MIN_EIGEN] = result.min_eigenvalue_after
+        f.attrs[db.ATTR_FIT_MIN_EIGEN_UNENFORCED] = result.min_eigenvalue_before
+        f.attrs[db.ATTR_FIT_PASSIVE_MATRIX] = np.int32(1)
     return result
