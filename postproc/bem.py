@@ -20,7 +20,9 @@
       Checked first (postproc.bem_checks): inward normals flipped with a message; a hole
       below the waterline, no waterplane, or GM_T or GM_L <= 0 refused (exit 1). Gyradii
       default to 0.38 B (roll) and 0.25 L (pitch, yaw) of the hull. Radiation pairs that
-      the hull's symmetry makes zero are not fitted; the diagonal fits are passive.
+      the hull's symmetry makes zero are not fitted; the diagonal fits are passive, and the
+      fitted damping matrix is made positive semi-definite by residue perturbation
+      (postproc.bem_passive; --no-passive-matrix: not).
 
   python -m postproc.bem rao DATABASE [--roll-damping 0.05] [--gm GM] [--omegas W ...]
                              [--headings-deg B ...] [-o FILE.h5|FILE.csv]
@@ -93,6 +95,9 @@ def _parser():
     b.add_argument("--nmax", type=int, default=12, help="largest state-space order")
     b.add_argument("--fit-tol", type=float, default=0.02,
                    help="target max relative error of the fitted A and B")
+    b.add_argument("--no-passive-matrix", action="store_true",
+                   help="leave the fitted damping matrix as the pair-by-pair fits give it "
+                        "(default: made positive semi-definite, postproc.bem_passive)")
     b.add_argument("-o", "--output", default=None,
                    help="default input/ship_bem.nc (lifeboat: input/boat_bem.nc)")
     b.add_argument("-q", "--quiet", action="store_true")
@@ -184,7 +189,7 @@ def _build(args, argv):
         bem_build.build(hull, output, cg=cg, mass=mass, gyradii=gyradii,
                         omegas=args.omegas, headings_deg=args.headings_deg, rho=args.rho,
                         nmax=args.nmax, tol=args.fit_tol, command=command,
-                        progress=not args.quiet)
+                        progress=not args.quiet, passive_matrix=not args.no_passive_matrix)
     except bem_checks.MeshError as exc:
         return _error(f"{args.mesh or args.hull}: {exc}")
     return 0

@@ -12,7 +12,7 @@ import time as _time
 import numpy as np
 
 from . import bem_db as db
-from . import bem_checks, bem_drift, bem_fit, bem_rao, layout
+from . import bem_checks, bem_drift, bem_fit, bem_passive, bem_rao, layout
 
 RHO = 1025.0
 G = 9.81
@@ -181,8 +181,9 @@ def solve(body, omegas, headings_deg, rho=RHO, g=G, progress=True):
 
 def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12, tol=0.02,
                     progress=True, retardation=(RETARDATION_DT, RETARDATION_END, FIT_WINDOW),
-                    tail=None):
-    """The davit_ variables (name -> numpy array) from Capytaine's datasets."""
+                    tail=None, passive_matrix=True):
+    """The davit_ variables (name -> numpy array) from Capytaine's datasets. passive_matrix:
+    the fitted damping matrix made positive semi-definite (postproc.bem_passive.enforce)."""
     dofs = list(body.dofs)
     cg = np.asarray(body.center_of_mass, float)
     omega = ds.omega.values
@@ -236,17 +237,33 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     fits = bem_fit.fit_all(omega[keep], added_mass[keep], damping[keep], a_inf, time, kernel,
                            nmax=nmax, tol=tol, window=window, tail=tail, zero=zero, mass=m6,
                            stiffness=stiffness, omega_max=omega[-1])
+    hydro["min_eigen_damping_unenforced"] = bem_passive.min_eigenvalue(fits, omega[-1],
+                                                                       damping)[0]
+    if passive_matrix:
+        passive = bem_passive.enforce(
+            fits, omega[keep], added_mass[keep], damping[keep], a_inf, omega_max=omega[-1],
+            weights=bem_passive.rao_weights(omega[keep], added_mass[keep], damping[keep], m6,
+                                            stiffness, fits))
+        bem_fit.fill_errors(fits, time, kernel, damping[keep], omega[-1], window)
+        for i in range(6):
+            if (i, i) in fits and np.isfinite(fits[(i, i)].error_impedance):
+                fits[(i, i)].error_impedance = bem_fit.impedance_error(
+                    fits[(i, i)], omega[keep], added_mass[keep, i, i], damping[keep, i, i],
+                    a_inf[i, i], m6[i, i], stiffness[i, i])
     order, ss_a, ss_b, ss_c, err = bem_fit.pack(fits)
     # Cummins' mass: A_inf plus the shifts that impedance fits took (bem_fit.fit_impedance)
     a_inf_fit = a_inf + np.diag([fits[(i, i)].added_mass_shift if (i, i) in fits else 0.0
                                  for i in range(6)])
-    hydro["min_eigen_damping"] = bem_fit.min_eigen_damping(fits, omega[-1], damping)
+    hydro["min_eigen_damping"] = bem_passive.min_eigenvalue(fits, omega[-1], damping)[0]
     hydro["fit_last_omega"] = float(omega[keep][-1])
     if progress:
         print_fit_report(fits)
-        print(f"bem: fitted damping matrix, smallest eigenvalue over 0..20 w_N (scaled by "
-              f"sqrt(max B_ii max B_jj)): {hydro['min_eigen_damping']:.3g} (each diagonal "
-              f"fit is passive; the couplings are fitted pair by pair)", file=sys.stderr)
+        if passive_matrix:
+            print_passive_report(passive)
+        else:
+            print(f"bem: fitted damping matrix, smallest eigenvalue (scaled by sqrt(max B_ii "
+                  f"max B_jj)): {hydro['min_eigen_damping']:.3g}, not enforced "
+                  f"(--no-passive-matrix)", file=sys.stderr)
     return {
         db.OMEGA: omega, db.HEADING: beta, db.WAVENUMBER: k,
         db.ADDED_MASS: added_mass, db.DAMPING: damping,
@@ -302,6 +319,22 @@ def drift_variables(ds, far, body, variables, zeta_roll=DRIFT_ROLL_DAMPING, rho=
     return {db.DRIFT: drift[:, index, :] * sign, db.DRIFT_ENERGY_DEFECT: defect[:, index]}, b44
 
 
+def print_passive_report(result, file=sys.stderr):
+    """The matrix passivity enforcement's smallest eigenvalue before and after and each
+    pair's weighted RMS fit error before and after (postproc.bem_passive)."""
+    print(f"bem: fitted damping matrix (symmetric part, scaled by sqrt(max B_ii max B_jj)), "
+          f"smallest eigenvalue up to where the poles die away: "
+          f"{result.min_eigenvalue_before:.3g} at {result.omega_at_min_before:.4g} rad/s "
+          f"before, {result.min_eigenvalue_after:.3g} after the residue perturbation "
+          f"({result.iterations} iterations)", file=file)
+    if result.iterations:
+        print("bem: passivity's cost, RMS over the grid of each fit's RAO error "
+              "w |K_fit - K| / sqrt(|Z_ii Z_jj|) (before -> after):", file=file)
+        for (i, j) in sorted(result.rms_before):
+            print(f"bem:   {db.DOFS[i]:>5s}-{db.DOFS[j]:<5s} {result.rms_before[(i, j)]:7.3%}"
+                  f" -> {result.rms_after[(i, j)]:7.3%}", file=file)
+
+
 def print_fit_report(fits, file=sys.stderr):
     print("bem: state-space fits (pair i,j: order, max err A, max err B, L2 err K(t) over "
           "the window)", file=file)
@@ -343,7 +376,7 @@ def write(path, ds, variables, attrs):
 
 def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
           headings_deg=None, rho=RHO, g=G, nmax=12, tol=0.02, command="", progress=True,
-          retardation=None, drift_roll_damping=DRIFT_ROLL_DAMPING):
+          retardation=None, drift_roll_damping=DRIFT_ROLL_DAMPING, passive_matrix=True):
     """Mesh -> BEM solve -> davit variables -> database file. Returns (variables, attrs).
     The lifeboat hull gets its own frequency grid and retardation grid by default."""
     import capytaine as cpt
@@ -366,7 +399,7 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
     ds, ds_special, elapsed, far = solve(body, omegas, headings_deg, rho, g, progress)
     variables = davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g, nmax, tol,
                                 progress, retardation,
-                                LIFEBOAT_FIT_TAIL if lifeboat else None)
+                                LIFEBOAT_FIT_TAIL if lifeboat else None, passive_matrix)
     drift, b44 = drift_variables(ds, far, body, variables, drift_roll_damping, rho)
     variables.update(drift)
     attrs = {
@@ -378,7 +411,9 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         "lid_z": hull.lid_z, "rho": rho, "g": g, "mass": hydro["mass"],
         "gyradii": hydro["gyradii"], "gm_transverse": hydro["gm_t"],
         "gm_longitudinal": hydro["gm_l"], "capytaine_version": cpt.__version__,
-        "fit_min_eigen_damping": hydro["min_eigen_damping"],
+        db.ATTR_FIT_MIN_EIGEN: hydro["min_eigen_damping"],
+        db.ATTR_FIT_MIN_EIGEN_UNENFORCED: hydro["min_eigen_damping_unenforced"],
+        db.ATTR_FIT_PASSIVE_MATRIX: np.int32(passive_matrix),
         "fit_last_omega": hydro["fit_last_omega"],
         "retardation_dt_end_window": np.asarray(retardation, float),
         db.ATTR_DRIFT_ROLL_DAMPING: drift_roll_damping, "drift_roll_damping_visc": b44,

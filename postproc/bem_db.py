@@ -55,6 +55,11 @@ ATTR_LID_PANELS = "lid_panels"
 ATTR_COMMAND_LINE = "command_line"
 ATTR_SOLVE_TIME = "solve_time_s"
 ATTR_DRIFT_ROLL_DAMPING = "drift_roll_damping_ratio"
+# the fitted damping matrix's smallest scaled eigenvalue after and before the matrix
+# passivity enforcement, and whether it was enforced (postproc.bem_passive)
+ATTR_FIT_MIN_EIGEN = "fit_min_eigen_damping"
+ATTR_FIT_MIN_EIGEN_UNENFORCED = "fit_min_eigen_damping_unenforced"
+ATTR_FIT_PASSIVE_MATRIX = "fit_passive_matrix"
 
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 DOF_SIGN = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])

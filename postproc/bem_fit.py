@@ -500,7 +500,6 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
     w_top = omega[-1] if omega_max is None else omega_max
     if zero is not None:
         sig &= ~np.asarray(zero, bool)
-    mask = time <= window
     fits = {}
     for i in range(6):
         for j in range(6):
@@ -526,13 +525,19 @@ def fit_all(omega, added_mass, damping, added_mass_inf, time, kernel, nmax=12, t
                 fit = _better_impedance(fit, data, added_mass_inf[i, i], mass[i, i],
                                         stiffness[i, i], nmax, tol, w_top)
             fits[(i, j)] = fit
+    fill_errors(fits, time, kernel, damping, w_top, window)
+    return fits
+
+
+def fill_errors(fits, time, kernel, damping, omega_max, window):
+    """Each fit's min_damping (over 0..20 omega_max) and K(t) error over 0..window s."""
+    mask = time <= window
     for (i, j), fit in fits.items():
-        fit.min_damping = min_damping(fit, w_top, damping[:, i, j])
+        fit.min_damping = min_damping(fit, omega_max, damping[:, i, j])
         kss = impulse_response(fit.poles, fit.coef, time[mask])
         kref = kernel[mask, i, j]
         fit.error_retardation = float(np.linalg.norm(kss - kref) /
                                       max(np.linalg.norm(kref), 1e-300))
-    return fits
 
 
 def _better_impedance(fit, data, added_mass_inf, mass, stiffness, nmax, tol, omega_max):
