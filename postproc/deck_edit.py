@@ -21,7 +21,8 @@ STRING_KEYS = {"sheaves", "integrator", "wave_type", "water_model", "blocks",
 def override(deck, group, key, value):
     """The deck text with `key = value` set in `&group` (replaced or added)."""
     literal = f"'{value}'" if key in STRING_KEYS else str(value)
-    pattern = re.compile(rf"(&{group}\b.*?)(\n\s*/)", re.S)
+    # the group where it opens a line: a comment that names "&group" is not the group
+    pattern = re.compile(rf"(^[ \t]*&{group}\b.*?)(\n\s*/)", re.S | re.M)
     match = pattern.search(deck)
     if not match:
         return deck.rstrip() + f"\n&{group}\n  {key} = {literal}\n/\n"

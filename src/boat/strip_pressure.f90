@@ -38,6 +38,8 @@ module davit_boat_strip_pressure
   real(wp), parameter :: inv_n(series_terms) = [(1.0_wp/real(n_, wp), n_ = 1, series_terms)]
   real(wp), parameter :: inv_n1(series_terms) = [(1.0_wp/real(n_ + 1, wp), n_ = 1, series_terms)]
   real(wp), parameter :: inv_n2(series_terms) = [(1.0_wp/real(n_ + 2, wp), n_ = 1, series_terms)]
+  !> Vector lanes of the sensitivities' partial sums (8 doubles: one AVX-512 register).
+  integer, parameter :: sens_lanes = 8
   real(wp), parameter :: inv_n3(series_terms) = [(1.0_wp/real(n_ + 3, wp), n_ = 1, series_terms)]
 
 contains
@@ -142,10 +144,12 @@ contains
     real(wp) :: sn(wave_chunk), cs(wave_chunk), th(wave_chunk)
     real(wp) :: qr(wave_chunk, size(times)), qi(wave_chunk, size(times))
     real(wp) :: w0r(wave_chunk), w0i(wave_chunk), w1r(wave_chunk), w1i(wave_chunk)
-    real(wp) :: acc(wave_chunk, 4, 5, size(times)), accs(wave_chunk, 16, 5, size(times))
-    real(wp) :: w2r(wave_chunk), w2i(wave_chunk), accw(wave_chunk, 5, size(times))
-    integer :: i0, i1, nc, nt, v, e, m, it, l, lanes
+    real(wp) :: acc(wave_chunk, 4, 5, size(times)), accs(sens_lanes, 16, 5, size(times))
+    real(wp) :: w2r(wave_chunk), w2i(wave_chunk), accw(sens_lanes, 5, size(times))
+    integer :: i0, i1, nc, nt, ns, v, e, m, it, l, l0, ll, lanes
     nt = size(times)
+    ns = 0
+    if (present(sens)) ns = size(sens, 3)
     load = 0.0_wp
     rate = 0.0_wp
     if (present(sens)) sens = 0.0_wp
@@ -159,8 +163,8 @@ contains
     ! only the lanes a block fills are used (a regular sea has one component)
     lanes = min(wave_chunk, field%n)
     acc(1:lanes, :, :, :) = 0.0_wp
-    if (present(sens)) accs(1:lanes, :, :, :) = 0.0_wp
-    if (present(sens)) accw(1:lanes, :, :) = 0.0_wp
+    if (present(sens)) accs = 0.0_wp
+    if (present(sens)) accw = 0.0_wp
     do i0 = 1, field%n, wave_chunk
       nc = min(wave_chunk, field%n - i0 + 1)
       i1 = i0 + nc - 1
@@ -203,16 +207,19 @@ contains
           if (present(sens)) call add_sensitivities(nc, k, kx, ky, lag(:, v), lag(:, e), &
                                                     wet%poly(:, v), wet%poly(:, e), qr, qi, &
                                                     w0r, w0i, w1r, w1i, w2r, w2i, &
-                                                    accs(:, :, v, :))
+                                                    accs(:, :, v, 1:ns))
         end do
         if (present(sens)) then
           ! p' at the waterline's corners (depth 0): what a moving waterline adds or takes
           do v = 1, m
             if (.not. wet%cut(v)) cycle
-            do it = 1, nt
-              do l = 1, nc
-                accw(l, v, it) = accw(l, v, it) + (qr(l, it)*(fr(l, v) - 1.0_wp) - &
-                                                   qi(l, it)*(fi(l, v) + lag(l, v)))
+            do it = 1, ns
+              do l0 = 0, nc - 1, sens_lanes
+                do ll = 1, min(sens_lanes, nc - l0)
+                  l = l0 + ll
+                  accw(ll, v, it) = accw(ll, v, it) + (qr(l, it)*(fr(l, v) - 1.0_wp) - &
+                                                       qi(l, it)*(fi(l, v) + lag(l, v)))
+                end do
               end do
             end do
           end do
@@ -230,16 +237,17 @@ contains
         rate(:, it) = rate(:, it) + geo(1, v)*[geo(2, v)*j(3), geo(3, v)*j(3), &
                                                geo(4, v)*j(3) + geo(5, v)*j(4)]
         if (.not. present(sens)) cycle
+        if (it > ns) cycle
         do l = 1, 5
-          j(1:2) = sum(accs(1:lanes, 2*l - 1:2*l, v, it), dim=1)
+          j(1:2) = sum(accs(:, 2*l - 1:2*l, v, it), dim=1)
           sens(:, l, it) = sens(:, l, it) + geo(1, v)*[geo(2, v)*j(1), geo(3, v)*j(1), &
                                                        geo(4, v)*j(1) + geo(5, v)*j(2)]
         end do
         call add_rotation_terms(v, merge(1, v + 1, v == m), wet, geo(:, v), &
-                                sum(accs(1:lanes, 11:16, v, it), dim=1), sens(:, :, it))
+                                sum(accs(:, 11:16, v, it), dim=1), sens(:, :, it))
       end do
-      if (present(sens)) call add_waterline_terms(wet, geo, depth, &
-                                                  sum(accw(1:lanes, :, it), dim=1), sens(:, :, it))
+      if (present(sens) .and. it <= ns) call add_waterline_terms(wet, geo, depth, &
+                                                  sum(accw(:, :, it), dim=1), sens(:, :, it))
     end do
   end subroutine section_wave_loads
 
@@ -314,11 +322,13 @@ contains
     real(wp), intent(in) :: qr(:, :), qi(:, :), w0r(:), w0i(:), w1r(:), w1i(:), w2r(:), w2i(:)
     real(wp), intent(inout) :: acc(:, :, :)
     real(wp) :: im0, im1, re0, re1, re2, dy, dz
-    integer :: it, l
+    integer :: it, l, l0, ll
     dy = pb(1) - pa(1)
     dz = pb(2) - pa(2)
     do it = 1, size(acc, 3)
-      do l = 1, nc
+      do l0 = 0, nc - 1, sens_lanes
+      do ll = 1, min(sens_lanes, nc - l0)
+        l = l0 + ll
         im0 = qr(l, it)*w0i(l) + qi(l, it)*w0r(l)
         im1 = qr(l, it)*w1i(l) + qi(l, it)*w1r(l)
         re0 = -k(l)*(qr(l, it)*(w0r(l) + 1.0_wp) - &
@@ -326,26 +336,27 @@ contains
         re1 = -k(l)*(qr(l, it)*(w1r(l) + 0.5_wp) - &
                      qi(l, it)*(w1i(l) - (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)))
         re2 = -k(l)*(qr(l, it)*w2r(l) - qi(l, it)*w2i(l))
-        acc(l, 1, it) = acc(l, 1, it) + re0
-        acc(l, 2, it) = acc(l, 2, it) + re1
-        acc(l, 3, it) = acc(l, 3, it) + kx(l)*im0
-        acc(l, 4, it) = acc(l, 4, it) + kx(l)*im1
-        acc(l, 5, it) = acc(l, 5, it) + ky(l)*im0
-        acc(l, 6, it) = acc(l, 6, it) + ky(l)*im1
-        acc(l, 7, it) = acc(l, 7, it) + (pa(1)*re0 + dy*re1)
-        acc(l, 8, it) = acc(l, 8, it) + (pa(1)*re1 + dy*re2)
-        acc(l, 9, it) = acc(l, 9, it) + (pa(2)*re0 + dz*re1)
-        acc(l, 10, it) = acc(l, 10, it) + (pa(2)*re1 + dz*re2)
+        acc(ll, 1, it) = acc(ll, 1, it) + re0
+        acc(ll, 2, it) = acc(ll, 2, it) + re1
+        acc(ll, 3, it) = acc(ll, 3, it) + kx(l)*im0
+        acc(ll, 4, it) = acc(ll, 4, it) + kx(l)*im1
+        acc(ll, 5, it) = acc(ll, 5, it) + ky(l)*im0
+        acc(ll, 6, it) = acc(ll, 6, it) + ky(l)*im1
+        acc(ll, 7, it) = acc(ll, 7, it) + (pa(1)*re0 + dy*re1)
+        acc(ll, 8, it) = acc(ll, 8, it) + (pa(1)*re1 + dy*re2)
+        acc(ll, 9, it) = acc(ll, 9, it) + (pa(2)*re0 + dz*re1)
+        acc(ll, 10, it) = acc(ll, 10, it) + (pa(2)*re1 + dz*re2)
         ! turning the section (lags k . dx of its points): Im(q A_n), A_n = W_n - 1/(n+1)
         im0 = qr(l, it)*(w0i(l) - 0.5_wp*(phi_a(l) + phi_b(l))) + qi(l, it)*w0r(l)
         im1 = qr(l, it)*(w1i(l) - (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)) + qi(l, it)*w1r(l)
         re2 = qr(l, it)*w2i(l) + qi(l, it)*(w2r(l) - 1.0_wp/3.0_wp)
-        acc(l, 11, it) = acc(l, 11, it) + kx(l)*im0
-        acc(l, 12, it) = acc(l, 12, it) + kx(l)*im1
-        acc(l, 13, it) = acc(l, 13, it) + kx(l)*re2
-        acc(l, 14, it) = acc(l, 14, it) + ky(l)*im0
-        acc(l, 15, it) = acc(l, 15, it) + ky(l)*im1
-        acc(l, 16, it) = acc(l, 16, it) + ky(l)*re2
+        acc(ll, 11, it) = acc(ll, 11, it) + kx(l)*im0
+        acc(ll, 12, it) = acc(ll, 12, it) + kx(l)*im1
+        acc(ll, 13, it) = acc(ll, 13, it) + kx(l)*re2
+        acc(ll, 14, it) = acc(ll, 14, it) + ky(l)*im0
+        acc(ll, 15, it) = acc(ll, 15, it) + ky(l)*im1
+        acc(ll, 16, it) = acc(ll, 16, it) + ky(l)*re2
+      end do
       end do
     end do
   end subroutine add_sensitivities
