@@ -42,7 +42,9 @@ module davit_system_build
 
   !> Refresh interval of the surface watch [s]: long enough to cost nothing (one strip-load
   !> evaluation per interval), short enough for its bound to stay well below the height
-  !> of a boat hanging 15 m up (rate bound ~30 m/s in a 1300-component Level 5 sea).
+  !> of a boat hanging 15 m up (rate bound ~30 m/s in a 1300-component Level 5 sea). A
+  !> longer window of the strips' slow clock sets it instead: each window refreshes the
+  !> watch from its own samples, and a watch refreshed in between would sum the sea again.
   real(wp), parameter :: surface_watch_interval = 0.05_wp
 
 contains
@@ -258,7 +260,8 @@ contains
       end if
       call build_wave_field(cfg%sea, cfg%simulation%seed, 0, par%sea)
       par%wind = build_wind(cfg%wind)
-      self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, surface_watch_interval)
+      self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, &
+                                          max(surface_watch_interval, cfg%simulation%wave_update))
       self%hist%waves = new_strip_wave_cache(par%sea, par%water%hull%n, &
                                              new_slow_clock(cfg%simulation%wave_update, &
                                                             clock_reach))
