@@ -12,11 +12,11 @@ module test_strip_waves
   use davit_sea_wave_field, only: wave_field_type, new_irregular_sea, wave_elevation, &
                                   wave_kinematics
   use davit_boat_hull, only: boat_hull_type, new_boat_hull, section_wet_type, section_immersion
-  use davit_boat_strip_pressure, only: section_wave_load
+  use davit_boat_strip_pressure, only: section_wave_load, surface_plane
   use davit_core_slow_clock, only: new_slow_clock, clock_reach
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_refresh, cached_elevation, cached_kinematics, &
-                                    strip_waves_surface
+                                    strip_waves_surface, cached_wave_load
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -32,6 +32,7 @@ contains
     suite%cases = [new_case("hermite_time_error_bound_and_order4", time_order), &
                    new_case("spatial_expansion_remainder_order2", space_order), &
                    new_case("window_far_end_equals_sums_there", far_end), &
+                   new_case("window_section_loads_follow_the_moved_hull", moved_hull), &
                    new_case("coupled_boat_with_and_without_clock", coupled_boat)]
   end function collect_strip_waves
 
@@ -207,6 +208,79 @@ contains
     call check(state, err_load/scale, 0.0_wp, "section load at t2 (relative)", &
                abs_tol=1e-11_wp)
   end subroutine far_end
+
+  !> The window's section loads for a hull that has moved since t1 (a 0.1 s window of the
+  !> Level 5 sea, read at t1, so that only the geometry differs; the water's own move is
+  !> Hermite's, tested above): the boat heaved, swayed and surged by up to 6 cm and
+  !> rolled, pitched and yawed by up to 0.03 rad (scale s = 1, then 1/2). The exact
+  !> load of each wet section at its new geometry (its wet polygon found again under the
+  !> surface's tangent plane there, section_wave_load) against the window's: expanded to
+  !> first order in the geometry, its error must fall as s^2 (ratio 4 for half the move)
+  !> and stay far below the frozen geometry's (the window at the sampled geometry), which
+  !> falls as s. Fails with the expansion's sign reversed or a parameter left out.
+  subroutine moved_hull(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(boat_hull_type) :: hull
+    type(strip_wave_cache_type) :: cache
+    real(wp) :: c(3, 3), r(3), t, err(2), frozen(2)
+    integer :: i
+    call level5_sea(field)
+    call afloat(hull, c, r)
+    cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.1_wp, clock_reach))
+    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., i = 1, hull%n)])
+    t = 20.0_wp
+    do i = 1, 2
+      call moved_errors(cache, field, hull, t, 0.5_wp**(i - 1), err(i), frozen(i))
+    end do
+    call note(state, "expanded error, s = 1 and 1/2 (of the largest load)", err(1))
+    call note(state, "expanded error, s = 1/2", err(2))
+    call note(state, "frozen geometry's error, s = 1", frozen(1))
+    call note(state, "frozen geometry's error, s = 1/2", frozen(2))
+    call check(state, err(1)/err(2), 4.0_wp, "expanded: second order", rel_tol=0.2_wp)
+    call check(state, frozen(1)/frozen(2), 2.0_wp, "frozen: first order", rel_tol=0.2_wp)
+    call check_true(state, err(1) < 0.05_wp*frozen(1), "expanded far below frozen")
+  end subroutine moved_hull
+
+  !> Largest error of the window's section loads against the exact ones, relative to the
+  !> largest exact load, for the hull of afloat moved by the scale s: expanded and frozen.
+  subroutine moved_errors(cache, field, hull, t, s, err, frozen)
+    type(strip_wave_cache_type), intent(in) :: cache
+    type(wave_field_type), intent(in) :: field
+    type(boat_hull_type), intent(in) :: hull
+    real(wp), intent(in) :: t, s
+    real(wp), intent(out) :: err, frozen
+    type(section_wet_type) :: wet
+    real(wp) :: c(3, 3), r(3), p(3), eta, slope(2), grad(3), d0
+    real(wp) :: exact(3), rate(3), load(3), still(3), scale
+    integer :: k
+    logical :: found
+    ! afloat's pose, moved
+    c = rotation_matrix([0.05_wp + 0.03_wp*s, -0.03_wp + 0.02_wp*s, 0.4_wp - 0.03_wp*s])
+    r = [3.0_wp, -2.0_wp, 1.5_wp] + s*[0.04_wp, -0.05_wp, 0.06_wp]
+    err = 0.0_wp
+    frozen = 0.0_wp
+    scale = 0.0_wp
+    do k = 1, hull%n
+      if (.not. cache%loaded(k)) cycle
+      p = r + c(:, 1)*hull%x(k)
+      call surface_plane(field, t, p(1), p(2), eta, slope)
+      grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
+      d0 = p(3) + eta
+      wet = section_immersion(hull, k, d0, grad(2), grad(3))
+      if (wet%area <= 0.0_wp) cycle
+      call section_wave_load(field, t, hull, wet, c, p, d0, grad(2), grad(3), exact, rate)
+      call cached_wave_load(cache, field, k, t, [d0, grad(2:3), c(1:2, 2), c(1:2, 3)], &
+                            p(1:2), load, found)
+      call cached_wave_load(cache, field, k, t, cache%g_ref(:, k), cache%p(:, k), still, &
+                            found)
+      scale = max(scale, maxval(abs(exact)))
+      err = max(err, maxval(abs(load - exact)))
+      frozen = max(frozen, maxval(abs(still - exact)))
+    end do
+    err = err/scale
+    frozen = frozen/scale
+  end subroutine moved_errors
 
   !> The paper's strips (water_model = 'paper': the clock's elevation and velocity; the
   !> pressure level's sampled section loads freeze the wet geometry over a window, README).
