@@ -229,7 +229,7 @@ contains
     call afloat(hull, c, r)
     cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.1_wp, clock_reach))
     call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., i = 1, hull%n)])
-    t = 20.0_wp
+    t = 20.05_wp
     do i = 1, 2
       call moved_errors(cache, field, hull, t, 0.5_wp**(i - 1), err(i), frozen(i))
     end do

@@ -33,8 +33,8 @@ module davit_boat_strip_pressure
   real(wp), parameter :: series_limit = 0.5_wp
   integer, parameter :: series_terms = 14
   integer :: n_
-  !> 1/n, 1/(n + 1), 1/(n + 2), 1/(n + 3) for n = 1 .. series_terms: the series multiplies by them (a
-  !> division per term would dominate the vectorised block).
+  !> 1/n, 1/(n + 1), 1/(n + 2), 1/(n + 3) for n = 1 .. series_terms: the series multiplies by
+  !> them (a division per term would dominate the vectorised block).
   real(wp), parameter :: inv_n(series_terms) = [(1.0_wp/real(n_, wp), n_ = 1, series_terms)]
   real(wp), parameter :: inv_n1(series_terms) = [(1.0_wp/real(n_ + 1, wp), n_ = 1, series_terms)]
   real(wp), parameter :: inv_n2(series_terms) = [(1.0_wp/real(n_ + 2, wp), n_ = 1, series_terms)]
@@ -375,8 +375,8 @@ contains
     integer, intent(in) :: nc
     real(wp), intent(in) :: k(nc), dd, phi_a(nc), phi_b(nc), far(nc), fai(nc), fbr(nc), fbi(nc)
     real(wp), intent(out) :: w0r(nc), w0i(nc), w1r(nc), w1i(nc)
-    !> 2: also w2 = int s^2 exp(-k d(s) - i phi(s)) ds (the whole integrand, no plane's share
-    !> taken off), by w2 = (fb - 2 w1)/z, or the series E3 = sum z^n/(n! (n + 3)).
+    !> With order 2 also w2 = int s^2 exp(-k d(s) - i phi(s)) ds (the whole integrand, no
+    !> plane's share taken off), by w2 = (fb - 2 w1)/z, or the series E3 = sum z^n/(n! (n + 3)).
     integer, intent(in) :: order
     real(wp), intent(out) :: w2r(:), w2i(:)
     real(wp) :: zr, zi, z2, rz, ir, ii, dr, di, t0

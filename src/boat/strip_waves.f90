@@ -63,7 +63,7 @@ module davit_boat_strip_waves
     !> Unramped dynamic section loads (F2, F3, M1) and their rates, (3, 2, end, strip), for
     !> the strips wet at t1 (`loaded`).
     real(wp), allocatable :: fk(:, :, :, :)
-    !> Their first derivatives at t1 (load, parameter, 1, strip) with respect to the section's
+    !> Their first derivatives (load, parameter, end, strip) with respect to the section's
     !> geometry (davit_boat_strip_pressure's sens: immersion below its tangent plane, the
     !> centre's horizontal travel, the plane's slopes gy, gz across it, the horizontal
     !> parts of the rotation's columns b2, b3), and that geometry of each sampled strip at
@@ -95,7 +95,7 @@ contains
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
-              cache%fd(3, 9, 1, n), cache%g_ref(7, n))
+              cache%fd(3, 9, 2, n), cache%g_ref(7, n))
     allocate (cache%cr(field%n), cache%sr(field%n))
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%sampled = .false.
@@ -494,18 +494,20 @@ contains
     real(wp), intent(out) :: load(3)
     !> Whether the window holds the load of strip k.
     logical, intent(out) :: found
-    real(wp) :: hw(4), dg(9)
+    real(wp) :: hw(4), dg(9), lam
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
     hw = cache%clock%weights(t)
-    ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned),
-    ! with the derivatives of t1 over the whole window (those of t2 change the result by
-    ! noise: 0.1 % of the peaks either way, measured)
+    lam = window_fraction(cache, t)
+    ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned);
+    ! the derivatives, like the gradients of the kinematics, linear in time (those of t1
+    ! alone leave the water's own move times the window's time in the error: first order)
     dg = [g(1) - cache%g_ref(1, k), pc - cache%p(:, k), g(2:7) - cache%g_ref(2:7, k)]
     associate (f => cache%fk(:, :, :, k), s => cache%fd(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*f(:, 1, 1) + hw(2)*f(:, 2, 1) + hw(3)*f(:, 1, 2) + &
-                                  hw(4)*f(:, 2, 2) + matmul(s(:, :, 1), dg))
+                                  hw(4)*f(:, 2, 2) + &
+                                  matmul((1.0_wp - lam)*s(:, :, 1) + lam*s(:, :, 2), dg))
     end associate
   end subroutine cached_wave_load
 
