@@ -80,7 +80,8 @@ contains
   !> A(0): input/ship_bem.nc's davit_added_mass_zero plus davit_added_mass_inf (Capytaine
   !> at zero frequency; the memory's fits reach it within 0.4 % (heave) and 1.5 % (sway),
   !> checked within 1 % and 2 %). The same moments with U
-  !> of the other sign; none at U = 0.
+  !> of the other sign; none at U = 0; without the sway-yaw terms ('heave_pitch') the
+  !> pitch moment alone.
   subroutine munk(state)
     type(case_state), intent(inout) :: state
     ! input/ship_bem.nc: A33(0) = 1.91268e7 + 2.22606e7, A22(0) = 3.52316e6 + 1.74808e6 kg
@@ -108,7 +109,7 @@ contains
           x = x + h/6*(k1 + 2*k2 + 2*k3 + k4)
         end do
         call bem_memory(db, x, u, k1, mu)
-        load = bem_speed_load(ship%par%hydro, x, u, speed) - mu
+        load = bem_speed_load(ship%par%hydro, x, u, speed, .true.) - mu
         if (s == 1) then
           call note(state, "pitch moment / (U^2 theta) [kg]", load(5)/(speed**2*theta))
           call note(state, "yaw moment / (U^2 psi) [kg]", load(6)/(speed**2*psi))
@@ -122,6 +123,12 @@ contains
         call check(state, load(3), 0.0_wp, "no steady heave force", &
                    abs_tol=1e-3_wp*a33_0*headway**2*theta)
         call check(state, load(2), 0.0_wp, "no steady sway force", &
+                   abs_tol=1e-3_wp*a22_0*headway**2*psi)
+        ! 'heave_pitch': the same pitch moment, no yaw moment
+        load = bem_speed_load(ship%par%hydro, x, u, speed, .false.) - mu
+        call check(state, load(5), a33_0*speed**2*theta, "heave_pitch: pitch moment", &
+                   rel_tol=0.01_wp, abs_tol=1.0_wp)
+        call check(state, load(6), 0.0_wp, "heave_pitch: no yaw moment", &
                    abs_tol=1e-3_wp*a22_0*headway**2*psi)
       end do
     end associate

@@ -34,7 +34,8 @@ module davit_io_ship_keys
     !> BEM ship's wave drift: 'none', 'mean' or 'newman' (davit_ship_wave_drift).
     character(len=:), allocatable :: drift
     !> BEM ship making way: forward-speed terms of its radiation, 'none' (zero-speed
-    !> kernels) or 'stf' (Salvesen-Tuck-Faltinsen's, davit_ship_bem_loads).
+    !> kernels), 'heave_pitch' or 'stf' (Salvesen-Tuck-Faltinsen's heave-pitch terms, or
+    !> those and the sway-yaw ones; davit_ship_bem_loads).
     character(len=:), allocatable :: speed_terms
     !> Heading keeping and station keeping: natural periods [s] (0 = off), damping ratio.
     real(wp) :: heading_period, heading_damping, station_period
@@ -186,15 +187,16 @@ contains
     type(ship_config), intent(inout) :: s
     character(len=*), parameter :: g = "ship"
     integer :: k
-    call r%choice(g, "speed_terms", s%speed_terms, "none", [character(len=4) :: "none", "stf"], &
+    call r%choice(g, "speed_terms", s%speed_terms, "none", &
+                  [character(len=11) :: "none", "heave_pitch", "stf"], &
                   "Forward-speed terms of the BEM ship's radiation (model = 'bem', at the "// &
-                  "seakeeping frame's speed `headway`): 'none' (zero-speed kernels fed the "// &
-                  "motions about the steady forward motion) or 'stf' (Salvesen, Tuck & "// &
-                  "Faltinsen 1970's U-terms of the heave-pitch and sway-yaw added mass and "// &
-                  "damping, in the time domain: the memory fed the body-frame speeds and the "// &
-                  "pitch and yaw moments of the convected heave and sway forces; "// &
-                  "doc/theory/ship.md).")
-    if (s%speed_terms == "stf" .and. s%model /= "bem") then
+                  "seakeeping frame's speed `headway`; doc/theory/ship.md): 'none' "// &
+                  "(zero-speed kernels fed the motions about the steady forward motion), "// &
+                  "'heave_pitch' (Salvesen, Tuck & Faltinsen 1970's U-terms of the heave-"// &
+                  "pitch added mass and damping, in the time domain; the sway-yaw ones left "// &
+                  "to the manoeuvring model's derivatives, which hold their low-frequency "// &
+                  "part) or 'stf' (the heave-pitch and the sway-yaw terms).")
+    if (s%speed_terms /= "none" .and. s%model /= "bem") then
       k = find_entry(r%deck, g, "speed_terms")
       call r%fail(r%deck%entries(k)%line, g, "speed_terms", s%speed_terms, &
                   "needs model = 'bem' (its radiation memory)", "'none' with model = '"// &

@@ -120,7 +120,7 @@ contains
   !> (davit_ship_ship_blocks: A (omega x v), v = (U, 0, 0)); (2) U E^T (A(inf) u +
   !> mu[int u]): the pitch moment U times the heave force's, the yaw moment -U times the
   !> sway force's, of the convected flow, mu[int u] = C A_s^-1 x from the memory's states.
-  pure function bem_speed_load(ship, x, u_dof, speed) result(load)
+  pure function bem_speed_load(ship, x, u_dof, speed, sway_yaw) result(load)
     !> The BEM ship (A(inf), its memory's realisations and their integral readout).
     type(bem_ship_type), intent(in) :: ship
     !> The radiation states x (the memory fed u_dof) and the body-frame speeds u (DOF
@@ -128,10 +128,13 @@ contains
     real(wp), intent(in) :: x(:), u_dof(6)
     !> The forward speed U [m/s].
     real(wp), intent(in) :: speed
+    !> With the sway-yaw terms (E(2,6)); without them, the heave-pitch ones (E(3,5)) alone.
+    logical, intent(in) :: sway_yaw
     real(wp) :: load(6), f(6)
     integer :: k, i0, n
     associate (a => ship%db%added_mass_inf)
-      load = speed*(a(:, 2)*u_dof(6) - a(:, 3)*u_dof(5))
+      load = -speed*a(:, 3)*u_dof(5)
+      if (sway_yaw) load = load + speed*a(:, 2)*u_dof(6)
       f = matmul(a, u_dof)
     end associate
     do k = 1, size(ship%db%pairs)
@@ -142,7 +145,7 @@ contains
       end associate
     end do
     load(5) = load(5) + speed*f(3)
-    load(6) = load(6) - speed*f(2)
+    if (sway_yaw) load(6) = load(6) - speed*f(2)
   end function bem_speed_load
 
   !> Viscous roll damping zeta of critical at the undamped roll resonance of the database,

@@ -354,7 +354,8 @@ contains
           wh = matmul(transpose(m), u(1:3))
           call bem_memory(par%hydro%db, y(r%q(1):r%q(2)), [vh, wh], dydt(r%q(1):r%q(2)), mu)
           if (par%hull%speed_terms) mu = mu - bem_speed_load(par%hydro, y(r%q(1):r%q(2)), &
-                                                             [vh, wh], par%frame_speed)
+                                                             [vh, wh], par%frame_speed, &
+                                                             par%hull%speed_sway_yaw)
           call bem_blocks(par%hydro, par%hull%restrained, u, m, load - turn_to_body(m, mu), &
                           kane(:, b%u(1):b%u(2)))
         else
