@@ -4,8 +4,10 @@ ship making way (the SOLAS headway launch): an estimate of what davit's BEM ship
 davit's ship making way meets the waves at their encounter frequencies w_e = w - k U cos
 beta (beta the wave direction relative to the heading, 0 following, 180 deg head) and
 feeds its zero-speed radiation memory the speeds about the steady forward motion (doc/
-theory/ship.md, "MMG with BEM seakeeping"). The speed-dependent terms of the radiation
-coefficients are not in it. Strip theory gives them (Salvesen, Tuck and Faltinsen, Ship
+theory/ship.md, "MMG with BEM seakeeping"); the speed-dependent terms of the radiation
+coefficients are in it with `&ship speed_terms = 'heave_pitch'` or 'stf' (written in the
+time domain, src/ship/bem_loads.f90 bem_speed_load; test/test_ship_speed.f90 checks its
+heave and pitch response against encounter_raos(..., stf=True)). Strip theory gives them (Salvesen, Tuck and Faltinsen, Ship
 motions and sea loads, Trans. SNAME 78, 1970, Table 1 without the end terms; the zero-speed
 coefficients here are the whole hull's): with x forward,
 
@@ -57,8 +59,9 @@ def encounter_frequency(omega, heading, speed, g=9.81):
 def encounter_raos(base, omega, heading, speed, zeta=0.05, stf=False):
     """(6,) complex response of the database's ship making way at U to a regular wave of
     frequency omega and relative heading beta: the zero-speed excitation X(omega, beta) and
-    the radiation coefficients at w_e (zero-speed ones, as davit's memory gives them, or
-    with stf_coefficients), the roll damping zeta of bem_rao."""
+    the radiation coefficients at w_e (zero-speed ones, as davit's memory gives them with
+    speed_terms = 'none', or with stf_coefficients, as with 'stf'), the roll damping zeta
+    of bem_rao."""
     we = float(encounter_frequency(omega, heading, speed))
     w = np.array([we])
     a = bem_rao._interp_omega(base.added_mass, base.omega, w)

@@ -4,6 +4,7 @@
 module davit_io_ship_keys
   use davit_kinds, only: wp, pi
   use davit_io_deck_reader, only: deck_reader_type
+  use davit_io_namelist, only: find_entry
   use davit_io_mmg_keys, only: read_mmg
   use davit_ship_mmg, only: mmg_type
   use davit_ship_rudder, only: rudder_type
@@ -32,6 +33,10 @@ module davit_io_ship_keys
     character(len=:), allocatable :: model, database
     !> BEM ship's wave drift: 'none', 'mean' or 'newman' (davit_ship_wave_drift).
     character(len=:), allocatable :: drift
+    !> BEM ship making way: forward-speed terms of its radiation, 'none' (zero-speed
+    !> kernels), 'heave_pitch' or 'stf' (Salvesen-Tuck-Faltinsen's heave-pitch terms, or
+    !> those and the sway-yaw ones; davit_ship_bem_loads).
+    character(len=:), allocatable :: speed_terms
     !> Heading keeping and station keeping: natural periods [s] (0 = off), damping ratio.
     real(wp) :: heading_period, heading_damping, station_period
     !> BEM ship: roll radius of gyration in place of the database's [m] (0 = the database's).
@@ -152,6 +157,7 @@ contains
                   "load in irregular seas ('newman', the same constant in a regular wave). "// &
                   "Off by default: the lifeboat has no drift load, and the ship's alone "// &
                   "would drive the two apart.")
+    call read_speed_terms(r, s)
     call r%real(g, "roll_gyradius", s%roll_gyradius, 0.0_wp, 0.0_wp, 50.0_wp, "m", &
                 "BEM ship: roll radius of gyration about the CG in place of the "// &
                 "database's (0 = the database's, 0.38 B for input/ship_bem.nc): the roll "// &
@@ -174,6 +180,29 @@ contains
                   "frame moves with the headway: encounter frequencies).")
     call read_mmg(r, s%mmg, s%rps, s%rudder)
   end subroutine read_ship_model
+
+  !> The BEM ship's forward-speed radiation terms (after `model`: they need the memory).
+  subroutine read_speed_terms(r, s)
+    type(deck_reader_type), intent(inout) :: r
+    type(ship_config), intent(inout) :: s
+    character(len=*), parameter :: g = "ship"
+    integer :: k
+    call r%choice(g, "speed_terms", s%speed_terms, "none", &
+                  [character(len=11) :: "none", "heave_pitch", "stf"], &
+                  "Forward-speed terms of the BEM ship's radiation (model = 'bem', at the "// &
+                  "seakeeping frame's speed `headway`; doc/theory/ship.md): 'none' "// &
+                  "(zero-speed kernels fed the motions about the steady forward motion), "// &
+                  "'heave_pitch' (Salvesen, Tuck & Faltinsen 1970's U-terms of the heave-"// &
+                  "pitch added mass and damping, in the time domain; the sway-yaw ones left "// &
+                  "to the manoeuvring model's derivatives, which hold their low-frequency "// &
+                  "part) or 'stf' (the heave-pitch and the sway-yaw terms).")
+    if (s%speed_terms /= "none" .and. s%model /= "bem") then
+      k = find_entry(r%deck, g, "speed_terms")
+      call r%fail(r%deck%entries(k)%line, g, "speed_terms", s%speed_terms, &
+                  "needs model = 'bem' (its radiation memory)", "'none' with model = '"// &
+                  s%model//"'", "-")
+    end if
+  end subroutine read_speed_terms
 
   !> Which of the deck's empirical loads act, and which DOFs are restrained.
   subroutine read_ship_terms(r, s)

@@ -27,7 +27,7 @@ module davit_ship_bem_loads
   private
   public :: bem_ship_type, new_bem_ship, bem_wave_coefficients, bem_restoring, &
             bem_memory, to_kane_order, bem_roll_damping, invert, seakeeping_mass, &
-            turn_to_body, solve_small
+            turn_to_body, solve_small, bem_speed_load
 
   !> The BEM ship's hydrodynamics: database, masses and their Kane-order blocks.
   type :: bem_ship_type
@@ -41,6 +41,10 @@ module davit_ship_bem_loads
     real(wp) :: a_kane(6, 6) = 0.0_wp, m_kane(6, 6) = 0.0_wp
     !> Linear viscous roll damping [N m s].
     real(wp) :: b44 = 0.0_wp
+    !> Row C A_s^-1 of each pair's memory realisation (A_s, B_s, C), laid out as the
+    !> states: C A_s^-1 x is (K(s) - K(0))/s of the pair's input, its memory of the
+    !> input's time integral (bem_speed_load; the fits have K(0) = 0).
+    real(wp), allocatable :: c_int(:)
   end type bem_ship_type
 
   !> Kane order (omega, v) of the DOF indices: position k of the Kane speeds is DOF perm(k).
@@ -83,7 +87,66 @@ contains
       return
     end if
     ship%b44 = bem_roll_damping(db, zeta_roll)
+    call integral_readout(db, ship%c_int)
   end subroutine new_bem_ship
+
+  !> C A_s^-1 of every pair's realisation (the states' layout): A_s^T y = C^T.
+  pure subroutine integral_readout(db, c_int)
+    type(bem_database_type), intent(in) :: db
+    real(wp), allocatable, intent(out) :: c_int(:)
+    real(wp), allocatable :: y(:)
+    integer :: k, i0, n
+    allocate (c_int(db%nrad))
+    do k = 1, size(db%pairs)
+      i0 = db%pairs(k)%first - 1
+      n = db%pairs(k)%n
+      y = db%pairs(k)%c(1:n)
+      call solve_small(transpose(db%pairs(k)%a(1:n, 1:n)), y)
+      c_int(i0 + 1:i0 + n) = y
+    end do
+  end subroutine integral_readout
+
+  !> The forward-speed terms of the radiation load (DOF order, seakeeping frame) of the
+  !> ship making way at U, beyond Cummins' zero-speed -A(inf) xi'' - mu[u] (Salvesen, Tuck
+  !> & Faltinsen 1970, Table 1 without end terms, written in the time domain). Their
+  !> coefficients, T(U) = T + (U/(i w)) (T E - E^T T) + (U/w)^2 E^T T E with the zero-speed
+  !> T = -w^2 A + i w B and E(3,5) = 1, E(2,6) = -1 (postproc/bem_speed.py), are, with
+  !> K(i w) = B + i w A = i w A(inf) + K_mem(i w) the impedance on the speeds,
+  !>   F = -K u + U E^T K (int u),   u = xi' + U E xi,
+  !> u the body-frame speeds about the steady motion (heave w + U theta, sway v - U psi:
+  !> the body condition of a body making way). The memory is fed u by the caller; here:
+  !> (1) -A(inf) u' in place of -A(inf) xi'': +U (A(:,2) r - A(:,3) q), taking out the
+  !> steady speed's part of the transport acceleration that the mass block adds
+  !> (davit_ship_ship_blocks: A (omega x v), v = (U, 0, 0)); (2) U E^T (A(inf) u +
+  !> mu[int u]): the pitch moment U times the heave force's, the yaw moment -U times the
+  !> sway force's, of the convected flow, mu[int u] = C A_s^-1 x from the memory's states.
+  pure function bem_speed_load(ship, x, u_dof, speed, sway_yaw) result(load)
+    !> The BEM ship (A(inf), its memory's realisations and their integral readout).
+    type(bem_ship_type), intent(in) :: ship
+    !> The radiation states x (the memory fed u_dof) and the body-frame speeds u (DOF
+    !> order: u - U, v, w [m/s], p, q, r [rad/s]) in the seakeeping frame.
+    real(wp), intent(in) :: x(:), u_dof(6)
+    !> The forward speed U [m/s].
+    real(wp), intent(in) :: speed
+    !> With the sway-yaw terms (E(2,6)); without them, the heave-pitch ones (E(3,5)) alone.
+    logical, intent(in) :: sway_yaw
+    real(wp) :: load(6), f(6)
+    integer :: k, i0, n
+    associate (a => ship%db%added_mass_inf)
+      load = -speed*a(:, 3)*u_dof(5)
+      if (sway_yaw) load = load + speed*a(:, 2)*u_dof(6)
+      f = matmul(a, u_dof)
+    end associate
+    do k = 1, size(ship%db%pairs)
+      i0 = ship%db%pairs(k)%first - 1
+      n = ship%db%pairs(k)%n
+      associate (i => ship%db%pairs(k)%i)
+        f(i) = f(i) + sum(ship%c_int(i0 + 1:i0 + n)*x(i0 + 1:i0 + n))
+      end associate
+    end do
+    load(5) = load(5) + speed*f(3)
+    if (sway_yaw) load(6) = load(6) - speed*f(2)
+  end function bem_speed_load
 
   !> Viscous roll damping zeta of critical at the undamped roll resonance of the database,
   !> with its roll stiffness and inertia or the given ones (c44 [N m], i44 [kg m^2]: a body

@@ -43,6 +43,9 @@ module davit_ship_hull
     logical :: empirical = .true.
     !> Restrained DOFs (surge, sway, heave, roll, pitch, yaw).
     logical :: restrained(6) = .false.
+    !> The BEM ship's forward-speed radiation terms (&ship speed_terms): the heave-pitch
+    !> ones ('heave_pitch' or 'stf'), and the sway-yaw ones too ('stf').
+    logical :: speed_terms = .false., speed_sway_yaw = .false.
   end type hull_type
 
 contains
@@ -94,6 +97,8 @@ contains
     call kijima(hull, s)
     hull%empirical = s%empirical_loads == "deck"
     hull%restrained = s%restrained
+    hull%speed_terms = s%speed_terms /= "none"
+    hull%speed_sway_yaw = s%speed_terms == "stf"
     if (s%manoeuvring == "mmg") call mmg_added_masses(hull, s)
   end subroutine new_hull
 

@@ -28,7 +28,8 @@ module davit_ship_ship_model
   use davit_core_rotation, only: rotation_matrix, euler_rates
   use davit_core_kane, only: kane_rates, kane_at_rest
   use davit_core_slow_clock, only: slow_clock_type
-  use davit_ship_bem_loads, only: bem_ship_type, bem_restoring, bem_memory, turn_to_body
+  use davit_ship_bem_loads, only: bem_ship_type, bem_restoring, bem_memory, turn_to_body, &
+                                 bem_speed_load
   use davit_ship_ship_blocks, only: box_blocks, bem_blocks
   use davit_ship_ship_parameters, only: ship_params_type, phase_origin
   use davit_ship_ship_history, only: ship_history_type, refresh_heading, advance_wave_clock, &
@@ -324,7 +325,7 @@ contains
     real(wp), intent(in) :: t, y(:)
     !> The rates of its q and of its other states, and its Kane blocks (davit_core_kane).
     real(wp), intent(inout) :: dydt(:), kane(:, :)
-    real(wp) :: c(3, 3), m(3, 3), load(6), mu(6), vh(3)
+    real(wp) :: c(3, 3), m(3, 3), load(6), mu(6), vh(3), wh(3)
     if (self%par%frozen) then
       call kane_at_rest(dydt, kane)
       return
@@ -348,8 +349,13 @@ contains
           m = level_to_body(q(3), c)
           vh = matmul(transpose(m), u(4:6))
           if (par%frame_speed /= 0.0_wp) vh(1) = vh(1) - par%frame_speed
-          call bem_memory(par%hydro%db, y(r%q(1):r%q(2)), [vh, matmul(transpose(m), u(1:3))], &
-                          dydt(r%q(1):r%q(2)), mu)
+          ! speed_terms: the body-frame heave speed w + U theta (bem_speed_load)
+          if (par%hull%speed_terms) vh(3) = vh(3) + par%frame_speed*(q(2) - par%hull%trim)
+          wh = matmul(transpose(m), u(1:3))
+          call bem_memory(par%hydro%db, y(r%q(1):r%q(2)), [vh, wh], dydt(r%q(1):r%q(2)), mu)
+          if (par%hull%speed_terms) mu = mu - bem_speed_load(par%hydro, y(r%q(1):r%q(2)), &
+                                                             [vh, wh], par%frame_speed, &
+                                                             par%hull%speed_sway_yaw)
           call bem_blocks(par%hydro, par%hull%restrained, u, m, load - turn_to_body(m, mu), &
                           kane(:, b%u(1):b%u(2)))
         else
