@@ -11,19 +11,20 @@ module davit_system_build
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
-  use davit_boat_strip_loads, only: new_strip_model
+  use davit_boat_strip_loads, only: strip_model_type, new_strip_model
   use davit_boat_strip_level, only: strip_level_type
-  use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
+  use davit_boat_bem_water, only: boat_bem_type, new_boat_bem, boat_bem_immersion
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
   use davit_boat_contact_law, only: contact_law_type
   use davit_system_law_factory, only: new_contact_law, new_boat_wind, new_strip_level, &
                                       new_wave_drift
   use davit_boat_fenders, only: new_fender_set
-  use davit_boat_strip_waves, only: new_strip_wave_cache
-  use davit_boat_surface_watch, only: new_surface_watch
+  use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache
+  use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch
   use davit_core_slow_clock, only: slow_clock_type, new_slow_clock, clock_grid, clock_reach
-  use davit_rigging_rigging, only: new_rigging
+  use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_core_layout, only: state_layout_type, state_part_type
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_mmg, only: mmg_type
   use davit_ship_rudder, only: rudder_type, notch_period
@@ -82,8 +83,10 @@ contains
     call new_side_contact(self, cfg, error)
     if (allocated(error)) return
     if (self%par%on_davit) then
-      call new_davit(self%par, cfg, error)
+      call new_davit(self%par%rig, self%par%layout, self%par%rig_slice, cfg, error)
       if (allocated(error)) return
+      self%par%release = cfg%rigging%release
+      self%par%release_delay = cfg%rigging%release_delay
     end if
     if (with_ship) call new_moving_ship(self, cfg, error)
   end subroutine new_system
@@ -116,17 +119,20 @@ contains
   end subroutine new_boat_water
 
   !> The davit rigging in place of the foundation slings, its parts after the boat's.
-  subroutine new_davit(par, cfg, error)
-    type(system_params_type), intent(inout) :: par
+  subroutine new_davit(rig, layout, rig_slice, cfg, error)
+    !> The davit rigging, built.
+    type(rigging_type), intent(inout) :: rig
+    !> The system's state layout, the rigging's parts appended.
+    type(state_layout_type), intent(inout) :: layout
+    !> First and last state index of the rigging.
+    integer, intent(out) :: rig_slice(2)
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
     integer :: offset
-    call new_rigging(par%rig, cfg%rigging, error)
+    call new_rigging(rig, cfg%rigging, error)
     if (allocated(error)) return
-    call par%layout%append(par%rig%layout, offset)
-    par%rig_slice = [offset + 1, offset + par%rig%nstate]
-    par%release = cfg%rigging%release
-    par%release_delay = cfg%rigging%release_delay
+    call layout%append(rig%layout, offset)
+    rig_slice = [offset + 1, offset + rig%nstate]
   end subroutine new_davit
 
   !> The 6-DOF ship of the 'launch' scene, in the same sea and wind as the boat, keeping
@@ -326,11 +332,12 @@ contains
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
       if (par%bem_water) then
         y(par%radiation_part%q(1):par%radiation_part%q(2)) = 0.0_wp
-        y(par%radiation_part%q(1)) = initial_immersion(self, y)
+        y(par%radiation_part%q(1)) = initial_immersion(par%water, par%sea, self%hist%watch, &
+                                                       self%hist%waves, par%bem, b, y)
       end if
       if (.not. par%on_davit) return
-      call hook_kinematics(par, y, hook_pos, hook_vel)
-      pose = ship_pose(par, y)
+      call hook_kinematics(b, par%hooks, y, hook_pos, hook_vel)
+      pose = ship_pose(par%with_ship, s, par%ship_rest, y)
       heads(:, 1) = pose_point(pose, cfg%rigging%head_fore)
       heads(:, 2) = pose_point(pose, cfg%rigging%head_aft)
       head_vel(:, 1) = pose_point_velocity(pose, cfg%rigging%head_fore)
@@ -361,16 +368,27 @@ contains
 
   !> The boat's immersion state at the start: the geometric immersion of its initial pose
   !> (a boat released afloat starts with its added mass; no radiation memory yet).
-  pure real(wp) function initial_immersion(self, y) result(s)
-    type(system_type), intent(in) :: self
+  pure real(wp) function initial_immersion(water, sea, watch, waves, bem, boat_part, y) &
+    result(s)
+    !> The strip model of the boat in the water, the sea, the surface watch and the strips'
+    !> slow clock (the water_loads' parts).
+    type(strip_model_type), intent(in) :: water
+    type(wave_field_type), intent(in) :: sea
+    type(surface_watch_type), intent(in) :: watch
+    type(strip_wave_cache_type), intent(in) :: waves
+    !> The boat's BEM water model.
+    type(boat_bem_type), intent(in) :: bem
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> The initial state (the boat's part set).
     real(wp), intent(in) :: y(:)
     real(wp) :: c(3, 3), f(6), volume
-    associate (q => y(self%par%boat_part%q(1):self%par%boat_part%q(2)), &
-               u => y(self%par%boat_part%u(1):self%par%boat_part%u(2)))
+    associate (q => y(boat_part%q(1):boat_part%q(2)), &
+               u => y(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
-      call water_loads(self%par, self%hist, 0.0_wp, c, matmul(c, q(4:6)), u, f, volume)
+      call water_loads(water, sea, watch, waves, 0.0_wp, c, matmul(c, q(4:6)), u, f, volume)
     end associate
-    s = boat_bem_immersion(self%par%bem, volume)
+    s = boat_bem_immersion(bem, volume)
   end function initial_immersion
 
   !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's
