@@ -13,6 +13,7 @@ module davit_io_config
   use davit_io_limits_keys, only: limits_config, read_limits
   use davit_io_contact_keys, only: contact_config, read_contact
   use davit_io_boat_keys, only: boat_config, read_boat
+  use davit_io_shared_keys, only: read_fore_aft, read_wire_rope
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
@@ -318,21 +319,20 @@ contains
     type(deck_reader_type), intent(inout) :: r
     type(slings_config), intent(inout) :: s
     character(len=*), parameter :: g = "slings"
-    call r%real_vec(g, "hook_fore", s%hook_fore, [4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
-                    50.0_wp, "m", "Fore hook point in the boat frame.")
-    call r%real_vec(g, "hook_aft", s%hook_aft, [-4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
-                    50.0_wp, "m", "Aft hook point in the boat frame.")
-    call r%real_vec(g, "anchor_fore", s%anchor_fore, [4.6_wp, 13.3_wp, -19.55_wp], &
-                    -1.0e4_wp, 1.0e4_wp, "m", &
-                    "Fixed upper end of the fore sling, inertial frame.")
-    call r%real_vec(g, "anchor_aft", s%anchor_aft, [-4.6_wp, 13.3_wp, -19.55_wp], &
-                    -1.0e4_wp, 1.0e4_wp, "m", "Fixed upper end of the aft sling, inertial frame.")
+    call read_fore_aft(r, g, "hook", s%hook_fore, s%hook_aft, &
+                       reshape([4.6_wp, 0.0_wp, -1.55_wp, -4.6_wp, 0.0_wp, -1.55_wp], [3, 2]), &
+                       50.0_wp, "Fore hook point in the boat frame.", &
+                       "Aft hook point in the boat frame.")
+    call read_fore_aft(r, g, "anchor", s%anchor_fore, s%anchor_aft, &
+                       reshape([4.6_wp, 13.3_wp, -19.55_wp, -4.6_wp, 13.3_wp, -19.55_wp], &
+                               [3, 2]), 1.0e4_wp, &
+                       "Fixed upper end of the fore sling, inertial frame.", &
+                       "Fixed upper end of the aft sling, inertial frame.")
     call r%real(g, "length", s%length, 3.0_wp, 0.01_wp, 1000.0_wp, "m", &
                 "Unstretched sling length.")
-    call r%real(g, "diameter", s%diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", &
-                "Wire diameter; EA = E pi d^2/4 (20 mm, paper III.B).", lo_open=.true.)
-    call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
-                "Pa", "Young's modulus of the wire (paper III.B).")
+    call read_wire_rope(r, g, "diameter", s%diameter, s%youngs_modulus, &
+                   "Wire diameter; EA = E pi d^2/4 (20 mm, paper III.B).", &
+                   "Young's modulus of the wire (paper III.B).")
     call r%real(g, "damping", s%damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
                 "Absolute axial dashpot per sling; 0 = undamped.")
     call r%logical(g, "attached", s%attached, .true., &

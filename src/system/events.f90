@@ -13,7 +13,7 @@ module davit_system_events
                                       strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics, fender_gaps
+                                     hook_kinematics, fender_gaps, falls_ends_at
   use davit_system_history, only: system_history_type
   use davit_system_boat_loads, only: water_loads
   use davit_system_observables, only: rigging_state
@@ -227,7 +227,7 @@ contains
     real(wp), parameter :: hook_fraction = 0.01_wp
     real(wp) :: c(3, 3), r(3), fw(6), volume, weight
     real(wp) :: seg(par%rig%nseg), sling(par%rig%nlump + 1, 2), paid
-    real(wp) :: lumps(3, par%rig%nlump, 2), hook_pos(3, nslings), hook_vel(3, nslings)
+    real(wp) :: lumps(3, par%rig%nlump, 2)
     weight = par%boat%mass*gravity
     associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
                u => y(par%boat_part%u(1):par%boat_part%u(2)))
@@ -237,9 +237,9 @@ contains
     end associate
     afloat = rho_water*gravity*volume >= weight
     if (afloat) return
-    call hook_kinematics(par%boat_part, par%hooks, y, hook_pos, hook_vel)
-    call rigging_state(par%rig, t, y(par%rig_slice(1):par%rig_slice(2)), hook_pos, hook_vel, &
-                       ship_pose(par%with_ship, par%ship_part, par%ship_rest, y), &
+    call rigging_state(par%rig, t, y(par%rig_slice(1):par%rig_slice(2)), &
+                       falls_ends_at(par%boat_part, par%hooks, ship_pose(par%with_ship, &
+                                     par%ship_part, par%ship_rest, y), y), &
                        .false., seg, sling, paid, lumps)
     afloat = sum(sling(1, :)) < hook_fraction*weight
   end function afloat

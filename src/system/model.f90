@@ -18,7 +18,8 @@ module davit_system_model
   use davit_solve_integrator, only: ode_problem
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics, fender_gaps
+                                     hook_kinematics, fender_gaps, falls_ends_type, &
+                                     falls_ends_at
   use davit_system_history, only: system_history_type
   use davit_system_contact_policy, only: contact_policy_type, limits_steps, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks, loads_all, loads_slow, loads_fast
@@ -264,7 +265,6 @@ contains
     !> The modes, system_n_modes of them.
     integer, intent(out) :: m(:)
     real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
-    real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings)
     type(pose_type) :: pose
     integer :: j, n
     n = 0
@@ -278,11 +278,9 @@ contains
         end do
         n = par%fenders%nf
       end if
-      if (par%on_davit) then
-        call hook_kinematics(par%boat_part, par%hooks, y, hook_pos, hook_vel)
-        call link_modes(par%rig, self%hist%release_time >= 0.0_wp, t, &
-                        y(par%rig_slice(1):par%rig_slice(2)), hook_pos, hook_vel, pose, m(n + 1:))
-      end if
+      if (par%on_davit) call link_modes(par%rig, self%hist%release_time >= 0.0_wp, t, &
+                                        y(par%rig_slice(1):par%rig_slice(2)), &
+                                        falls_ends_at(par%boat_part, par%hooks, pose, y), m(n + 1:))
       if (par%slings_attached) m(n + 1:n + nslings) = &
         merge(1, 0, sling_tensions(par%slings_attached, par%slings, par%boat_part, par%hooks, &
                                    y) > 0.0_wp)
@@ -291,24 +289,22 @@ contains
 
   !> 1 for each taut sling segment and cable segment, 0 for a slack one; all 0 after
   !> release (the falls are frozen).
-  subroutine link_modes(rig, released, t, yr, hook_pos, hook_vel, pose, m)
+  subroutine link_modes(rig, released, t, yr, ends, m)
     !> The davit rigging.
     type(rigging_type), intent(in) :: rig
     !> Whether the hooks have been released.
     logical, intent(in) :: released
     !> Time [s] and the rigging's part of the state vector.
     real(wp), intent(in) :: t, yr(:)
-    !> The hooks' positions [m] and velocities [m/s] (inertial, one column per sling).
-    real(wp), intent(in) :: hook_pos(3, nslings), hook_vel(3, nslings)
-    !> The ship's pose.
-    type(pose_type), intent(in) :: pose
+    !> The falls' ends: the hooks and the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
     !> The modes, rig%nseg + nslings*(rig%nlump + 1) of them.
     integer, intent(out) :: m(:)
     real(wp) :: seg(rig%nseg), sling(rig%nlump + 1, nslings), paid
     real(wp) :: lumps(3, rig%nlump, nslings)
     m = 0
     if (released) return
-    call rigging_state(rig, t, yr, hook_pos, hook_vel, pose, .false., seg, sling, paid, lumps)
+    call rigging_state(rig, t, yr, ends, .false., seg, sling, paid, lumps)
     m(1:size(seg)) = merge(1, 0, seg > 0.0_wp)
     m(size(seg) + 1:) = merge(1, 0, reshape(sling, [size(sling)]) > 0.0_wp)
   end subroutine link_modes
@@ -384,22 +380,21 @@ contains
     !> per sling, row 1 at the hook), paid-out length [m] and lump positions [m] (inertial,
     !> (3, nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
-    real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), tr
-    type(pose_type) :: pose
+    type(falls_ends_type) :: ends
+    real(wp) :: tr
     associate (par => self%par, hist => self%hist)
-      call hook_kinematics(par%boat_part, par%hooks, y, hook_pos, hook_vel)
-      pose = ship_pose(par%with_ship, par%ship_part, par%ship_rest, y)
-      tr = t
       if (hist%release_time >= 0.0_wp) then
         ! The falls are not simulated after release (their states are frozen): report them
         ! as they were when the hooks let go.
-        hook_pos = hist%released_hooks
-        hook_vel = 0.0_wp
-        pose = hist%released_pose
+        ends = falls_ends_type(hist%released_hooks, 0.0_wp, hist%released_pose)
         tr = hist%release_time
+      else
+        ends = falls_ends_at(par%boat_part, par%hooks, &
+                             ship_pose(par%with_ship, par%ship_part, par%ship_rest, y), y)
+        tr = t
       end if
-      call rigging_state(par%rig, tr, y(par%rig_slice(1):par%rig_slice(2)), hook_pos, &
-                         hook_vel, pose, hist%release_time >= 0.0_wp, seg, sling, paid, lumps)
+      call rigging_state(par%rig, tr, y(par%rig_slice(1):par%rig_slice(2)), ends, &
+                         hist%release_time >= 0.0_wp, seg, sling, paid, lumps)
     end associate
   end subroutine system_rigging_state
 

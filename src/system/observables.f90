@@ -12,7 +12,8 @@ module davit_system_observables
   use davit_rigging_rigging, only: rigging_type
   use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_probe, fender_loads
   use davit_boat_contact_law, only: fender_state_type
-  use davit_system_parameters, only: system_params_type, nslings, ship_pose, hook_kinematics
+  use davit_system_parameters, only: system_params_type, nslings, ship_pose, hook_kinematics, &
+                                     falls_ends_type
   use davit_system_history, only: system_history_type
   use davit_boat_bem_water, only: boat_bem_kinetic_energy
   implicit none
@@ -49,23 +50,20 @@ contains
   !> and the time of the release: the falls are not simulated after it (their states are
   !> frozen), so they are reported as they were when the hooks let go, not stretched by the
   !> boat and ship moving on.
-  pure subroutine rigging_state(rig, t, yr, hook_pos, hook_vel, pose, released, seg, sling, &
-                                paid, lumps)
+  pure subroutine rigging_state(rig, t, yr, ends, released, seg, sling, paid, lumps)
     !> The davit rigging.
     type(rigging_type), intent(in) :: rig
     !> Time [s] and the rigging's part of the state vector.
     real(wp), intent(in) :: t, yr(:)
-    !> The hooks' positions [m] and velocities [m/s] (inertial, one column per sling).
-    real(wp), intent(in) :: hook_pos(3, nslings), hook_vel(3, nslings)
-    !> The ship's pose.
-    type(pose_type), intent(in) :: pose
+    !> The falls' ends: the hooks and the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
     !> Whether the hooks have been released.
     logical, intent(in) :: released
     !> Cable segment tensions [N] (rig%nseg), sling segment tensions [N] (rig%nlump + 1 per
     !> sling, row 1 at the hook), paid-out length [m] and lump positions [m] (inertial,
     !> (3, rig%nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
-    call rig%observe(t, yr, hook_pos, hook_vel, pose, seg, sling)
+    call rig%observe(t, yr, ends%hook_pos, ends%hook_vel, ends%ship, seg, sling)
     ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
     ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
     if (released) sling = 0.0_wp

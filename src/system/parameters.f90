@@ -21,6 +21,7 @@ module davit_system_parameters
   implicit none
   private
   public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics, fender_gaps
+  public :: falls_ends_type, falls_ends_at
 
   !> Number of slings (and hooks): fore and aft.
   integer, parameter :: nslings = 2
@@ -86,6 +87,16 @@ module davit_system_parameters
     real(wp) :: release_delay = 0.0_wp
   end type system_params_type
 
+  !> Where the davit's falls end at a state: the hooks (on the boat) and the ship that
+  !> carries the davit heads, lead sheave and drum.
+  type :: falls_ends_type
+    !> Positions [m] and velocities [m/s] of the hooks, inertial components, one column
+    !> per sling.
+    real(wp) :: hook_pos(3, nslings) = 0.0_wp, hook_vel(3, nslings) = 0.0_wp
+    !> The ship's pose.
+    type(pose_type) :: ship
+  end type falls_ends_type
+
 contains
 
   !> The ship's pose at state y: CG, rotation (ship -> N), velocity and angular velocity
@@ -112,6 +123,21 @@ contains
       pose%w = matmul(pose%c, u(1:3))
     end associate
   end function ship_pose
+
+  !> The falls' ends at state y: the hooks from the boat's part, the ship's pose as given.
+  pure function falls_ends_at(boat_part, hooks, ship, y) result(ends)
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> Hook points in the boat frame [m], one column per sling.
+    real(wp), intent(in) :: hooks(3, nslings)
+    !> The ship's pose at y (ship_pose).
+    type(pose_type), intent(in) :: ship
+    !> The system's state.
+    real(wp), intent(in) :: y(:)
+    type(falls_ends_type) :: ends
+    call hook_kinematics(boat_part, hooks, y, ends%hook_pos, ends%hook_vel)
+    ends%ship = ship
+  end function falls_ends_at
 
   !> The ship's side plane (ship-frame y = side_y, normal +s2) carried by the ship.
   pure function side_plane(side_y, pose) result(plane)

@@ -1,0 +1,49 @@
+!> Key sequences that more than one deck group reads with the same shape, defaults and
+!> ranges: a fore and aft pair of points, and a wire's diameter and Young's modulus
+!> (the foundation slings' and the davit rigging's wire). One call serves each group, so
+!> the groups' ranges cannot drift apart.
+module davit_io_shared_keys
+  use davit_kinds, only: wp
+  use davit_io_deck_reader, only: deck_reader_type
+  implicit none
+  private
+  public :: read_fore_aft, read_wire_rope
+
+contains
+
+  !> Keys <stem>_fore and <stem>_aft: two points [m], each component in [-limit, limit].
+  subroutine read_fore_aft(r, g, stem, fore, aft, defaults, limit, fore_text, aft_text)
+    !> The deck's reader, positioned at group g.
+    type(deck_reader_type), intent(inout) :: r
+    !> The group and the keys' common stem.
+    character(len=*), intent(in) :: g, stem
+    !> The fore and aft points read [m].
+    real(wp), intent(inout) :: fore(3), aft(3)
+    !> Their defaults, one column each (fore, aft) [m].
+    real(wp), intent(in) :: defaults(3, 2)
+    !> Bound of each component [m].
+    real(wp), intent(in) :: limit
+    !> The two keys' descriptions.
+    character(len=*), intent(in) :: fore_text, aft_text
+    call r%real_vec(g, stem//"_fore", fore, defaults(:, 1), -limit, limit, "m", fore_text)
+    call r%real_vec(g, stem//"_aft", aft, defaults(:, 2), -limit, limit, "m", aft_text)
+  end subroutine read_fore_aft
+
+  !> A steel wire rope's diameter [m] (key diameter_key, 20 mm by default, paper III.B) and
+  !> Young's modulus [Pa] (key youngs_modulus, 200 GPa by default), in that order.
+  subroutine read_wire_rope(r, g, diameter_key, diameter, youngs, diameter_text, youngs_text)
+    !> The deck's reader, positioned at group g.
+    type(deck_reader_type), intent(inout) :: r
+    !> The group and the diameter's key.
+    character(len=*), intent(in) :: g, diameter_key
+    !> The wire's diameter [m] and Young's modulus [Pa] read.
+    real(wp), intent(out) :: diameter, youngs
+    !> The two keys' descriptions.
+    character(len=*), intent(in) :: diameter_text, youngs_text
+    call r%real(g, diameter_key, diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", diameter_text, &
+                lo_open=.true.)
+    call r%real(g, "youngs_modulus", youngs, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, "Pa", &
+                youngs_text)
+  end subroutine read_wire_rope
+
+end module davit_io_shared_keys
