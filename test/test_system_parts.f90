@@ -10,6 +10,7 @@ module test_system_parts
   use davit_core_layout, only: state_part_type
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_io_config, only: config_type, parse_config
+  use davit_sweep_keys, only: sweep_config, parse_sweep
   use davit_system_parameters, only: nslings, hook_kinematics, ship_pose, falls_ends_type, &
                                      falls_ends_at
   use davit_system_observables, only: sling_tensions
@@ -30,7 +31,8 @@ contains
     suite%cases = [new_case("hooks_move_with_the_boat_as_a_rigid_body", hooks_rigid), &
                    new_case("ship_pose_at_rest_or_from_its_state", ship_poses), &
                    new_case("foundation_slings_hooke_and_dashpot", slings_hooke), &
-                   new_case("fore_aft_and_wire_keys_shared_by_two_groups", shared_keys)]
+                   new_case("fore_aft_and_wire_keys_shared_by_two_groups", shared_keys), &
+                   new_case("integrator_keys_shared_by_simulation_and_sweep", integrator_keys)]
   end function collect_system_parts
 
   !> Hook i at r + C p_i moving at C (v + omega x p_i) (eqs. 3-6; q(4:6) is the CG in body
@@ -178,5 +180,48 @@ contains
                                           "message: "//err%message)
     end subroutine refused
   end subroutine shared_keys
+
+  !> &simulation and &sweep read integrator and substeps through one routine: the same
+  !> eight choices (rk4, dopri5, rosenbrock, rosw, multirate, multirate2, mri2, mri2b) and
+  !> the same range 1..10000, refused with each group's name; the defaults rk4 and 10.
+  subroutine integrator_keys(state)
+    type(case_state), intent(inout) :: state
+    character(len=*), parameter :: choices = "allowed: one of 'rk4' 'dopri5' 'rosenbrock' "// &
+      "'rosw' 'multirate' 'multirate2' 'mri2' 'mri2b'"
+    type(config_type) :: cfg
+    type(sweep_config) :: sweep
+    type(error_type), allocatable :: error
+    call parse_config("t.nml", "", cfg, error)
+    call check_true(state, .not. allocated(error), "empty deck accepted")
+    if (allocated(error)) return
+    call check_true(state, cfg%simulation%integrator == "rk4" .and. &
+                    cfg%simulation%substeps == 10, "defaults: rk4, 10 substeps")
+    call parse_config("t.nml", "&simulation integrator = 'mri2b', substeps = 10000 /", cfg, &
+                      error)
+    call check_true(state, .not. allocated(error), "mri2b and 10000 substeps accepted")
+    if (.not. allocated(error)) call check_true(state, cfg%simulation%integrator == "mri2b" &
+                                                .and. cfg%simulation%substeps == 10000, &
+                                                "mri2b, 10000 read")
+    call parse_config("t.nml", "&simulation integrator = 'euler' /", cfg, error)
+    call expect("&simulation integrator = 'euler'", "t.nml:1: &simulation: integrator = "// &
+                "'euler': unknown choice; "//choices)
+    call parse_config("t.nml", "&simulation substeps = 0 /", cfg, error)
+    call expect("&simulation substeps = 0", "t.nml:1: &simulation: substeps = 0: out of "// &
+                "range; allowed: 1 <= substeps <= 10000 (integer)")
+    call parse_sweep("s.nml", "&sweep base_deck = 'none.nml', integrator = 'euler' /", sweep, &
+                     error)
+    call expect("&sweep integrator = 'euler'", "s.nml:1: &sweep: integrator = 'euler': "// &
+                "unknown choice; "//choices)
+    call parse_sweep("s.nml", "&sweep base_deck = 'none.nml', substeps = 10001 /", sweep, error)
+    call expect("&sweep substeps = 10001", "s.nml:1: &sweep: substeps = 10001: out of range; "// &
+                "allowed: 1 <= substeps <= 10000 (integer)")
+  contains
+    subroutine expect(what, message)
+      character(len=*), intent(in) :: what, message
+      call check_true(state, allocated(error), what//" refused")
+      if (allocated(error)) call check_true(state, index(error%message, message) > 0, &
+                                            "message: "//error%message)
+    end subroutine expect
+  end subroutine integrator_keys
 
 end module test_system_parts

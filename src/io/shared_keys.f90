@@ -1,13 +1,15 @@
 !> Key sequences that more than one deck group reads with the same shape, defaults and
-!> ranges: a fore and aft pair of points, and a wire's diameter and Young's modulus
-!> (the foundation slings' and the davit rigging's wire). One call serves each group, so
-!> the groups' ranges cannot drift apart.
+!> ranges: a fore and aft pair of points, a wire's diameter and Young's modulus (the
+!> foundation slings' and the davit rigging's wire), and the time integrator with its
+!> multirate substeps (&simulation, and &sweep over the base deck's). One call serves each
+!> group, so the groups' choices and ranges cannot drift apart.
 module davit_io_shared_keys
   use davit_kinds, only: wp
   use davit_io_deck_reader, only: deck_reader_type
+  use davit_solve_factory, only: integrator_names
   implicit none
   private
-  public :: read_fore_aft, read_wire_rope
+  public :: read_fore_aft, read_wire_rope, read_integrator
 
 contains
 
@@ -45,5 +47,26 @@ contains
     call r%real(g, "youngs_modulus", youngs, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, "Pa", &
                 youngs_text)
   end subroutine read_wire_rope
+
+  !> Keys integrator (one of the factory's names, 'rk4' by default) and substeps (RK4
+  !> substeps of the multirate integrators' fast part, 1 to 10000, 10 by default).
+  subroutine read_integrator(r, g, integrator, substeps, integrator_text, substeps_text, &
+                             default_text)
+    !> The deck's reader, positioned at group g.
+    type(deck_reader_type), intent(inout) :: r
+    !> The group.
+    character(len=*), intent(in) :: g
+    !> The integrator's name and the substeps read.
+    character(len=:), allocatable, intent(out) :: integrator
+    integer, intent(out) :: substeps
+    !> The two keys' descriptions.
+    character(len=*), intent(in) :: integrator_text, substeps_text
+    !> What the documentation gives as both defaults, where not the values above.
+    character(len=*), intent(in), optional :: default_text
+    call r%choice(g, "integrator", integrator, "rk4", integrator_names, integrator_text, &
+                  default_text=default_text)
+    call r%int(g, "substeps", substeps, 10, 1, 10000, "-", substeps_text, &
+               default_text=default_text)
+  end subroutine read_integrator
 
 end module davit_io_shared_keys
