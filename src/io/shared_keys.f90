@@ -56,8 +56,9 @@ contains
     type(deck_reader_type), intent(inout) :: r
     !> The group.
     character(len=*), intent(in) :: g
-    !> The integrator's name and the substeps read.
+    !> The integrator's name read.
     character(len=:), allocatable, intent(out) :: integrator
+    !> The substeps read.
     integer, intent(out) :: substeps
     !> The two keys' descriptions.
     character(len=*), intent(in) :: integrator_text, substeps_text
