@@ -37,6 +37,7 @@ program main
   use test_ship_speed, only: collect_ship_speed
   use test_small_laws, only: collect_small_laws
   use test_scene, only: collect_scene
+  use test_system_parts, only: collect_system_parts
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -66,7 +67,7 @@ program main
             collect_assess(), collect_adaptive(), collect_core(), &
             collect_wave_grid(), collect_multirate(), collect_block_balance(), &
             collect_capi(), collect_mmg(), collect_mmg_bem(), collect_small_laws(), &
-            collect_scene(), collect_ship_speed()]
+            collect_scene(), collect_ship_speed(), collect_system_parts()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

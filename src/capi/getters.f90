@@ -119,7 +119,7 @@ contains
         out(1:3) = y(sys%par%ship_part%q(1) + 3:sys%par%ship_part%q(1) + 5)
         out(4:6) = y(sys%par%ship_part%q(1):sys%par%ship_part%q(1) + 2)
       else
-        pose = ship_pose(sys%par, y)
+        pose = ship_pose(sys%par%with_ship, sys%par%ship_part, sys%par%ship_rest, y)
         out(1:3) = pose%r
         out(4:5) = 0.0_wp
         out(6) = atan2(pose%c(2, 1), pose%c(1, 1))
@@ -153,7 +153,9 @@ contains
     real(wp) :: vel(3, nslings)
     p => ready_handle(h, rc)
     if (.not. associated(p)) return
-    call hook_kinematics(p%s%sys%par, p%s%y, out, vel)
+    associate (par => p%s%sys%par)
+      call hook_kinematics(par%boat_part, par%hooks, p%s%y, out, vel)
+    end associate
   end function davit_hooks
 
   !> Fall segment tensions (seg; none with the boat not on the davit) and the slings'

@@ -3,7 +3,6 @@
 module davit_io_config
   use davit_kinds, only: wp, pi
   use davit_sea_spectrum, only: spectrum_peak_omega
-  use davit_solve_factory, only: integrator_names
   use davit_error, only: error_type, fatal_error
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
@@ -13,6 +12,7 @@ module davit_io_config
   use davit_io_limits_keys, only: limits_config, read_limits
   use davit_io_contact_keys, only: contact_config, read_contact
   use davit_io_boat_keys, only: boat_config, read_boat
+  use davit_io_shared_keys, only: read_fore_aft, read_wire_rope, read_integrator
   implicit none
   private
   public :: config_type, simulation_config, boat_config, slings_config, sea_config
@@ -264,29 +264,27 @@ contains
                   "rest in its &ship pose), 'launch' (the same from the 6-DOF ship moving "// &
                   "in the &sea and &wind), 'sea' (the wave field alone, recorded at &sea "// &
                   "probes) or 'ship' (the ship alone in the sea and wind).")
-    call r%choice(g, "integrator", s%integrator, "rk4", &
-                  integrator_names, &
-                  "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's), "// &
-                  "adaptive Dormand-Prince 5(4), the linearly implicit, L-stable "// &
-                  "Rosenbrock RODAS3 (full finite-difference Jacobian every step), the "// &
-                  "Rosenbrock-W ROS34PW2 implicit in the rigging only (its Jacobian block "// &
-                  "kept for many steps), or the multirate infinitesimal step methods of "// &
-                  "order 2 ('multirate': Wicker-Skamarock stages 1/3, 1/2, 1; 'multirate2': "// &
-                  "midpoint stages 1/2, 1; 'mri2': MRI-GARK-ERK22a, the stages chained so "// &
-                  "that the fast part sweeps each step once; 'mri2b': MRI-GARK-ERK22b, "// &
-                  "one fast sweep of the whole step and the slow part's trapezoidal "// &
-                  "correction) with dt their macro step: "// &
-                  "the ship and the boat's "// &
-                  "water and wind loads once per stage, the rest (falls, hooks, fenders, "// &
-                  "gravity) at `substeps` RK4 substeps per dt; the adaptive ones take "// &
-                  "substeps inside each dt.")
-    call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
-               "RK4 substeps of the fast part per macro step dt (integrator = "// &
-               "'multirate', 'multirate2', 'mri2' or 'mri2b'; each stage takes its share "// &
-               "rounded to a whole number: 'mri2' nint(substeps/2) per half step, so 5 "// &
-               "runs 3 + 3; 'mri2b' exactly substeps; the substep must keep the falls' "// &
-               "~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does not); other "// &
-               "integrators ignore it.")
+    call read_integrator(r, g, s%integrator, s%substeps, &
+                         "Time integrator: classical fixed-step Runge-Kutta 4 (the paper's), "// &
+                         "adaptive Dormand-Prince 5(4), the linearly implicit, L-stable "// &
+                         "Rosenbrock RODAS3 (full finite-difference Jacobian every step), "// &
+                         "the Rosenbrock-W ROS34PW2 implicit in the rigging only (its "// &
+                         "Jacobian block kept for many steps), or the multirate "// &
+                         "infinitesimal step methods of order 2 ('multirate': "// &
+                         "Wicker-Skamarock stages 1/3, 1/2, 1; 'multirate2': midpoint stages "// &
+                         "1/2, 1; 'mri2': MRI-GARK-ERK22a, the stages chained so that the "// &
+                         "fast part sweeps each step once; 'mri2b': MRI-GARK-ERK22b, one "// &
+                         "fast sweep of the whole step and the slow part's trapezoidal "// &
+                         "correction) with dt their macro step: the ship and the boat's "// &
+                         "water and wind loads once per stage, the rest (falls, hooks, "// &
+                         "fenders, gravity) at `substeps` RK4 substeps per dt; the adaptive "// &
+                         "ones take substeps inside each dt.", &
+                         "RK4 substeps of the fast part per macro step dt (integrator = "// &
+                         "'multirate', 'multirate2', 'mri2' or 'mri2b'; each stage takes its "// &
+                         "share rounded to a whole number: 'mri2' nint(substeps/2) per half "// &
+                         "step, so 5 runs 3 + 3; 'mri2b' exactly substeps; the substep must "// &
+                         "keep the falls' ~200 Hz mode stable: 2e-3 s does, 2.5e-3 s does "// &
+                         "not); other integrators ignore it.")
     call r%real(g, "rtol", s%rtol, 1.0e-6_wp, 0.0_wp, 1.0_wp, "-", &
                 "Relative error tolerance of the adaptive integrators.", lo_open=.true.)
     call r%real(g, "atol", s%atol, 1.0e-9_wp, 0.0_wp, 1.0_wp, "-", &
@@ -318,21 +316,20 @@ contains
     type(deck_reader_type), intent(inout) :: r
     type(slings_config), intent(inout) :: s
     character(len=*), parameter :: g = "slings"
-    call r%real_vec(g, "hook_fore", s%hook_fore, [4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
-                    50.0_wp, "m", "Fore hook point in the boat frame.")
-    call r%real_vec(g, "hook_aft", s%hook_aft, [-4.6_wp, 0.0_wp, -1.55_wp], -50.0_wp, &
-                    50.0_wp, "m", "Aft hook point in the boat frame.")
-    call r%real_vec(g, "anchor_fore", s%anchor_fore, [4.6_wp, 13.3_wp, -19.55_wp], &
-                    -1.0e4_wp, 1.0e4_wp, "m", &
-                    "Fixed upper end of the fore sling, inertial frame.")
-    call r%real_vec(g, "anchor_aft", s%anchor_aft, [-4.6_wp, 13.3_wp, -19.55_wp], &
-                    -1.0e4_wp, 1.0e4_wp, "m", "Fixed upper end of the aft sling, inertial frame.")
+    call read_fore_aft(r, g, "hook", s%hook_fore, s%hook_aft, &
+                       reshape([4.6_wp, 0.0_wp, -1.55_wp, -4.6_wp, 0.0_wp, -1.55_wp], [3, 2]), &
+                       50.0_wp, "Fore hook point in the boat frame.", &
+                       "Aft hook point in the boat frame.")
+    call read_fore_aft(r, g, "anchor", s%anchor_fore, s%anchor_aft, &
+                       reshape([4.6_wp, 13.3_wp, -19.55_wp, -4.6_wp, 13.3_wp, -19.55_wp], &
+                               [3, 2]), 1.0e4_wp, &
+                       "Fixed upper end of the fore sling, inertial frame.", &
+                       "Fixed upper end of the aft sling, inertial frame.")
     call r%real(g, "length", s%length, 3.0_wp, 0.01_wp, 1000.0_wp, "m", &
                 "Unstretched sling length.")
-    call r%real(g, "diameter", s%diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", &
-                "Wire diameter; EA = E pi d^2/4 (20 mm, paper III.B).", lo_open=.true.)
-    call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
-                "Pa", "Young's modulus of the wire (paper III.B).")
+    call read_wire_rope(r, g, "diameter", s%diameter, s%youngs_modulus, &
+                   "Wire diameter; EA = E pi d^2/4 (20 mm, paper III.B).", &
+                   "Young's modulus of the wire (paper III.B).")
     call r%real(g, "damping", s%damping, 1.0e4_wp, 0.0_wp, 1.0e8_wp, "N s/m", &
                 "Absolute axial dashpot per sling; 0 = undamped.")
     call r%logical(g, "attached", s%attached, .true., &

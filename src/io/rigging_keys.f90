@@ -6,6 +6,7 @@
 module davit_io_rigging_keys
   use davit_kinds, only: wp
   use davit_io_deck_reader, only: deck_reader_type
+  use davit_io_shared_keys, only: read_fore_aft, read_wire_rope
   implicit none
   private
   public :: rigging_config, read_rigging
@@ -97,11 +98,9 @@ contains
                 "Unstretched sling length, block to hook.")
     call r%real(g, "sling_mass_per_length", s%sling_mass_per_length, 1.6_wp, 0.0_wp, &
                 100.0_wp, "kg/m", "Sling mass per metre, shared by the lumps (20 mm 6x36).")
-    call r%real(g, "wire_diameter", s%wire_diameter, 0.02_wp, 0.0_wp, 0.5_wp, "m", &
-                "Wire diameter of slings and cable; EA = E pi d^2/4 (paper III.B).", &
-                lo_open=.true.)
-    call r%real(g, "youngs_modulus", s%youngs_modulus, 200.0e9_wp, 1.0e6_wp, 1.0e12_wp, &
-                "Pa", "Young's modulus of slings and cable (paper III.B).")
+    call read_wire_rope(r, g, "wire_diameter", s%wire_diameter, s%youngs_modulus, &
+                   "Wire diameter of slings and cable; EA = E pi d^2/4 (paper III.B).", &
+                   "Young's modulus of slings and cable (paper III.B).")
     ! Wire damping (review §1.6, G26): a stranded rope's inter-wire friction is a
     ! hysteretic loss, about the same fraction of the strain energy per cycle at every
     ! frequency, so it is stated as one damping ratio. G26 reads zeta ~ 0.02 off the
@@ -128,11 +127,12 @@ contains
     type(deck_reader_type), intent(inout) :: r
     type(rigging_config), intent(inout) :: s
     character(len=*), parameter :: g = "rigging"
-    call r%real_vec(g, "head_fore", s%head_fore, [4.6_wp, 13.3_wp, -20.55_wp], -1.0e3_wp, &
-                    1.0e3_wp, "m", "Fore davit head, midway between its sheave pair (A) or "// &
-                    "head sheave and dead end (B), ship frame; 3 m above the block.")
-    call r%real_vec(g, "head_aft", s%head_aft, [-4.6_wp, 13.3_wp, -20.55_wp], -1.0e3_wp, &
-                    1.0e3_wp, "m", "Aft davit head, as head_fore.")
+    call read_fore_aft(r, g, "head", s%head_fore, s%head_aft, &
+                       reshape([4.6_wp, 13.3_wp, -20.55_wp, -4.6_wp, 13.3_wp, -20.55_wp], &
+                               [3, 2]), 1.0e3_wp, &
+                       "Fore davit head, midway between its sheave pair (A) or head sheave "// &
+                       "and dead end (B), ship frame; 3 m above the block.", &
+                       "Aft davit head, as head_fore.")
     call r%real(g, "head_spacing", s%head_spacing, 0.32_wp, 0.0_wp, 10.0_wp, "m", &
                 "Distance along x between the two cable nodes at each head (2 sheave radii).")
     call r%real_vec(g, "lead_sheave", s%lead_sheave, [0.0_wp, 11.5_wp, -21.0_wp], -1.0e3_wp, &

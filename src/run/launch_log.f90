@@ -17,7 +17,7 @@ module davit_run_launch_log
   use davit_io_limits_keys, only: minimum_breaking_load
   use davit_io_namelist, only: int_to_str
   use davit_solve_integrator, only: ode_problem
-  use davit_system_parameters, only: fender_gaps
+  use davit_system_parameters, only: fender_gaps, side_plane, ship_pose
   use davit_system_model, only: system_type
   use davit_run_step_monitor, only: step_monitor
   use davit_run_impact_events, only: impact_tracker
@@ -161,7 +161,10 @@ contains
       real(wp) :: delta_dot(size(force))
       integer :: k
       call sys%contact_state(y, clearance, force)
-      call fender_gaps(sys%par, y, delta, delta_dot)
+      associate (par => sys%par)
+        call fender_gaps(par%fenders, side_plane(par%side_y, ship_pose(par%with_ship, &
+                         par%ship_part, par%ship_rest, y)), par%boat_part, y, delta, delta_dot)
+      end associate
       call self%impacts%track(t, force, delta_dot, a_cg, self%seat%last_raw, started)
       do k = self%impacts%n - started + 1, self%impacts%n
         call self%loads%impact_at(t, self%impacts%events(k)%speed)

@@ -88,10 +88,10 @@ contains
     type(pose_type) :: ship
     real(wp) :: hooks(3, 2), hook_vel(3, 2), head(3), d, cg_height, c(3, 3)
     if (.not. self%on_davit) return
-    ship = ship_pose(sys%par, y)
+    ship = ship_pose(sys%par%with_ship, sys%par%ship_part, sys%par%ship_rest, y)
     head = pose_point(ship, self%head_mid)
     if (self%head_height < 0.0_wp) self%head_height = -head(3)
-    call hook_kinematics(sys%par, y, hooks, hook_vel)
+    call hook_kinematics(sys%par%boat_part, sys%par%hooks, y, hooks, hook_vel)
     d = 0.5_wp*(hooks(3, 1) + hooks(3, 2)) - head(3)
     associate (q => y(sys%par%boat_part%q(1):sys%par%boat_part%q(2)))
       c = rotation_matrix(q(1:3))

@@ -18,7 +18,7 @@ module davit_sweep_keys
   use davit_io_namelist, only: nml_deck, read_deck, parse_deck, key_at, int_to_str
   use davit_io_deck_reader, only: deck_reader_type, key_doc, fmt_real
   use davit_io_config, only: config_type, read_config
-  use davit_solve_factory, only: integrator_names
+  use davit_io_shared_keys, only: read_integrator
   use davit_io_text, only: int_text, fmt_fixed
   use davit_run_budget, only: memory_limit
   use davit_run_scene, only: scene_type, new_scene
@@ -184,14 +184,12 @@ contains
     call r%real_list(g, "dts", s%dts, [2.0e-4_wp], 0.0_wp, 1.0_wp, "s", &
                      "Time steps (&simulation dt), e.g. a step-size study.", 1, max_values, &
                      default_text="base deck", lo_open=.true.)
-    call r%choice(g, "integrator", s%integrator, "rk4", &
-                  integrator_names, &
-                  "Time integrator of every case (&simulation integrator), e.g. 'mri2' "// &
-                  "with dts = 0.01 and substeps = 5 for long sweeps (Benchmarks, "// &
-                  "Multirate).", default_text="base deck")
-    call r%int(g, "substeps", s%substeps, 10, 1, 10000, "-", &
-               "Fast RK4 substeps per step of the multirate integrators (&simulation "// &
-               "substeps).", default_text="base deck")
+    call read_integrator(r, g, s%integrator, s%substeps, &
+                         "Time integrator of every case (&simulation integrator), e.g. "// &
+                         "'mri2' with dts = 0.01 and substeps = 5 for long sweeps "// &
+                         "(Benchmarks, Multirate).", &
+                         "Fast RK4 substeps per step of the multirate integrators "// &
+                         "(&simulation substeps).", default_text="base deck")
     call r%int(g, "realisations", s%realisations, 1, 1, 100000, "-", &
                "Random realisations of every combination: random phase (regular waves) "// &
                "or random component phases (irregular).")

@@ -12,10 +12,12 @@ module davit_system_boat_loads
                              body_gravity_force, body_point_force, body_point_velocity
   use davit_rigging_elastic_sling, only: elastic_sling_type, sling_hook_force
   use davit_sea_wind, only: wind_velocity
-  use davit_boat_strip_loads, only: strip_loads
+  use davit_boat_strip_loads, only: strip_model_type, strip_loads
+  use davit_boat_strip_waves, only: strip_wave_cache_type
+  use davit_sea_wave_field, only: wave_field_type
   use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_loads
   use davit_boat_contact_law, only: fender_state_type
-  use davit_boat_surface_watch, only: surely_dry
+  use davit_boat_surface_watch, only: surface_watch_type, surely_dry
   use davit_boat_bem_water, only: boat_bem_loads, boat_bem_immersion
   use davit_system_parameters, only: system_params_type, nslings
   use davit_system_history, only: system_history_type
@@ -130,7 +132,7 @@ contains
     real(wp), intent(inout) :: f(6), v(6)
     real(wp), intent(out) :: xdot(:)
     real(wp) :: fw(6), volume
-    call water_loads(par, hist, t, c, r, u, fw, volume)
+    call water_loads(par%water, par%sea, hist%watch, hist%waves, t, c, r, u, fw, volume)
     f = f + fw
     if (par%bem_water) then
       call boat_bem_loads(par%bem, par%sea, t, c, r, q(3), u, &
@@ -162,21 +164,25 @@ contains
   !> Strip water loads (eqs. 18-25) and wet volume, exactly zero without forming them
   !> while the surface watch proves the hull dry; from the strips' slow clock where it
   !> covers t.
-  pure subroutine water_loads(par, hist, t, c, r, u, f, volume)
-    !> The system's parameters (strip model, sea).
-    type(system_params_type), intent(in) :: par
-    !> The history (surface watch, the strips' slow clock).
-    type(system_history_type), intent(in) :: hist
+  pure subroutine water_loads(water, sea, watch, waves, t, c, r, u, f, volume)
+    !> The strip model of the boat in the water.
+    type(strip_model_type), intent(in) :: water
+    !> The sea.
+    type(wave_field_type), intent(in) :: sea
+    !> The surface watch (the history's), which proves the hull dry.
+    type(surface_watch_type), intent(in) :: watch
+    !> The strips' slow clock of the water (the history's).
+    type(strip_wave_cache_type), intent(in) :: waves
     !> Time [s], the boat's rotation (body -> inertial), CG position (inertial) [m] and
     !> speeds (omega [rad/s], v [m/s], body components).
     real(wp), intent(in) :: t, c(3, 3), r(3), u(6)
     !> Generalized forces of the water (Kane order) [N m, N] and the wet volume [m^3].
     real(wp), intent(out) :: f(6), volume
-    if (surely_dry(hist%watch, par%water, t, c, r)) then
+    if (surely_dry(watch, water, t, c, r)) then
       f = 0.0_wp
       volume = 0.0_wp
     else
-      call strip_loads(par%water, par%sea, t, c, r, u, f, volume, hist%waves)
+      call strip_loads(water, sea, t, c, r, u, f, volume, waves)
     end if
   end subroutine water_loads
 

@@ -11,19 +11,23 @@ module davit_system_build
   use davit_rigging_elastic_sling, only: elastic_sling_type
   use davit_system_sea_builder, only: build_wave_field, build_wind
   use davit_boat_hull, only: new_boat_hull
-  use davit_boat_strip_loads, only: new_strip_model
+  use davit_boat_strip_loads, only: strip_model_type, new_strip_model
   use davit_boat_strip_level, only: strip_level_type
-  use davit_boat_bem_water, only: new_boat_bem, boat_bem_immersion
+  use davit_boat_bem_water, only: boat_bem_type, new_boat_bem, boat_bem_immersion
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
-  use davit_boat_contact_law, only: contact_law_type
+  use davit_boat_contact_law, only: contact_law_type, fender_state_type
+  use davit_boat_wind_loads, only: boat_wind_type
+  use davit_io_ship_keys, only: ship_config
+  use davit_system_contact_policy, only: contact_policy_type
   use davit_system_law_factory, only: new_contact_law, new_boat_wind, new_strip_level, &
                                       new_wave_drift
-  use davit_boat_fenders, only: new_fender_set
-  use davit_boat_strip_waves, only: new_strip_wave_cache
-  use davit_boat_surface_watch, only: new_surface_watch
+  use davit_boat_fenders, only: fender_set_type, new_fender_set
+  use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache
+  use davit_boat_surface_watch, only: surface_watch_type, new_surface_watch
   use davit_core_slow_clock, only: slow_clock_type, new_slow_clock, clock_grid, clock_reach
-  use davit_rigging_rigging, only: new_rigging
+  use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_core_layout, only: state_layout_type, state_part_type
   use davit_ship_hull, only: hull_type, new_hull
   use davit_ship_mmg, only: mmg_type
   use davit_ship_rudder, only: rudder_type, notch_period
@@ -32,7 +36,7 @@ module davit_system_build
   use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
   use davit_ship_wave_drift, only: wave_drift_type
   use davit_sea_wave_field, only: wave_field_type
-  use davit_sea_wave_grid, only: new_wave_grid, grid_error_bounds
+  use davit_sea_wave_grid, only: wave_grid_type, new_wave_grid, grid_error_bounds
   use davit_sea_wind, only: wind_type
   use davit_system_parameters, only: system_params_type, ship_pose, hook_kinematics, nslings
   use davit_system_model, only: system_type
@@ -75,19 +79,36 @@ contains
       par%on_davit = on_davit
       par%slings_attached = s%attached .and. .not. par%on_davit
     end associate
-    call new_boat_environment(self, cfg, error)
-    if (allocated(error)) return
-    if (cfg%boat%water_model == "bem") then
-      call new_boat_water(self%par, cfg, error)
+    associate (par => self%par, hist => self%hist)
+      call new_boat_environment(cfg, par%water, par%hull_volume, par%air, par%sea, par%wind, &
+                                error)
       if (allocated(error)) return
-    end if
-    call new_side_contact(self, cfg, error)
-    if (allocated(error)) return
-    if (self%par%on_davit) then
-      call new_davit(self%par, cfg, error)
+      call new_water_caches(cfg, par%sea, par%water%hull%n, hist%watch, hist%waves, &
+                            hist%surface_grid, hist%volume_grid)
+      if (cfg%boat%water_model == "bem") then
+        call new_boat_water(par, cfg, error)
+        if (allocated(error)) return
+      end if
+      ! the ship's side at rest, the fenders and the contact step policy
+      par%contact = cfg%contact%enabled
+      self%policy = contact_policy_type(cfg%simulation%dt_contact, &
+                                        cfg%simulation%contact_approach == "graded", &
+                                        cfg%simulation%contact_approach == "event")
+      par%ship_rest = rest_pose(cfg%ship)
+      par%side_y = cfg%contact%side_y
+      call new_fenders(cfg, par%fenders, hist%fender_states, error)
       if (allocated(error)) return
-    end if
-    if (with_ship) call new_moving_ship(self, cfg, error)
+      if (par%on_davit) then
+        call new_davit(par%rig, par%layout, par%rig_slice, cfg, error)
+        if (allocated(error)) return
+        par%release = cfg%rigging%release
+        par%release_delay = cfg%rigging%release_delay
+      end if
+      if (.not. with_ship) return
+      call new_moving_ship(cfg, par%sea, par%wind, self%ship, par%layout, par%ship_part, &
+                           par%ship_slice, error)
+      if (.not. allocated(error)) par%with_ship = .true.
+    end associate
   end subroutine new_system
 
   !> The boat's BEM water model (&boat water_model = 'bem'): its database, its states
@@ -118,37 +139,47 @@ contains
   end subroutine new_boat_water
 
   !> The davit rigging in place of the foundation slings, its parts after the boat's.
-  subroutine new_davit(par, cfg, error)
-    type(system_params_type), intent(inout) :: par
+  subroutine new_davit(rig, layout, rig_slice, cfg, error)
+    !> The davit rigging, built.
+    type(rigging_type), intent(inout) :: rig
+    !> The system's state layout, the rigging's parts appended.
+    type(state_layout_type), intent(inout) :: layout
+    !> First and last state index of the rigging.
+    integer, intent(out) :: rig_slice(2)
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
     integer :: offset
-    call new_rigging(par%rig, cfg%rigging, error)
+    call new_rigging(rig, cfg%rigging, error)
     if (allocated(error)) return
-    call par%layout%append(par%rig%layout, offset)
-    par%rig_slice = [offset + 1, offset + par%rig%nstate]
-    par%release = cfg%rigging%release
-    par%release_delay = cfg%rigging%release_delay
+    call layout%append(rig%layout, offset)
+    rig_slice = [offset + 1, offset + rig%nstate]
   end subroutine new_davit
 
   !> The 6-DOF ship of the 'launch' scene, in the same sea and wind as the boat, keeping
-  !> its heading (and station) as the deck says.
-  subroutine new_moving_ship(self, cfg, error)
-    type(system_type), intent(inout) :: self
+  !> its heading (and station) as the deck says; its state appended to the layout.
+  subroutine new_moving_ship(cfg, sea, wind, ship, layout, ship_part, ship_slice, error)
     type(config_type), intent(in) :: cfg
+    !> The sea and wind the boat is in.
+    type(wave_field_type), intent(in) :: sea
+    type(wind_type), intent(in) :: wind
+    !> The ship, built.
+    type(ship_system_type), intent(inout) :: ship
+    !> The system's state layout, the ship's parts appended.
+    type(state_layout_type), intent(inout) :: layout
+    !> The ship's rigid-body part of the state, and its first and last state index.
+    type(state_part_type), intent(out) :: ship_part
+    integer, intent(out) :: ship_slice(2)
     type(error_type), allocatable, intent(out) :: error
     integer :: offset
-    call new_ship(self%ship, cfg, self%par%sea, self%par%wind, error)
+    call new_ship(ship, cfg, sea, wind, error)
     if (allocated(error)) return
     associate (s => cfg%ship)
-      call self%ship%set_mooring([s%station_period, s%station_period, s%heading_period], &
-                                 s%heading_damping, ship_initial_state(self%ship, cfg), &
-                                 integral=.true.)
+      call ship%set_mooring([s%station_period, s%station_period, s%heading_period], &
+                            s%heading_damping, ship_initial_state(ship, cfg), integral=.true.)
     end associate
-    self%par%with_ship = .true.
-    call self%par%layout%append(self%ship%par%layout, offset)
-    self%par%ship_part = self%par%layout%part("ship")
-    self%par%ship_slice = [offset + 1, offset + self%ship%par%layout%n]
+    call layout%append(ship%par%layout, offset)
+    ship_part = layout%part("ship")
+    ship_slice = [offset + 1, offset + ship%par%layout%n]
   end subroutine new_moving_ship
 
   !> The ship of the deck in the sea and wind given: the paper's box or (&ship model =
@@ -241,69 +272,89 @@ contains
   end function beside
 
   !> Strip hull, water and wind loads, and the sea and wind they act in.
-  subroutine new_boat_environment(self, cfg, error)
-    type(system_type), intent(inout) :: self
+  subroutine new_boat_environment(cfg, water, hull_volume, air, sea, wind, error)
     type(config_type), intent(in) :: cfg
+    !> The boat's strip model in the water, and its hull volume [m^3].
+    type(strip_model_type), intent(out) :: water
+    real(wp), intent(out) :: hull_volume
+    !> Wind drag and lift on the boat.
+    class(boat_wind_type), allocatable, intent(out) :: air
+    !> The sea and the mean wind.
+    type(wave_field_type), intent(out) :: sea
+    type(wind_type), intent(out) :: wind
     type(error_type), allocatable, intent(out) :: error
     class(strip_level_type), allocatable :: level
-    associate (b => cfg%boat, par => self%par)
+    associate (b => cfg%boat)
       call new_strip_level(b, level)
-      par%water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
-                                                b%breadth_exponent, b%strips), &
-                                  b%drag_coefficients, b%metacentric_height, b%zeta, &
-                                  b%mass, b%inertia, level, b%roll_restoring == "paper")
-      par%hull_volume = sum(par%water%hull%breadth)*par%water%hull%thickness*b%height
-      call new_boat_wind(b, par%air, error)
+      water = new_strip_model(new_boat_hull(b%length, b%beam, b%height, b%keel, &
+                                            b%breadth_exponent, b%strips), &
+                              b%drag_coefficients, b%metacentric_height, b%zeta, &
+                              b%mass, b%inertia, level, b%roll_restoring == "paper")
+      hull_volume = sum(water%hull%breadth)*water%hull%thickness*b%height
+      call new_boat_wind(b, air, error)
       if (allocated(error)) then
         error%message = cfg%filename//": "//error%message
         return
       end if
-      call build_wave_field(cfg%sea, cfg%simulation%seed, 0, par%sea)
-      par%wind = build_wind(cfg%wind)
-      self%hist%watch = new_surface_watch(par%sea, par%water%hull%n, &
-                                          max(surface_watch_interval, cfg%simulation%wave_update))
-      self%hist%waves = new_strip_wave_cache(par%sea, par%water%hull%n, &
-                                             new_slow_clock(cfg%simulation%wave_update, &
-                                                            clock_reach))
-      if (cfg%sea%grid%kinematics == "grid") then
-        associate (g => cfg%sea%grid)
-          self%hist%surface_grid = new_wave_grid(par%sea, g%spacing, g%time_step, g%margin, &
-                                                 g%depth, .false.)
-          self%hist%volume_grid = new_wave_grid(par%sea, g%spacing, g%time_step, g%margin, &
-                                                g%depth, .true.)
-        end associate
-        self%hist%watch%grid_error = grid_error_bounds(self%hist%surface_grid, par%sea)
-      end if
+      call build_wave_field(cfg%sea, cfg%simulation%seed, 0, sea)
+      wind = build_wind(cfg%wind)
     end associate
   end subroutine new_boat_environment
 
-  !> The ship's side plane at ship-frame y = side_y, normal +s2, for the ship at rest in its
-  !> deck attitude (list, trim, heading) and position; the fenders, their contact law and
-  !> the contact step policy.
-  subroutine new_side_contact(self, cfg, error)
-    type(system_type), intent(inout) :: self
+  !> The water's slow caches at the boat (the history's): the surface watch, the strips'
+  !> slow clock and, with &sea kinematics = 'grid', the surface and volume grids.
+  subroutine new_water_caches(cfg, sea, n, watch, waves, surface_grid, volume_grid)
     type(config_type), intent(in) :: cfg
-    type(error_type), allocatable, intent(out) :: error
+    !> The sea.
+    type(wave_field_type), intent(in) :: sea
+    !> Number of strips of the boat's hull.
+    integer, intent(in) :: n
+    !> The surface watch and the strips' slow clock, built.
+    type(surface_watch_type), intent(out) :: watch
+    type(strip_wave_cache_type), intent(out) :: waves
+    !> The grids of the sea around the boat, built when kinematics = 'grid'.
+    type(wave_grid_type), intent(inout) :: surface_grid, volume_grid
+    watch = new_surface_watch(sea, n, max(surface_watch_interval,     watch = new_surface_watch(sea, n, max(surface_watch_interval, cfg%simulation%wave_update))
+                                          cfg%simulation%wave_update))
+    waves = new_strip_wave_cache(sea, n, new_slow_clock(cfg%simulation%wave_update, clock_reach))
+    if (cfg%sea%grid%kinematics /= "grid") return
+    associate (g => cfg%sea%grid)
+      surface_grid = new_wave_grid(sea, g%spacing, g%time_step, g%margin, g%depth, .false.)
+      volume_grid = new_wave_grid(sea, g%spacing, g%time_step, g%margin, g%depth, .true.)
+    end associate
+    watch%grid_error = grid_error_bounds(surface_grid, sea)
+  end subroutine new_water_caches
+
+  !> The ship at rest in its deck attitude (list, trim, heading) and position, moving at
+  !> its headway.
+  pure function rest_pose(ship) result(pose)
+    !> The deck's &ship values.
+    type(ship_config), intent(in) :: ship
+    type(pose_type) :: pose
     real(wp) :: cs(3, 3)
+    cs = rotation_matrix([ship%list, ship%trim, ship%heading])
+    pose = pose_type(ship%position, cs, matmul(cs, [ship%headway, 0.0_wp, 0.0_wp]), 0.0_wp)
+  end function rest_pose
+
+  !> The boat's fenders and their contact law (&contact), each fender's contact phase.
+  subroutine new_fenders(cfg, fenders, states, error)
+    type(config_type), intent(in) :: cfg
+    !> The fenders, built.
+    type(fender_set_type), intent(out) :: fenders
+    !> Each fender's contact phase, one per fender.
+    type(fender_state_type), allocatable, intent(out) :: states(:)
+    type(error_type), allocatable, intent(out) :: error
     class(contact_law_type), allocatable :: law
-    self%par%contact = cfg%contact%enabled
-    self%policy%dt_contact = cfg%simulation%dt_contact
-    self%policy%graded = cfg%simulation%contact_approach == "graded"
-    self%policy%located = cfg%simulation%contact_approach == "event"
-    cs = rotation_matrix([cfg%ship%list, cfg%ship%trim, cfg%ship%heading])
-    self%par%ship_rest = pose_type(cfg%ship%position, cs, &
-                                   matmul(cs, [cfg%ship%headway, 0.0_wp, 0.0_wp]), 0.0_wp)
-    self%par%side_y = cfg%contact%side_y
     call new_contact_law(cfg%contact, law, error)
     if (allocated(error)) then
       error%message = cfg%filename//": "//error%message
       return
     end if
     associate (k => cfg%contact)
-      self%par%fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, law)
-      allocate (self%hist%fender_states(size(k%fender_x)))
+      fenders = new_fender_set(k%fender_x, k%fender_y, k%fender_z, k%fender_points, law)
+      allocate (states(size(k%fender_x)))
     end associate
-  end subroutine new_side_contact
+  end subroutine new_fenders
 
   !> Initial y from inertial position/velocity and Euler angles / body rates; on the davit,
   !> the rigging starts in static equilibrium with W/2 on each hook (or unstretched, as
@@ -329,11 +380,12 @@ contains
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
       if (par%bem_water) then
         y(par%radiation_part%q(1):par%radiation_part%q(2)) = 0.0_wp
-        y(par%radiation_part%q(1)) = initial_immersion(self, y)
+        y(par%radiation_part%q(1)) = initial_immersion(par%water, par%sea, self%hist%watch, &
+                                                       self%hist%waves, par%bem, b, y)
       end if
       if (.not. par%on_davit) return
-      call hook_kinematics(par, y, hook_pos, hook_vel)
-      pose = ship_pose(par, y)
+      call hook_kinematics(b, par%hooks, y, hook_pos, hook_vel)
+      pose = ship_pose(par%with_ship, s, par%ship_rest, y)
       heads(:, 1) = pose_point(pose, cfg%rigging%head_fore)
       heads(:, 2) = pose_point(pose, cfg%rigging%head_aft)
       head_vel(:, 1) = pose_point_velocity(pose, cfg%rigging%head_fore)
@@ -364,16 +416,27 @@ contains
 
   !> The boat's immersion state at the start: the geometric immersion of its initial pose
   !> (a boat released afloat starts with its added mass; no radiation memory yet).
-  pure real(wp) function initial_immersion(self, y) result(s)
-    type(system_type), intent(in) :: self
+  pure real(wp) function initial_immersion(water, sea, watch, waves, bem, boat_part, y) &
+    result(s)
+    !> The strip model of the boat in the water, the sea, the surface watch and the strips'
+    !> slow clock (the water_loads' parts).
+    type(strip_model_type), intent(in) :: water
+    type(wave_field_type), intent(in) :: sea
+    type(surface_watch_type), intent(in) :: watch
+    type(strip_wave_cache_type), intent(in) :: waves
+    !> The boat's BEM water model.
+    type(boat_bem_type), intent(in) :: bem
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> The initial state (the boat's part set).
     real(wp), intent(in) :: y(:)
     real(wp) :: c(3, 3), f(6), volume
-    associate (q => y(self%par%boat_part%q(1):self%par%boat_part%q(2)), &
-               u => y(self%par%boat_part%u(1):self%par%boat_part%u(2)))
+    associate (q => y(boat_part%q(1):boat_part%q(2)), &
+               u => y(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
-      call water_loads(self%par, self%hist, 0.0_wp, c, matmul(c, q(4:6)), u, f, volume)
+      call water_loads(water, sea, watch, waves, 0.0_wp, c, matmul(c, q(4:6)), u, f, volume)
     end associate
-    s = boat_bem_immersion(self%par%bem, volume)
+    s = boat_bem_immersion(bem, volume)
   end function initial_immersion
 
   !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's

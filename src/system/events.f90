@@ -7,11 +7,13 @@ module davit_system_events
   use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact_law, only: phase_compression, fender_state_type
   use davit_boat_fenders, only: fender_set_type
-  use davit_boat_strip_waves, only: strip_waves_due, strip_waves_refresh, strip_waves_surface
-  use davit_boat_surface_watch, only: watch_refresh, watch_set, watch_due, strip_surely_dry
+  use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_due, &
+                                    strip_waves_refresh, strip_waves_surface
+  use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
+                                      strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
-  use davit_system_parameters, only: system_params_type, nslings, ship_pose, &
-                                     hook_kinematics, fender_gaps
+  use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
+                                     hook_kinematics, fender_gaps, falls_ends_at
   use davit_system_history, only: system_history_type
   use davit_system_boat_loads, only: water_loads
   use davit_system_observables, only: rigging_state
@@ -55,7 +57,8 @@ contains
     if (par%contact) then
       block
         real(wp) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
-        call fender_gaps(par, y, delta, delta_dot)
+        call fender_gaps(par%fenders, side_plane(par%side_y, ship_pose(par%with_ship, &
+                         par%ship_part, par%ship_rest, y)), par%boat_part, y, delta, delta_dot)
         call advance_contact(par%fenders, t, delta, delta_dot, hist%fender_states, &
                              hist%first_contact_time)
       end block
@@ -87,7 +90,7 @@ contains
                                hist%surface_grid, hist%volume_grid)
     else if (any(maybe_wet)) then
       call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet)
-      call refresh_watch_from_strips(par, hist, t)
+      call refresh_watch_from_strips(hist%waves, par%sea, par%water%hull%n, t, hist%watch)
     end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
@@ -100,13 +103,20 @@ contains
   !> The window just opened sampled the exact elevation at every strip centre at t: the
   !> surface watch takes it instead of summing the sea again (its next refresh comes an
   !> interval later; the strips' windows, renewed at least as often, keep it fresh).
-  subroutine refresh_watch_from_strips(par, hist, t)
-    type(system_params_type), intent(in) :: par
-    type(system_history_type), intent(inout) :: hist
+  subroutine refresh_watch_from_strips(waves, sea, n, t, watch)
+    !> The strips' slow clock of the water, just refreshed.
+    type(strip_wave_cache_type), intent(in) :: waves
+    !> The sea.
+    type(wave_field_type), intent(in) :: sea
+    !> Number of strips of the hull.
+    integer, intent(in) :: n
+    !> Time [s].
     real(wp), intent(in) :: t
-    real(wp) :: xy(2, par%water%hull%n), eta(par%water%hull%n), grad(2, par%water%hull%n)
-    call strip_waves_surface(hist%waves, par%sea, xy, eta, grad)
-    call watch_set(hist%watch, t, xy, eta, grad)
+    !> The surface watch, set from the strips' samples.
+    type(surface_watch_type), intent(inout) :: watch
+    real(wp) :: xy(2, n), eta(n), grad(2, n)
+    call strip_waves_surface(waves, sea, xy, eta, grad)
+    call watch_set(watch, t, xy, eta, grad)
   end subroutine refresh_watch_from_strips
 
   !> Make grid g of the sea hold the footprint of the boat's strip hull h (the corners of
@@ -192,8 +202,8 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp) :: hook_vel(3, nslings)
     hist%release_time = t
-    call hook_kinematics(par, y, hist%released_hooks, hook_vel)
-    hist%released_pose = ship_pose(par, y)
+    call hook_kinematics(par%boat_part, par%hooks, y, hist%released_hooks, hook_vel)
+    hist%released_pose = ship_pose(par%with_ship, par%ship_part, par%ship_rest, y)
   end subroutine release_hooks
 
   !> The CG is less than 10 m above the still water.
@@ -208,7 +218,8 @@ contains
     keel_can_reach_water = .not. r(3) < -10.0_wp
   end function keel_can_reach_water
 
-  !> The buoyancy carries the weight, or the hooks carry less than 1 % of it.
+  !> The buoyancy carries the weight, or the hooks carry less than 1 % of it (asked only
+  !> before the release, watch_waterborne).
   logical function afloat(par, hist, t, y)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(in) :: hist
@@ -222,11 +233,14 @@ contains
                u => y(par%boat_part%u(1):par%boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
-      call water_loads(par, hist, t, c, r, u, fw, volume)
+      call water_loads(par%water, par%sea, hist%watch, hist%waves, t, c, r, u, fw, volume)
     end associate
     afloat = rho_water*gravity*volume >= weight
     if (afloat) return
-    call rigging_state(par, hist, t, y, seg, sling, paid, lumps)
+    call rigging_state(par%rig, t, y(par%rig_slice(1):par%rig_slice(2)), &
+                       falls_ends_at(par%boat_part, par%hooks, ship_pose(par%with_ship, &
+                                     par%ship_part, par%ship_rest, y), y), &
+                       .false., seg, sling, paid, lumps)
     afloat = sum(sling(1, :)) < hook_fraction*weight
   end function afloat
 

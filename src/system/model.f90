@@ -11,12 +11,15 @@ module davit_system_model
   use davit_kinds, only: wp
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
+  use davit_core_layout, only: state_part_type
+  use davit_rigging_rigging, only: rigging_type
   use davit_core_kane, only: kane_f, kane_rates, kane_at_rest
   use davit_core_body, only: body_point_force
   use davit_solve_integrator, only: ode_problem
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics, fender_gaps
+                                     hook_kinematics, fender_gaps, falls_ends_type, &
+                                     falls_ends_at
   use davit_system_history, only: system_history_type
   use davit_system_contact_policy, only: contact_policy_type, limits_steps, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks, loads_all, loads_slow, loads_fast
@@ -120,7 +123,7 @@ contains
     type(pose_type) :: pose
     associate (par => self%par, b => self%par%boat_part, s => self%par%ship_slice, &
                x => self%par%radiation_part%q, r => self%par%rig_slice)
-      pose = ship_pose(par, y)
+      pose = ship_pose(par%with_ship, par%ship_part, par%ship_rest, y)
       if (par%with_ship) then
         if (part == loads_fast) then
           ! the ship's rows are 0 here; kane_rates leaves its speeds so
@@ -136,7 +139,8 @@ contains
         if (part == loads_slow) then
           call kane_at_rest(dydt(r(1):r(2)), kane(:, r(1):r(2)))
         else
-          call rigging_blocks(self, t, y, pose, dydt, kane)
+          call rigging_blocks(par%rig, r, b, par%hooks, self%hist%release_time >= 0.0_wp, t, &
+                              y, pose, dydt, kane)
         end if
       end if
     end associate
@@ -144,28 +148,36 @@ contains
 
   !> The rigging's Kane blocks, and its hook forces added to the boat's F (eq. 26); after
   !> release the falls are frozen and act on nothing.
-  subroutine rigging_blocks(self, t, y, pose, dydt, kane)
-    type(system_type), intent(in) :: self
+  subroutine rigging_blocks(rig, rig_slice, boat_part, hooks, released, t, y, pose, dydt, kane)
+    !> The davit rigging.
+    type(rigging_type), intent(in) :: rig
+    !> First and last state index of the rigging.
+    integer, intent(in) :: rig_slice(2)
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> Hook points in the boat frame [m], one column per sling.
+    real(wp), intent(in) :: hooks(3, nslings)
+    !> Whether the hooks have been released.
+    logical, intent(in) :: released
     real(wp), intent(in) :: t, y(:)
     type(pose_type), intent(in) :: pose
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), hook_force(3, nslings), c(3, 3)
     integer :: i, i0, i1
-    i0 = self%par%rig_slice(1)
-    i1 = self%par%rig_slice(2)
-    if (self%hist%release_time >= 0.0_wp) then
+    i0 = rig_slice(1)
+    i1 = rig_slice(2)
+    if (released) then
       call kane_at_rest(dydt(i0:i1), kane(:, i0:i1))
       return
     end if
-    call hook_kinematics(self%par, y, hook_pos, hook_vel)
-    call self%par%rig%kane_blocks(t, y(i0:i1), hook_pos, hook_vel, pose, dydt(i0:i1), &
-                                  kane(:, i0:i1), hook_force)
-    associate (b => self%par%boat_part)
+    call hook_kinematics(boat_part, hooks, y, hook_pos, hook_vel)
+    call rig%kane_blocks(t, y(i0:i1), hook_pos, hook_vel, pose, dydt(i0:i1), kane(:, i0:i1), &
+                         hook_force)
+    associate (b => boat_part)
       c = rotation_matrix(y(b%q(1):b%q(1) + 2))
       do i = 1, nslings
         kane(kane_f, b%u(1):b%u(2)) = kane(kane_f, b%u(1):b%u(2)) + &
-                                      body_point_force(self%par%hooks(:, i), &
-                                                       matmul(hook_force(:, i), c))
+                                      body_point_force(hooks(:, i), matmul(hook_force(:, i), c))
       end do
     end associate
   end subroutine rigging_blocks
@@ -191,7 +203,10 @@ contains
     real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
     h = dt
     if (.not. limits_steps(self%policy, self%par%contact, dt)) return
-    call fender_gaps(self%par, y, delta, delta_dot)
+    associate (par => self%par)
+      call fender_gaps(par%fenders, side_plane(par%side_y, ship_pose(par%with_ship, &
+                       par%ship_part, par%ship_rest, y)), par%boat_part, y, delta, delta_dot)
+    end associate
     h = contact_max_step(self%policy, self%hist%fender_states, delta, delta_dot, dt)
   end function system_max_step
 
@@ -250,32 +265,46 @@ contains
     !> The modes, system_n_modes of them.
     integer, intent(out) :: m(:)
     real(wp) :: delta(self%par%fenders%nf), delta_dot(self%par%fenders%nf)
+    type(pose_type) :: pose
     integer :: j, n
     n = 0
-    if (self%par%contact) then
-      call fender_gaps(self%par, y, delta, delta_dot)
-      do j = 1, self%par%fenders%nf
-        m(j) = self%par%fenders%law%next_phase(self%hist%fender_states(j), delta(j), &
-                                               delta_dot(j))
-      end do
-      n = self%par%fenders%nf
-    end if
-    if (self%par%on_davit) call link_modes(self, t, y, m(n + 1:))
-    if (self%par%slings_attached) m(n + 1:n + nslings) = merge(1, 0, &
-                                                               sling_tensions(self%par, y) > 0.0_wp)
+    associate (par => self%par)
+      pose = ship_pose(par%with_ship, par%ship_part, par%ship_rest, y)
+      if (par%contact) then
+        call fender_gaps(par%fenders, side_plane(par%side_y, pose), par%boat_part, y, delta, &
+                         delta_dot)
+        do j = 1, par%fenders%nf
+          m(j) = par%fenders%law%next_phase(self%hist%fender_states(j), delta(j), delta_dot(j))
+        end do
+        n = par%fenders%nf
+      end if
+      if (par%on_davit) call link_modes(par%rig, self%hist%release_time >= 0.0_wp, t, &
+                                        y(par%rig_slice(1):par%rig_slice(2)), &
+                                        falls_ends_at(par%boat_part, par%hooks, pose, y), m(n + 1:))
+      if (par%slings_attached) m(n + 1:n + nslings) = &
+        merge(1, 0, sling_tensions(par%slings_attached, par%slings, par%boat_part, par%hooks, &
+                                   y) > 0.0_wp)
+    end associate
   end subroutine system_modes
 
   !> 1 for each taut sling segment and cable segment, 0 for a slack one; all 0 after
   !> release (the falls are frozen).
-  subroutine link_modes(self, t, y, m)
-    class(system_type), intent(in) :: self
-    real(wp), intent(in) :: t, y(:)
+  subroutine link_modes(rig, released, t, yr, ends, m)
+    !> The davit rigging.
+    type(rigging_type), intent(in) :: rig
+    !> Whether the hooks have been released.
+    logical, intent(in) :: released
+    !> Time [s] and the rigging's part of the state vector.
+    real(wp), intent(in) :: t, yr(:)
+    !> The falls' ends: the hooks and the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
+    !> The modes, rig%nseg + nslings*(rig%nlump + 1) of them.
     integer, intent(out) :: m(:)
-    real(wp) :: seg(self%par%rig%nseg), sling(self%par%rig%nlump + 1, nslings), paid
-    real(wp) :: lumps(3, self%par%rig%nlump, nslings)
+    real(wp) :: seg(rig%nseg), sling(rig%nlump + 1, nslings), paid
+    real(wp) :: lumps(3, rig%nlump, nslings)
     m = 0
-    if (self%hist%release_time >= 0.0_wp) return
-    call rigging_state(self%par, self%hist, t, y, seg, sling, paid, lumps)
+    if (released) return
+    call rigging_state(rig, t, yr, ends, .false., seg, sling, paid, lumps)
     m(1:size(seg)) = merge(1, 0, seg > 0.0_wp)
     m(size(seg) + 1:) = merge(1, 0, reshape(sling, [size(sling)]) > 0.0_wp)
   end subroutine link_modes
@@ -318,7 +347,9 @@ contains
     !> State vector.
     real(wp), intent(in) :: y(:)
     real(wp) :: tension(nslings)
-    tension = sling_tensions(self%par, y)
+    associate (par => self%par)
+      tension = sling_tensions(par%slings_attached, par%slings, par%boat_part, par%hooks, y)
+    end associate
   end function system_sling_tensions
 
   !> Smallest fender-to-side distance and each fender's normal force at y.
@@ -330,7 +361,12 @@ contains
     !> Smallest fender-to-side distance [m] (negative: penetration) and each fender's
     !> normal force [N] (one per fender).
     real(wp), intent(out) :: clearance, force(:)
-    call contact_state(self%par, self%hist, y, clearance, force)
+    associate (par => self%par)
+      call contact_state(par%contact, par%fenders, self%hist%fender_states, &
+                         side_plane(par%side_y, ship_pose(par%with_ship, par%ship_part, &
+                                                          par%ship_rest, y)), &
+                         par%boat_part, y, clearance, force)
+    end associate
   end subroutine system_contact_state
 
   !> The rigging's tensions, paid-out length and lump positions at (t, y)
@@ -344,7 +380,22 @@ contains
     !> per sling, row 1 at the hook), paid-out length [m] and lump positions [m] (inertial,
     !> (3, nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
-    call rigging_state(self%par, self%hist, t, y, seg, sling, paid, lumps)
+    type(falls_ends_type) :: ends
+    real(wp) :: tr
+    associate (par => self%par, hist => self%hist)
+      if (hist%release_time >= 0.0_wp) then
+        ! The falls are not simulated after release (their states are frozen): report them
+        ! as they were when the hooks let go.
+        ends = falls_ends_type(hist%released_hooks, 0.0_wp, hist%released_pose)
+        tr = hist%release_time
+      else
+        ends = falls_ends_at(par%boat_part, par%hooks, &
+                             ship_pose(par%with_ship, par%ship_part, par%ship_rest, y), y)
+        tr = t
+      end if
+      call rigging_state(par%rig, tr, y(par%rig_slice(1):par%rig_slice(2)), ends, &
+                         hist%release_time >= 0.0_wp, seg, sling, paid, lumps)
+    end associate
   end subroutine system_rigging_state
 
 end module davit_system_model

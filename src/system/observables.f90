@@ -8,10 +8,12 @@ module davit_system_observables
   use davit_core_pose, only: pose_type
   use davit_core_layout, only: state_part_type
   use davit_core_body, only: body_inertial_position, body_kinetic_energy
-  use davit_rigging_elastic_sling, only: sling_hook_force, sling_energy
-  use davit_boat_fenders, only: side_plane_type, fender_probe, fender_loads
-  use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics
+  use davit_rigging_elastic_sling, only: elastic_sling_type, sling_hook_force, sling_energy
+  use davit_rigging_rigging, only: rigging_type
+  use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_probe, fender_loads
+  use davit_boat_contact_law, only: fender_state_type
+  use davit_system_parameters, only: system_params_type, nslings, ship_pose, hook_kinematics, &
+                                     falls_ends_type
   use davit_system_history, only: system_history_type
   use davit_boat_bem_water, only: boat_bem_kinetic_energy
   implicit none
@@ -44,83 +46,83 @@ contains
 
   !> Rigging observables at state y: cable segment tensions [N], sling segment tensions
   !> (row 1 at the hook; zero once the hooks are released) [N], paid-out length [m] and lump
-  !> positions (inertial) [m].
-  pure subroutine rigging_state(par, hist, t, y, seg, sling, paid, lumps)
-    !> The system's parameters (on the davit: its rigging).
-    type(system_params_type), intent(in) :: par
-    !> The history (release time, hook positions and ship's pose at release).
-    type(system_history_type), intent(in) :: hist
-    !> Time [s] and state vector.
-    real(wp), intent(in) :: t, y(:)
-    !> Cable segment tensions [N] (par%rig%nseg), sling segment tensions [N]
-    !> (par%rig%nlump + 1 per sling, row 1 at the hook), paid-out length [m] and lump
-    !> positions [m] (inertial, (3, par%rig%nlump, sling)).
+  !> positions (inertial) [m]. After release the caller passes the hooks, the ship's pose
+  !> and the time of the release: the falls are not simulated after it (their states are
+  !> frozen), so they are reported as they were when the hooks let go, not stretched by the
+  !> boat and ship moving on.
+  pure subroutine rigging_state(rig, t, yr, ends, released, seg, sling, paid, lumps)
+    !> The davit rigging.
+    type(rigging_type), intent(in) :: rig
+    !> Time [s] and the rigging's part of the state vector.
+    real(wp), intent(in) :: t, yr(:)
+    !> The falls' ends: the hooks and the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
+    !> Whether the hooks have been released.
+    logical, intent(in) :: released
+    !> Cable segment tensions [N] (rig%nseg), sling segment tensions [N] (rig%nlump + 1 per
+    !> sling, row 1 at the hook), paid-out length [m] and lump positions [m] (inertial,
+    !> (3, rig%nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
-    real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), tr
-    type(pose_type) :: pose
-    call hook_kinematics(par, y, hook_pos, hook_vel)
-    pose = ship_pose(par, y)
-    tr = t
-    if (hist%release_time >= 0.0_wp) then
-      ! The falls are not simulated after release (their states are frozen): report them
-      ! as they were when the hooks let go, not stretched by the boat and ship moving on.
-      hook_pos = hist%released_hooks
-      hook_vel = 0.0_wp
-      pose = hist%released_pose
-      tr = hist%release_time
-    end if
-    associate (yr => y(par%rig_slice(1):par%rig_slice(2)))
-      call par%rig%observe(tr, yr, hook_pos, hook_vel, pose, seg, sling)
-      ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
-      ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
-      if (hist%release_time >= 0.0_wp) sling = 0.0_wp
-      paid = par%rig%paid_out(yr)
-      if (par%rig%nlump > 0) lumps = par%rig%lump_positions(yr)
-    end associate
+    call rig%observe(t, yr, ends%hook_pos, ends%hook_vel, ends%ship, seg, sling)
+    ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
+    ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
+    if (released) sling = 0.0_wp
+    paid = rig%paid_out(yr)
+    if (rig%nlump > 0) lumps = rig%lump_positions(yr)
   end subroutine rigging_state
 
   !> Tensions [N] of the foundation slings at state y (zero when detached or on the davit,
   !> where rigging_state gives the sling tensions).
-  pure function sling_tensions(par, y) result(tension)
-    !> The system's parameters (the foundation slings and hooks).
-    type(system_params_type), intent(in) :: par
+  pure function sling_tensions(attached, slings, boat_part, hooks, y) result(tension)
+    !> Whether the foundation slings hold the boat.
+    logical, intent(in) :: attached
+    !> The foundation slings, one per hook.
+    type(elastic_sling_type), intent(in) :: slings(nslings)
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> Hook points in the boat frame [m], one column per sling.
+    real(wp), intent(in) :: hooks(3, nslings)
     !> State vector.
     real(wp), intent(in) :: y(:)
     real(wp) :: tension(nslings), hook_pos(3, nslings), hook_vel(3, nslings), fh(3)
     integer :: i
     tension = 0.0_wp
-    if (.not. par%slings_attached) return
-    call hook_kinematics(par, y, hook_pos, hook_vel)
+    if (.not. attached) return
+    call hook_kinematics(boat_part, hooks, y, hook_pos, hook_vel)
     do i = 1, nslings
-      call sling_hook_force(par%slings(i), hook_pos(:, i), hook_vel(:, i), fh, tension(i))
+      call sling_hook_force(slings(i), hook_pos(:, i), hook_vel(:, i), fh, tension(i))
     end do
   end function sling_tensions
 
   !> Smallest fender-to-side distance [m] (negative = penetration) and each fender's
   !> normal force [N] at state y.
-  pure subroutine contact_state(par, hist, y, clearance, force)
-    !> The system's parameters (fenders, side plane, ship's pose).
-    type(system_params_type), intent(in) :: par
-    !> The history (the fenders' contact phases, which the forces read).
-    type(system_history_type), intent(in) :: hist
+  pure subroutine contact_state(contact, fenders, states, plane, boat_part, y, clearance, &
+                                force)
+    !> Whether the fenders' contact acts (the forces are zero otherwise).
+    logical, intent(in) :: contact
+    !> The boat's fenders and their contact law.
+    type(fender_set_type), intent(in) :: fenders
+    !> Each fender's contact phase (the history's), which the forces read.
+    type(fender_state_type), intent(in) :: states(:)
+    !> The ship's side plane at y.
+    type(side_plane_type), intent(in) :: plane
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
     !> State vector.
     real(wp), intent(in) :: y(:)
     !> Smallest fender-to-side distance [m] (negative: penetration) and each fender's
     !> normal force [N] (zero without contact; one per fender).
     real(wp), intent(out) :: clearance, force(:)
-    real(wp) :: c(3, 3), r(3), delta(par%fenders%nf), delta_dot(par%fenders%nf), f(6)
-    integer :: deepest(par%fenders%nf)
-    type(side_plane_type) :: plane
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
-               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+    real(wp) :: c(3, 3), r(3), delta(fenders%nf), delta_dot(fenders%nf), f(6)
+    integer :: deepest(fenders%nf)
+    associate (q => y(boat_part%q(1):boat_part%q(2)), &
+               u => y(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
-      plane = side_plane(par%side_y, ship_pose(par, y))
-      call fender_probe(par%fenders, plane, c, r, u, deepest, delta, delta_dot)
+      call fender_probe(fenders, plane, c, r, u, deepest, delta, delta_dot)
       clearance = -maxval(delta)
       force = 0.0_wp
-      if (par%contact) call fender_loads(par%fenders, hist%fender_states, plane, c, r, u, f, &
-                                         force)
+      if (contact) call fender_loads(fenders, states, plane, c, r, u, f, force)
     end associate
   end subroutine contact_state
 
@@ -148,7 +150,7 @@ contains
                                                          y(par%radiation_part%q(1)), u)
     end associate
     if (par%on_davit) then
-      pose = ship_pose(par, y)
+      pose = ship_pose(par%with_ship, par%ship_part, par%ship_rest, y)
       hook_pos = spread(r, 2, 2) + matmul(c, par%hooks)
       if (hist%release_time >= 0.0_wp) then
         hook_pos = hist%released_hooks
@@ -158,7 +160,7 @@ contains
                              hook_pos, pose)
     end if
     if (.not. par%slings_attached) return
-    call hook_kinematics(par, y, hook_pos, hook_vel)
+    call hook_kinematics(par%boat_part, par%hooks, y, hook_pos, hook_vel)
     do i = 1, nslings
       e = e + sling_energy(par%slings(i), hook_pos(:, i))
     end do

@@ -21,6 +21,7 @@ module davit_system_parameters
   implicit none
   private
   public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics, fender_gaps
+  public :: falls_ends_type, falls_ends_at
 
   !> Number of slings (and hooks): fore and aft.
   integer, parameter :: nslings = 2
@@ -86,28 +87,57 @@ module davit_system_parameters
     real(wp) :: release_delay = 0.0_wp
   end type system_params_type
 
+  !> Where the davit's falls end at a state: the hooks (on the boat) and the ship that
+  !> carries the davit heads, lead sheave and drum.
+  type :: falls_ends_type
+    !> Positions [m] and velocities [m/s] of the hooks, inertial components, one column
+    !> per sling.
+    real(wp) :: hook_pos(3, nslings) = 0.0_wp, hook_vel(3, nslings) = 0.0_wp
+    !> The ship's pose.
+    type(pose_type) :: ship
+  end type falls_ends_type
+
 contains
 
   !> The ship's pose at state y: CG, rotation (ship -> N), velocity and angular velocity
   !> (inertial components).
-  pure function ship_pose(par, y) result(pose)
-    !> The system's parameters (with_ship, ship_part, ship_rest).
-    type(system_params_type), intent(in) :: par
+  pure function ship_pose(with_ship, ship_part, ship_rest, y) result(pose)
+    !> Whether a 6-DOF ship moves (system_params_type's with_ship).
+    logical, intent(in) :: with_ship
+    !> The ship's rigid-body part of the state (used when with_ship).
+    type(state_part_type), intent(in) :: ship_part
+    !> The ship at rest in its deck pose (used when not with_ship).
+    type(pose_type), intent(in) :: ship_rest
     !> The system's state.
     real(wp), intent(in) :: y(:)
     type(pose_type) :: pose
-    if (.not. par%with_ship) then
-      pose = par%ship_rest
+    if (.not. with_ship) then
+      pose = ship_rest
       return
     end if
-    associate (q => y(par%ship_part%q(1):par%ship_part%q(2)), &
-               u => y(par%ship_part%u(1):par%ship_part%u(2)))
+    associate (q => y(ship_part%q(1):ship_part%q(2)), &
+               u => y(ship_part%u(1):ship_part%u(2)))
       pose%c = rotation_matrix(q(1:3))
       pose%r = q(4:6)
       pose%v = matmul(pose%c, u(4:6))
       pose%w = matmul(pose%c, u(1:3))
     end associate
   end function ship_pose
+
+  !> The falls' ends at state y: the hooks from the boat's part, the ship's pose as given.
+  pure function falls_ends_at(boat_part, hooks, ship, y) result(ends)
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> Hook points in the boat frame [m], one column per sling.
+    real(wp), intent(in) :: hooks(3, nslings)
+    !> The ship's pose at y (ship_pose).
+    type(pose_type), intent(in) :: ship
+    !> The system's state.
+    real(wp), intent(in) :: y(:)
+    type(falls_ends_type) :: ends
+    call hook_kinematics(boat_part, hooks, y, ends%hook_pos, ends%hook_vel)
+    ends%ship = ship
+  end function falls_ends_at
 
   !> The ship's side plane (ship-frame y = side_y, normal +s2) carried by the ship.
   pure function side_plane(side_y, pose) result(plane)
@@ -124,9 +154,11 @@ contains
   end function side_plane
 
   !> Inertial positions and velocities of the two hooks at state y.
-  pure subroutine hook_kinematics(par, y, hook_pos, hook_vel)
-    !> The system's parameters (boat_part, hooks).
-    type(system_params_type), intent(in) :: par
+  pure subroutine hook_kinematics(boat_part, hooks, y, hook_pos, hook_vel)
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
+    !> Hook points in the boat frame [m], one column per sling.
+    real(wp), intent(in) :: hooks(3, nslings)
     !> The system's state.
     real(wp), intent(in) :: y(:)
     !> Positions [m] and velocities [m/s] of the hooks, inertial components, one column
@@ -134,34 +166,37 @@ contains
     real(wp), intent(out) :: hook_pos(3, nslings), hook_vel(3, nslings)
     real(wp) :: c(3, 3), r(3)
     integer :: i
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
-               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+    associate (q => y(boat_part%q(1):boat_part%q(2)), &
+               u => y(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
       do i = 1, nslings
-        hook_pos(:, i) = r + matmul(c, par%hooks(:, i))
-        hook_vel(:, i) = matmul(c, body_point_velocity(u, par%hooks(:, i)))
+        hook_pos(:, i) = r + matmul(c, hooks(:, i))
+        hook_vel(:, i) = matmul(c, body_point_velocity(u, hooks(:, i)))
       end do
     end associate
   end subroutine hook_kinematics
 
   !> Each fender's signed distance into the ship's side delta (> 0: indentation) and its
   !> rate delta_dot at state y (eqs. 29-33).
-  pure subroutine fender_gaps(par, y, delta, delta_dot)
-    !> The system's parameters (fenders, side plane, ship's pose).
-    type(system_params_type), intent(in) :: par
+  pure subroutine fender_gaps(fenders, side, boat_part, y, delta, delta_dot)
+    !> The boat's fenders (points in the boat frame).
+    type(fender_set_type), intent(in) :: fenders
+    !> The ship's side plane at y (side_plane of the ship's pose).
+    type(side_plane_type), intent(in) :: side
+    !> The boat's rigid-body part of the state.
+    type(state_part_type), intent(in) :: boat_part
     !> The system's state.
     real(wp), intent(in) :: y(:)
     !> Each fender's indentation delta [m] (> 0 into the ship's side; its deepest point's)
     !> and its rate delta_dot [m/s] (> 0 approaching).
-    real(wp), intent(out) :: delta(par%fenders%nf), delta_dot(par%fenders%nf)
+    real(wp), intent(out) :: delta(fenders%nf), delta_dot(fenders%nf)
     real(wp) :: c(3, 3)
-    integer :: deepest(par%fenders%nf)
-    associate (q => y(par%boat_part%q(1):par%boat_part%q(2)), &
-               u => y(par%boat_part%u(1):par%boat_part%u(2)))
+    integer :: deepest(fenders%nf)
+    associate (q => y(boat_part%q(1):boat_part%q(2)), &
+               u => y(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
-      call fender_probe(par%fenders, side_plane(par%side_y, ship_pose(par, y)), c, &
-                        matmul(c, q(4:6)), u, deepest, delta, delta_dot)
+      call fender_probe(fenders, side, c, matmul(c, q(4:6)), u, deepest, delta, delta_dot)
     end associate
   end subroutine fender_gaps
 
