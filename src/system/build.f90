@@ -314,7 +314,7 @@ contains
     type(strip_wave_cache_type), intent(out) :: waves
     !> The grids of the sea around the boat, built when kinematics = 'grid'.
     type(wave_grid_type), intent(inout) :: surface_grid, volume_grid
-    watch = new_surface_watch(sea, n, max(surface_watch_interval,     watch = new_surface_watch(sea, n, max(surface_watch_interval, cfg%simulation%wave_update))
+    watch = new_surface_watch(sea, n, max(surface_watch_interval, &
                                           cfg%simulation%wave_update))
     waves = new_strip_wave_cache(sea, n, new_slow_clock(cfg%simulation%wave_update, clock_reach))
     if (cfg%sea%grid%kinematics /= "grid") return
