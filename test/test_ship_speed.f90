@@ -56,8 +56,8 @@ contains
     write (a, "('period = ', f0.3, ', direction_deg = ', f0.1)") period, direction_deg
     text = edited(text, "wave_type = 'calm'", "wave_type = 'airy', height = 2.0, "// &
                   "ramp_periods = 2.0, "//trim(a))
-    text = edited(text, "manoeuvring = 'mmg'", "manoeuvring = 'mmg', speed_terms = '"// &
-                  terms//"'")
+    ! the deck's own level ('heave_pitch') replaced by the one asked for
+    text = edited(text, "speed_terms = 'heave_pitch'", "speed_terms = '"//terms//"'")
     call parse_config(deck, text, cfg, error)
     if (allocated(error)) error stop "test_ship_speed: deck"
     call build_ship_scene(cfg, ship, y, error)
