@@ -56,6 +56,9 @@ contains
     read (unit) text
     close (unit)
     text = edited(text, "scene = 'launch'", "scene = 'ship'")
+    ! zero-speed kernels as these cases were written for (the speed terms: test_ship_speed;
+    ! the box ship has none)
+    text = edited(text, "speed_terms = 'heave_pitch'", "speed_terms = 'none'")
     do j = 1, size(edits, 2)
       k = index(text, trim(edits(1, j)))
       if (k == 0) error stop "test_mmg_bem: deck edit not found"
