@@ -131,10 +131,12 @@ contains
     !> With two times t2 = t1 + h: cos(w h) and sin(w h) of every component, which turn
     !> the phasors of t1 into those of t2 (no second sine and cosine).
     real(wp), intent(in), optional :: cr(:), sr(:)
-    !> The load's first derivatives at each sample, (load, (d0, x, y, gy, gz), time): with
-    !> respect to the section's immersion below the tangent plane (all depths by one step),
-    !> its horizontal travel (every phase by -k . dx) and the plane's slopes across it
-    !> (depths by gy y + gz z), at fixed wet polygon [N/m per m, or per unit slope].
+    !> The load's first derivatives at the first size(sens, 3) samples, (load, parameter,
+    !> time), the parameters (d0, x, y, gy, gz, c12, c22, c13, c23): the section's immersion
+    !> below the tangent plane (all depths by one step), its horizontal travel (every phase
+    !> by -k . dx), the plane's slopes across it (depths by gy y + gz z, and the waterline
+    !> moving along the hull's sides) and the horizontal parts of the rotation's columns b2,
+    !> b3 (the lags) [N/m per m, or per unit slope or unit entry].
     real(wp), intent(out), optional :: sens(:, :, :)
     real(wp) :: depth(5), dxy(2, 5), geo(5, 5), j(4)
     ! per block: lags and vertex factors f_v = exp(-k d_v) (cos lag_v, -sin lag_v), time
@@ -321,7 +323,7 @@ contains
     real(wp), intent(in) :: k(nc), kx(nc), ky(nc), phi_a(:), phi_b(:), pa(2), pb(2)
     real(wp), intent(in) :: qr(:, :), qi(:, :), w0r(:), w0i(:), w1r(:), w1i(:), w2r(:), w2i(:)
     real(wp), intent(inout) :: acc(:, :, :)
-    real(wp) :: im0, im1, re0, re1, re2, dy, dz
+    real(wp) :: im0, im1, re0, re1, re2, a0, a1, a2, dy, dz
     integer :: it, l, l0, ll
     dy = pb(1) - pa(1)
     dz = pb(2) - pa(2)
@@ -347,15 +349,15 @@ contains
         acc(ll, 9, it) = acc(ll, 9, it) + (pa(2)*re0 + dz*re1)
         acc(ll, 10, it) = acc(ll, 10, it) + (pa(2)*re1 + dz*re2)
         ! turning the section (lags k . dx of its points): Im(q A_n), A_n = W_n - 1/(n+1)
-        im0 = qr(l, it)*(w0i(l) - 0.5_wp*(phi_a(l) + phi_b(l))) + qi(l, it)*w0r(l)
-        im1 = qr(l, it)*(w1i(l) - (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)) + qi(l, it)*w1r(l)
-        re2 = qr(l, it)*w2i(l) + qi(l, it)*(w2r(l) - 1.0_wp/3.0_wp)
-        acc(ll, 11, it) = acc(ll, 11, it) + kx(l)*im0
-        acc(ll, 12, it) = acc(ll, 12, it) + kx(l)*im1
-        acc(ll, 13, it) = acc(ll, 13, it) + kx(l)*re2
-        acc(ll, 14, it) = acc(ll, 14, it) + ky(l)*im0
-        acc(ll, 15, it) = acc(ll, 15, it) + ky(l)*im1
-        acc(ll, 16, it) = acc(ll, 16, it) + ky(l)*re2
+        a0 = qr(l, it)*(w0i(l) - 0.5_wp*(phi_a(l) + phi_b(l))) + qi(l, it)*w0r(l)
+        a1 = qr(l, it)*(w1i(l) - (phi_a(l)/6.0_wp + phi_b(l)/3.0_wp)) + qi(l, it)*w1r(l)
+        a2 = qr(l, it)*w2i(l) + qi(l, it)*(w2r(l) - 1.0_wp/3.0_wp)
+        acc(ll, 11, it) = acc(ll, 11, it) + kx(l)*a0
+        acc(ll, 12, it) = acc(ll, 12, it) + kx(l)*a1
+        acc(ll, 13, it) = acc(ll, 13, it) + kx(l)*a2
+        acc(ll, 14, it) = acc(ll, 14, it) + ky(l)*a0
+        acc(ll, 15, it) = acc(ll, 15, it) + ky(l)*a1
+        acc(ll, 16, it) = acc(ll, 16, it) + ky(l)*a2
       end do
       end do
     end do
@@ -402,19 +404,13 @@ contains
       di = fbi(l) - w0i(l)
       w1r(l) = dr*ir - di*ii
       w1i(l) = dr*ii + di*ir
+      if (order < 2) cycle
+      ! w2 = (fb - 2 w1)/z
+      dr = fbr(l) - 2.0_wp*w1r(l)
+      di = fbi(l) - 2.0_wp*w1i(l)
+      w2r(l) = dr*ir - di*ii
+      w2i(l) = dr*ii + di*ir
     end do
-    if (order >= 2) then
-      do l = 1, nc
-        z2 = (-k(l)*dd)**2 + (phi_a(l) - phi_b(l))**2
-        rz = 1.0_wp/merge(1.0_wp, z2, small(l))
-        ir = -k(l)*dd*rz
-        ii = -(phi_a(l) - phi_b(l))*rz
-        dr = fbr(l) - 2.0_wp*w1r(l)
-        di = fbi(l) - 2.0_wp*w1i(l)
-        w2r(l) = dr*ir - di*ii
-        w2i(l) = dr*ii + di*ir
-      end do
-    end if
     if (any(small)) then
       ! E1 = sum z^n/(n+1)!, E2 = sum z^n/(n! (n+2)); w0 = fa E1, w1 = fa E2: the terms
       ! in lockstep over every lane (independent lanes vectorise), kept where the lane
@@ -439,6 +435,7 @@ contains
           e1i(l) = e1i(l) + ti(l)*inv_n1(n)
           e2r(l) = e2r(l) + tr(l)*inv_n2(n)
           e2i(l) = e2i(l) + ti(l)*inv_n2(n)
+          if (order < 2) cycle
           e3r(l) = e3r(l) + tr(l)*inv_n3(n)
           e3i(l) = e3i(l) + ti(l)*inv_n3(n)
         end do
