@@ -6,7 +6,7 @@ module davit_bench_report
   use davit_kinds, only: wp, i8, davit_version
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_io_text, only: int_text
-  use davit_bench_timing, only: timed_run, rhs_rate, step_rate, real_time_factor
+  use davit_bench_timing, only: timed_run, per_wall
   use davit_bench_sea, only: bench_result
   implicit none
   private
@@ -105,8 +105,9 @@ contains
       associate (r => rec%runs(i))
         write (unit, "(a)") "| "//r%name//" | "//r%deck//" | "//int_text(int(r%threads, i8))// &
           " | "//sig(r%dt)//" | "//sig(r%simulated)//" | "//sig(r%wall)//" | "// &
-          int_text(r%steps)//" | "//int_text(r%rhs_evaluations)//" | "//sig(rhs_rate(r))// &
-          " | "//sig(step_rate(r))//" | "//sig(real_time_factor(r))//" | "// &
+          int_text(r%steps)//" | "//int_text(r%rhs_evaluations)//" | "// &
+          sig(per_wall(r, real(r%rhs_evaluations, wp)))//" | "// &
+          sig(per_wall(r, real(r%steps, wp)))//" | "//sig(per_wall(r, r%simulated))//" | "// &
           worst_text(r)//" | "//accuracy_text(r)//" |"
       end associate
     end do
@@ -161,7 +162,7 @@ contains
     type(timed_run), intent(in) :: run
     write (unit, "(a)") "davit bench: "//run%name//", "//int_text(int(run%threads, i8))// &
       " thread(s): "//sig(run%simulated)//" s simulated in "//sig(run%wall)//" s ("// &
-      sig(real_time_factor(run))//"x real time)"
+      sig(per_wall(run, run%simulated))//"x real time)"
     flush (unit)
   end subroutine print_progress
 
@@ -229,7 +230,8 @@ contains
                         dims="run")
     call w%write_1d_int("bench/runs/rhs_evaluations", runs%rhs_evaluations, "-", &
                         "Right-hand-side evaluations (summed)", dims="run")
-    call w%write_1d("bench/runs/rhs_per_second", [(rhs_rate(runs(i)), i = 1, size(runs))], &
+    call w%write_1d("bench/runs/rhs_per_second", &
+                    per_wall(runs, real(runs%rhs_evaluations, wp)), &
                     "1/s", "rhs_evaluations / wall_time", dims="run")
     call w%write_1d("bench/runs/setup_time", runs%setup, "s", "A scene's set-up wall "// &
                     "time: deck read, system built (BEM databases, sea, rigging); 0 for "// &
@@ -240,10 +242,9 @@ contains
     call w%write_1d("bench/runs/worst_interval_wall_time", runs%worst_interval, "s", &
                     "Longest wall time of one output interval of a scene (a frame of a "// &
                     "live display); 0 for sweeps", dims="run")
-    call w%write_1d("bench/runs/steps_per_second", [(step_rate(runs(i)), i = 1, size(runs))], &
+    call w%write_1d("bench/runs/steps_per_second", per_wall(runs, real(runs%steps, wp)), &
                     "1/s", "steps / wall_time", dims="run")
-    call w%write_1d("bench/runs/real_time_factor", &
-                    [(real_time_factor(runs(i)), i = 1, size(runs))], "-", &
+    call w%write_1d("bench/runs/real_time_factor", per_wall(runs, runs%simulated), "-", &
                     "simulated_time / wall_time", dims="run")
     call w%write_1d_int("bench/runs/accuracy_known", &
                         [(merge(1_i8, 0_i8, runs(i)%accuracy%known), i = 1, size(runs))], &

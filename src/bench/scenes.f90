@@ -143,8 +143,8 @@ contains
     ! the last sample is the last state: t_end, or where the launch log ended the run
     run%simulated = rec%time(rec%n)
     run%wall = summary%wall_time
-    run%worst_step = summary%worst_step
-    run%worst_interval = summary%worst_interval
+    run%worst_step = summary%worst_step%wall
+    run%worst_interval = summary%worst_interval%wall
     run%steps = summary%steps
     run%rhs_evaluations = summary%rhs_evaluations
     run%accuracy = scene_accuracy(reference, group, rec%time(1:rec%n), &

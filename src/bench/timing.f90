@@ -6,7 +6,7 @@ module davit_bench_timing
   use davit_bench_accuracy, only: accuracy_type
   implicit none
   private
-  public :: timed_run, wall_seconds, rhs_rate, step_rate, real_time_factor
+  public :: timed_run, wall_seconds, per_wall
 
   !> One timed run of a deck, or the cases of a sweep deck on a number of threads.
   type :: timed_run
@@ -38,29 +38,18 @@ contains
     t = real(count, wp)/real(rate, wp)
   end function wall_seconds
 
-  !> Right-hand-side evaluations per wall second.
-  pure real(wp) function rhs_rate(run)
+  !> A count or simulated time of a run per wall second of it (RHS/s, steps/s, real-time
+  !> factor).
+  elemental real(wp) function per_wall(run, amount)
     !> A timed run.
     type(timed_run), intent(in) :: run
-    rhs_rate = real(run%rhs_evaluations, wp)/positive(run%wall)
-  end function rhs_rate
-
-  !> Integrator steps per wall second.
-  pure real(wp) function step_rate(run)
-    !> A timed run.
-    type(timed_run), intent(in) :: run
-    step_rate = real(run%steps, wp)/positive(run%wall)
-  end function step_rate
-
-  !> Simulated seconds per wall second.
-  pure real(wp) function real_time_factor(run)
-    !> A timed run.
-    type(timed_run), intent(in) :: run
-    real_time_factor = run%simulated/positive(run%wall)
-  end function real_time_factor
+    !> The amount done in the run's wall time (evaluations, steps, simulated seconds).
+    real(wp), intent(in) :: amount
+    per_wall = amount/positive(run%wall)
+  end function per_wall
 
   !> A wall time below the clock's tick still divides (a rate, not a division by zero).
-  pure real(wp) function positive(seconds)
+  elemental real(wp) function positive(seconds)
     !> Wall time [s].
     real(wp), intent(in) :: seconds
     positive = max(seconds, 1.0e-9_wp)

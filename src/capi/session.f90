@@ -210,8 +210,13 @@ contains
     real(wp), intent(in) :: value(2)
     !> Set when a value is out of range or the deck has nothing the control can act on.
     type(error_type), allocatable, intent(out) :: error
-    call apply_control(s, kind, value, error)
-    if (allocated(error)) return
+    character(len=:), allocatable :: why
+    why = control_refusal(s, kind, value)
+    if (len(why) > 0) then
+      call fatal_error(error, why)
+      return
+    end if
+    call apply_control(s, kind, value)
     if (s%n_ctrl == size(s%ctrl_kind)) call grow_log(s)
     s%n_ctrl = s%n_ctrl + 1
     s%ctrl_pass(s%n_ctrl) = s%passes
@@ -219,51 +224,60 @@ contains
     s%ctrl_value(:, s%n_ctrl) = value
   end subroutine session_control
 
-  subroutine apply_control(s, kind, value, error)
+  !> Why the control cannot be applied (a value out of range, nothing it can act on), or
+  !> empty where it can.
+  pure function control_refusal(s, kind, value) result(why)
+    !> The session the control would act on.
+    type(session_type), intent(in) :: s
+    !> Control kind (ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading).
+    integer, intent(in) :: kind
+    !> Control values (see the control kinds).
+    real(wp), intent(in) :: value(2)
+    character(len=:), allocatable :: why
+    why = ""
+    if (kind /= ctrl_heading .and. .not. s%sys%par%on_davit) then
+      why = "deck '"//s%deck_name//"': the boat hangs on no davit "// &
+            "(no &rigging): no winch or hooks to control"
+    else if (.not. (abs(value(1)) < huge(1.0_wp) .and. abs(value(2)) < huge(1.0_wp))) then
+      why = "control value is not a finite number"
+    else if (kind == ctrl_winch .and. (abs(value(1)) > 10.0_wp .or. value(2) < 0.0_wp .or. &
+                                       value(2) > 60.0_wp)) then
+      why = "winch set-point: drum speed "//fmt_real(value(1))// &
+            " m/s must lie in [-10, 10] and its ramp "//fmt_real(value(2))//" s in [0, 60]"
+    else if (kind == ctrl_brake .and. (value(1) < 0.0_wp .or. value(1) > 60.0_wp)) then
+      why = "brake: time to rest "//fmt_real(value(1))//" s must lie in [0, 60]"
+    else if (kind == ctrl_heading .and. .not. ship_keeps_heading(s)) then
+      why = "deck '"//s%deck_name//"': the ship keeps no heading "// &
+            "(a moving ship with heading keeping, &ship): no heading set-point"
+    else if (all(kind /= [ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading])) then
+      why = "unknown control "//int_to_str(kind)
+    end if
+  end function control_refusal
+
+  pure logical function ship_keeps_heading(s)
+    !> The session.
+    type(session_type), intent(in) :: s
+    ship_keeps_heading = s%sys%par%with_ship
+    if (ship_keeps_heading) ship_keeps_heading = s%sys%ship%par%moor_k(3) > 0.0_wp
+  end function ship_keeps_heading
+
+  !> Apply a control that control_refusal let through.
+  subroutine apply_control(s, kind, value)
     !> The session the control acts on.
     type(session_type), intent(inout) :: s
     !> Control kind (ctrl_winch, ctrl_brake, ctrl_release, ctrl_heading).
     integer, intent(in) :: kind
     !> Control values (see the control kinds).
     real(wp), intent(in) :: value(2)
-    !> Set when a value is out of range or the deck has nothing the control can act on.
-    type(error_type), allocatable, intent(out) :: error
-    if (kind /= ctrl_heading .and. .not. s%sys%par%on_davit) then
-      call fatal_error(error, "deck '"//s%deck_name//"': the boat hangs on no davit "// &
-                       "(no &rigging): no winch or hooks to control")
-      return
-    end if
-    if (.not. (abs(value(1)) < huge(1.0_wp) .and. abs(value(2)) < huge(1.0_wp))) then
-      call fatal_error(error, "control value is not a finite number")
-      return
-    end if
     select case (kind)
     case (ctrl_winch)
-      if (abs(value(1)) > 10.0_wp .or. value(2) < 0.0_wp .or. value(2) > 60.0_wp) then
-        call fatal_error(error, "winch set-point: drum speed "//fmt_real(value(1))// &
-                         " m/s must lie in [-10, 10] and its ramp "//fmt_real(value(2))// &
-                         " s in [0, 60]")
-        return
-      end if
       call winch_command(s%sys%par%rig%winch, s%t, value(1), value(2))
     case (ctrl_brake)
-      if (value(1) < 0.0_wp .or. value(1) > 60.0_wp) then
-        call fatal_error(error, "brake: time to rest "//fmt_real(value(1))// &
-                         " s must lie in [0, 60]")
-        return
-      end if
       call winch_command(s%sys%par%rig%winch, s%t, 0.0_wp, value(1))
     case (ctrl_release)
       if (s%sys%hist%release_time < 0.0_wp) call release_hooks(s%sys%par, s%sys%hist, s%t, s%y)
     case (ctrl_heading)
-      if (.not. s%sys%par%with_ship .or. s%sys%ship%par%moor_k(3) <= 0.0_wp) then
-        call fatal_error(error, "deck '"//s%deck_name//"': the ship keeps no heading "// &
-                         "(a moving ship with heading keeping, &ship): no heading set-point")
-        return
-      end if
       call s%sys%ship%set_heading(value(1))
-    case default
-      call fatal_error(error, "unknown control "//int_to_str(kind))
     end select
   end subroutine apply_control
 

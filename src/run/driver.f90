@@ -227,10 +227,10 @@ contains
       ! what a real-time user meets: the slowest step, and the slowest output interval
       ! (a frame), in wall time
       call system_clock(tick)
-      call summary%note_step(real(tick - last_tick, wp)/real(rate, wp), t)
+      call summary%worst_step%note(real(tick - last_tick, wp)/real(rate, wp), t)
       last_tick = tick
       if (t == t_next) then
-        call summary%note_interval(real(tick - sample_tick, wp)/real(rate, wp), t)
+        call summary%worst_interval%note(real(tick - sample_tick, wp)/real(rate, wp), t)
         sample_tick = tick
       end if
     end do
