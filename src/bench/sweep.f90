@@ -5,13 +5,10 @@
 module davit_bench_sweep
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
-  use davit_io_config, only: config_type
   use davit_io_namelist, only: int_to_str
-  use davit_system_model, only: system_type
-  use davit_run_recorders, only: boat_recorder
   use davit_sweep_keys, only: sweep_config, read_sweep
-  use davit_sweep_cases, only: sweep_case, case_config
-  use davit_sweep_driver, only: prepare_cases, run_case, longest_first
+  use davit_sweep_cases, only: sweep_case
+  use davit_sweep_driver, only: prepare_cases, case_row, longest_first
   use davit_sweep_metrics, only: case_result, status_ok
   use davit_bench_timing, only: timed_run, wall_seconds
   implicit none
@@ -65,7 +62,7 @@ contains
     !$omp parallel do schedule(dynamic, 1) num_threads(threads) default(none) &
     !$omp shared(s, cases, clearance0, rows, order)
     do k = 1, size(cases)
-      call run_one(s, cases(order(k)), clearance0, rows(order(k)))
+      call case_row(s, cases(order(k)), clearance0, rows(order(k)))
     end do
     !$omp end parallel do
     run%wall = wall_seconds() - t0
@@ -85,23 +82,5 @@ contains
     run%steps = sum(rows%steps)
     run%rhs_evaluations = sum(rows%rhs_evaluations)
   end subroutine time_sweep
-
-  !> One case with its own configuration, system and recorder (locals of this thread).
-  subroutine run_one(s, c, clearance0, row)
-    !> The sweep's settings.
-    type(sweep_config), intent(in) :: s
-    !> The case.
-    type(sweep_case), intent(in) :: c
-    !> The base deck's initial clearance [m].
-    real(wp), intent(in) :: clearance0
-    !> The case's summary row.
-    type(case_result), intent(out) :: row
-    type(config_type) :: cfg
-    type(system_type), target :: sys
-    type(boat_recorder) :: rec
-    type(error_type), allocatable :: run_error
-    call case_config(s, c, clearance0, cfg)
-    call run_case(cfg, s%stop_at_release, sys, rec, row, run_error)
-  end subroutine run_one
 
 end module davit_bench_sweep

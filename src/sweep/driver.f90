@@ -40,6 +40,7 @@ module davit_sweep_driver
   implicit none
   private
   public :: sweep_options, sweep_outcome, run_sweep, prepare_cases, run_case, longest_first
+  public :: case_row
   ! for the MPI sweep (davit_sweep_mpi_sweep), which shares the set-up, rows and summary
   public :: sweep_state, sweep_run, start_sweep, finish_sweep, store_case, thread_count
   public :: series
@@ -350,6 +351,25 @@ contains
     end if
     !$omp end critical (davit_sweep_io)
   end subroutine run_and_store
+
+  !> One case with its own configuration, system and recorder (locals of the calling
+  !> thread), for the runners that keep only its row (the bench, the MPI workers).
+  subroutine case_row(s, c, clearance0, row)
+    !> The sweep's settings.
+    type(sweep_config), intent(in) :: s
+    !> The case.
+    type(sweep_case), intent(in) :: c
+    !> The base deck's initial clearance [m].
+    real(wp), intent(in) :: clearance0
+    !> The case's summary row.
+    type(case_result), intent(out) :: row
+    type(config_type) :: cfg
+    type(system_type) :: sys
+    type(boat_recorder) :: rec
+    type(error_type), allocatable :: run_error
+    call case_config(s, c, clearance0, cfg)
+    call run_case(cfg, s%stop_at_release, sys, rec, row, run_error)
+  end subroutine case_row
 
   !> Run one case: build its system, integrate with the launch metrics watching every step,
   !> return its row. A failed run gives a row of status failed with the message.

@@ -15,16 +15,13 @@ module davit_sweep_mpi_sweep
   use, intrinsic :: iso_c_binding, only: c_int
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
-  use davit_io_config, only: config_type
   use davit_io_namelist, only: int_to_str
-  use davit_system_model, only: system_type
-  use davit_run_recorders, only: boat_recorder
   use davit_sweep_keys, only: sweep_config
-  use davit_sweep_cases, only: sweep_case, case_config
+  use davit_sweep_cases, only: sweep_case
   use davit_sweep_metrics, only: case_result
   use davit_sweep_driver, only: sweep_options, sweep_outcome, sweep_run, run_sweep, &
                                 start_sweep, finish_sweep, store_case, thread_count, &
-                                prepare_cases, run_case, series
+                                prepare_cases, case_row, series
   use davit_sweep_row_codec, only: encode_row, decode_row
 #ifdef DAVIT_MPI
   use davit_sweep_adaptive, only: refuse_adaptive
@@ -243,11 +240,7 @@ contains
     real(wp), intent(in) :: clearance0
     !> Whether the rank's set-up succeeded (else the thread tells the coordinator and leaves).
     logical, intent(in) :: ready
-    type(config_type) :: cfg
-    type(system_type) :: sys
-    type(boat_recorder) :: rec
     type(case_result) :: row
-    type(error_type), allocatable :: run_error
     character(len=:), allocatable :: buf
     integer :: c, tag
     tag = 0
@@ -266,8 +259,7 @@ contains
       call MPI_Recv(c, 1, MPI_INTEGER, 0, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE)
       !$omp end critical (davit_sweep_mpi)
       if (c <= 0 .or. c > size(cases)) exit
-      call case_config(s, cases(c), clearance0, cfg)
-      call run_case(cfg, s%stop_at_release, sys, rec, row, run_error)
+      call case_row(s, cases(c), clearance0, row)
       buf = encode_row(c, row)
     end do
   end subroutine work_thread

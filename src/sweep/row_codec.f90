@@ -9,12 +9,12 @@ module davit_sweep_row_codec
   use davit_kinds, only: wp, i8
   use davit_error, only: error_type, fatal_error
   use davit_sweep_metrics, only: case_result
-  use davit_assess_rules, only: n_checks
+  use davit_sweep_result_columns, only: nreal_fields, real_fields, set_reals
   implicit none
   private
   public :: encode_row, decode_row
 
-  integer, parameter :: nint_fields = 8, nreal_fields = 15 + 3*n_checks
+  integer, parameter :: nint_fields = 8
   integer, parameter :: int_bytes = nint_fields*storage_size(0_i8)/8
   integer, parameter :: real_bytes = nreal_fields*storage_size(0.0_wp)/8
 
@@ -75,43 +75,6 @@ contains
     if (header(7) >= 0) row%message = buf(at + 1:at + nm)
     if (header(8) >= 0) row%outcome = buf(at + nm + 1:at + nm + no)
   end subroutine decode_row
-
-  pure function real_fields(row) result(x)
-    !> The summary row whose reals are listed.
-    type(case_result), intent(in) :: row
-    real(wp) :: x(nreal_fields)
-    x = [row%min_clearance, row%peak_horizontal_acceleration, &
-         row%peak_vertical_acceleration, row%peak_segment_tension, row%first_contact_time, &
-         row%waterborne_time, row%end_time, row%wall_time, row%peak_sling_tension, &
-         row%peak_fall_tension, row%max_impact_speed, row%peak_seat_acceleration, &
-         row%swl_exceeded_time, row%mbl_exceeded_time, row%impact_speed_exceeded_time, &
-         row%check_value, row%check_limit, row%check_margin]
-  end function real_fields
-
-  pure subroutine set_reals(row, x)
-    !> The summary row whose reals are set.
-    type(case_result), intent(inout) :: row
-    !> The row's reals in declaration order, then the checks' values, limits and margins.
-    real(wp), intent(in) :: x(nreal_fields)
-    row%min_clearance = x(1)
-    row%peak_horizontal_acceleration = x(2)
-    row%peak_vertical_acceleration = x(3)
-    row%peak_segment_tension = x(4)
-    row%first_contact_time = x(5)
-    row%waterborne_time = x(6)
-    row%end_time = x(7)
-    row%wall_time = x(8)
-    row%peak_sling_tension = x(9)
-    row%peak_fall_tension = x(10)
-    row%max_impact_speed = x(11)
-    row%peak_seat_acceleration = x(12)
-    row%swl_exceeded_time = x(13)
-    row%mbl_exceeded_time = x(14)
-    row%impact_speed_exceeded_time = x(15)
-    row%check_value = x(16:15 + n_checks)
-    row%check_limit = x(16 + n_checks:15 + 2*n_checks)
-    row%check_margin = x(16 + 2*n_checks:15 + 3*n_checks)
-  end subroutine set_reals
 
   pure integer(i8) function text_length(s) result(n)
     !> Text, possibly unallocated.

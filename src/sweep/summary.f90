@@ -13,6 +13,8 @@ module davit_sweep_summary
   use davit_sweep_metrics, only: case_result, status_not_run
   use davit_assess_rules, only: n_checks, check_ids, check_units, check_texts, check_sources
   use davit_sweep_shards, only: shard_spec
+  use davit_sweep_result_columns, only: result_columns, n_result_columns, nreal_fields, &
+                                        real_fields
   use davit_sweep_summary_reader, only: read_results, read_summary
   implicit none
   private
@@ -123,7 +125,6 @@ contains
     type(case_result), intent(in) :: r(:)
     ! each column through an allocatable (heap): an expression or a component of the rows
     ! passed as the argument would be a temporary on the stack, as long as the sweep
-    real(wp), allocatable :: col(:)
     integer(i8), allocatable :: icol(:)
     character(len=:), allocatable :: texts(:)
     call w%group("results")
@@ -135,10 +136,6 @@ contains
     call w%write_strings("results/message", texts, "-", &
                          "'ok', the error of a failed case, why it was not needed, or "// &
                          "empty when not run", dims="case")
-    col = r%min_clearance
-    call w%write_1d("results/min_clearance", col, "m", "Smallest fender-to-"// &
-                    "ship-side distance over the lowering; negative = indentation"//defined, &
-                    dims="case")
     icol = int(r%collided, i8)
     call w%write_1d_int("results/collided", icol, "-", &
                         "1 if min_clearance < 0 (a fender touched the ship), else 0; -1 "// &
@@ -146,32 +143,11 @@ contains
     icol = int(r%impacts, i8)
     call w%write_1d_int("results/impacts", icol, "-", "Separate contact "// &
                         "episodes over the lowering; -1 if not status 1", dims="case")
-    col = r%peak_horizontal_acceleration
-    call w%write_1d("results/peak_horizontal_acceleration", col, &
-                    "m/s^2", "Largest horizontal CG acceleration |(a_x, a_y)|, mean over "// &
-                    "each step"//defined, dims="case")
-    col = r%peak_vertical_acceleration
-    call w%write_1d("results/peak_vertical_acceleration", col, &
-                    "m/s^2", "Largest vertical CG acceleration |a_z| (gravity not "// &
-                    "subtracted: 0 hanging at rest), mean over each step"//defined, dims="case")
-    col = r%peak_segment_tension
-    call w%write_1d("results/peak_segment_tension", col, "N", &
-                    "Largest tension of any cable or sling segment over the lowering"//defined, &
-                    dims="case")
-    col = r%first_contact_time
-    call w%write_1d("results/first_contact_time", col, "s", &
-                    "Time of the first fender contact over the lowering; -1 = none"//defined, &
-                    dims="case")
-    col = r%waterborne_time
-    call w%write_1d("results/waterborne_time", col, "s", "Time the boat "// &
-                    "became waterborne; -1 = never"//defined, dims="case")
-    col = r%end_time
-    call w%write_1d("results/end_time", col, "s", "End of the lowering window: "// &
-                    "hook release, or the end of the run"//defined, dims="case")
-    call write_log_columns(w, r)
-    col = r%wall_time
-    call w%write_1d("results/wall_time", col, "s", &
-                    "Compute time of the case (one thread); NaN if not run", dims="case")
+    texts = text_column(r, "outcome")
+    call w%write_strings("results/outcome", texts, "-", "How the "// &
+                         "launch ended: released, waterborne, or not waterborne and why; "// &
+                         "empty if not run", dims="case")
+    call write_real_columns(w, r)
     icol = r%steps
     call w%write_1d_int("results/steps", icol, "-", "Integrator steps", dims="case")
     icol = r%rhs_evaluations
@@ -179,44 +155,26 @@ contains
                         "Right-hand-side evaluations of the integrator", dims="case")
   end subroutine write_results
 
-  !> The launch log's columns: peaks, limits and outcome over the run.
-  subroutine write_log_columns(w, r)
+  !> The real columns of davit_sweep_result_columns, each row's reals taken once, then the
+  !> rule checks.
+  subroutine write_real_columns(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
-    real(wp), allocatable :: col(:)
-    character(len=:), allocatable :: texts(:)
-    col = r%peak_sling_tension
-    call w%write_1d("results/peak_sling_tension", col, "N", "Largest "// &
-                    "sling tension over every step until release"//defined, dims="case")
-    col = r%peak_fall_tension
-    call w%write_1d("results/peak_fall_tension", col, "N", "Largest "// &
-                    "cable-segment (fall) tension over every step until release"//defined, &
-                    dims="case")
-    col = r%max_impact_speed
-    call w%write_1d("results/max_impact_speed", col, "m/s", "Fastest "// &
-                    "normal impact on the ship's side (0 = none)"//defined, dims="case")
-    col = r%peak_seat_acceleration
-    call w%write_1d("results/peak_seat_acceleration", col, "m/s^2", &
-                    "Largest filtered seat acceleration (&limits seat, seat_filter)"//defined, &
-                    dims="case")
-    col = r%swl_exceeded_time
-    call w%write_1d("results/swl_exceeded_time", col, "s", "First time "// &
-                    "a wire tension exceeded the safe working load; -1 = never"//defined, &
-                    dims="case")
-    col = r%mbl_exceeded_time
-    call w%write_1d("results/mbl_exceeded_time", col, "s", "First time "// &
-                    "a wire tension exceeded the minimum breaking load; -1 = never"//defined, &
-                    dims="case")
-    col = r%impact_speed_exceeded_time
-    call w%write_1d("results/impact_speed_exceeded_time", col, &
-                    "s", "First impact faster than &limits impact_speed; -1 = never"//defined, &
-                    dims="case")
-    texts = text_column(r, "outcome")
-    call w%write_strings("results/outcome", texts, "-", "How the "// &
-                         "launch ended: released, waterborne, or not waterborne and why; "// &
-                         "empty if not run", dims="case")
+    real(wp), allocatable :: x(:, :), col(:)
+    integer :: i, k
+    allocate (x(nreal_fields, size(r)))
+    do i = 1, size(r)
+      x(:, i) = real_fields(r(i))
+    end do
+    do k = 1, n_result_columns
+      associate (c => result_columns(k))
+        col = x(k, :)
+        call w%write_1d("results/"//trim(c%name), col, trim(c%units), trim(c%text), &
+                        dims="case")
+      end associate
+    end do
     call write_check_columns(w, r)
-  end subroutine write_log_columns
+  end subroutine write_real_columns
 
   !> The rule checks (davit_assess_rules, /assessment of a run): value, limit and margin
   !> of each, one column per check and quantity.

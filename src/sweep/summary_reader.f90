@@ -13,9 +13,15 @@ module davit_sweep_summary_reader
   use davit_sweep_metrics, only: case_result, not_run_result
   use davit_assess_rules, only: n_checks, check_ids
   use davit_sweep_shards, only: shard_spec, shard_text
+  use davit_sweep_result_columns, only: result_columns, n_result_columns, nreal_fields, &
+                                        set_reals
   implicit none
   private
   public :: read_results, read_summary
+
+  !> The suffixes of a rule check's three columns, in the order of real_fields.
+  character(len=*), parameter :: check_parts(0:2) = [character(len=7) :: "_value", "_limit", &
+                                                      "_margin"]
 
 contains
 
@@ -217,8 +223,6 @@ contains
     type(h5_reader_type), intent(inout) :: f
     type(case_result), intent(inout) :: r(:)
     type(error_type), allocatable, intent(out) :: error
-    real(wp), allocatable :: col(:)
-    character(len=:), allocatable :: stem
     integer(i8), allocatable :: iv(:)
     character(len=:), allocatable :: sv(:)
     integer :: i
@@ -247,56 +251,7 @@ contains
     do i = 1, size(r)
       r(i)%outcome = trim(sv(i))
     end do
-    call real_column(f, "results/min_clearance", size(r), col, error)
-    if (.not. allocated(error)) r%min_clearance = col
-    if (.not. allocated(error)) call real_column(f, "results/peak_horizontal_acceleration", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%peak_horizontal_acceleration = col
-    if (.not. allocated(error)) call real_column(f, "results/peak_vertical_acceleration", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%peak_vertical_acceleration = col
-    if (.not. allocated(error)) call real_column(f, "results/peak_segment_tension", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%peak_segment_tension = col
-    if (.not. allocated(error)) call real_column(f, "results/first_contact_time", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%first_contact_time = col
-    if (.not. allocated(error)) call real_column(f, "results/waterborne_time", size(r), col, error)
-    if (.not. allocated(error)) r%waterborne_time = col
-    if (.not. allocated(error)) call real_column(f, "results/end_time", size(r), col, error)
-    if (.not. allocated(error)) r%end_time = col
-    if (.not. allocated(error)) call real_column(f, "results/wall_time", size(r), col, error)
-    if (.not. allocated(error)) r%wall_time = col
-    if (.not. allocated(error)) call real_column(f, "results/peak_sling_tension", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%peak_sling_tension = col
-    if (.not. allocated(error)) call real_column(f, "results/peak_fall_tension", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%peak_fall_tension = col
-    if (.not. allocated(error)) call real_column(f, "results/max_impact_speed", size(r), col, error)
-    if (.not. allocated(error)) r%max_impact_speed = col
-    if (.not. allocated(error)) call real_column(f, "results/peak_seat_acceleration", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%peak_seat_acceleration = col
-    if (.not. allocated(error)) call real_column(f, "results/swl_exceeded_time", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%swl_exceeded_time = col
-    if (.not. allocated(error)) call real_column(f, "results/mbl_exceeded_time", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%mbl_exceeded_time = col
-    if (.not. allocated(error)) call real_column(f, "results/impact_speed_exceeded_time", &
-                                                 size(r), col, error)
-    if (.not. allocated(error)) r%impact_speed_exceeded_time = col
-    do i = 1, n_checks
-      if (allocated(error)) return
-      stem = "results/check_"//trim(check_ids(i))
-      call real_column(f, stem//"_value", size(r), col, error)
-      if (.not. allocated(error)) r%check_value(i) = col
-      if (.not. allocated(error)) call real_column(f, stem//"_limit", size(r), col, error)
-      if (.not. allocated(error)) r%check_limit(i) = col
-      if (.not. allocated(error)) call real_column(f, stem//"_margin", size(r), col, error)
-      if (.not. allocated(error)) r%check_margin(i) = col
-    end do
+    call real_columns(f, r, error)
     if (allocated(error)) return
     do i = 1, size(r)
       if (r(i)%status == 1 .and. (.not. ieee_is_finite(r(i)%wall_time) .or. &
@@ -307,6 +262,33 @@ contains
       end if
     end do
   end subroutine read_rows
+
+  !> The real columns of davit_sweep_result_columns, then the rule checks' values, limits
+  !> and margins, each checked by real_column; the rows' reals set where all are read.
+  subroutine real_columns(f, r, error)
+    type(h5_reader_type), intent(inout) :: f
+    type(case_result), intent(inout) :: r(:)
+    type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: x(:, :), col(:)
+    integer :: i, k
+    allocate (x(nreal_fields, size(r)))
+    do k = 1, n_result_columns
+      call real_column(f, "results/"//trim(result_columns(k)%name), size(r), col, error)
+      if (allocated(error)) return
+      x(k, :) = col
+    end do
+    do i = 1, n_checks
+      do k = 0, 2
+        call real_column(f, "results/check_"//trim(check_ids(i))//trim(check_parts(k)), &
+                         size(r), col, error)
+        if (allocated(error)) return
+        x(n_result_columns + k*n_checks + i, :) = col
+      end do
+    end do
+    do i = 1, size(r)
+      call set_reals(r(i), x(:, i))
+    end do
+  end subroutine real_columns
 
   !> Integer column `name` of length n with every value in lo..hi.
   subroutine int_column(f, name, n, lo, hi, iv, error)
