@@ -4,6 +4,8 @@ module davit_run_linear_modes
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
+  use davit_solve_integrator, only: ode_problem
+  use davit_solve_modes, only: jacobian_spectrum
   use davit_run_scene, only: scene_type, new_scene
   implicit none
   private
@@ -20,13 +22,16 @@ contains
     !> Set when the system cannot be built or the eigenvalues not found.
     type(error_type), allocatable, intent(out) :: error
     class(scene_type), allocatable :: scene
+    class(ode_problem), allocatable :: problem
+    real(wp), allocatable :: y(:)
     integer :: info
     rate_max = 0.0_wp
     omega_max = 0.0_wp
     call new_scene(cfg%simulation%scene, scene, error)
     if (allocated(error)) return
-    call scene%linear_modes(cfg, rate_max, omega_max, info, error)
+    call scene%start_problem(cfg, problem, y, error)
     if (allocated(error)) return
+    call jacobian_spectrum(problem, 0.0_wp, y, rate_max, omega_max, info)
     if (info /= 0) call fatal_error(error, "LAPACK dgeev failed on the Jacobian")
   end subroutine linear_modes
 

@@ -12,7 +12,7 @@ module davit_run_scene
   use davit_error, only: error_type, fatal_error
   use davit_io_config, only: config_type
   use davit_io_text, only: join_text
-  use davit_solve_modes, only: jacobian_spectrum
+  use davit_solve_integrator, only: ode_problem
   use davit_system_model, only: system_type
   use davit_system_build, only: new_system, initial_state
   use davit_ship_ship_model, only: ship_system_type
@@ -52,8 +52,9 @@ module davit_run_scene
     procedure :: build_boat
     !> Memory the run holds [bytes]: recorded samples, seat trace, wave components.
     procedure(memory_interface), deferred :: memory_parts
-    !> The fastest rates of the scene's system at t = 0.
-    procedure(modes_interface), deferred :: linear_modes
+    !> The scene's system and its state at t = 0, what `davit modes` linearises (an error
+    !> for a scene without dynamics).
+    procedure :: start_problem => no_problem
     !> Run the scene and write its output file.
     procedure(run_interface), deferred :: run
   end type scene_type
@@ -64,7 +65,7 @@ module davit_run_scene
   contains
     procedure :: has_boat => boat_has_boat
     procedure :: memory_parts => boat_memory
-    procedure :: linear_modes => boat_modes
+    procedure :: start_problem => boat_problem
     procedure :: run => boat_run
   end type boat_scene_type
 
@@ -84,7 +85,7 @@ module davit_run_scene
   type, extends(scene_type) :: ship_scene_type
   contains
     procedure :: memory_parts => ship_memory
-    procedure :: linear_modes => ship_modes
+    procedure :: start_problem => ship_problem
     procedure :: run => ship_run
   end type ship_scene_type
 
@@ -93,7 +94,6 @@ module davit_run_scene
   contains
     procedure :: feels_wind => sea_feels_wind
     procedure :: memory_parts => sea_memory
-    procedure :: linear_modes => sea_modes
     procedure :: run => sea_run
   end type sea_scene_type
 
@@ -109,21 +109,6 @@ module davit_run_scene
       real(wp), intent(in) :: samples, n_comp
       real(wp) :: parts(3)
     end function memory_interface
-
-    !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s] of df/dy at t = 0.
-    subroutine modes_interface(self, cfg, rate_max, omega_max, info, error)
-      import :: scene_type, config_type, wp, error_type
-      !> The scene.
-      class(scene_type), intent(in) :: self
-      !> The deck's configuration (its system at t = 0).
-      type(config_type), intent(in) :: cfg
-      !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s].
-      real(wp), intent(inout) :: rate_max, omega_max
-      !> LAPACK's dgeev status (0: found).
-      integer, intent(out) :: info
-      !> Set when the scene has no dynamics or its system cannot be built.
-      type(error_type), allocatable, intent(out) :: error
-    end subroutine modes_interface
 
     !> Run the scene and write `out_path`.
     subroutine run_interface(self, cfg, out_path, summary, error, progress)
@@ -372,60 +357,55 @@ contains
   end function grid_bytes
 
   !> The boat's launch system at t = 0.
-  subroutine boat_modes(self, cfg, rate_max, omega_max, info, error)
+  subroutine boat_problem(self, cfg, problem, y, error)
     !> The scene.
     class(boat_scene_type), intent(in) :: self
     !> The run's configuration.
     type(config_type), intent(in) :: cfg
-    !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s].
-    real(wp), intent(inout) :: rate_max, omega_max
-    !> LAPACK's dgeev status (0: found).
-    integer, intent(out) :: info
-    !> Set when the scene has no dynamics or its system cannot be built.
+    !> The boat's system built.
+    class(ode_problem), allocatable, intent(out) :: problem
+    !> Its initial state.
+    real(wp), allocatable, intent(out) :: y(:)
+    !> Set when the system cannot be built.
     type(error_type), allocatable, intent(out) :: error
-    type(system_type) :: sys
-    real(wp), allocatable :: y(:)
-    info = 0
+    type(system_type), allocatable :: sys
+    allocate (sys)
     call self%build_boat(cfg, sys, y, error)
-    if (allocated(error)) return
-    call jacobian_spectrum(sys, 0.0_wp, y, rate_max, omega_max, info)
-  end subroutine boat_modes
+    call move_alloc(sys, problem)
+  end subroutine boat_problem
 
   !> The ship alone at t = 0.
-  subroutine ship_modes(self, cfg, rate_max, omega_max, info, error)
+  subroutine ship_problem(self, cfg, problem, y, error)
     !> The scene.
     class(ship_scene_type), intent(in) :: self
     !> The run's configuration.
     type(config_type), intent(in) :: cfg
-    !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s].
-    real(wp), intent(inout) :: rate_max, omega_max
-    !> LAPACK's dgeev status (0: found).
-    integer, intent(out) :: info
-    !> Set when the scene has no dynamics or its system cannot be built.
+    !> The ship's system built.
+    class(ode_problem), allocatable, intent(out) :: problem
+    !> Its initial state.
+    real(wp), allocatable, intent(out) :: y(:)
+    !> Set when the ship cannot be built.
     type(error_type), allocatable, intent(out) :: error
-    type(ship_system_type) :: ship
-    real(wp), allocatable :: y(:)
-    info = 0
+    type(ship_system_type), allocatable :: ship
+    allocate (ship)
     call build_ship_scene(cfg, ship, y, error)
-    if (allocated(error)) return
-    call jacobian_spectrum(ship, 0.0_wp, y, rate_max, omega_max, info)
-  end subroutine ship_modes
+    call move_alloc(ship, problem)
+  end subroutine ship_problem
 
-  !> The sea has no dynamics of its own.
-  subroutine sea_modes(self, cfg, rate_max, omega_max, info, error)
+  !> A scene without dynamics of its own (the sea) has nothing to linearise.
+  subroutine no_problem(self, cfg, problem, y, error)
     !> The scene.
-    class(sea_scene_type), intent(in) :: self
+    class(scene_type), intent(in) :: self
     !> The run's configuration.
     type(config_type), intent(in) :: cfg
-    !> Largest eigenvalue modulus [1/s] and largest imaginary part [rad/s].
-    real(wp), intent(inout) :: rate_max, omega_max
-    !> LAPACK's dgeev status (0: found).
-    integer, intent(out) :: info
-    !> Set when the scene has no dynamics or its system cannot be built.
+    !> Not allocated.
+    class(ode_problem), allocatable, intent(out) :: problem
+    !> Not allocated.
+    real(wp), allocatable, intent(out) :: y(:)
+    !> Always set.
     type(error_type), allocatable, intent(out) :: error
-    info = 0
-    call fatal_error(error, cfg%filename//": &simulation: scene = 'sea' has no dynamics "// &
-                     "to linearise")
-  end subroutine sea_modes
+    call fatal_error(error, cfg%filename//": &simulation: scene = '"// &
+                     cfg%simulation%scene//"' has no dynamics to linearise")
+  end subroutine no_problem
 
 end module davit_run_scene

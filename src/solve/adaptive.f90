@@ -36,6 +36,9 @@ module davit_solve_adaptive
     real(wp) :: fac_min = 0.2_wp
     !> Largest factor h_new/h.
     real(wp) :: fac_max = 6.0_wp
+    !> Classical order p of the propagated solution (the embedded one has p - 1), set by
+    !> the method's init.
+    integer :: order = 0
     !> Proposed internal step (0: choose by the starting heuristic on the next call).
     real(wp) :: h = 0.0_wp
     !> Rejected trial steps (error above tolerance, non-finite, or a singular matrix).
@@ -45,8 +48,6 @@ module davit_solve_adaptive
     real(wp), allocatable :: f0(:), ynew(:), yerr(:), ytmp(:), fcn(:)
   contains
     procedure :: step => adaptive_step
-    !> Classical order p of the propagated solution (the embedded one has p - 1).
-    procedure(order_interface), deferred :: order
     procedure(attempt_interface), deferred :: attempt
     procedure(start_interface), deferred :: start
     procedure :: prepare => no_prepare
@@ -57,12 +58,6 @@ module davit_solve_adaptive
   end type adaptive_integrator
 
   abstract interface
-    pure integer function order_interface(self)
-      import :: adaptive_integrator
-      !> The integrator.
-      class(adaptive_integrator), intent(in) :: self
-    end function order_interface
-
     !> One trial step of size h from (t, y) with f0 = f(t, y) (and `prepare` done): ynew,
     !> and, when with_error, the error vector yerr.
     subroutine attempt_interface(self, problem, t, y, h, with_error)
@@ -95,13 +90,15 @@ module davit_solve_adaptive
 
 contains
 
-  !> Allocate the shared work arrays for a state of size n and reset the statistics, the
-  !> failure and the proposed step (each method's init calls it first).
-  subroutine init_work(self, n)
+  !> Allocate the shared work arrays for a state of size n, set the method's order and
+  !> reset the statistics, the failure and the proposed step (each method's init calls it
+  !> first).
+  subroutine init_work(self, n, order)
     !> The integrator whose work arrays are allocated.
     class(adaptive_integrator), intent(inout) :: self
-    !> Size of the state vector.
-    integer, intent(in) :: n
+    !> Size of the state vector; the method's classical order p.
+    integer, intent(in) :: n, order
+    self%order = order
     if (allocated(self%f0)) deallocate (self%f0, self%ynew, self%yerr, self%ytmp, self%fcn)
     allocate (self%f0(n), self%ynew(n), self%yerr(n), self%ytmp(n), self%fcn(n))
     self%steps = 0
@@ -139,7 +136,7 @@ contains
       return
     end if
     if (self%h <= 0.0_wp) then
-      self%h = initial_step(problem, t, y, self%f0, self%order(), self%atol, self%rtol, &
+      self%h = initial_step(problem, t, y, self%f0, self%order, self%atol, self%rtol, &
                             abs(dt), self%ytmp, self%fcn)
       self%rhs_evaluations = self%rhs_evaluations + 1
     end if
@@ -277,7 +274,7 @@ contains
     logical, intent(in) :: accepted
     real(wp) :: h_new
     h_new = h*min(self%fac_max, max(self%fac_min, self%safety/max(err, 1.0e-10_wp)** &
-                                                  (1.0_wp/real(self%order(), wp))))
+                                                  (1.0_wp/real(self%order, wp))))
   end function i_controller
 
   !> After an accepted trial step with error err (y = ynew already).

@@ -42,7 +42,6 @@ module davit_solve_dopri5
   contains
     procedure :: init => dopri5_init
     procedure :: name => dopri5_name
-    procedure :: order => dopri5_order
     procedure :: start => dopri5_start
     procedure :: attempt => dopri5_attempt
     procedure :: next_step => pi_controller
@@ -56,7 +55,7 @@ contains
     class(dopri5_type), intent(inout) :: self
     !> Size of the state vector.
     integer, intent(in) :: n
-    call self%init_work(n)
+    call self%init_work(n, 5)  ! DOPRI5 propagates the 5th-order solution
     if (allocated(self%k2)) deallocate (self%k2, self%k3, self%k4, self%k5, self%k6, self%k7)
     allocate (self%k2(n), self%k3(n), self%k4(n), self%k5(n), self%k6(n), self%k7(n))
     ! DOPRI5's growth limit (HNW's fac2 = 10): an explicit step may grow faster than a
@@ -64,12 +63,6 @@ contains
     self%fac_max = 10.0_wp
     self%err_old = 1.0e-4_wp
   end subroutine dopri5_init
-
-  pure integer function dopri5_order(self)
-    !> The integrator.
-    class(dopri5_type), intent(in) :: self
-    dopri5_order = 5
-  end function dopri5_order
 
   !> k1 = f0 = f(t, y); inside a macro step the last stage of the accepted step (FSAL,
   !> copied by dopri5_accepted) already is.

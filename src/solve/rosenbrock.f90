@@ -88,7 +88,6 @@ module davit_solve_rosenbrock
     procedure :: init => rosenbrock_init
     procedure :: step => rosenbrock_step
     procedure :: name => rosenbrock_name
-    procedure :: order => rosenbrock_order
     procedure :: start => linearise
     procedure :: prepare => factor
     procedure :: attempt => stages
@@ -101,18 +100,12 @@ contains
     class(rosenbrock_type), intent(inout) :: self
     !> Size of the state vector.
     integer, intent(in) :: n
-    call self%init_work(n)
+    call self%init_work(n, 3)  ! a 3rd-order method with a 2nd-order embedded one
     if (allocated(self%k)) deallocate (self%k, self%dfdt, self%jac, self%lu, self%ipiv)
     allocate (self%k(n, ns), self%dfdt(n), self%jac(n, n), self%lu(n, n), self%ipiv(n))
     self%jacobians = 0
     self%decompositions = 0
   end subroutine rosenbrock_init
-
-  pure integer function rosenbrock_order(self)
-    !> The integrator.
-    class(rosenbrock_type), intent(in) :: self
-    rosenbrock_order = 3
-  end function rosenbrock_order
 
   !> The shared driver, but each call runs to t + dt: single_step is not honoured.
   subroutine rosenbrock_step(self, problem, t, y, dt)

@@ -78,7 +78,6 @@ module davit_solve_rosenbrock_w
   contains
     procedure :: init => rosw_init
     procedure :: name => rosw_name
-    procedure :: order => rosw_order
     procedure :: start => rosw_start
     procedure :: prepare => rosw_prepare
     procedure :: attempt => stages
@@ -97,7 +96,7 @@ contains
     integer, intent(in) :: n
     real(wp) :: ginv(ns, ns)
     integer :: i
-    call self%init_work(n)
+    call self%init_work(n, 3)  ! a 3rd-order method with a 2nd-order embedded one
     if (allocated(self%u)) deallocate (self%u)
     ! the stiff set and W are the problem's: taken on the first step
     if (allocated(self%stiff)) deallocate (self%stiff, self%coupled, self%w, self%wc, &
@@ -117,12 +116,6 @@ contains
     self%age = -1
     self%h_lu = -1.0_wp
   end subroutine rosw_init
-
-  pure integer function rosw_order(self)
-    !> The integrator.
-    class(rosenbrock_w_type), intent(in) :: self
-    rosw_order = 3
-  end function rosw_order
 
   !> f0 = f(t, y) at every new point; on the first call, the problem's stiff and coupled
   !> states (W's rows and columns) are taken.
@@ -182,7 +175,7 @@ contains
     real(wp) :: h_new
     h_new = h*min(self%fac_max, max(self%fac_min, &
                                     self%safety*max(err, 1.0e-10_wp)** &
-                                    (-1.0_wp/real(self%order(), wp))))
+                                    (-1.0_wp/real(self%order, wp))))
   end function rosw_controller
 
   subroutine rosw_accepted(self, err)
