@@ -7,7 +7,6 @@ module rigging_fixture
   use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
-  use davit_core_kane, only: kane_rates
   use davit_core_body, only: rigid_body_type, body_mass_diagonal, body_w_phi, body_qdot, &
                              body_gravity_force, body_point_force, body_point_velocity, &
                              body_kinetic_energy
@@ -112,12 +111,9 @@ contains
     real(wp), intent(in) :: y(:)
     real(wp), intent(out) :: dydt(:)
     real(wp) :: hook_pos(3, 2), hook_vel(3, 2), c(3, 3), fh(3, 2), f(6)
-    real(wp) :: kane(3, size(y) - 12)
     integer :: a
     call hooks(y, hook_pos, hook_vel, c)
-    ! the rigging's own speeds by eq. 89 (one assembler, davit_core_kane)
-    call self%rig%kane_blocks(t, y(13:), hook_pos, hook_vel, ship0, dydt(13:), kane, fh)
-    call kane_rates(self%rig%layout, kane, dydt(13:))
+    call self%rig%rhs(t, y(13:), hook_pos, hook_vel, ship0, dydt(13:), fh)
     f = body_gravity_force(self%boat, c)
     do a = 1, 2
       f = f + body_point_force(hooks_b(:, a), matmul(transpose(c), fh(:, a)))

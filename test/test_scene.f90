@@ -8,6 +8,7 @@ module test_scene
   use davit_error, only: error_type
   use davit_io_config, only: config_type
   use davit_system_model, only: system_type
+  use davit_solve_integrator, only: ode_problem
   use davit_run_scene, only: scene_type, new_scene, scene_names
   use system_fixture, only: deck_config, nstate
   use harness, only: suite_type, case_state, new_case, check_true
@@ -123,8 +124,7 @@ contains
     type(system_type) :: sys
     type(config_type) :: cfg
     real(wp), allocatable :: y(:)
-    real(wp) :: rate, omega
-    integer :: info
+    class(ode_problem), allocatable :: problem
     cfg = deck_config("&simulation scene = 'sea', dt = 0.01, t_end = 1.0 /")
     call new_scene("sea", scene, error)
     if (allocated(error)) error stop "test scene: "//error%message
@@ -133,9 +133,7 @@ contains
     if (allocated(error)) call check_true(state, index(error%message, "has no boat") > 0, &
                                           "and says so: "//error%message)
     deallocate (error)
-    rate = 0.0_wp
-    omega = 0.0_wp
-    call scene%linear_modes(cfg, rate, omega, info, error)
+    call scene%start_problem(cfg, problem, y, error)
     call check_true(state, allocated(error), "the sea has no dynamics to linearise")
     if (allocated(error)) call check_true(state, index(error%message, "no dynamics") > 0, &
                                           "and says so: "//error%message)

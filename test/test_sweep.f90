@@ -20,6 +20,8 @@ module test_sweep
   use davit_sweep_shards, only: shard_spec, parse_shard, shard_mask
   use davit_sweep_row_codec, only: encode_row, decode_row
   use davit_sweep_progress, only: fmt_duration
+  use davit_sweep_result_columns, only: result_columns, case_columns, real_fields, set_reals, &
+                                        case_fields, set_case_fields
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_negative_inf
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
@@ -44,6 +46,7 @@ contains
                    new_case("shard_argument_k_of_n", shard_argument), &
                    new_case("row_message_round_trip_bitwise", row_round_trip), &
                    new_case("row_message_refuses_wrong_length", row_wrong_length), &
+                   new_case("summary_columns_name_their_fields", column_names), &
                    new_case("progress_durations_in_hours_minutes_seconds", durations)]
   end function collect_sweep
 
@@ -402,6 +405,60 @@ contains
     call decode_row(buf(:10), c, back, error)
     call check_true(state, allocated(error), "header cut")
   end subroutine row_wrong_length
+
+  !> Each summary column's name is the field its values come from and go back to: a row
+  !> (and a case) whose fields hold their own declaration index is listed by real_fields
+  !> (case_fields) as 1, 2, 3, ..., under the names written out here from the type's
+  !> declaration, and set_reals (set_case_fields) puts every value back into its field.
+  subroutine column_names(state)
+    type(case_state), intent(inout) :: state
+    character(len=*), parameter :: names(15) = [character(len=28) :: "min_clearance", &
+      "peak_horizontal_acceleration", "peak_vertical_acceleration", "peak_segment_tension", &
+      "first_contact_time", "waterborne_time", "end_time", "wall_time", &
+      "peak_sling_tension", "peak_fall_tension", "max_impact_speed", &
+      "peak_seat_acceleration", "swl_exceeded_time", "mbl_exceeded_time", &
+      "impact_speed_exceeded_time"]
+    character(len=*), parameter :: case_names(7) = [character(len=11) :: "wind_speed", &
+      "wave_height", "wave_period", "angle_deg", "clearance_b", "dt", "phase_deg"]
+    type(case_result) :: row, back
+    type(sweep_case) :: c, c_back
+    real(wp), allocatable :: x(:)
+    integer :: k, nc
+    row = case_result(min_clearance=1.0_wp, peak_horizontal_acceleration=2.0_wp, &
+                      peak_vertical_acceleration=3.0_wp, peak_segment_tension=4.0_wp, &
+                      first_contact_time=5.0_wp, waterborne_time=6.0_wp, end_time=7.0_wp, &
+                      wall_time=8.0_wp, peak_sling_tension=9.0_wp, peak_fall_tension=10.0_wp, &
+                      max_impact_speed=11.0_wp, peak_seat_acceleration=12.0_wp, &
+                      swl_exceeded_time=13.0_wp, mbl_exceeded_time=14.0_wp, &
+                      impact_speed_exceeded_time=15.0_wp)
+    nc = size(row%check_value)
+    row%check_value = [(100.0_wp + k, k = 1, nc)]
+    row%check_limit = [(200.0_wp + k, k = 1, nc)]
+    row%check_margin = [(300.0_wp + k, k = 1, nc)]
+    x = real_fields(row)
+    call check_true(state, all(x(1:15) == [(real(k, wp), k = 1, 15)]), "reals in order")
+    call check_true(state, all(x(16:) == [row%check_value, row%check_limit, &
+                                          row%check_margin]), "then the checks")
+    do k = 1, 15
+      call check_true(state, trim(result_columns(k)%name) == trim(names(k)), &
+                      "result column "//trim(names(k)))
+    end do
+    call set_reals(back, x)
+    call check_true(state, all(real_fields(back) == x), "set_reals puts each back")
+    call check_true(state, back%wall_time == 8.0_wp .and. back%end_time == 7.0_wp .and. &
+                    back%check_margin(nc) == 300.0_wp + nc, "into its own field")
+    c = sweep_case(wind_speed=1.0_wp, wave_height=2.0_wp, wave_period=3.0_wp, &
+                   angle_deg=4.0_wp, clearance_b=5.0_wp, dt=6.0_wp, phase_deg=7.0_wp)
+    call check_true(state, all(case_fields(c) == [(real(k, wp), k = 1, 7)]), &
+                    "case reals in order")
+    do k = 1, 7
+      call check_true(state, trim(case_columns(k)%name) == trim(case_names(k)), &
+                      "case column "//trim(case_names(k)))
+    end do
+    call set_case_fields(c_back, case_fields(c))
+    call check_true(state, c_back%dt == 6.0_wp .and. c_back%phase_deg == 7.0_wp .and. &
+                    c_back%wind_speed == 1.0_wp, "set_case_fields puts each back")
+  end subroutine column_names
 
   function reals_of(r) result(x)
     type(case_result), intent(in) :: r

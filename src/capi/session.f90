@@ -278,6 +278,8 @@ contains
       if (s%sys%hist%release_time < 0.0_wp) call release_hooks(s%sys%par, s%sys%hist, s%t, s%y)
     case (ctrl_heading)
       call s%sys%ship%set_heading(value(1))
+    case default
+      ! control_refusal has refused every other kind
     end select
   end subroutine apply_control
 

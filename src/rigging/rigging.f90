@@ -40,7 +40,7 @@ module davit_rigging_rigging
   use davit_kinds, only: wp, gravity, pi
   use davit_error, only: error_type, fatal_error
   use davit_core_pose, only: pose_type
-  use davit_core_kane, only: kane_v, kane_w_phi, kane_f
+  use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_winch, only: winch_speed
   use davit_rigging_sling_chain, only: max_lumps, chain_forces, chain_energy, new_sling_chain
@@ -78,6 +78,7 @@ module davit_rigging_rigging
   type, extends(rigging_state_type) :: rigging_type
   contains
     procedure :: kane_blocks => rigging_kane_blocks
+    procedure :: rhs => rigging_rhs
     procedure :: initial_state => rigging_initial_state
     procedure :: energy => rigging_energy
     procedure :: observe => rigging_observe
@@ -167,6 +168,25 @@ contains
     call evaluate(self, t, y, hook_pos, hook_vel, ship, dydt, kane, out)
     hook_force = out%hook_force
   end subroutine rigging_kane_blocks
+
+  !> Time derivative of the rigging states (kane_blocks, then eq. 89 by kane_rates) and
+  !> the forces ON the two boat hooks.
+  pure subroutine rigging_rhs(self, t, y, hook_pos, hook_vel, ship, dydt, hook_force)
+    !> The rigging.
+    class(rigging_type), intent(in) :: self
+    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
+    !> velocities [m/s].
+    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
+    !> The ship's pose.
+    type(pose_type), intent(in) :: ship
+    !> Time derivative of the rigging's states.
+    real(wp), intent(inout) :: dydt(:)
+    !> Forces on the two boat hooks (3, hook), inertial [N].
+    real(wp), intent(out) :: hook_force(3, 2)
+    real(wp) :: kane(3, self%nstate)
+    call self%kane_blocks(t, y, hook_pos, hook_vel, ship, dydt, kane, hook_force)
+    call kane_rates(self%layout, kane, dydt)
+  end subroutine rigging_rhs
 
   !> Segment tensions [N] (cable 1 segments from the drum, then cable 2) and sling segment
   !> tensions (segment k above lump k-1, k = 1 at the hook; column = sling).

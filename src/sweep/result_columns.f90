@@ -1,14 +1,17 @@
-!> The real columns of a sweep summary's /results, one table for the writer
-!> (davit_sweep_summary), the reader (davit_sweep_summary_reader) and the row codec
-!> (davit_sweep_row_codec): each row's reals in declaration order (`real_fields`, set back
-!> by `set_reals`), then the rule checks' values, limits and margins.
+!> The real columns of a sweep summary, one table each for /cases and /results that the
+!> writer (davit_sweep_summary), the reader (davit_sweep_summary_reader) and the row codec
+!> (davit_sweep_row_codec) loop over: a result row's reals in declaration order
+!> (`real_fields`, set back by `set_reals`), then the rule checks' values, limits and
+!> margins; a case's reals (`case_fields`, set back by `set_case_fields`).
 module davit_sweep_result_columns
   use davit_kinds, only: wp
   use davit_sweep_metrics, only: case_result
+  use davit_sweep_cases, only: sweep_case
   use davit_assess_rules, only: n_checks
   implicit none
   private
   public :: column_doc, result_columns, n_result_columns, nreal_fields, real_fields, set_reals
+  public :: case_columns, n_case_columns, case_fields, set_case_fields
 
   !> A real column of /results: its name, units and description.
   type :: column_doc
@@ -61,7 +64,46 @@ module davit_sweep_result_columns
     column_doc("impact_speed_exceeded_time", "s", "First impact faster than &limits "// &
                "impact_speed; -1 = never"//defined)]
 
+  !> The reals of a case.
+  integer, parameter :: n_case_columns = 7
+
+  !> The /cases columns of a case's reals, in the order of case_fields.
+  type(column_doc), parameter :: case_columns(n_case_columns) = [ &
+    column_doc("wind_speed", "m/s", "Wind speed"), &
+    column_doc("wave_height", "m", "Wave height (regular: 2a; irregular: H of eq. 44)"), &
+    column_doc("wave_period", "s", "Regular-wave period (irregular: sets only the ramp)"), &
+    column_doc("angle_deg", "deg", "Encounter angle chi: wave direction from N1 towards "// &
+               "N2, ship heading N1"), &
+    column_doc("clearance_b", "-", "Initial fender-to-ship-side distance in boat widths"), &
+    column_doc("dt", "s", "Time step"), &
+    column_doc("phase_deg", "deg", "Regular-wave phase epsilon at the origin at t = 0 "// &
+               "(irregular: unused, the seed sets the phases)")]
+
 contains
+
+  !> The case's reals in the order of case_columns.
+  pure function case_fields(c) result(x)
+    !> The case whose reals are listed.
+    type(sweep_case), intent(in) :: c
+    real(wp) :: x(n_case_columns)
+    x = [c%wind_speed, c%wave_height, c%wave_period, c%angle_deg, c%clearance_b, c%dt, &
+         c%phase_deg]
+  end function case_fields
+
+  !> The case's reals set from x, in the order of case_columns.
+  pure subroutine set_case_fields(c, x)
+    !> The case whose reals are set.
+    type(sweep_case), intent(inout) :: c
+    !> Its reals in the order of case_columns.
+    real(wp), intent(in) :: x(n_case_columns)
+    c%wind_speed = x(1)
+    c%wave_height = x(2)
+    c%wave_period = x(3)
+    c%angle_deg = x(4)
+    c%clearance_b = x(5)
+    c%dt = x(6)
+    c%phase_deg = x(7)
+  end subroutine set_case_fields
 
   !> The row's reals: the columns in declaration order, then the checks' values, limits
   !> and margins.

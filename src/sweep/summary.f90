@@ -13,8 +13,8 @@ module davit_sweep_summary
   use davit_sweep_metrics, only: case_result, status_not_run
   use davit_assess_rules, only: n_checks, check_ids, check_units, check_texts, check_sources
   use davit_sweep_shards, only: shard_spec
-  use davit_sweep_result_columns, only: result_columns, n_result_columns, nreal_fields, &
-                                        real_fields
+  use davit_sweep_result_columns, only: column_doc, result_columns, nreal_fields, &
+                                        real_fields, case_columns, n_case_columns, case_fields
   use davit_sweep_summary_reader, only: read_results, read_summary
   implicit none
   private
@@ -74,7 +74,6 @@ contains
     type(sweep_case), intent(in) :: cases(:)
     ! each column through an allocatable (heap): an expression or a component of the rows
     ! passed as the argument would be a temporary on the stack, as long as the sweep
-    real(wp), allocatable :: col(:)
     integer(i8), allocatable :: icol(:)
     call w%group("cases")
     icol = int(cases%index, i8)
@@ -97,27 +96,7 @@ contains
     icol = merge(1_i8, 0_i8, cases%wind)
     call w%write_1d_int("cases/wind", icol, "-", &
                         "1 = wind on (along the waves), 0 = no wind", dims="case")
-    col = cases%wind_speed
-    call w%write_1d("cases/wind_speed", col, "m/s", "Wind speed", dims="case")
-    col = cases%wave_height
-    call w%write_1d("cases/wave_height", col, "m", &
-                    "Wave height (regular: 2a; irregular: H of eq. 44)", dims="case")
-    col = cases%wave_period
-    call w%write_1d("cases/wave_period", col, "s", &
-                    "Regular-wave period (irregular: sets only the ramp)", dims="case")
-    col = cases%angle_deg
-    call w%write_1d("cases/angle_deg", col, "deg", &
-                    "Encounter angle chi: wave direction from N1 towards N2, ship heading N1", &
-                    dims="case")
-    col = cases%clearance_b
-    call w%write_1d("cases/clearance_b", col, "-", &
-                    "Initial fender-to-ship-side distance in boat widths", dims="case")
-    col = cases%dt
-    call w%write_1d("cases/dt", col, "s", "Time step", dims="case")
-    col = cases%phase_deg
-    call w%write_1d("cases/phase_deg", col, "deg", "Regular-wave phase epsilon"// &
-                    " at the origin at t = 0 (irregular: unused, the seed sets the phases)", &
-                    dims="case")
+    call write_columns(w, "cases", case_columns, case_matrix(cases))
   end subroutine write_cases
 
   subroutine write_results(w, r)
@@ -160,21 +139,42 @@ contains
   subroutine write_real_columns(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
-    real(wp), allocatable :: x(:, :), col(:)
-    integer :: i, k
+    real(wp), allocatable :: x(:, :)
+    integer :: i
     allocate (x(nreal_fields, size(r)))
     do i = 1, size(r)
       x(:, i) = real_fields(r(i))
     end do
-    do k = 1, n_result_columns
-      associate (c => result_columns(k))
-        col = x(k, :)
-        call w%write_1d("results/"//trim(c%name), col, trim(c%units), trim(c%text), &
-                        dims="case")
-      end associate
-    end do
+    call write_columns(w, "results", result_columns, x)
     call write_check_columns(w, r)
   end subroutine write_real_columns
+
+  !> The columns of `table` under `group`, column k from row k of x (case, along the rows).
+  subroutine write_columns(w, group, table, x)
+    type(h5_writer_type), intent(inout) :: w
+    character(len=*), intent(in) :: group
+    type(column_doc), intent(in) :: table(:)
+    real(wp), intent(in) :: x(:, :)
+    ! each column through an allocatable (heap), as long as the sweep
+    real(wp), allocatable :: col(:)
+    integer :: k
+    do k = 1, size(table)
+      col = x(k, :)
+      call w%write_1d(group//"/"//trim(table(k)%name), col, trim(table(k)%units), &
+                      trim(table(k)%text), dims="case")
+    end do
+  end subroutine write_columns
+
+  !> The cases' reals, one column per case.
+  function case_matrix(cases) result(x)
+    type(sweep_case), intent(in) :: cases(:)
+    real(wp), allocatable :: x(:, :)
+    integer :: i
+    allocate (x(n_case_columns, size(cases)))
+    do i = 1, size(cases)
+      x(:, i) = case_fields(cases(i))
+    end do
+  end function case_matrix
 
   !> The rule checks (davit_assess_rules, /assessment of a run): value, limit and margin
   !> of each, one column per check and quantity.

@@ -13,8 +13,9 @@ module davit_sweep_summary_reader
   use davit_sweep_metrics, only: case_result, not_run_result
   use davit_assess_rules, only: n_checks, check_ids
   use davit_sweep_shards, only: shard_spec, shard_text
-  use davit_sweep_result_columns, only: result_columns, n_result_columns, nreal_fields, &
-                                        set_reals
+  use davit_sweep_result_columns, only: column_doc, result_columns, n_result_columns, &
+                                        nreal_fields, set_reals, case_columns, n_case_columns, &
+                                        set_case_fields
   implicit none
   private
   public :: read_results, read_summary
@@ -147,8 +148,9 @@ contains
     integer, intent(in) :: n
     type(sweep_case), allocatable, intent(out) :: cases(:)
     type(error_type), allocatable, intent(out) :: error
-    real(wp), allocatable :: col(:)
+    real(wp), allocatable :: x(:, :)
     integer(i8), allocatable :: iv(:)
+    integer :: i
     integer(i8), parameter :: top = huge(1)
     ! the index column first: its length checks ncase before anything of that size is made
     call int_column(f, "cases/index", n, 1_i8, int(n, i8), iv, error)
@@ -170,20 +172,11 @@ contains
     call int_column(f, "cases/wind", n, 0_i8, 1_i8, iv, error)
     if (allocated(error)) return
     cases%wind = iv == 1
-    call real_column(f, "cases/wind_speed", size(cases), col, error)
-    if (.not. allocated(error)) cases%wind_speed = col
-    if (.not. allocated(error)) call real_column(f, "cases/wave_height", size(cases), col, error)
-    if (.not. allocated(error)) cases%wave_height = col
-    if (.not. allocated(error)) call real_column(f, "cases/wave_period", size(cases), col, error)
-    if (.not. allocated(error)) cases%wave_period = col
-    if (.not. allocated(error)) call real_column(f, "cases/angle_deg", size(cases), col, error)
-    if (.not. allocated(error)) cases%angle_deg = col
-    if (.not. allocated(error)) call real_column(f, "cases/clearance_b", size(cases), col, error)
-    if (.not. allocated(error)) cases%clearance_b = col
-    if (.not. allocated(error)) call real_column(f, "cases/dt", size(cases), col, error)
-    if (.not. allocated(error)) cases%dt = col
-    if (.not. allocated(error)) call real_column(f, "cases/phase_deg", size(cases), col, error)
-    if (.not. allocated(error)) cases%phase_deg = col
+    call read_columns(f, "cases", case_columns, n, n_case_columns, x, error)
+    if (allocated(error)) return
+    do i = 1, n
+      call set_case_fields(cases(i), x(:, i))
+    end do
   end subroutine read_cases
 
   subroutine check_same_sweep(f, s, ncase, error)
@@ -271,12 +264,8 @@ contains
     type(error_type), allocatable, intent(out) :: error
     real(wp), allocatable :: x(:, :), col(:)
     integer :: i, k
-    allocate (x(nreal_fields, size(r)))
-    do k = 1, n_result_columns
-      call real_column(f, "results/"//trim(result_columns(k)%name), size(r), col, error)
-      if (allocated(error)) return
-      x(k, :) = col
-    end do
+    call read_columns(f, "results", result_columns, size(r), nreal_fields, x, error)
+    if (allocated(error)) return
     do i = 1, n_checks
       do k = 0, 2
         call real_column(f, "results/check_"//trim(check_ids(i))//trim(check_parts(k)), &
@@ -289,6 +278,25 @@ contains
       call set_reals(r(i), x(:, i))
     end do
   end subroutine real_columns
+
+  !> The columns of `table` under `group`, each of length n and checked by real_column,
+  !> into the first rows of x (nrow rows, one column per case).
+  subroutine read_columns(f, group, table, n, nrow, x, error)
+    type(h5_reader_type), intent(inout) :: f
+    character(len=*), intent(in) :: group
+    type(column_doc), intent(in) :: table(:)
+    integer, intent(in) :: n, nrow
+    real(wp), allocatable, intent(out) :: x(:, :)
+    type(error_type), allocatable, intent(out) :: error
+    real(wp), allocatable :: col(:)
+    integer :: k
+    allocate (x(nrow, n))
+    do k = 1, size(table)
+      call real_column(f, group//"/"//trim(table(k)%name), n, col, error)
+      if (allocated(error)) return
+      x(k, :) = col
+    end do
+  end subroutine read_columns
 
   !> Integer column `name` of length n with every value in lo..hi.
   subroutine int_column(f, name, n, lo, hi, iv, error)
