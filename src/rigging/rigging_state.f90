@@ -80,7 +80,7 @@ contains
     !> The rigging's own state slice.
     real(wp), intent(in) :: y(:)
     real(wp) :: theta
-    theta = y(self%drum%q(1))/self%drum_radius
+    theta = self%paid_out(y)/self%drum_radius
   end function drum_angle
 
   !> Sheave angles [rad] (empty with quasi-static sheaves).

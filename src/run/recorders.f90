@@ -223,11 +223,7 @@ contains
                       dims="sling time")
       if (sys%par%on_davit) call write_rigging(self, sys%par%rig%nsheave, sys%par%rig%nlump, w)
       if (sys%par%with_ship) then
-        call w%group("ship")
-        call w%write_2d("ship/position", self%ship_position(:, 1:n), "m", &
-                        "Ship CG position, inertial frame N (z down)", dims="component time")
-        call w%write_2d("ship/euler", self%ship_euler(:, 1:n), "rad", &
-                        "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)", dims="angle time")
+        call write_ship_pose(w, self%ship_position(:, 1:n), self%ship_euler(:, 1:n))
         call w%write_1d("ship/heading_error", self%heading_error(1:n), "rad", &
                         "Ship yaw minus the heading it keeps (its initial heading; "// &
                         "&ship heading_period)", dims="time")
@@ -389,11 +385,7 @@ contains
     integer :: n
     n = self%n
     call w%write_1d("time", self%time(1:n), "s", "Simulation time of each sample", dims="time")
-    call w%group("ship")
-    call w%write_2d("ship/position", self%position(:, 1:n), "m", &
-                    "Ship CG position, inertial frame N (z down)", dims="component time")
-    call w%write_2d("ship/euler", self%euler(:, 1:n), "rad", &
-                    "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)", dims="angle time")
+    call write_ship_pose(w, self%position(:, 1:n), self%euler(:, 1:n))
     call w%write_2d("ship/velocity", self%velocity(:, 1:n), "m/s", &
                     "Ship CG velocity, inertial frame N", dims="component time")
     call w%write_2d("ship/angular_velocity", self%angular_velocity(:, 1:n), "rad/s", &
@@ -402,6 +394,18 @@ contains
                                                 "Rudder angle, positive turns to starboard "// &
                                                 "(&mmg)", dims="time")
   end subroutine ship_write
+
+  !> The /ship group with the ship's CG position and Euler angles, (3, sample) each: the
+  !> ship scene's and the launch's.
+  subroutine write_ship_pose(w, position, euler)
+    type(h5_writer_type), intent(inout) :: w
+    real(wp), intent(in) :: position(:, :), euler(:, :)
+    call w%group("ship")
+    call w%write_2d("ship/position", position, "m", &
+                    "Ship CG position, inertial frame N (z down)", dims="component time")
+    call w%write_2d("ship/euler", euler, "rad", &
+                    "Ship roll, pitch, yaw (ZYX Euler angles, eq. 2)", dims="angle time")
+  end subroutine write_ship_pose
 
   pure function ship_state_name(self, problem, k) result(name)
     !> The recorder.
