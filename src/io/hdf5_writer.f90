@@ -46,8 +46,8 @@ module davit_io_hdf5_writer
     procedure :: create => writer_create
     procedure :: group => writer_group
     procedure :: write_1d => writer_write_1d
-    procedure :: write_2d => writer_write_nd
-    procedure :: write_3d => writer_write_nd
+    procedure :: write_2d => writer_write_2d
+    procedure :: write_3d => writer_write_3d
     procedure :: write_1d_int => writer_write_1d_int
     procedure :: write_strings => writer_write_strings
     procedure :: attr_str => writer_attr_str
@@ -148,26 +148,35 @@ contains
                        H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
   end subroutine writer_write_1d
 
-  !> Real 2-D or 3-D dataset (write_2d, write_3d), with its units and description. Rank 1
-  !> has its own routine: gfortran 12 gives a zero-size component section (`e(1:0)%time`)
-  !> size -1 when it is passed to an assumed-rank dummy.
-  subroutine writer_write_nd(self, name, data, units, description, dims)
+  subroutine writer_write_2d(self, name, data, units, description, dims)
     !> The writer.
     class(h5_writer_type), intent(inout) :: self
     !> Path of the dataset; its units; what it holds.
     character(len=*), intent(in) :: name, units, description
     !> The values (Fortran order; HDF5 shows them transposed).
-    real(wp), intent(in), target, contiguous :: data(..)
+    real(wp), intent(in) :: data(:, :)
     !> Dimension names, one per axis of `data` (see the module comment).
     character(len=*), intent(in), optional :: dims
-    ! an empty array has no address HDF5 accepts (c_loc may be null): point at a spare
-    real(wp), target :: spare(1)
-    type(c_ptr) :: buf
-    buf = c_loc(spare)
-    if (size(data) > 0) buf = c_loc(data)
+    real(wp), allocatable, target :: buf(:, :)
+    buf = data
     call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
-                       H5T_NATIVE_DOUBLE, buf, units, description, dims)
-  end subroutine writer_write_nd
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
+  end subroutine writer_write_2d
+
+  subroutine writer_write_3d(self, name, data, units, description, dims)
+    !> The writer.
+    class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
+    character(len=*), intent(in) :: name, units, description
+    !> The values (Fortran order; HDF5 shows them transposed).
+    real(wp), intent(in) :: data(:, :, :)
+    !> Dimension names, one per axis of `data` (see the module comment).
+    character(len=*), intent(in), optional :: dims
+    real(wp), allocatable, target :: buf(:, :, :)
+    buf = data
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
+  end subroutine writer_write_3d
 
   !> 64-bit integer dataset (codes, counts, flags), with its units and description.
   subroutine writer_write_1d_int(self, name, data, units, description, dims)
