@@ -23,7 +23,7 @@ module davit_solve_rosenbrock
   use davit_solve_adaptive, only: adaptive_integrator, adaptive_step
   implicit none
   private
-  public :: rosenbrock_type, stage_argument, stage_right_side, stage_combination
+  public :: rosenbrock_type, stage_function, stage_right_side, stage_combination
 
   integer, parameter :: ns = 4
   !> Stage coefficients a_ij, c_ij (strictly lower triangular, row i = stage i).
@@ -204,9 +204,7 @@ contains
     self%fcn = self%f0
     do i = 1, ns
       if (i > 1 .and. new_f(i)) then
-        call stage_argument(y, ra(i, :), self%k, i, self%ytmp)
-        call problem%rhs(t + ralpha(i)*h, self%ytmp, self%fcn)
-        self%rhs_evaluations = self%rhs_evaluations + 1
+        call stage_function(self, problem, t, y, h, ra(i, :), ralpha(i), self%k, i)
       end if
       call stage_right_side(self%fcn, rc(i, :), h, self%k, i)
       if (rgamma(i) /= 0.0_wp) self%k(:, i) = self%k(:, i) + (h*rgamma(i))*self%dfdt
@@ -214,6 +212,28 @@ contains
     end do
     call stage_combination(y, rm, re, self%k, self%ynew, self%yerr)
   end subroutine stages
+
+  !> fcn = f(t + alpha_i h, y + sum_{j < i} a_ij K_j), stage i's right-hand side (one more
+  !> evaluation), shared by the Rosenbrock methods (RODAS3 here, ROS34PW2 in
+  !> davit_solve_rosenbrock_w).
+  subroutine stage_function(self, problem, t, y, h, a, alpha, k, i)
+    ! 8 arguments: the trial's start (t, y, h), stage i's coefficients and the stages
+    !> The integrator; ytmp (the argument) and fcn written, the evaluation counted.
+    class(adaptive_integrator), intent(inout) :: self
+    !> The problem y' = f(t, y).
+    class(ode_problem), intent(in) :: problem
+    !> Time t [s] and state y at the trial's start, and the trial step h [s].
+    real(wp), intent(in) :: t, y(:), h
+    !> Row i of the stage coefficients a_ij, and the stage's time fraction alpha_i.
+    real(wp), intent(in) :: a(:), alpha
+    !> The stages K_j (n, stages); those before i are used.
+    real(wp), intent(in) :: k(:, :)
+    !> The stage.
+    integer, intent(in) :: i
+    call stage_argument(y, a, k, i, self%ytmp)
+    call problem%rhs(t + alpha*h, self%ytmp, self%fcn)
+    self%rhs_evaluations = self%rhs_evaluations + 1
+  end subroutine stage_function
 
   !> Stage i's argument y + sum_{j < i} a_ij K_j (zero coefficients skipped), shared by the
   !> Rosenbrock methods (RODAS3 here, ROS34PW2 in davit_solve_rosenbrock_w).

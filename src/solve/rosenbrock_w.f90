@@ -32,7 +32,7 @@ module davit_solve_rosenbrock_w
   use davit_kinds, only: wp
   use davit_solve_integrator, only: ode_problem
   use davit_solve_adaptive, only: adaptive_integrator
-  use davit_solve_rosenbrock, only: stage_argument, stage_right_side, stage_combination
+  use davit_solve_rosenbrock, only: stage_function, stage_right_side, stage_combination
   implicit none
   private
   public :: rosenbrock_w_type
@@ -335,9 +335,7 @@ contains
       if (i == 1) then
         self%fcn = self%f0
       else
-        call stage_argument(y, self%a(i, :), self%u, i, self%ytmp)
-        call problem%rhs(t + self%alpha(i)*h, self%ytmp, self%fcn)
-        self%rhs_evaluations = self%rhs_evaluations + 1
+        call stage_function(self, problem, t, y, h, self%a(i, :), self%alpha(i), self%u, i)
       end if
       call stage_right_side(self%fcn, self%c(i, :), h, self%u, i)
       call solve_stage(self%stiff, self%coupled, self%wc, self%lu, self%piv, h, &
