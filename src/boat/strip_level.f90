@@ -184,7 +184,7 @@ contains
       p = r + c(:, 1)*s%hull%x(k)
       if (window) then
         eta(k) = cached_elevation(cache, field, k, t, p(1), p(2))
-        slope(:, k) = cached_slope(cache, field, k, t)
+        slope(:, k) = cached_slope(cache, field, k, t, p(1), p(2))
       else
         call surface_plane(field, t, p(1), p(2), eta(k), slope(:, k))
       end if
