@@ -79,6 +79,10 @@ module davit_boat_strip_waves
     !> window (heave, roll, the passing wave), so the load is expanded about the sampled
     !> geometry as the kinematics are about their reference points.
     real(wp), allocatable :: fd(:, :, :, :), g_ref(:, :)
+    !> The far end's geometry (as g_ref) and centre (x, y) [m]: the geometry of t1 carried
+    !> on at the rate it changed since the last window (g_ref where there is none), so the
+    !> expansion covers the departure from that path, not the whole move.
+    real(wp), allocatable :: g_far(:, :), p_far(:, :)
     !> Per strip, whether its samples were taken (it was possibly wet).
     logical, allocatable :: loaded(:)
     !> Per component, cos(w h) and sin(w h): the window's far end from its near end by
@@ -103,7 +107,7 @@ contains
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), cache%eq(ne, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
-              cache%fd(3, 9, 2, n), cache%g_ref(7, n))
+              cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%g_far(7, n), cache%p_far(2, n))
     allocate (cache%cr(field%n), cache%sr(field%n))
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%sampled = .false.
@@ -155,20 +159,31 @@ contains
     !> Precomputed grids of the surface and of the water below it (absent: the sea itself).
     type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
-    real(wp) :: p(3), q(3), eta, ramp
+    real(wp) :: p(3), q(3), eta, ramp, rate
+    logical :: was_loaded(hull%n)
     integer :: k
     if (.not. cache%enabled) return
+    ! the sections' geometry is carried on at the rate it changed since the last window
+    ! (consecutive windows only)
+    rate = 0.0_wp
+    if (cache%clock%valid .and. t > cache%clock%window(1) .and. &
+        t - cache%clock%window(1) <= 2.0_wp*cache%clock%interval) &
+      rate = cache%clock%interval/(t - cache%clock%window(1))
+    was_loaded = cache%loaded
     call cache%clock%open(t)
     ramp = wave_ramp(field, t)
     cache%sampled = maybe_wet
     cache%loaded = .false.
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
-      cache%p(:, k) = p(1:2)
       call elevation_ends(cache, field, p(1), p(2), cache%ep(:, :, k), surface)
-      if (.not. maybe_wet(k)) cycle
+      if (.not. maybe_wet(k)) then
+        cache%p(:, k) = p(1:2)
+        cycle
+      end if
       eta = ramp*cache%ep(1, 1, k)
-      call sample_section_load(cache, hull, field, k, c, p, ramp)
+      call sample_section_load(cache, hull, field, k, c, p, ramp, &
+                               merge(rate, 0.0_wp, was_loaded(k)))
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
       if (wet%area > 0.0_wp) then
         q = r + matmul(c, [hull%x(k), wet%centroid])
@@ -245,26 +260,55 @@ contains
     call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v)
   end subroutine kinematic_ends
 
-  !> Dynamic section load of strip k (centre p) at both ends of the window, for its wet
-  !> polygon under the tangent plane at t1.
-  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp)
+  !> Dynamic section load of strip k (centre p) at both ends of the window: for its wet
+  !> polygon under the tangent plane at t1 and, where the section was sampled in the last
+  !> window (rate > 0), for the geometry carried on to t2 at the rate it changed since
+  !> then (each end with its own polygon); else for t1's polygon at both ends.
+  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp, rate)
     type(strip_wave_cache_type), intent(inout) :: cache
     type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
     integer, intent(in) :: k
-    real(wp), intent(in) :: c(3, 3), p(3), ramp
-    type(section_wet_type) :: wet
-    real(wp) :: grad(3), d0, load(3, 2), rate(3, 2)
+    real(wp), intent(in) :: c(3, 3), p(3), ramp, rate
+    type(section_wet_type) :: wet, wet2
+    real(wp) :: grad(3), d0, load(3, 2), rate_t(3, 2), g1(7), g2(7), p2(2), dg(9), c2(3, 3)
+    integer :: j
     grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
     d0 = p(3) + ramp*cache%ep(1, 1, k)
+    g1 = [d0, grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
+    g2 = g1 + rate*(g1 - cache%g_ref(:, k))
+    p2 = p(1:2) + rate*(p(1:2) - cache%p(:, k))
+    cache%p(:, k) = p(1:2)
     wet = section_immersion(hull, k, d0, grad(2), grad(3))
     if (wet%area <= 0.0_wp) return
-    ! both window ends in one pass: they share the edge integrals, only the phase differs
-    call section_wave_loads(field, cache%clock%window, hull, wet, c, p, d0, grad(2), grad(3), &
-                            load, rate, cache%cr, cache%sr, cache%fd(:, :, :, k))
-    cache%fk(:, 1, :, k) = load
-    cache%fk(:, 2, :, k) = rate
-    cache%g_ref(:, k) = [d0, grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
+    wet2 = wet
+    if (rate > 0.0_wp) wet2 = section_immersion(hull, k, g2(1), g2(2), g2(3))
+    if (rate <= 0.0_wp .or. wet2%area <= 0.0_wp) then
+      ! both window ends in one pass: they share the edge integrals, only the phase differs
+      call section_wave_loads(field, cache%clock%window, hull, wet, c, p, d0, grad(2), &
+                              grad(3), load, rate_t, cache%cr, cache%sr, cache%fd(:, :, :, k))
+      g2 = g1
+      p2 = p(1:2)
+    else
+      call section_wave_loads(field, cache%clock%window(1:1), hull, wet, c, p, d0, grad(2), &
+                              grad(3), load(:, 1:1), rate_t(:, 1:1), &
+                              sens=cache%fd(:, :, 1:1, k))
+      c2 = c
+      c2(1:2, 2) = g2(4:5)
+      c2(1:2, 3) = g2(6:7)
+      call section_wave_loads(field, cache%clock%window(2:2), hull, wet2, c2, [p2, p(3)], &
+                              g2(1), g2(2), g2(3), load(:, 2:2), rate_t(:, 2:2), &
+                              sens=cache%fd(:, :, 2:2, k))
+    end if
+    ! the rates along the path: d/dt at fixed geometry plus the geometry's own change
+    dg = [g2(1) - g1(1), p2 - p(1:2), g2(2:7) - g1(2:7)]/cache%clock%interval
+    do j = 1, 2
+      cache%fk(:, 1, j, k) = load(:, j)
+      cache%fk(:, 2, j, k) = rate_t(:, j) + matmul(cache%fd(:, :, j, k), dg)
+    end do
+    cache%g_ref(:, k) = g1
+    cache%g_far(:, k) = g2
+    cache%p_far(:, k) = p2
     cache%loaded(k) = .true.
   end subroutine sample_section_load
 
@@ -574,7 +618,7 @@ contains
     real(wp), intent(out) :: load(3)
     !> Whether the window holds the load of strip k.
     logical, intent(out) :: found
-    real(wp) :: hw(4), dg(9), lam
+    real(wp) :: hw(4), dg(9), lam, gr(7)
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
@@ -583,7 +627,9 @@ contains
     ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned);
     ! the derivatives, like the gradients of the kinematics, linear in time (those of t1
     ! alone leave the water's own move times the window's time in the error: first order)
-    dg = [g(1) - cache%g_ref(1, k), pc - cache%p(:, k), g(2:7) - cache%g_ref(2:7, k)]
+    gr = (1.0_wp - lam)*cache%g_ref(:, k) + lam*cache%g_far(:, k)
+    dg = [g(1) - gr(1), pc - ((1.0_wp - lam)*cache%p(:, k) + lam*cache%p_far(:, k)), &
+          g(2:7) - gr(2:7)]
     associate (f => cache%fk(:, :, :, k), s => cache%fd(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*f(:, 1, 1) + hw(2)*f(:, 2, 1) + hw(3)*f(:, 1, 2) + &
                                   hw(4)*f(:, 2, 2) + &
