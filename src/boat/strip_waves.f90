@@ -221,23 +221,58 @@ contains
     real(wp), intent(in) :: x, y
     real(wp), intent(out) :: e(nep, 2)
     type(wave_grid_type), intent(in), optional :: grid
-    integer :: j
     if (present(grid)) then
-      if (grid_covers(grid, cache%clock%window(1), x, y) .and. &
-          grid_covers(grid, cache%clock%window(2), x, y)) then
-        do j = 1, 2
-          call grid_elevation(grid, cache%clock%window(j), x, y, e(1:ne, j))
-        end do
-        ! no curvature; slope rates of the chord: the slope stays linear in time
-        e(ne + 1:ne + 3, :) = 0.0_wp
-        do j = 1, 2
-          e(ne + 4:nep, j) = (e(3:4, 2) - e(3:4, 1))/cache%clock%interval
-        end do
+      if (grid_holds(grid, cache%clock%window, x, y)) then
+        call grid_ends(grid, cache%clock%window, x, y, e)
         return
       end if
     end if
     call elevation_pass(field, cache%clock%window(1), x, y, 2, cache%cr, cache%sr, e)
   end subroutine elevation_ends
+
+  !> Whether the grid holds (x, y) and the four points half a spacing from it at both ends
+  !> of the window (the curvature's differences).
+  pure logical function grid_holds(grid, window, x, y)
+    type(wave_grid_type), intent(in) :: grid
+    real(wp), intent(in) :: window(2), x, y
+    real(wp) :: dl
+    integer :: j
+    dl = 0.5_wp*grid%h
+    grid_holds = .false.
+    do j = 1, 2
+      if (.not. (grid_covers(grid, window(j), x, y) .and. &
+                 grid_covers(grid, window(j), x - dl, y) .and. &
+                 grid_covers(grid, window(j), x + dl, y) .and. &
+                 grid_covers(grid, window(j), x, y - dl) .and. &
+                 grid_covers(grid, window(j), x, y + dl))) return
+    end do
+    grid_holds = .true.
+  end function grid_holds
+
+  !> Elevation terms at both window ends from the grid: the curvature by central
+  !> differences of its slope field half a spacing around (x, y), the slope's rates those
+  !> of its chord over the window (the slope linear in time).
+  pure subroutine grid_ends(grid, window, x, y, e)
+    type(wave_grid_type), intent(in) :: grid
+    real(wp), intent(in) :: window(2), x, y
+    real(wp), intent(out) :: e(nep, 2)
+    real(wp) :: dl, xp(ne), xm(ne), yp(ne), ym(ne)
+    integer :: j
+    dl = 0.5_wp*grid%h
+    do j = 1, 2
+      call grid_elevation(grid, window(j), x, y, e(1:ne, j))
+      call grid_elevation(grid, window(j), x + dl, y, xp)
+      call grid_elevation(grid, window(j), x - dl, y, xm)
+      call grid_elevation(grid, window(j), x, y + dl, yp)
+      call grid_elevation(grid, window(j), x, y - dl, ym)
+      e(ne + 1, j) = (xp(3) - xm(3))/(2.0_wp*dl)
+      e(ne + 2, j) = 0.5_wp*((xp(4) - xm(4)) + (yp(3) - ym(3)))/(2.0_wp*dl)
+      e(ne + 3, j) = (yp(4) - ym(4))/(2.0_wp*dl)
+    end do
+    do j = 1, 2
+      e(ne + 4:nep, j) = (e(3:4, 2) - e(3:4, 1))/(window(2) - window(1))
+    end do
+  end subroutine grid_ends
 
   !> Elevation and velocity terms at both ends of the window at (x, y, d): from the grid
   !> where it holds both, else the exact sums in one pass.
