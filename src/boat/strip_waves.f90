@@ -37,12 +37,13 @@ module davit_boat_strip_waves
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
   use davit_core_slow_clock, only: slow_clock_type, clock_renewed
+  use davit_core_hermite, only: hermite_weights
   use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
-  public :: strip_waves_due, strip_waves_cover, cached_elevation
-  public :: cached_kinematics, cached_slope, cached_wave_load
+  public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_catch_up
+  public :: cached_kinematics, cached_slope, cached_wave_load, cached_surface
   public :: elevation_sums, kinematic_sums, strip_waves_surface
 
   !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
@@ -83,6 +84,10 @@ module davit_boat_strip_waves
     !> on at the rate it changed since the last window (g_ref where there is none), so the
     !> expansion covers the departure from that path, not the whole move.
     real(wp), allocatable :: g_far(:, :), p_far(:, :)
+    !> The loads' reference centre at their window's start (x, y) [m] and that start t1k
+    !> [s]: the window's t1, or the step at which a section dry at t1 got wet (it is sampled
+    !> then, for the rest of the window).
+    real(wp), allocatable :: p_load(:, :), t_load(:)
     !> Per strip, whether its samples were taken (it was possibly wet).
     logical, allocatable :: loaded(:)
     !> Per component, cos(w h) and sin(w h): the window's far end from its near end by
@@ -107,7 +112,8 @@ contains
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), cache%eq(ne, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
-              cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%g_far(7, n), cache%p_far(2, n))
+              cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%g_far(7, n), cache%p_far(2, n), &
+              cache%p_load(2, n), cache%t_load(n))
     allocate (cache%cr(field%n), cache%sr(field%n))
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%sampled = .false.
@@ -159,31 +165,30 @@ contains
     !> Precomputed grids of the surface and of the water below it (absent: the sea itself).
     type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
-    real(wp) :: p(3), q(3), eta, ramp, rate
-    logical :: was_loaded(hull%n)
+    real(wp) :: p(3), q(3), eta, ramp, rate(hull%n)
     integer :: k
     if (.not. cache%enabled) return
-    ! the sections' geometry is carried on at the rate it changed since the last window
-    ! (consecutive windows only)
+    ! the sections' geometry is carried on at the rate it changed since its last sample
+    ! (in the window just ending only)
     rate = 0.0_wp
-    if (cache%clock%valid .and. t > cache%clock%window(1) .and. &
-        t - cache%clock%window(1) <= 2.0_wp*cache%clock%interval) &
-      rate = cache%clock%interval/(t - cache%clock%window(1))
-    was_loaded = cache%loaded
+    if (cache%clock%valid) then
+      do k = 1, hull%n
+        if (cache%loaded(k) .and. t > cache%t_load(k) .and. &
+            t - cache%t_load(k) <= 2.0_wp*cache%clock%interval) &
+          rate(k) = cache%clock%interval/(t - cache%t_load(k))
+      end do
+    end if
     call cache%clock%open(t)
     ramp = wave_ramp(field, t)
     cache%sampled = maybe_wet
     cache%loaded = .false.
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
+      cache%p(:, k) = p(1:2)
       call elevation_ends(cache, field, p(1), p(2), cache%ep(:, :, k), surface)
-      if (.not. maybe_wet(k)) then
-        cache%p(:, k) = p(1:2)
-        cycle
-      end if
+      if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
-      call sample_section_load(cache, hull, field, k, c, p, ramp, &
-                               merge(rate, 0.0_wp, was_loaded(k)))
+      call sample_section_load(cache, hull, field, k, c, p, ramp, rate(k))
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
       if (wet%area > 0.0_wp) then
         q = r + matmul(c, [hull%x(k), wet%centroid])
@@ -196,6 +201,34 @@ contains
                           cache%vq(:, :, :, k), volume)
     end do
   end subroutine strip_waves_refresh
+
+  !> After an accepted step at t inside the window: sample the section load of each strip
+  !> whose velocity the window holds but which was dry at t1 and is wet now, on [t, t2]
+  !> (its stages took the exact sums until now; sampled, the rest of the window reads it).
+  !> The geometry comes from the window's surface at the strip's centre.
+  pure subroutine strip_waves_catch_up(cache, hull, field, t, c, r)
+    !> The strips' window.
+    type(strip_wave_cache_type), intent(inout) :: cache
+    !> The hull.
+    type(boat_hull_type), intent(in) :: hull
+    !> The sea.
+    type(wave_field_type), intent(in) :: field
+    !> Time of the accepted step [s], rotation b -> inertial, CG position (inertial) [m].
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp) :: p(3), slope(2), grad(3), eta
+    integer :: k
+    if (.not. (cache%enabled .and. cache%clock%covers(t))) return
+    ! too close to the window's end: the few stages left take the exact sums
+    if (cache%clock%window(2) - t < 0.25_wp*cache%clock%interval) return
+    do k = 1, hull%n
+      if (.not. cache%sampled(k) .or. cache%loaded(k)) cycle
+      p = r + c(:, 1)*hull%x(k)
+      call cached_surface(cache, field, k, t, p(1), p(2), eta, slope)
+      grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
+      call sample_path(cache, hull, field, k, [t, cache%clock%window(2)], .false., p, &
+                       [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], 0.0_wp)
+    end do
+  end subroutine strip_waves_catch_up
 
   !> The ramped elevation and its gradient at the strip centres at the window's start, as
   !> sampled by the last refresh (exact sums: the surface watch takes them).
@@ -305,47 +338,70 @@ contains
     type(wave_field_type), intent(in) :: field
     integer, intent(in) :: k
     real(wp), intent(in) :: c(3, 3), p(3), ramp, rate
-    type(section_wet_type) :: wet, wet2
-    real(wp) :: grad(3), d0, load(3, 2), rate_t(3, 2), g1(7), g2(7), p2(2), dg(9), c2(3, 3)
-    integer :: j
+    real(wp) :: grad(3), g1(7)
     grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
-    d0 = p(3) + ramp*cache%ep(1, 1, k)
-    g1 = [d0, grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
+    g1 = [p(3) + ramp*cache%ep(1, 1, k), grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
+    call sample_path(cache, hull, field, k, cache%clock%window, .true., p, g1, rate)
+  end subroutine sample_section_load
+
+  !> Strip k's section load on `window` (its start t1k, the window's end; `whole`: the
+  !> clock's whole window, whose far end's phases are the near end's turned) for
+  !> the geometry g1 with centre p at t1k, and at the far end for that geometry carried
+  !> on at `rate` (> 0: the rate it changed since its last sample), each end with its own
+  !> wet polygon; with rate 0, or the carried polygon dry, t1k's polygon at both ends.
+  pure subroutine sample_path(cache, hull, field, k, window, whole, p, g1, rate)
+    type(strip_wave_cache_type), intent(inout) :: cache
+    type(boat_hull_type), intent(in) :: hull
+    type(wave_field_type), intent(in) :: field
+    integer, intent(in) :: k
+    real(wp), intent(in) :: window(2), p(3), g1(7), rate
+    logical, intent(in) :: whole
+    type(section_wet_type) :: wet, wet2
+    real(wp) :: load(3, 2), rate_t(3, 2), g2(7), p2(2), dg(9), c(3, 3)
+    integer :: j
     g2 = g1 + rate*(g1 - cache%g_ref(:, k))
-    p2 = p(1:2) + rate*(p(1:2) - cache%p(:, k))
-    cache%p(:, k) = p(1:2)
-    wet = section_immersion(hull, k, d0, grad(2), grad(3))
+    p2 = p(1:2) + rate*(p(1:2) - cache%p_load(:, k))
+    cache%loaded(k) = .false.
+    wet = section_immersion(hull, k, g1(1), g1(2), g1(3))
     if (wet%area <= 0.0_wp) return
     wet2 = wet
     if (rate > 0.0_wp) wet2 = section_immersion(hull, k, g2(1), g2(2), g2(3))
+    ! the lags read only the horizontal parts of b2 and b3
+    c = 0.0_wp
+    c(1:2, 2) = g1(4:5)
+    c(1:2, 3) = g1(6:7)
     if (rate <= 0.0_wp .or. wet2%area <= 0.0_wp) then
-      ! both window ends in one pass: they share the edge integrals, only the phase differs
-      call section_wave_loads(field, cache%clock%window, hull, wet, c, p, d0, grad(2), &
-                              grad(3), load, rate_t, cache%cr, cache%sr, cache%fd(:, :, :, k))
       g2 = g1
       p2 = p(1:2)
+      if (whole) then
+        ! both ends in one pass: they share the edge integrals, only the phase differs
+        call section_wave_loads(field, window, hull, wet, c, p, g1(1), g1(2), g1(3), load, &
+                                rate_t, cache%cr, cache%sr, cache%fd(:, :, :, k))
+      else
+        call section_wave_loads(field, window, hull, wet, c, p, g1(1), g1(2), g1(3), load, &
+                                rate_t, sens=cache%fd(:, :, :, k))
+      end if
     else
-      call section_wave_loads(field, cache%clock%window(1:1), hull, wet, c, p, d0, grad(2), &
-                              grad(3), load(:, 1:1), rate_t(:, 1:1), &
-                              sens=cache%fd(:, :, 1:1, k))
-      c2 = c
-      c2(1:2, 2) = g2(4:5)
-      c2(1:2, 3) = g2(6:7)
-      call section_wave_loads(field, cache%clock%window(2:2), hull, wet2, c2, [p2, p(3)], &
-                              g2(1), g2(2), g2(3), load(:, 2:2), rate_t(:, 2:2), &
-                              sens=cache%fd(:, :, 2:2, k))
+      call section_wave_loads(field, window(1:1), hull, wet, c, p, g1(1), g1(2), g1(3), &
+                              load(:, 1:1), rate_t(:, 1:1), sens=cache%fd(:, :, 1:1, k))
+      c(1:2, 2) = g2(4:5)
+      c(1:2, 3) = g2(6:7)
+      call section_wave_loads(field, window(2:2), hull, wet2, c, [p2, p(3)], g2(1), g2(2), &
+                              g2(3), load(:, 2:2), rate_t(:, 2:2), sens=cache%fd(:, :, 2:2, k))
     end if
     ! the rates along the path: d/dt at fixed geometry plus the geometry's own change
-    dg = [g2(1) - g1(1), p2 - p(1:2), g2(2:7) - g1(2:7)]/cache%clock%interval
+    dg = [g2(1) - g1(1), p2 - p(1:2), g2(2:7) - g1(2:7)]/(window(2) - window(1))
     do j = 1, 2
       cache%fk(:, 1, j, k) = load(:, j)
       cache%fk(:, 2, j, k) = rate_t(:, j) + matmul(cache%fd(:, :, j, k), dg)
     end do
     cache%g_ref(:, k) = g1
     cache%g_far(:, k) = g2
+    cache%p_load(:, k) = p(1:2)
     cache%p_far(:, k) = p2
+    cache%t_load(k) = window(1)
     cache%loaded(k) = .true.
-  end subroutine sample_section_load
+  end subroutine sample_path
 
   !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
   pure subroutine elevation_sums(field, t, x, y, e)
@@ -547,22 +603,44 @@ contains
   pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
     !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
-    !> The sea (when the window does not hold strip k).
+    !> The sea (its start-up ramp).
     type(wave_field_type), intent(in) :: field
     !> Strip index.
     integer, intent(in) :: k
     !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
-    real(wp) :: lam, dx(2), hw(4)
-    lam = window_fraction(cache, t)
-    dx = [x, y] - cache%p(:, k)
-    hw = cache%clock%weights(t)
-    associate (e => cache%ep(:, :, k))
-      eta = wave_ramp(field, t)*(hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
-                                 dot_product(centre_slope(cache, k, hw), dx) + &
-                                 0.5_wp*dot_product(dx, matmul(curvature(cache, k, lam), dx)))
-    end associate
+    real(wp) :: slope(2)
+    call cached_surface(cache, field, k, t, x, y, eta, slope)
   end function cached_elevation
+
+  !> Elevation [m] and slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip
+  !> k's centre at time t: value, slope and their rates cubic in time (Hermite), the
+  !> curvature linear in time, expanded to second order in the offset from the centre.
+  pure subroutine cached_surface(cache, field, k, t, x, y, eta, slope)
+    !> The strips' window.
+    type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (its start-up ramp).
+    type(wave_field_type), intent(in) :: field
+    !> Strip index.
+    integer, intent(in) :: k
+    !> Time [s] and horizontal position (inertial) [m].
+    real(wp), intent(in) :: t, x, y
+    !> Elevation [m] and slope [-].
+    real(wp), intent(out) :: eta, slope(2)
+    real(wp) :: hw(4), lam, dx(2), g(2), hv(3), hdx(2), ramp
+    hw = cache%clock%weights(t)
+    lam = window_fraction(cache, t)
+    ramp = wave_ramp(field, t)
+    dx = [x, y] - cache%p(:, k)
+    associate (e => cache%ep(:, :, k))
+      g = hw(1)*e(3:4, 1) + hw(2)*e(8:9, 1) + hw(3)*e(3:4, 2) + hw(4)*e(8:9, 2)
+      hv = (1.0_wp - lam)*e(5:7, 1) + lam*e(5:7, 2)
+      hdx = [hv(1)*dx(1) + hv(2)*dx(2), hv(2)*dx(1) + hv(3)*dx(2)]
+      eta = ramp*(hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
+                  dot_product(g, dx) + 0.5_wp*dot_product(dx, hdx))
+    end associate
+    slope = ramp*(g + hdx)
+  end subroutine cached_surface
 
   !> Elevation and water velocity (inertial, z down; zero above the surface) at the point
   !> pt near strip k's wet centroid at time t, as wave_kinematics gives them.
@@ -597,43 +675,19 @@ contains
   end subroutine cached_kinematics
 
   !> Surface slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip k's
-  !> centre at time t: the gradient terms and the curvature, linear in time over the window.
+  !> centre at time t (cached_surface's).
   pure function cached_slope(cache, field, k, t, x, y) result(slope)
     !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
-    !> The sea (when the window does not hold strip k).
+    !> The sea (its start-up ramp).
     type(wave_field_type), intent(in) :: field
     !> Strip index.
     integer, intent(in) :: k
     !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
-    real(wp) :: slope(2), lam
-    lam = window_fraction(cache, t)
-    slope = wave_ramp(field, t)*(centre_slope(cache, k, cache%clock%weights(t)) + &
-                                 matmul(curvature(cache, k, lam), [x, y] - cache%p(:, k)))
+    real(wp) :: slope(2), eta
+    call cached_surface(cache, field, k, t, x, y, eta, slope)
   end function cached_slope
-
-  !> The slope at strip k's centre: the cubic through its values and rates at the ends
-  !> (Hermite weights hw).
-  pure function centre_slope(cache, k, hw) result(g)
-    type(strip_wave_cache_type), intent(in) :: cache
-    integer, intent(in) :: k
-    real(wp), intent(in) :: hw(4)
-    real(wp) :: g(2)
-    associate (e => cache%ep(:, :, k))
-      g = hw(1)*e(3:4, 1) + hw(2)*e(8:9, 1) + hw(3)*e(3:4, 2) + hw(4)*e(8:9, 2)
-    end associate
-  end function centre_slope
-
-  !> The elevation's curvature (Hessian in x, y) at strip k's centre, linear in time.
-  pure function curvature(cache, k, lam) result(hess)
-    type(strip_wave_cache_type), intent(in) :: cache
-    integer, intent(in) :: k
-    real(wp), intent(in) :: lam
-    real(wp) :: hess(2, 2), hv(3)
-    hv = (1.0_wp - lam)*cache%ep(5:7, 1, k) + lam*cache%ep(5:7, 2, k)
-    hess = reshape([hv(1), hv(2), hv(2), hv(3)], [2, 2])
-  end function curvature
 
   !> Dynamic section load (F2, F3, M1) of strip k at time t from the window (found), or
   !> found = .false. where the strip was dry at t1.
@@ -653,17 +707,19 @@ contains
     real(wp), intent(out) :: load(3)
     !> Whether the window holds the load of strip k.
     logical, intent(out) :: found
-    real(wp) :: hw(4), dg(9), lam, gr(7)
+    real(wp) :: hw(4), dg(9), lam, gr(7), span(2)
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
-    hw = cache%clock%weights(t)
-    lam = window_fraction(cache, t)
+    ! the strip's own window: from the step it was sampled at to the window's end
+    span = [cache%t_load(k), cache%clock%window(2)]
+    hw = hermite_weights(span, t)
+    lam = (t - span(1))/(span(2) - span(1))
     ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned);
     ! the derivatives, like the gradients of the kinematics, linear in time (those of t1
     ! alone leave the water's own move times the window's time in the error: first order)
     gr = (1.0_wp - lam)*cache%g_ref(:, k) + lam*cache%g_far(:, k)
-    dg = [g(1) - gr(1), pc - ((1.0_wp - lam)*cache%p(:, k) + lam*cache%p_far(:, k)), &
+    dg = [g(1) - gr(1), pc - ((1.0_wp - lam)*cache%p_load(:, k) + lam*cache%p_far(:, k)), &
           g(2:7) - gr(2:7)]
     associate (f => cache%fk(:, :, :, k), s => cache%fd(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*f(:, 1, 1) + hw(2)*f(:, 2, 1) + hw(3)*f(:, 1, 2) + &
