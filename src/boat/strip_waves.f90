@@ -10,26 +10,31 @@
 !> H the cubic Hermite interpolant of the reference value from its exact values and time
 !> derivatives at t1 and t2, grad f (d/dx, d/dy, and for the velocity d/dd with d the
 !> Wheeler-stretched depth) linear in time. The elevation at the strip centres also
-!> carries its curvature (linear in time) and its slope is cubic in time: the slope sets
+!> carries its curvature (linear in time), and its slope is cubic in time: the slope sets
 !> each section's tangent plane, so a slope held at x_ref, or linear in time, put its
 !> error into the hydrostatic loads at first order (the Level 5 beam-sea launch of seed 2
-!> was 0.57 % off in its peak sling tension at h = 0.1 s; 0.05 % with them). Per component of amplitude a, frequency w and
-!> wavenumber k the error is at most a [ (w h)^4/384 + (k |dx|)^2/2 + ... ] (velocity:
-!> times w), |dx| the strip's travel since t1: ~1e-6 a at h = 0.05 s and ~1e-3 a for the
-!> shortest components when the strip moves 5 cm. The start-up ramp multiplies the result
-!> exactly. Stages outside the window fall back to the exact sum (wave_field).
+!> was 0.57 % off in its peak sling tension at h = 0.1 s; with exact slopes 0.01 %). Per
+!> component of amplitude a, frequency w and wavenumber k the error is at most
+!> a [ (w h)^4/384 + (k |dx|)^2/2 + ... ] (velocity: times w; the elevation at the
+!> centres (k |dx|)^3/6), |dx| the strip's travel since t1: ~1e-6 a at h = 0.05 s and
+!> ~1e-3 a for the shortest components when the strip moves 5 cm. The start-up ramp
+!> multiplies the result exactly. Stages outside the window fall back to the exact sum.
 !> Regular and Stokes-2 seas (one component) are always evaluated exactly.
 !> The pressure level's dynamic section load (davit_boat_strip_pressure: the pressure's
 !> decay with depth and phase across the breadth) is sampled in the window as well, with its
-!> time derivative, for the wet polygon of t1, Hermite-interpolated, and expanded to first
-!> order in the section's geometry since t1: its immersion, its travel, the tangent plane's
-!> slopes across it (with the waterline's move along the hull's sides) and its turn. Held
-!> fixed instead, the geometry cost the single-summation launch 0.6 % of its peak sling
-!> tension at h = 0.05 s and 1.5 % at 0.1 s (a beam sea rolls the boat by degrees per
-!> window, and the surface's departure from its tangent plane at the sides, a few cm, rides
-!> on the moving waterline); expanded, 0.01 % and 0.3 % (against a 0.01 s window;
-!> doc/benchmarks/multirate.md). A strip dry at t1 that wets within the window takes the
-!> exact sum.
+!> time derivative and its first derivatives in the section's geometry (its immersion, its
+!> travel, the tangent plane's slopes across it with the waterline's move along the hull's
+!> sides, and its turn), Hermite-interpolated and expanded in the geometry's departure from
+!> a path: the geometry of t1 carried on to t2 at the rate it changed since the section's
+!> last sample (each end sampled for its own wet polygon; with no earlier sample, t1's
+!> polygon at both ends). Held fixed, the geometry cost the single-summation launch 0.6 %
+!> of its peak sling tension at h = 0.05 s and 1.5 % at 0.1 s (a beam sea rolls the boat by
+!> degrees per window, and the surface's departure from its tangent plane at the sides,
+!> a few cm, rides on the moving waterline); expanded about t1's geometry 0.01 % and
+!> 0.3 %; about the path the double-summation launches keep 0.5 % at 0.15 s
+!> (doc/benchmarks/multirate.md). A section dry at t1 that wets within the window takes
+!> the exact sums until the next accepted step, which samples it for the rest of the
+!> window (strip_waves_catch_up).
 module davit_boat_strip_waves
   use davit_kinds, only: wp
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, wave_chunk, &
@@ -174,8 +179,9 @@ contains
     if (cache%clock%valid) then
       do k = 1, hull%n
         if (cache%loaded(k) .and. t > cache%t_load(k) .and. &
-            t - cache%t_load(k) <= 2.0_wp*cache%clock%interval) &
+            t - cache%t_load(k) <= 2.0_wp*cache%clock%interval) then
           rate(k) = cache%clock%interval/(t - cache%t_load(k))
+        end if
       end do
     end if
     call cache%clock%open(t)
