@@ -186,9 +186,12 @@ contains
       err_eta = max(err_eta, abs(cached_elevation(cache, field, k, t2, p(1), p(2)) - &
                                  wave_elevation(field, t2, p(1), p(2))))
       if (cache%q(3, k) < 0.05_wp) cycle
+      ! the reference's stretched depth below each surface: the window's (from the strip
+      ! centre's terms) and the sums'
       pt = [cache%q(1, k), cache%q(2, k), 0.0_wp]
-      pt(3) = cache%q(3, k) - wave_elevation(field, t2, pt(1), pt(2))
+      pt(3) = cache%q(3, k) - cached_elevation(cache, field, k, t2, pt(1), pt(2))
       call cached_kinematics(cache, field, k, t2, pt, eta, v)
+      pt(3) = cache%q(3, k) - wave_elevation(field, t2, pt(1), pt(2))
       call wave_kinematics(field, t2, pt, eta_x, v_x, a, pw)
       err_v = max(err_v, norm2(v - v_x))
       if (.not. cache%loaded(k)) cycle

@@ -9,7 +9,7 @@ module test_wave_grid
   use davit_sea_wave_field, only: wave_field_type, new_regular_wave, new_single_sum_sea, &
                                   new_irregular_sea, single_equal_energy, wave_airy, &
                                   wave_irregular, wave_elevation, wave_kinematics
-  use davit_boat_strip_waves, only: elevation_sums, kinematic_sums
+  use davit_boat_strip_sums, only: elevation_sums, kinematic_sums
   use davit_sea_spectrum, only: spectrum_m0, spectrum_band_fraction
   use davit_sea_wave_grid, only: wave_grid_type, new_wave_grid, grid_prepare, grid_covers, &
                                  grid_elevation, grid_kinematics, grid_error_bounds

@@ -37,29 +37,20 @@
 !> window (strip_waves_catch_up).
 module davit_boat_strip_waves
   use davit_kinds, only: wp
-  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, wave_chunk, &
-                                  component_phases, rotation_phasors, advance_phasors
+  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, rotation_phasors
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
   use davit_core_slow_clock, only: slow_clock_type, clock_renewed
   use davit_core_hermite, only: hermite_weights
+  use davit_boat_strip_sums, only: ne, nv, nep, elevation_pass, kinematic_pass
   use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
   public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_catch_up
   public :: cached_kinematics, cached_slope, cached_wave_load, cached_surface
-  public :: elevation_sums, kinematic_sums, strip_waves_surface
+  public :: strip_waves_surface
 
-  !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
-  integer, parameter :: ne = 4, nv = 5
-  !> Partial sums per accumulated term (8: one AVX-512 register of doubles), and the
-  !> terms of the kinematic sums: ne elevation terms, then 3 x nv velocity terms.
-  integer, parameter :: lanes = 8, nk = ne + 3*nv
-  !> Elevation terms at the strip centres: ne, then the curvature d2/dx2, d2/dxdy, d2/dy2
-  !> (the slope a section's tangent plane takes moves with the strip to first order) and
-  !> the slope's rates d2/dxdt, d2/dydt (the slope cubic in time, as the elevation).
-  integer, parameter :: nep = ne + 5
 
   type :: strip_wave_cache_type
     !> Whether the slow clock is on.
@@ -71,9 +62,9 @@ module davit_boat_strip_waves
     logical, allocatable :: sampled(:)
     !> Reference points: strip centres (x, y) and wet centroids (x, y, stretched depth d0).
     real(wp), allocatable :: p(:, :), q(:, :)
-    !> Unramped elevation terms at p, (nep, end, strip), and at q, (ne, end, strip);
-    !> velocity terms at q, (component, nv, end, strip).
-    real(wp), allocatable :: ep(:, :, :), eq(:, :, :), vq(:, :, :, :)
+    !> Unramped elevation terms at p, (nep, end, strip) (the surface near q is read from
+    !> them too); velocity terms at q, (component, nv, end, strip).
+    real(wp), allocatable :: ep(:, :, :), vq(:, :, :, :)
     !> Unramped dynamic section loads (F2, F3, M1) and their rates, (3, 2, end, strip), for
     !> the strips wet at t1 (`loaded`).
     real(wp), allocatable :: fk(:, :, :, :)
@@ -115,7 +106,7 @@ contains
     cache%clock = clock
     cache%enabled = clock%enabled() .and. field%kind == wave_irregular
     if (.not. cache%enabled) return
-    allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), cache%eq(ne, 2, n), &
+    allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
               cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%g_far(7, n), cache%p_far(2, n), &
               cache%p_load(2, n), cache%t_load(n))
@@ -203,8 +194,7 @@ contains
       end if
       eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
       cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
-      call kinematic_ends(cache, field, q(1), q(2), cache%q(3, k), cache%eq(:, :, k), &
-                          cache%vq(:, :, :, k), volume)
+      call kinematic_ends(cache, field, q(1), q(2), cache%q(3, k), cache%vq(:, :, :, k), volume)
     end do
   end subroutine strip_waves_refresh
 
@@ -315,12 +305,13 @@ contains
 
   !> Elevation and velocity terms at both ends of the window at (x, y, d): from the grid
   !> where it holds both, else the exact sums in one pass.
-  pure subroutine kinematic_ends(cache, field, x, y, d, e, v, grid)
+  pure subroutine kinematic_ends(cache, field, x, y, d, v, grid)
     type(strip_wave_cache_type), intent(in) :: cache
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: x, y, d
-    real(wp), intent(out) :: e(ne, 2), v(3, nv, 2)
+    real(wp), intent(out) :: v(3, nv, 2)
     type(wave_grid_type), intent(in), optional :: grid
+    real(wp) :: e(ne, 2)
     integer :: j
     if (present(grid)) then
       if (grid_covers(grid, cache%clock%window(1), x, y, d) .and. &
@@ -331,7 +322,8 @@ contains
         return
       end if
     end if
-    call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v)
+    call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v, &
+                        .false.)
   end subroutine kinematic_ends
 
   !> Dynamic section load of strip k (centre p) at both ends of the window: for its wet
@@ -409,202 +401,6 @@ contains
     cache%loaded(k) = .true.
   end subroutine sample_path
 
-  !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
-  pure subroutine elevation_sums(field, t, x, y, e)
-    !> The sea.
-    type(wave_field_type), intent(in) :: field
-    !> Time [s] and horizontal position (inertial) [m].
-    real(wp), intent(in) :: t, x, y
-    !> Unramped elevation [m] and its derivatives in t, x, y.
-    real(wp), intent(out) :: e(ne)
-    real(wp) :: none(0), e1(ne, 1)
-    call elevation_pass(field, t, x, y, 1, none, none, e1)
-    e = e1(:, 1)
-  end subroutine elevation_sums
-
-  !> Elevation terms at nt times: t, and with nt = 2 also t + h, whose phases are those
-  !> at t turned by w h (rotation factors cr, sr of every component). The sums run in
-  !> `lanes` partial sums each, added at the end: independent lanes vectorise (one sum
-  !> at a time is bound by the adder's latency).
-  pure subroutine elevation_pass(field, t, x, y, nt, cr, sr, e)
-    type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: t, x, y
-    integer, intent(in) :: nt
-    real(wp), intent(in) :: cr(:), sr(:)
-    real(wp), intent(out) :: e(:, :)
-    real(wp) :: s(wave_chunk), cs(wave_chunk), acc(lanes, nep, nt)
-    integer :: i0, m, q, j
-    acc = 0.0_wp
-    do i0 = 1, field%n, wave_chunk
-      m = min(wave_chunk, field%n - i0 + 1)
-      call component_phases(field, i0, m, t, x, y, s, cs)
-      do j = 1, nt
-        if (j == 2) call advance_phasors(cs(1:m), s(1:m), cr(i0:i0 + m - 1), &
-                                         sr(i0:i0 + m - 1))
-        if (size(e, 1) > ne) then
-          call add_curvature(field, i0, m, s, cs, acc(:, :, j))
-        else
-          call add_elevation(field, i0, m, s, cs, acc(:, 1:ne, j))
-        end if
-      end do
-    end do
-    do j = 1, nt
-      do q = 1, size(e, 1)
-        e(q, j) = sum(acc(:, q, j))
-      end do
-    end do
-  end subroutine elevation_pass
-
-  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs) to the lanes' partial
-  !> sums of the elevation terms.
-  pure subroutine add_elevation(field, i0, m, s, cs, acc)
-    type(wave_field_type), intent(in) :: field
-    integer, intent(in) :: i0, m
-    real(wp), intent(in) :: s(:), cs(:)
-    real(wp), intent(inout) :: acc(lanes, ne)
-    real(wp) :: as
-    integer :: i, j, l, b
-    do b = 0, m - 1, lanes
-      do l = 1, min(lanes, m - b)
-        j = b + l
-        i = i0 + j - 1
-        as = field%amplitude(i)*s(j)
-        acc(l, 1) = acc(l, 1) + field%amplitude(i)*cs(j)
-        acc(l, 2) = acc(l, 2) - as*field%omega(i)
-        acc(l, 3) = acc(l, 3) + as*field%kx(i)
-        acc(l, 4) = acc(l, 4) + as*field%ky(i)
-      end do
-    end do
-  end subroutine add_elevation
-
-  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs) to the lanes' partial
-  !> sums of the elevation terms (as add_elevation, in one loop) and of the elevation's
-  !> curvature: d2/dx2 = -a kx^2 cos theta, d2/dxdy = -a kx ky cos theta,
-  !> d2/dy2 = -a ky^2 cos theta, and the slope's rates d2/dxdt = a w kx cos theta,
-  !> d2/dydt = a w ky cos theta.
-  pure subroutine add_curvature(field, i0, m, s, cs, acc)
-    type(wave_field_type), intent(in) :: field
-    integer, intent(in) :: i0, m
-    real(wp), intent(in) :: s(:), cs(:)
-    real(wp), intent(inout) :: acc(lanes, nep)
-    real(wp) :: ac, as, akx, aky
-    integer :: i, j, l, b
-    do b = 0, m - 1, lanes
-      do l = 1, min(lanes, m - b)
-        j = b + l
-        i = i0 + j - 1
-        ac = field%amplitude(i)*cs(j)
-        as = field%amplitude(i)*s(j)
-        akx = ac*field%kx(i)
-        aky = ac*field%ky(i)
-        acc(l, 1) = acc(l, 1) + ac
-        acc(l, 2) = acc(l, 2) - as*field%omega(i)
-        acc(l, 3) = acc(l, 3) + as*field%kx(i)
-        acc(l, 4) = acc(l, 4) + as*field%ky(i)
-        acc(l, 5) = acc(l, 5) - akx*field%kx(i)
-        acc(l, 6) = acc(l, 6) - akx*field%ky(i)
-        acc(l, 7) = acc(l, 7) - aky*field%ky(i)
-        acc(l, 8) = acc(l, 8) + akx*field%omega(i)
-        acc(l, 9) = acc(l, 9) + aky*field%omega(i)
-      end do
-    end do
-  end subroutine add_curvature
-
-  !> Elevation terms as elevation_sums, and the unramped water velocity (inertial, z down)
-  !> at (x, y) and stretched depth d with its derivatives (t, x, y, d): per component
-  !> v = a w exp(-k d) (cos theta cos g, cos theta sin g, sin theta), with
-  !> theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin,
-  !> d(sin)/dx = -kx cos, d/dd = -k.
-  pure subroutine kinematic_sums(field, t, x, y, d, e, v)
-    !> The sea.
-    type(wave_field_type), intent(in) :: field
-    !> Time [s], horizontal position (inertial) [m], stretched depth [m].
-    real(wp), intent(in) :: t, x, y, d
-    !> Unramped elevation terms (as elevation_sums) and water velocity (inertial, z down)
-    !> [m/s] with its derivatives in t, x, y, d.
-    real(wp), intent(out) :: e(ne), v(3, nv)
-    real(wp) :: none(0)
-    call kinematic_pass(field, t, x, y, d, 1, none, none, e, v)
-  end subroutine kinematic_sums
-
-  !> Elevation and velocity terms at nt times as elevation_pass (lanes' partial sums): the
-  !> depth decay a w exp(-k d) is formed once for both.
-  pure subroutine kinematic_pass(field, t, x, y, d, nt, cr, sr, e, v)
-    type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: t, x, y, d
-    integer, intent(in) :: nt
-    real(wp), intent(in) :: cr(:), sr(:)
-    real(wp), intent(out) :: e(ne, nt), v(3, nv, nt)
-    real(wp) :: s(wave_chunk), cs(wave_chunk), w(wave_chunk), acc(lanes, nk, nt)
-    integer :: i0, m, q, j
-    acc = 0.0_wp
-    do i0 = 1, field%n, wave_chunk
-      m = min(wave_chunk, field%n - i0 + 1)
-      call component_phases(field, i0, m, t, x, y, s, cs)
-      w(1:m) = field%amplitude(i0:i0 + m - 1)*field%omega(i0:i0 + m - 1)* &
-               exp(-field%k(i0:i0 + m - 1)*d)
-      call add_kinematics(field, i0, m, s, cs, w, acc(:, :, 1))
-      if (nt < 2) cycle
-      call advance_phasors(cs(1:m), s(1:m), cr(i0:i0 + m - 1), sr(i0:i0 + m - 1))
-      call add_kinematics(field, i0, m, s, cs, w, acc(:, :, 2))
-    end do
-    do j = 1, nt
-      do q = 1, ne
-        e(q, j) = sum(acc(:, q, j))
-      end do
-      do q = 1, 3*nv
-        v(mod(q - 1, 3) + 1, (q - 1)/3 + 1, j) = sum(acc(:, ne + q, j))
-      end do
-    end do
-  end subroutine kinematic_pass
-
-  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs, decayed amplitudes
-  !> w = a w exp(-k d)) to the lanes' partial sums: the elevation terms, then the velocity
-  !> terms v(1:3, 1:nv) in column order.
-  pure subroutine add_kinematics(field, i0, m, s, cs, w, acc)
-    type(wave_field_type), intent(in) :: field
-    integer, intent(in) :: i0, m
-    real(wp), intent(in) :: s(:), cs(:), w(:)
-    real(wp), intent(inout) :: acc(lanes, nk)
-    real(wp) :: wc, ws, wcg, wsg, wsc, wss
-    integer :: i, j, l, b
-    call add_elevation(field, i0, m, s, cs, acc(:, 1:ne))
-    do b = 0, m - 1, lanes
-      do l = 1, min(lanes, m - b)
-        j = b + l
-        i = i0 + j - 1
-        wc = w(j)*cs(j)
-        ws = w(j)*s(j)
-        wcg = wc*field%cos_dir(i)
-        wsg = wc*field%sin_dir(i)
-        wsc = ws*field%cos_dir(i)
-        wss = ws*field%sin_dir(i)
-        acc(l, 5) = acc(l, 5) + wcg
-        acc(l, 6) = acc(l, 6) + wsg
-        acc(l, 7) = acc(l, 7) + ws
-        acc(l, 8) = acc(l, 8) - wsc*field%omega(i)
-        acc(l, 9) = acc(l, 9) - wss*field%omega(i)
-        acc(l, 10) = acc(l, 10) + wc*field%omega(i)
-        acc(l, 11) = acc(l, 11) + wsc*field%kx(i)
-        acc(l, 12) = acc(l, 12) + wss*field%kx(i)
-        acc(l, 13) = acc(l, 13) - wc*field%kx(i)
-        acc(l, 14) = acc(l, 14) + wsc*field%ky(i)
-        acc(l, 15) = acc(l, 15) + wss*field%ky(i)
-        acc(l, 16) = acc(l, 16) - wc*field%ky(i)
-        acc(l, 17) = acc(l, 17) - wcg*field%k(i)
-        acc(l, 18) = acc(l, 18) - wsg*field%k(i)
-        acc(l, 19) = acc(l, 19) - ws*field%k(i)
-      end do
-    end do
-  end subroutine add_kinematics
-
-  !> Unramped value at t and offset dx from elevation terms e(ne, 2).
-  pure real(wp) function expand_elevation(e, hw, lam, dx) result(f)
-    real(wp), intent(in) :: e(ne, 2), hw(4), lam, dx(2)
-    f = hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
-        sum(((1.0_wp - lam)*e(3:4, 1) + lam*e(3:4, 2))*dx)
-  end function expand_elevation
-
   !> Elevation [m] (up) at the horizontal point (x, y) near strip k's centre at time t.
   pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
     !> The strips' window.
@@ -667,7 +463,8 @@ contains
     lam = window_fraction(cache, t)
     ramp = wave_ramp(field, t)
     dx(1:2) = pt(1:2) - cache%q(1:2, k)
-    eta = ramp*expand_elevation(cache%eq(:, :, k), hw, lam, dx(1:2))
+    ! the surface from the strip centre's terms (second order in the offset)
+    eta = cached_elevation(cache, field, k, t, pt(1), pt(2))
     velocity = 0.0_wp
     if (pt(3) + eta < 0.0_wp) return
     dx(3) = pt(3) + eta - cache%q(3, k)
