@@ -10,7 +10,7 @@ module davit_bench_sea
                                   rotation_phasors, advance_phasors, elevation_from_phasors
   use davit_sea_wave_grid, only: wave_grid_type, new_wave_grid, grid_prepare, &
                                  grid_elevation, grid_kinematics
-  use davit_boat_strip_waves, only: elevation_sums, kinematic_sums
+  use davit_boat_strip_sums, only: elevation_sums, kinematic_sums
   implicit none
   private
   public :: bench_result, bench_sea

@@ -29,7 +29,7 @@ module davit_boat_strip_level
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_elevation, wave_ramp
   use davit_boat_hull, only: boat_hull_type, section_wet_type
   use davit_boat_strip_pressure, only: surface_plane, section_wave_load
-  use davit_boat_strip_waves, only: strip_wave_cache_type, cached_elevation, cached_slope, &
+  use davit_boat_strip_waves, only: strip_wave_cache_type, cached_elevation, cached_surface, &
                                     cached_wave_load
   implicit none
   private
@@ -183,8 +183,7 @@ contains
     do k = 1, s%hull%n
       p = r + c(:, 1)*s%hull%x(k)
       if (window) then
-        eta(k) = cached_elevation(cache, field, k, t, p(1), p(2))
-        slope(:, k) = cached_slope(cache, field, k, t)
+        call cached_surface(cache, field, k, t, p(1), p(2), eta(k), slope(:, k))
       else
         call surface_plane(field, t, p(1), p(2), eta(k), slope(:, k))
       end if

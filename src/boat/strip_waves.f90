@@ -9,43 +9,48 @@
 !>   f(x, t) ~ H(t) + grad f(t) . (x - x_ref),
 !> H the cubic Hermite interpolant of the reference value from its exact values and time
 !> derivatives at t1 and t2, grad f (d/dx, d/dy, and for the velocity d/dd with d the
-!> Wheeler-stretched depth) linear in time. Per component of amplitude a, frequency w and
-!> wavenumber k the error is at most a [ (w h)^4/384 + (k |dx|)^2/2 + ... ] (velocity:
-!> times w), |dx| the strip's travel since t1: ~1e-6 a at h = 0.05 s and ~1e-3 a for the
-!> shortest components when the strip moves 5 cm. The start-up ramp multiplies the result
-!> exactly. Stages outside the window fall back to the exact sum (wave_field).
+!> Wheeler-stretched depth) linear in time. The elevation at the strip centres also
+!> carries its curvature (linear in time), and its slope is cubic in time: the slope sets
+!> each section's tangent plane, so a slope held at x_ref, or linear in time, put its
+!> error into the hydrostatic loads at first order (the Level 5 beam-sea launch of seed 2
+!> was 0.57 % off in its peak sling tension at h = 0.1 s; with exact slopes 0.01 %). Per
+!> component of amplitude a, frequency w and wavenumber k the error is at most
+!> a [ (w h)^4/384 + (k |dx|)^2/2 + ... ] (velocity: times w; the elevation at the
+!> centres (k |dx|)^3/6), |dx| the strip's travel since t1: ~1e-6 a at h = 0.05 s and
+!> ~1e-3 a for the shortest components when the strip moves 5 cm. The start-up ramp
+!> multiplies the result exactly. Stages outside the window fall back to the exact sum.
 !> Regular and Stokes-2 seas (one component) are always evaluated exactly.
 !> The pressure level's dynamic section load (davit_boat_strip_pressure: the pressure's
 !> decay with depth and phase across the breadth) is sampled in the window as well, with its
-!> time derivative, for the wet polygon of t1, Hermite-interpolated, and expanded to first
-!> order in the section's geometry since t1: its immersion, its travel, the tangent plane's
-!> slopes across it (with the waterline's move along the hull's sides) and its turn. Held
-!> fixed instead, the geometry cost the single-summation launch 0.6 % of its peak sling
-!> tension at h = 0.05 s and 1.5 % at 0.1 s (a beam sea rolls the boat by degrees per
-!> window, and the surface's departure from its tangent plane at the sides, a few cm, rides
-!> on the moving waterline); expanded, 0.01 % and 0.3 % (against a 0.01 s window;
-!> doc/benchmarks/multirate.md). A strip dry at t1 that wets within the window takes the
-!> exact sum.
+!> time derivative and its first derivatives in the section's geometry (its immersion, its
+!> travel, the tangent plane's slopes across it with the waterline's move along the hull's
+!> sides, and its turn), Hermite-interpolated and expanded in the geometry's departure from
+!> a path: the geometry of t1 carried on to t2 at the rate it changed since the section's
+!> last sample (each end sampled for its own wet polygon; with no earlier sample, t1's
+!> polygon at both ends). Held fixed, the geometry cost the single-summation launch 0.6 %
+!> of its peak sling tension at h = 0.05 s and 1.5 % at 0.1 s (a beam sea rolls the boat by
+!> degrees per window, and the surface's departure from its tangent plane at the sides,
+!> a few cm, rides on the moving waterline); expanded about t1's geometry 0.01 % and
+!> 0.3 %; about the path the double-summation launches keep 0.5 % at 0.15 s
+!> (doc/benchmarks/multirate.md). A section dry at t1 that wets within the window takes
+!> the exact sums until the next accepted step, which samples it for the rest of the
+!> window (strip_waves_catch_up).
 module davit_boat_strip_waves
   use davit_kinds, only: wp
-  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, wave_chunk, &
-                                  component_phases, rotation_phasors, advance_phasors
+  use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, rotation_phasors
   use davit_boat_hull, only: boat_hull_type, section_immersion, section_wet_type
   use davit_boat_strip_pressure, only: section_wave_loads
   use davit_core_slow_clock, only: slow_clock_type, clock_renewed
+  use davit_core_hermite, only: hermite_weights
+  use davit_boat_strip_sums, only: ne, nv, nep, elevation_pass, kinematic_pass
   use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
-  public :: strip_waves_due, strip_waves_cover, cached_elevation
-  public :: cached_kinematics, cached_slope, cached_wave_load
-  public :: elevation_sums, kinematic_sums, strip_waves_surface
+  public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_catch_up
+  public :: cached_kinematics, cached_slope, cached_wave_load, cached_surface
+  public :: strip_waves_surface
 
-  !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
-  integer, parameter :: ne = 4, nv = 5
-  !> Partial sums per accumulated term (8: one AVX-512 register of doubles), and the
-  !> terms of the kinematic sums: ne elevation terms, then 3 x nv velocity terms.
-  integer, parameter :: lanes = 8, nk = ne + 3*nv
 
   type :: strip_wave_cache_type
     !> Whether the slow clock is on.
@@ -57,9 +62,9 @@ module davit_boat_strip_waves
     logical, allocatable :: sampled(:)
     !> Reference points: strip centres (x, y) and wet centroids (x, y, stretched depth d0).
     real(wp), allocatable :: p(:, :), q(:, :)
-    !> Unramped elevation terms at p and at q, (ne, end, strip); velocity terms at q,
-    !> (component, nv, end, strip).
-    real(wp), allocatable :: ep(:, :, :), eq(:, :, :), vq(:, :, :, :)
+    !> Unramped elevation terms at p, (nep, end, strip) (the surface near q is read from
+    !> them too); velocity terms at q, (component, nv, end, strip).
+    real(wp), allocatable :: ep(:, :, :), vq(:, :, :, :)
     !> Unramped dynamic section loads (F2, F3, M1) and their rates, (3, 2, end, strip), for
     !> the strips wet at t1 (`loaded`).
     real(wp), allocatable :: fk(:, :, :, :)
@@ -71,6 +76,14 @@ module davit_boat_strip_waves
     !> window (heave, roll, the passing wave), so the load is expanded about the sampled
     !> geometry as the kinematics are about their reference points.
     real(wp), allocatable :: fd(:, :, :, :), g_ref(:, :)
+    !> The far end's geometry (as g_ref) and centre (x, y) [m]: the geometry of t1 carried
+    !> on at the rate it changed since the last window (g_ref where there is none), so the
+    !> expansion covers the departure from that path, not the whole move.
+    real(wp), allocatable :: g_far(:, :), p_far(:, :)
+    !> The loads' reference centre at their window's start (x, y) [m] and that start t1k
+    !> [s]: the window's t1, or the step at which a section dry at t1 got wet (it is sampled
+    !> then, for the rest of the window).
+    real(wp), allocatable :: p_load(:, :), t_load(:)
     !> Per strip, whether its samples were taken (it was possibly wet).
     logical, allocatable :: loaded(:)
     !> Per component, cos(w h) and sin(w h): the window's far end from its near end by
@@ -93,9 +106,10 @@ contains
     cache%clock = clock
     cache%enabled = clock%enabled() .and. field%kind == wave_irregular
     if (.not. cache%enabled) return
-    allocate (cache%p(2, n), cache%q(3, n), cache%ep(ne, 2, n), cache%eq(ne, 2, n), &
+    allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
-              cache%fd(3, 9, 2, n), cache%g_ref(7, n))
+              cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%g_far(7, n), cache%p_far(2, n), &
+              cache%p_load(2, n), cache%t_load(n))
     allocate (cache%cr(field%n), cache%sr(field%n))
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%sampled = .false.
@@ -147,9 +161,20 @@ contains
     !> Precomputed grids of the surface and of the water below it (absent: the sea itself).
     type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
-    real(wp) :: p(3), q(3), eta, ramp
+    real(wp) :: p(3), q(3), eta, ramp, rate(hull%n)
     integer :: k
     if (.not. cache%enabled) return
+    ! the sections' geometry is carried on at the rate it changed since its last sample
+    ! (in the window just ending only)
+    rate = 0.0_wp
+    if (cache%clock%valid) then
+      do k = 1, hull%n
+        if (cache%loaded(k) .and. t > cache%t_load(k) .and. &
+            t - cache%t_load(k) <= 2.0_wp*cache%clock%interval) then
+          rate(k) = cache%clock%interval/(t - cache%t_load(k))
+        end if
+      end do
+    end if
     call cache%clock%open(t)
     ramp = wave_ramp(field, t)
     cache%sampled = maybe_wet
@@ -160,7 +185,7 @@ contains
       call elevation_ends(cache, field, p(1), p(2), cache%ep(:, :, k), surface)
       if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
-      call sample_section_load(cache, hull, field, k, c, p, ramp)
+      call sample_section_load(cache, hull, field, k, c, p, ramp, rate(k))
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
       if (wet%area > 0.0_wp) then
         q = r + matmul(c, [hull%x(k), wet%centroid])
@@ -169,10 +194,37 @@ contains
       end if
       eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
       cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
-      call kinematic_ends(cache, field, q(1), q(2), cache%q(3, k), cache%eq(:, :, k), &
-                          cache%vq(:, :, :, k), volume)
+      call kinematic_ends(cache, field, q(1), q(2), cache%q(3, k), cache%vq(:, :, :, k), volume)
     end do
   end subroutine strip_waves_refresh
+
+  !> After an accepted step at t inside the window: sample the section load of each strip
+  !> whose velocity the window holds but which was dry at t1 and is wet now, on [t, t2]
+  !> (its stages took the exact sums until now; sampled, the rest of the window reads it).
+  !> The geometry comes from the window's surface at the strip's centre.
+  pure subroutine strip_waves_catch_up(cache, hull, field, t, c, r)
+    !> The strips' window.
+    type(strip_wave_cache_type), intent(inout) :: cache
+    !> The hull.
+    type(boat_hull_type), intent(in) :: hull
+    !> The sea.
+    type(wave_field_type), intent(in) :: field
+    !> Time of the accepted step [s], rotation b -> inertial, CG position (inertial) [m].
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp) :: p(3), slope(2), grad(3), eta
+    integer :: k
+    if (.not. (cache%enabled .and. cache%clock%covers(t))) return
+    ! too close to the window's end: the few stages left take the exact sums
+    if (cache%clock%window(2) - t < 0.25_wp*cache%clock%interval) return
+    do k = 1, hull%n
+      if (.not. cache%sampled(k) .or. cache%loaded(k)) cycle
+      p = r + c(:, 1)*hull%x(k)
+      call cached_surface(cache, field, k, t, p(1), p(2), eta, slope)
+      grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
+      call sample_path(cache, hull, field, k, [t, cache%clock%window(2)], .false., p, &
+                       [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], 0.0_wp)
+    end do
+  end subroutine strip_waves_catch_up
 
   !> The ramped elevation and its gradient at the strip centres at the window's start, as
   !> sampled by the last refresh (exact sums: the surface watch takes them).
@@ -196,29 +248,70 @@ contains
     type(strip_wave_cache_type), intent(in) :: cache
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: x, y
-    real(wp), intent(out) :: e(ne, 2)
+    real(wp), intent(out) :: e(nep, 2)
     type(wave_grid_type), intent(in), optional :: grid
-    integer :: j
     if (present(grid)) then
-      if (grid_covers(grid, cache%clock%window(1), x, y) .and. &
-          grid_covers(grid, cache%clock%window(2), x, y)) then
-        do j = 1, 2
-          call grid_elevation(grid, cache%clock%window(j), x, y, e(:, j))
-        end do
+      if (grid_holds(grid, cache%clock%window, x, y)) then
+        call grid_ends(grid, cache%clock%window, x, y, e)
         return
       end if
     end if
     call elevation_pass(field, cache%clock%window(1), x, y, 2, cache%cr, cache%sr, e)
   end subroutine elevation_ends
 
+  !> Whether the grid holds (x, y) and the four points half a spacing from it at both ends
+  !> of the window (the curvature's differences).
+  pure logical function grid_holds(grid, window, x, y)
+    type(wave_grid_type), intent(in) :: grid
+    real(wp), intent(in) :: window(2), x, y
+    real(wp) :: dl
+    integer :: j
+    dl = 0.5_wp*grid%h
+    grid_holds = .false.
+    do j = 1, 2
+      if (.not. (grid_covers(grid, window(j), x, y) .and. &
+                 grid_covers(grid, window(j), x - dl, y) .and. &
+                 grid_covers(grid, window(j), x + dl, y) .and. &
+                 grid_covers(grid, window(j), x, y - dl) .and. &
+                 grid_covers(grid, window(j), x, y + dl))) return
+    end do
+    grid_holds = .true.
+  end function grid_holds
+
+  !> Elevation terms at both window ends from the grid: the curvature by central
+  !> differences of its slope field half a spacing around (x, y), the slope's rates those
+  !> of its chord over the window (the slope linear in time).
+  pure subroutine grid_ends(grid, window, x, y, e)
+    type(wave_grid_type), intent(in) :: grid
+    real(wp), intent(in) :: window(2), x, y
+    real(wp), intent(out) :: e(nep, 2)
+    real(wp) :: dl, xp(ne), xm(ne), yp(ne), ym(ne)
+    integer :: j
+    dl = 0.5_wp*grid%h
+    do j = 1, 2
+      call grid_elevation(grid, window(j), x, y, e(1:ne, j))
+      call grid_elevation(grid, window(j), x + dl, y, xp)
+      call grid_elevation(grid, window(j), x - dl, y, xm)
+      call grid_elevation(grid, window(j), x, y + dl, yp)
+      call grid_elevation(grid, window(j), x, y - dl, ym)
+      e(ne + 1, j) = (xp(3) - xm(3))/(2.0_wp*dl)
+      e(ne + 2, j) = 0.5_wp*((xp(4) - xm(4)) + (yp(3) - ym(3)))/(2.0_wp*dl)
+      e(ne + 3, j) = (yp(4) - ym(4))/(2.0_wp*dl)
+    end do
+    do j = 1, 2
+      e(ne + 4:nep, j) = (e(3:4, 2) - e(3:4, 1))/(window(2) - window(1))
+    end do
+  end subroutine grid_ends
+
   !> Elevation and velocity terms at both ends of the window at (x, y, d): from the grid
   !> where it holds both, else the exact sums in one pass.
-  pure subroutine kinematic_ends(cache, field, x, y, d, e, v, grid)
+  pure subroutine kinematic_ends(cache, field, x, y, d, v, grid)
     type(strip_wave_cache_type), intent(in) :: cache
     type(wave_field_type), intent(in) :: field
     real(wp), intent(in) :: x, y, d
-    real(wp), intent(out) :: e(ne, 2), v(3, nv, 2)
+    real(wp), intent(out) :: v(3, nv, 2)
     type(wave_grid_type), intent(in), optional :: grid
+    real(wp) :: e(ne, 2)
     integer :: j
     if (present(grid)) then
       if (grid_covers(grid, cache%clock%window(1), x, y, d) .and. &
@@ -229,204 +322,127 @@ contains
         return
       end if
     end if
-    call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v)
+    call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v, &
+                        .false.)
   end subroutine kinematic_ends
 
-  !> Dynamic section load of strip k (centre p) at both ends of the window, for its wet
-  !> polygon under the tangent plane at t1.
-  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp)
+  !> Dynamic section load of strip k (centre p) at both ends of the window: for its wet
+  !> polygon under the tangent plane at t1 and, where the section was sampled in the last
+  !> window (rate > 0), for the geometry carried on to t2 at the rate it changed since
+  !> then (each end with its own polygon); else for t1's polygon at both ends.
+  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp, rate)
     type(strip_wave_cache_type), intent(inout) :: cache
     type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
     integer, intent(in) :: k
-    real(wp), intent(in) :: c(3, 3), p(3), ramp
-    type(section_wet_type) :: wet
-    real(wp) :: grad(3), d0, load(3, 2), rate(3, 2)
+    real(wp), intent(in) :: c(3, 3), p(3), ramp, rate
+    real(wp) :: grad(3), g1(7)
     grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
-    d0 = p(3) + ramp*cache%ep(1, 1, k)
-    wet = section_immersion(hull, k, d0, grad(2), grad(3))
-    if (wet%area <= 0.0_wp) return
-    ! both window ends in one pass: they share the edge integrals, only the phase differs
-    call section_wave_loads(field, cache%clock%window, hull, wet, c, p, d0, grad(2), grad(3), &
-                            load, rate, cache%cr, cache%sr, cache%fd(:, :, :, k))
-    cache%fk(:, 1, :, k) = load
-    cache%fk(:, 2, :, k) = rate
-    cache%g_ref(:, k) = [d0, grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
-    cache%loaded(k) = .true.
+    g1 = [p(3) + ramp*cache%ep(1, 1, k), grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
+    call sample_path(cache, hull, field, k, cache%clock%window, .true., p, g1, rate)
   end subroutine sample_section_load
 
-  !> Unramped elevation of the linear sea at (x, y, t) and its derivatives (t, x, y).
-  pure subroutine elevation_sums(field, t, x, y, e)
-    !> The sea.
+  !> Strip k's section load on `window` (its start t1k, the window's end; `whole`: the
+  !> clock's whole window, whose far end's phases are the near end's turned) for
+  !> the geometry g1 with centre p at t1k, and at the far end for that geometry carried
+  !> on at `rate` (> 0: the rate it changed since its last sample), each end with its own
+  !> wet polygon; with rate 0, or the carried polygon dry, t1k's polygon at both ends.
+  pure subroutine sample_path(cache, hull, field, k, window, whole, p, g1, rate)
+    type(strip_wave_cache_type), intent(inout) :: cache
+    type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
-    !> Time [s] and horizontal position (inertial) [m].
-    real(wp), intent(in) :: t, x, y
-    !> Unramped elevation [m] and its derivatives in t, x, y.
-    real(wp), intent(out) :: e(ne)
-    real(wp) :: none(0)
-    call elevation_pass(field, t, x, y, 1, none, none, e)
-  end subroutine elevation_sums
-
-  !> Elevation terms at nt times: t, and with nt = 2 also t + h, whose phases are those
-  !> at t turned by w h (rotation factors cr, sr of every component). The sums run in
-  !> `lanes` partial sums each, added at the end: independent lanes vectorise (one sum
-  !> at a time is bound by the adder's latency).
-  pure subroutine elevation_pass(field, t, x, y, nt, cr, sr, e)
-    type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: t, x, y
-    integer, intent(in) :: nt
-    real(wp), intent(in) :: cr(:), sr(:)
-    real(wp), intent(out) :: e(ne, nt)
-    real(wp) :: s(wave_chunk), cs(wave_chunk), acc(lanes, ne, nt)
-    integer :: i0, m, q, j
-    acc = 0.0_wp
-    do i0 = 1, field%n, wave_chunk
-      m = min(wave_chunk, field%n - i0 + 1)
-      call component_phases(field, i0, m, t, x, y, s, cs)
-      call add_elevation(field, i0, m, s, cs, acc(:, :, 1))
-      if (nt < 2) cycle
-      call advance_phasors(cs(1:m), s(1:m), cr(i0:i0 + m - 1), sr(i0:i0 + m - 1))
-      call add_elevation(field, i0, m, s, cs, acc(:, :, 2))
+    integer, intent(in) :: k
+    real(wp), intent(in) :: window(2), p(3), g1(7), rate
+    logical, intent(in) :: whole
+    type(section_wet_type) :: wet, wet2
+    real(wp) :: load(3, 2), rate_t(3, 2), g2(7), p2(2), dg(9), c(3, 3)
+    integer :: j
+    g2 = g1 + rate*(g1 - cache%g_ref(:, k))
+    p2 = p(1:2) + rate*(p(1:2) - cache%p_load(:, k))
+    cache%loaded(k) = .false.
+    wet = section_immersion(hull, k, g1(1), g1(2), g1(3))
+    if (wet%area <= 0.0_wp) return
+    wet2 = wet
+    if (rate > 0.0_wp) wet2 = section_immersion(hull, k, g2(1), g2(2), g2(3))
+    ! the lags read only the horizontal parts of b2 and b3
+    c = 0.0_wp
+    c(1:2, 2) = g1(4:5)
+    c(1:2, 3) = g1(6:7)
+    if (rate <= 0.0_wp .or. wet2%area <= 0.0_wp) then
+      g2 = g1
+      p2 = p(1:2)
+      if (whole) then
+        ! both ends in one pass: they share the edge integrals, only the phase differs
+        call section_wave_loads(field, window, hull, wet, c, p, g1(1), g1(2), g1(3), load, &
+                                rate_t, cache%cr, cache%sr, cache%fd(:, :, :, k))
+      else
+        call section_wave_loads(field, window, hull, wet, c, p, g1(1), g1(2), g1(3), load, &
+                                rate_t, sens=cache%fd(:, :, :, k))
+      end if
+    else
+      call section_wave_loads(field, window(1:1), hull, wet, c, p, g1(1), g1(2), g1(3), &
+                              load(:, 1:1), rate_t(:, 1:1), sens=cache%fd(:, :, 1:1, k))
+      c(1:2, 2) = g2(4:5)
+      c(1:2, 3) = g2(6:7)
+      call section_wave_loads(field, window(2:2), hull, wet2, c, [p2, p(3)], g2(1), g2(2), &
+                              g2(3), load(:, 2:2), rate_t(:, 2:2), sens=cache%fd(:, :, 2:2, k))
+    end if
+    ! the rates along the path: d/dt at fixed geometry plus the geometry's own change
+    dg = [g2(1) - g1(1), p2 - p(1:2), g2(2:7) - g1(2:7)]/(window(2) - window(1))
+    do j = 1, 2
+      cache%fk(:, 1, j, k) = load(:, j)
+      cache%fk(:, 2, j, k) = rate_t(:, j) + matmul(cache%fd(:, :, j, k), dg)
     end do
-    do j = 1, nt
-      do q = 1, ne
-        e(q, j) = sum(acc(:, q, j))
-      end do
-    end do
-  end subroutine elevation_pass
-
-  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs) to the lanes' partial
-  !> sums of the elevation terms.
-  pure subroutine add_elevation(field, i0, m, s, cs, acc)
-    type(wave_field_type), intent(in) :: field
-    integer, intent(in) :: i0, m
-    real(wp), intent(in) :: s(:), cs(:)
-    real(wp), intent(inout) :: acc(lanes, ne)
-    real(wp) :: as
-    integer :: i, j, l, b
-    do b = 0, m - 1, lanes
-      do l = 1, min(lanes, m - b)
-        j = b + l
-        i = i0 + j - 1
-        as = field%amplitude(i)*s(j)
-        acc(l, 1) = acc(l, 1) + field%amplitude(i)*cs(j)
-        acc(l, 2) = acc(l, 2) - as*field%omega(i)
-        acc(l, 3) = acc(l, 3) + as*field%kx(i)
-        acc(l, 4) = acc(l, 4) + as*field%ky(i)
-      end do
-    end do
-  end subroutine add_elevation
-
-  !> Elevation terms as elevation_sums, and the unramped water velocity (inertial, z down)
-  !> at (x, y) and stretched depth d with its derivatives (t, x, y, d): per component
-  !> v = a w exp(-k d) (cos theta cos g, cos theta sin g, sin theta), with
-  !> theta = w t + eps - kx x - ky y: d(cos)/dt = -w sin, d(cos)/dx = kx sin,
-  !> d(sin)/dx = -kx cos, d/dd = -k.
-  pure subroutine kinematic_sums(field, t, x, y, d, e, v)
-    !> The sea.
-    type(wave_field_type), intent(in) :: field
-    !> Time [s], horizontal position (inertial) [m], stretched depth [m].
-    real(wp), intent(in) :: t, x, y, d
-    !> Unramped elevation terms (as elevation_sums) and water velocity (inertial, z down)
-    !> [m/s] with its derivatives in t, x, y, d.
-    real(wp), intent(out) :: e(ne), v(3, nv)
-    real(wp) :: none(0)
-    call kinematic_pass(field, t, x, y, d, 1, none, none, e, v)
-  end subroutine kinematic_sums
-
-  !> Elevation and velocity terms at nt times as elevation_pass (lanes' partial sums): the
-  !> depth decay a w exp(-k d) is formed once for both.
-  pure subroutine kinematic_pass(field, t, x, y, d, nt, cr, sr, e, v)
-    type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: t, x, y, d
-    integer, intent(in) :: nt
-    real(wp), intent(in) :: cr(:), sr(:)
-    real(wp), intent(out) :: e(ne, nt), v(3, nv, nt)
-    real(wp) :: s(wave_chunk), cs(wave_chunk), w(wave_chunk), acc(lanes, nk, nt)
-    integer :: i0, m, q, j
-    acc = 0.0_wp
-    do i0 = 1, field%n, wave_chunk
-      m = min(wave_chunk, field%n - i0 + 1)
-      call component_phases(field, i0, m, t, x, y, s, cs)
-      w(1:m) = field%amplitude(i0:i0 + m - 1)*field%omega(i0:i0 + m - 1)* &
-               exp(-field%k(i0:i0 + m - 1)*d)
-      call add_kinematics(field, i0, m, s, cs, w, acc(:, :, 1))
-      if (nt < 2) cycle
-      call advance_phasors(cs(1:m), s(1:m), cr(i0:i0 + m - 1), sr(i0:i0 + m - 1))
-      call add_kinematics(field, i0, m, s, cs, w, acc(:, :, 2))
-    end do
-    do j = 1, nt
-      do q = 1, ne
-        e(q, j) = sum(acc(:, q, j))
-      end do
-      do q = 1, 3*nv
-        v(mod(q - 1, 3) + 1, (q - 1)/3 + 1, j) = sum(acc(:, ne + q, j))
-      end do
-    end do
-  end subroutine kinematic_pass
-
-  !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs, decayed amplitudes
-  !> w = a w exp(-k d)) to the lanes' partial sums: the elevation terms, then the velocity
-  !> terms v(1:3, 1:nv) in column order.
-  pure subroutine add_kinematics(field, i0, m, s, cs, w, acc)
-    type(wave_field_type), intent(in) :: field
-    integer, intent(in) :: i0, m
-    real(wp), intent(in) :: s(:), cs(:), w(:)
-    real(wp), intent(inout) :: acc(lanes, nk)
-    real(wp) :: wc, ws, wcg, wsg, wsc, wss
-    integer :: i, j, l, b
-    call add_elevation(field, i0, m, s, cs, acc(:, 1:ne))
-    do b = 0, m - 1, lanes
-      do l = 1, min(lanes, m - b)
-        j = b + l
-        i = i0 + j - 1
-        wc = w(j)*cs(j)
-        ws = w(j)*s(j)
-        wcg = wc*field%cos_dir(i)
-        wsg = wc*field%sin_dir(i)
-        wsc = ws*field%cos_dir(i)
-        wss = ws*field%sin_dir(i)
-        acc(l, 5) = acc(l, 5) + wcg
-        acc(l, 6) = acc(l, 6) + wsg
-        acc(l, 7) = acc(l, 7) + ws
-        acc(l, 8) = acc(l, 8) - wsc*field%omega(i)
-        acc(l, 9) = acc(l, 9) - wss*field%omega(i)
-        acc(l, 10) = acc(l, 10) + wc*field%omega(i)
-        acc(l, 11) = acc(l, 11) + wsc*field%kx(i)
-        acc(l, 12) = acc(l, 12) + wss*field%kx(i)
-        acc(l, 13) = acc(l, 13) - wc*field%kx(i)
-        acc(l, 14) = acc(l, 14) + wsc*field%ky(i)
-        acc(l, 15) = acc(l, 15) + wss*field%ky(i)
-        acc(l, 16) = acc(l, 16) - wc*field%ky(i)
-        acc(l, 17) = acc(l, 17) - wcg*field%k(i)
-        acc(l, 18) = acc(l, 18) - wsg*field%k(i)
-        acc(l, 19) = acc(l, 19) - ws*field%k(i)
-      end do
-    end do
-  end subroutine add_kinematics
-
-  !> Unramped value at t and offset dx from elevation terms e(ne, 2).
-  pure real(wp) function expand_elevation(e, hw, lam, dx) result(f)
-    real(wp), intent(in) :: e(ne, 2), hw(4), lam, dx(2)
-    f = hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
-        sum(((1.0_wp - lam)*e(3:4, 1) + lam*e(3:4, 2))*dx)
-  end function expand_elevation
+    cache%g_ref(:, k) = g1
+    cache%g_far(:, k) = g2
+    cache%p_load(:, k) = p(1:2)
+    cache%p_far(:, k) = p2
+    cache%t_load(k) = window(1)
+    cache%loaded(k) = .true.
+  end subroutine sample_path
 
   !> Elevation [m] (up) at the horizontal point (x, y) near strip k's centre at time t.
   pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
     !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
-    !> The sea (when the window does not hold strip k).
+    !> The sea (its start-up ramp).
     type(wave_field_type), intent(in) :: field
     !> Strip index.
     integer, intent(in) :: k
     !> Time [s] and horizontal position (inertial) [m].
     real(wp), intent(in) :: t, x, y
-    real(wp) :: lam
-    lam = window_fraction(cache, t)
-    eta = wave_ramp(field, t)*expand_elevation(cache%ep(:, :, k), cache%clock%weights(t), lam, &
-                                               [x, y] - cache%p(:, k))
+    real(wp) :: slope(2)
+    call cached_surface(cache, field, k, t, x, y, eta, slope)
   end function cached_elevation
+
+  !> Elevation [m] and slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip
+  !> k's centre at time t: value, slope and their rates cubic in time (Hermite), the
+  !> curvature linear in time, expanded to second order in the offset from the centre.
+  pure subroutine cached_surface(cache, field, k, t, x, y, eta, slope)
+    !> The strips' window.
+    type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (its start-up ramp).
+    type(wave_field_type), intent(in) :: field
+    !> Strip index.
+    integer, intent(in) :: k
+    !> Time [s] and horizontal position (inertial) [m].
+    real(wp), intent(in) :: t, x, y
+    !> Elevation [m] and slope [-].
+    real(wp), intent(out) :: eta, slope(2)
+    real(wp) :: hw(4), lam, dx(2), g(2), hv(3), hdx(2), ramp
+    hw = cache%clock%weights(t)
+    lam = window_fraction(cache, t)
+    ramp = wave_ramp(field, t)
+    dx = [x, y] - cache%p(:, k)
+    associate (e => cache%ep(:, :, k))
+      g = hw(1)*e(3:4, 1) + hw(2)*e(8:9, 1) + hw(3)*e(3:4, 2) + hw(4)*e(8:9, 2)
+      hv = (1.0_wp - lam)*e(5:7, 1) + lam*e(5:7, 2)
+      hdx = [hv(1)*dx(1) + hv(2)*dx(2), hv(2)*dx(1) + hv(3)*dx(2)]
+      eta = ramp*(hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
+                  dot_product(g, dx) + 0.5_wp*dot_product(dx, hdx))
+    end associate
+    slope = ramp*(g + hdx)
+  end subroutine cached_surface
 
   !> Elevation and water velocity (inertial, z down; zero above the surface) at the point
   !> pt near strip k's wet centroid at time t, as wave_kinematics gives them.
@@ -447,7 +463,8 @@ contains
     lam = window_fraction(cache, t)
     ramp = wave_ramp(field, t)
     dx(1:2) = pt(1:2) - cache%q(1:2, k)
-    eta = ramp*expand_elevation(cache%eq(:, :, k), hw, lam, dx(1:2))
+    ! the surface from the strip centre's terms (second order in the offset)
+    eta = cached_elevation(cache, field, k, t, pt(1), pt(2))
     velocity = 0.0_wp
     if (pt(3) + eta < 0.0_wp) return
     dx(3) = pt(3) + eta - cache%q(3, k)
@@ -460,20 +477,19 @@ contains
     end associate
   end subroutine cached_kinematics
 
-  !> Surface slope (d eta/dx, d eta/dy) near strip k's centre at time t (the gradient terms
-  !> of the elevation, linear in time over the window).
-  pure function cached_slope(cache, field, k, t) result(slope)
+  !> Surface slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip k's
+  !> centre at time t (cached_surface's).
+  pure function cached_slope(cache, field, k, t, x, y) result(slope)
     !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
-    !> The sea (when the window does not hold strip k).
+    !> The sea (its start-up ramp).
     type(wave_field_type), intent(in) :: field
     !> Strip index.
     integer, intent(in) :: k
-    !> Time [s].
-    real(wp), intent(in) :: t
-    real(wp) :: slope(2), lam
-    lam = window_fraction(cache, t)
-    slope = wave_ramp(field, t)*((1.0_wp - lam)*cache%ep(3:4, 1, k) + lam*cache%ep(3:4, 2, k))
+    !> Time [s] and horizontal position (inertial) [m].
+    real(wp), intent(in) :: t, x, y
+    real(wp) :: slope(2), eta
+    call cached_surface(cache, field, k, t, x, y, eta, slope)
   end function cached_slope
 
   !> Dynamic section load (F2, F3, M1) of strip k at time t from the window (found), or
@@ -494,16 +510,20 @@ contains
     real(wp), intent(out) :: load(3)
     !> Whether the window holds the load of strip k.
     logical, intent(out) :: found
-    real(wp) :: hw(4), dg(9), lam
+    real(wp) :: hw(4), dg(9), lam, gr(7), span(2)
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
-    hw = cache%clock%weights(t)
-    lam = window_fraction(cache, t)
+    ! the strip's own window: from the step it was sampled at to the window's end
+    span = [cache%t_load(k), cache%clock%window(2)]
+    hw = hermite_weights(span, t)
+    lam = (t - span(1))/(span(2) - span(1))
     ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned);
     ! the derivatives, like the gradients of the kinematics, linear in time (those of t1
     ! alone leave the water's own move times the window's time in the error: first order)
-    dg = [g(1) - cache%g_ref(1, k), pc - cache%p(:, k), g(2:7) - cache%g_ref(2:7, k)]
+    gr = (1.0_wp - lam)*cache%g_ref(:, k) + lam*cache%g_far(:, k)
+    dg = [g(1) - gr(1), pc - ((1.0_wp - lam)*cache%p_load(:, k) + lam*cache%p_far(:, k)), &
+          g(2:7) - gr(2:7)]
     associate (f => cache%fk(:, :, :, k), s => cache%fd(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*f(:, 1, 1) + hw(2)*f(:, 2, 1) + hw(3)*f(:, 1, 2) + &
                                   hw(4)*f(:, 2, 2) + &

@@ -8,7 +8,8 @@ module davit_system_events
   use davit_boat_contact_law, only: phase_compression, fender_state_type
   use davit_boat_fenders, only: fender_set_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_due, &
-                                    strip_waves_refresh, strip_waves_surface
+                                    strip_waves_refresh, strip_waves_surface, &
+                                    strip_waves_catch_up
   use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
                                       strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
@@ -76,7 +77,11 @@ contains
     logical :: due, maybe_wet(par%water%hull%n)
     integer :: j
     call strip_waves_due(hist%waves, t, due)
-    if (.not. due) return
+    if (.not. due) then
+      ! sections that got wet since t1 are sampled now (their stages took the exact sums)
+      call strip_waves_catch_up(hist%waves, par%water%hull, par%sea, t, c, r)
+      return
+    end if
     do j = 1, par%water%hull%n
       maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
                                             t + hist%waves%clock%interval, c, r)
