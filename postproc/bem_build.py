@@ -248,8 +248,7 @@ def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardati
     retardation (dt, end, window) grid, the pairs fit_all finds significant and `zero`
     ((6, 6) bool) does not exclude, the diagonal ones passive, the matrix made positive
     semi-definite if passive_matrix (postproc.bem_passive: augment, then enforce with
-    combined_weights). The
-    build's fitting stage, and `bem passive`'s re-fit of a stored database. Returns the
+    rao_weights). The build's fitting stage, and `bem passive`'s re-fit of a stored database. Returns the
     davit variables SS_*, RETARDATION_TIME, RETARDATION and SS_ADDED_MASS_INF; fills hydro
     (min_eigen_damping(_unenforced), fit_last_omega) and the last enforcement's Result
     (passive_result: None if not enforced)."""
@@ -270,12 +269,10 @@ def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardati
                                                                        damping)[0]
     if passive_matrix:
         # a pole pair beyond the grid for the DOFs of the violation, then the least change
-        # in the RAO and relative errors (postproc.bem_passive.augment, combined_weights)
+        # in the RAO error (postproc.bem_passive.augment, rao_weights)
         augmented = bem_passive.augment(fits, omega[-1], damping)
-        weights = bem_passive.combined_weights(
-            bem_passive.rao_weights(omega[keep], added_mass[keep], damping[keep], m6,
-                                    stiffness, fits),
-            omega[keep], added_mass[keep], damping[keep], a_inf)
+        weights = bem_passive.rao_weights(omega[keep], added_mass[keep], damping[keep],
+                                          m6, stiffness, fits)
         passive = bem_passive.enforce(fits, omega[keep], added_mass[keep], damping[keep],
                                       a_inf, omega_max=omega[-1], weights=weights)
         if progress and augmented:

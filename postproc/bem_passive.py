@@ -12,7 +12,7 @@ IEEE Trans. Power Syst. 16(1), 2001; Grivet-Talocia, IEEE Trans. Circuits Syst. 
 2004): the poles stay, the residues move by the least change of the fits in a weighted
 norm (the sum over pairs and the grid the fits used of |weight (K_fit - K_before)|^2: by
 default relative to each pair's largest |K|; the build weights each pair by the RAO error
-it makes and its relative error together, combined_weights; K(0) = 0 kept) subject to v_m^T B(w_m) v_m >= -tol/4 at each
+it makes, rao_weights; K(0) = 0 kept) subject to v_m^T B(w_m) v_m >= -tol/4 at each
 frequency w_m where the smallest eigenvalue of the scaled matrix dips below -tol/2, v_m its
 eigenvector there. v^T B v is linear in the residues, so each constraint is exact for its
 v; new (w_m, v_m) join until no eigenvalue on the dense grid is below -tol/2, each step a
@@ -42,8 +42,8 @@ REGULARISATION = 1e-9     # of the residues' change, relative (rank-deficient di
 # violation; their residue lets the enforcement raise B_ii just beyond the grid, where the
 # fits of the couplings made the matrix indefinite (the default box ship: sway-roll at
 # 2.1-2.5 rad/s), instead of bending the fits on the grid (its roll kernel: 13 % of max
-# B_44 at 1.6 rad/s without it, 2.5 % with it). 1.25 w_N, 0.5: the smallest roll change of
-# 1.1-2 w_N and 0.2-0.7 tried on that ship.
+# B_44 at 1.6 rad/s without it, 3 % with it). 1.25 w_N, 0.5: among the smallest roll
+# changes of 1.1-2 w_N and 0.2-0.7 tried on that ship.
 AUGMENT_FACTOR = 1.25
 AUGMENT_DAMPING = 0.5
 AUGMENT_COMPONENT = 0.1   # |v_i| of the violation's eigenvector that selects DOF i
@@ -129,19 +129,6 @@ def rao_weights(omega, added_mass, damping, mass, stiffness, pairs):
     z = [bem_fit._impedance(omega, added_mass[:, i, i], damping[:, i, i], mass[i, i],
                             stiffness[i, i]) for i in range(6)]
     return {(i, j): omega / np.sqrt(z[i] * z[j]) for (i, j) in pairs}
-
-
-def combined_weights(rao, omega, added_mass, damping, added_mass_inf):
-    """dict (i, j) -> sqrt(rao_ij^2 + (1 / max |K_ij|)^2): each pair's change counted as
-    the RAO error it makes (rao: rao_weights) and as its error relative to the pair's
-    largest |K| on the grid, so that the enforcement neither bends a kernel where the RAO
-    does not see it (a small roll damping far from the roll resonance) nor moves the
-    RAO."""
-    out = {}
-    for (i, j), w in rao.items():
-        k = damping[:, i, j] + 1j * omega * (added_mass[:, i, j] - added_mass_inf[i, j])
-        out[(i, j)] = np.sqrt(np.asarray(w)**2 + (1.0 / max(np.max(np.abs(k)), 1e-300))**2)
-    return out
 
 
 def augment(fits, omega_max, damping, tol=TOLERANCE):
