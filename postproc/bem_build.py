@@ -248,10 +248,10 @@ def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardati
     retardation (dt, end, window) grid, the pairs fit_all finds significant and `zero`
     ((6, 6) bool) does not exclude, the diagonal ones passive, the matrix made positive
     semi-definite if passive_matrix (postproc.bem_passive: augment, then enforce with
-    rao_weights). The build's fitting stage, and `bem passive`'s re-fit of a stored database. Returns the
-    davit variables SS_*, RETARDATION_TIME, RETARDATION and SS_ADDED_MASS_INF; fills hydro
-    (min_eigen_damping(_unenforced), fit_last_omega) and the last enforcement's Result
-    (passive_result: None if not enforced)."""
+    rao_weights). The build's fitting stage, and `bem passive`'s re-fit of a stored
+    database. Returns the davit variables SS_*, RETARDATION_TIME, RETARDATION and
+    SS_ADDED_MASS_INF; fills hydro (min_eigen_damping(_unenforced), fit_last_omega) and
+    the last enforcement's Result (passive_result: None if not enforced)."""
     hydro = {} if hydro is None else hydro
     dt, end, window = retardation
     time = np.arange(0.0, end + 0.5 * dt, dt)

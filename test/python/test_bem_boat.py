@@ -207,8 +207,8 @@ def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
     ranges, A(w) = A_inf(fit) + Im K(i w)/w; but heave and roll, whose fits are passive at
     a cost: heave's is the impedance fit (its plain fits are not passive; A off by 5.7 %
     at 0.3 rad/s, where the boat follows the wave), roll's fit is bent (A by 14 % of its
-    range at 8 rad/s, the grid's end, 6 times the roll frequency) so that the damping matrix with the sway-roll coupling is positive
-    semi-definite (postproc.bem_passive). For those two the error that matters is the
+    range at 8 rad/s, the grid's end, 6 times the roll frequency) so that the damping
+    matrix with the sway-roll coupling is positive semi-definite (postproc.bem_passive). For those two the error that matters is the
     RAO's, max_w w |K_fit - K| / |Z(w)| with Z = C - w^2 (M + A) + i w B (the relative RAO
     change of one degree of freedom, largest at resonance): within FIT_TOLERANCE too."""
     n = base[db.SS_ORDER][dof, dof]
