@@ -2,8 +2,8 @@
 
 A database built before `bem build` made the fitted damping matrix positive semi-definite
 (postproc.bem_passive) can have a memory that makes energy: the shipped input/ship_bem.nc
-had a smallest scaled eigenvalue of -0.086 at 2.12 rad/s (sway-roll), input/boat_bem.nc
--0.156 at 8.58 rad/s. refit_file runs the build's own fitting stage
+has a smallest scaled eigenvalue of -0.086 at 2.12 rad/s, input/boat_bem.nc had -0.156 at
+8.58 rad/s. refit_file runs the build's own fitting stage
 (postproc.bem_build.fit_memory: the same resolved frequencies, retardation grid, fit tail,
 pair selection, passive diagonal fits, impedance fits and matrix enforcement)
 on the database's stored frequency-domain data, so the result is what `bem build` would
@@ -21,8 +21,8 @@ from . import bem_db as db
 
 def _retardation(attrs):
     from . import bem_build
-    if "retardation_dt_end_window" in attrs:
-        return tuple(float(v) for v in np.ravel(attrs["retardation_dt_end_window"]))
+    if db.ATTR_RETARDATION_GRID in attrs:
+        return tuple(float(v) for v in np.ravel(attrs[db.ATTR_RETARDATION_GRID]))
     return (bem_build.RETARDATION_DT, bem_build.RETARDATION_END, bem_build.FIT_WINDOW)
 
 
@@ -52,7 +52,7 @@ def refit_file(source, target, nmax=12, tol=0.02, command="", progress=False):
     passive_result: postproc.bem_passive.Result)."""
     from . import bem_build
     base = db.Database(source)
-    tail = base.attrs.get("fit_tail")
+    tail = base.attrs.get(db.ATTR_FIT_TAIL)
     tail = None if tail is None else tuple(float(v) for v in np.ravel(tail))
     hydro = {}
     memory = bem_build.fit_memory(base.omega, base.added_mass, base.damping,

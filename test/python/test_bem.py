@@ -137,12 +137,6 @@ def test_hydrostatics_match_the_box(base):
 
 @pytest.mark.parametrize("dof", [0, 1, 2, 3, 4])
 def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
-    """Each diagonal fit reproduces the BEM's A(w) and B(w) within FIT_TOLERANCE of their
-    ranges, A(w) = A_inf(fit) + Im K(i w)/w; roll within it in the RAO's measure,
-    max_w w |K_fit - K| / |Z(w)|, Z = C - w^2 (M + A) + i w B (the relative RAO change of
-    one degree of freedom): its radiation damping is small (2 % of critical at most) and
-    the matrix passivity bends its fit to 3 % of max |A_44 - A_44(inf)| at 2 rad/s, the
-    grid's end, far above the roll resonance at 0.80 rad/s (postproc.bem_passive)."""
     n = base[db.SS_ORDER][dof, dof]
     assert n > 0
     a = base[db.SS_A][dof, dof, :n, :n]
@@ -150,21 +144,12 @@ def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
     c = base[db.SS_C][dof, dof, :n]
     w = base.omega
     k = bem_fit.transfer(a, b, c, 1j * w)
-    # the fitted model's A_inf (davit reads it; an impedance fit shifts it)
-    with h5py.File(DATABASE, "r") as f:
-        a_fit_inf = (f["davit_ss_added_mass_inf"][()] if "davit_ss_added_mass_inf" in f
-                     else base.added_mass_inf)[dof, dof]
-    a_fit = a_fit_inf + k.imag / w
+    a_fit = base.added_mass_inf[dof, dof] + k.imag / w
     b_fit = k.real
     am, bd = base.added_mass[:, dof, dof], base.damping[:, dof, dof]
     a_err = np.max(np.abs(a_fit - am)) / np.max(np.abs(am - base.added_mass_inf[dof, dof]))
     b_err = np.max(np.abs(b_fit - bd)) / np.max(np.abs(bd))
-    if dof == 3:
-        z = np.abs(base.stiffness[3, 3] - w**2 * (base.mass[3, 3] + am) + 1j * w * bd)
-        rao_err = np.max(w * np.abs(b_fit - bd + 1j * w * (a_fit - am)) / z)
-        assert rao_err < FIT_TOLERANCE
-    else:
-        assert a_err < FIT_TOLERANCE and b_err < FIT_TOLERANCE, (a_err, b_err)
+    assert a_err < FIT_TOLERANCE and b_err < FIT_TOLERANCE, (a_err, b_err)
     assert a_err == pytest.approx(base[db.SS_FIT_ERROR_ADDED_MASS][dof, dof], rel=1e-6)
     # no memory at zero frequency: K(0) = -C A^-1 B = 0
     assert abs(c @ np.linalg.solve(a, b)) < 1e-6 * np.max(np.abs(bd))
