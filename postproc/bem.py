@@ -30,6 +30,14 @@
       conventions and the output layout); prints the undamped natural periods of heave,
       roll and pitch and their radiation damping ratios there. --gm replaces C44 by m g GM.
 
+  python -m postproc.bem passive DATABASE [-o FILE] [--nmax N] [--fit-tol TOL]
+      re-fit an existing database's radiation memory as `build` fits it today, the fitted
+      damping matrix made positive semi-definite (postproc.bem_refit: the build's fitting
+      stage on the stored frequency-domain data; no BEM solve, every other variable
+      unchanged). For databases built before `build` enforced it (the shipped
+      input/boat_bem.nc was re-fitted so). Prints the fits, the smallest eigenvalue
+      before and after and each pair's cost; default: in place.
+
   python -m postproc.bem compare FINE COARSE
       mesh convergence: max change of A, B, the excitation and the RAO peak of heave, roll
       and pitch within 0.2 rad/s of their natural frequencies (postproc.bem_compare), as a
@@ -114,6 +122,14 @@ def _parser():
     r.add_argument("--headings-deg", type=float, nargs="+", default=None,
                    help="default: 0, 45, 90, 135, 180")
     r.add_argument("-o", "--output", default=None, help="FILE.h5 or FILE.csv")
+
+    p = sub.add_parser("passive", help="make an existing database's fitted damping "
+                       "matrix positive semi-definite (no BEM solve)")
+    p.add_argument("database")
+    p.add_argument("-o", "--output", default=None, help="default: DATABASE itself")
+    p.add_argument("--nmax", type=int, default=12, help="largest state-space order")
+    p.add_argument("--fit-tol", type=float, default=0.02,
+                   help="target max relative error of the fitted A and B")
 
     c = sub.add_parser("compare", help="mesh convergence between two databases")
     c.add_argument("fine")
@@ -234,6 +250,25 @@ def _rao(args):
     return 0
 
 
+def _passive(args, argv):
+    import logging
+    logging.getLogger("capytaine").setLevel(logging.ERROR)
+    from . import bem_refit
+    command = "python -m postproc.bem " + " ".join(shlex.quote(a) for a in argv)
+    try:
+        hydro = bem_refit.refit_file(args.database, args.output or args.database,
+                                     nmax=args.nmax, tol=args.fit_tol, command=command,
+                                     progress=True)
+    except (OSError, ValueError, KeyError) as exc:
+        return _error(f"{args.database}: {exc}")
+    result = hydro["passive_result"]
+    if not result.converged:
+        return _error(f"{args.database}: the smallest eigenvalue is still "
+                      f"{result.min_eigenvalue_after:.3g} after {result.iterations} iterations")
+    print(f"bem: wrote {args.output or args.database}")
+    return 0
+
+
 def _compare(args):
     from . import bem_compare
     try:
@@ -254,6 +289,8 @@ def main(argv=None):
         return _build(args, argv)
     if args.command == "compare":
         return _compare(args)
+    if args.command == "passive":
+        return _passive(args, argv)
     return _rao(args)
 
 

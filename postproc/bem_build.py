@@ -225,6 +225,34 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     stiffness = _sign_matrix(_ordered(ds.hydrostatic_stiffness.squeeze(drop=True),
                                       dofs).values)
 
+    memory = fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardation,
+                        tail, nmax, tol, passive_matrix, progress, hydro)
+    return {
+        db.OMEGA: omega, db.HEADING: beta, db.WAVENUMBER: k,
+        db.ADDED_MASS: added_mass, db.DAMPING: damping,
+        db.ADDED_MASS_INF: a_inf, db.ADDED_MASS_ZERO: a_zero,
+        db.EXCITATION_RE: excitation.real, db.EXCITATION_IM: excitation.imag,
+        db.FROUDE_KRYLOV_RE: froude_krylov.real, db.FROUDE_KRYLOV_IM: froude_krylov.imag,
+        db.STIFFNESS: stiffness, db.MASS: m6,
+        db.VOLUME: np.float64(hydro["volume"]),
+        db.WATERPLANE_AREA: np.float64(hydro["waterplane_area"]),
+        db.BUOYANCY_CENTRE: db.VECTOR_SIGN * (hydro["centre_of_buoyancy"] - cg),
+        db.CG: cg, **memory,
+    }
+
+
+def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardation,
+               tail=None, nmax=12, tol=0.02, passive_matrix=True, progress=True, hydro=None):
+    """The radiation memory's state-space fits from the frequency-domain data (davit's
+    frame): the frequencies the mesh resolves (bem_fit.resolved_frequencies), K(t) on the
+    retardation (dt, end, window) grid, the pairs fit_all finds significant and `zero`
+    ((6, 6) bool) does not exclude, the diagonal ones passive, the matrix made positive
+    semi-definite if passive_matrix (postproc.bem_passive: augment, then enforce with
+    rao_weights). The build's fitting stage, and `bem passive`'s re-fit of a stored
+    database. Returns the davit variables SS_*, RETARDATION_TIME, RETARDATION and
+    SS_ADDED_MASS_INF; fills hydro (min_eigen_damping(_unenforced), fit_last_omega) and
+    the last enforcement's Result (passive_result: None if not enforced)."""
+    hydro = {} if hydro is None else hydro
     dt, end, window = retardation
     time = np.arange(0.0, end + 0.5 * dt, dt)
     # the fits (and K(t)) see the frequencies the mesh resolves (bem_fit.resolved_frequencies)
@@ -240,10 +268,17 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
     hydro["min_eigen_damping_unenforced"] = bem_passive.min_eigenvalue(fits, omega[-1],
                                                                        damping)[0]
     if passive_matrix:
-        passive = bem_passive.enforce(
-            fits, omega[keep], added_mass[keep], damping[keep], a_inf, omega_max=omega[-1],
-            weights=bem_passive.rao_weights(omega[keep], added_mass[keep], damping[keep], m6,
-                                            stiffness, fits))
+        # a pole pair beyond the grid for the DOFs of the violation, then the least change
+        # in the RAO error (postproc.bem_passive.augment, rao_weights)
+        augmented = bem_passive.augment(fits, omega[-1], damping)
+        weights = bem_passive.rao_weights(omega[keep], added_mass[keep], damping[keep],
+                                          m6, stiffness, fits)
+        passive = bem_passive.enforce(fits, omega[keep], added_mass[keep], damping[keep],
+                                      a_inf, omega_max=omega[-1], weights=weights)
+        if progress and augmented:
+            print("bem: passivity: a pole pair at " f"{bem_passive.AUGMENT_FACTOR:g} x the "
+                  "last frequency given to the diagonal fits of "
+                  + ", ".join(db.DOFS[i] for i in augmented), file=sys.stderr)
         bem_fit.fill_errors(fits, time, kernel, damping[keep], omega[-1], window)
         for i in range(6):
             if (i, i) in fits and np.isfinite(fits[(i, i)].error_impedance):
@@ -264,17 +299,8 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
             print(f"bem: fitted damping matrix, smallest eigenvalue (scaled by sqrt(max B_ii "
                   f"max B_jj)): {hydro['min_eigen_damping']:.3g}, not enforced "
                   f"(--no-passive-matrix)", file=sys.stderr)
+    hydro["passive_result"] = passive if passive_matrix else None
     return {
-        db.OMEGA: omega, db.HEADING: beta, db.WAVENUMBER: k,
-        db.ADDED_MASS: added_mass, db.DAMPING: damping,
-        db.ADDED_MASS_INF: a_inf, db.ADDED_MASS_ZERO: a_zero,
-        db.EXCITATION_RE: excitation.real, db.EXCITATION_IM: excitation.imag,
-        db.FROUDE_KRYLOV_RE: froude_krylov.real, db.FROUDE_KRYLOV_IM: froude_krylov.imag,
-        db.STIFFNESS: stiffness, db.MASS: m6,
-        db.VOLUME: np.float64(hydro["volume"]),
-        db.WATERPLANE_AREA: np.float64(hydro["waterplane_area"]),
-        db.BUOYANCY_CENTRE: db.VECTOR_SIGN * (hydro["centre_of_buoyancy"] - cg),
-        db.CG: cg,
         db.SS_ORDER: order, db.SS_A: ss_a, db.SS_B: ss_b, db.SS_C: ss_c,
         db.SS_FIT_ERROR: np.maximum(err[0], err[1]),
         db.SS_FIT_ERROR_ADDED_MASS: err[0], db.SS_FIT_ERROR_DAMPING: err[1],

@@ -60,6 +60,9 @@ ATTR_DRIFT_ROLL_DAMPING = "drift_roll_damping_ratio"
 ATTR_FIT_MIN_EIGEN = "fit_min_eigen_damping"
 ATTR_FIT_MIN_EIGEN_UNENFORCED = "fit_min_eigen_damping_unenforced"
 ATTR_FIT_PASSIVE_MATRIX = "fit_passive_matrix"
+# the fit's data tail and the retardation grid (postproc.bem_build), read by the re-fit
+ATTR_FIT_TAIL = "fit_tail"
+ATTR_RETARDATION_GRID = "retardation_dt_end_window"
 
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
 DOF_SIGN = np.array([1.0, -1.0, -1.0, 1.0, -1.0, -1.0])

@@ -192,8 +192,25 @@ def test_infinite_frequency_added_mass_is_the_limit(base):
         assert abs(a[-1] - a_inf) < 0.15 * span and a[-1] < a_inf
 
 
+def _fitted_added_mass_inf(base):
+    """A_inf of the fitted model (davit_ss_added_mass_inf, which davit reads; impedance
+    fits shift it), else the BEM's."""
+    with h5py.File(DATABASE, "r") as f:
+        if "davit_ss_added_mass_inf" in f:
+            return f["davit_ss_added_mass_inf"][()]
+    return base.added_mass_inf
+
+
 @pytest.mark.parametrize("dof", [0, 1, 2, 3, 4, 5])
 def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
+    """Each diagonal fit reproduces the BEM's A(w) and B(w) within FIT_TOLERANCE of their
+    ranges, A(w) = A_inf(fit) + Im K(i w)/w; but heave and roll, whose fits are passive at
+    a cost: heave's is the impedance fit (its plain fits are not passive; A off by 5.7 %
+    at 0.3 rad/s, where the boat follows the wave), roll's fit is bent (A by 14 % of its
+    range at 8 rad/s, the grid's end, 6 times the roll frequency) so that the damping
+    matrix with the sway-roll coupling is positive semi-definite (postproc.bem_passive). For those two the error that matters is the
+    RAO's, max_w w |K_fit - K| / |Z(w)| with Z = C - w^2 (M + A) + i w B (the relative RAO
+    change of one degree of freedom, largest at resonance): within FIT_TOLERANCE too."""
     n = base[db.SS_ORDER][dof, dof]
     assert n > 0
     a = base[db.SS_A][dof, dof, :n, :n]
@@ -202,10 +219,17 @@ def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
     w = base.omega
     k = bem_fit.transfer(a, b, c, 1j * w)
     am, bd = base.added_mass[:, dof, dof], base.damping[:, dof, dof]
-    a_err = (np.max(np.abs(base.added_mass_inf[dof, dof] + k.imag / w - am))
-             / np.max(np.abs(am - base.added_mass_inf[dof, dof])))
+    a_inf = base.added_mass_inf[dof, dof]
+    a_fit_inf = _fitted_added_mass_inf(base)[dof, dof]
+    a_err = (np.max(np.abs(a_fit_inf + k.imag / w - am)) / np.max(np.abs(am - a_inf)))
     b_err = np.max(np.abs(k.real - bd)) / np.max(np.abs(bd))
-    assert a_err < FIT_TOLERANCE and b_err < FIT_TOLERANCE, (a_err, b_err)
+    if dof in (2, 3):
+        z = np.abs(base.stiffness[dof, dof] - w**2 * (base.mass[dof, dof] + am) + 1j * w * bd)
+        kernel = bd + 1j * w * (am - a_inf)
+        fitted = k + 1j * w * (a_fit_inf - a_inf)
+        assert np.max(w * np.abs(fitted - kernel) / z) < FIT_TOLERANCE
+    else:
+        assert a_err < FIT_TOLERANCE and b_err < FIT_TOLERANCE, (a_err, b_err)
     assert b_err == pytest.approx(base[db.SS_FIT_ERROR_DAMPING][dof, dof], rel=1e-6)
     assert np.all(np.linalg.eigvals(a).real < 0)
     # passive: the fitted damping stays (nearly) positive far beyond the grid too
