@@ -304,36 +304,41 @@ contains
     end do
   end function slope_error
 
-  !> A hull moving steadily (0.3, -0.4, 0.6 m/s; roll, pitch, yaw rates 0.3, -0.2,
-  !> 0.1 rad/s) through the Level 5 sea, windows of 0.1 s renewed at 20.0 and 20.1 s and
-  !> read at 20.15 s, each wet section against its exact load at its geometry then
-  !> (section_wave_load, the wet polygon found again). The second window carries each
-  !> section's geometry on at the rate it changed since the first, so its expansion covers
-  !> only the departure from that path: its error must be well below a window opened at
-  !> 20.1 s alone (which expands the whole move since t1). Fails with the path's rates
-  !> left out of the sampled loads' time rates or the path not followed.
+  !> A hull accelerating through the Level 5 sea (from 0.3, -0.4, 0.6 m/s by 1.5, 1,
+  !> -2 m/s^2; roll, pitch, yaw rates 0.3, -0.2, 0.1 rad/s by 1, 0.5, -0.5 rad/s^2),
+  !> windows of 0.1 s renewed at 20.0, 20.1 and 20.2 s and read at 20.25 s, each wet
+  !> section against its exact load at its geometry then (section_wave_load, the wet
+  !> polygon found again). A window carries each section's geometry on along its path
+  !> through its last samples: through three (a parabola) its error must be well below
+  !> through two (a line), and that well below a window opened at 20.2 s alone (which
+  !> expands the whole move since t1). Fails with the path's rates left out of the
+  !> sampled loads' time rates, the path not followed, or its curvature dropped.
   subroutine hull_path(state)
     type(case_state), intent(inout) :: state
     type(wave_field_type) :: field
     type(boat_hull_type) :: hull
-    type(strip_wave_cache_type) :: chained, alone
-    real(wp) :: c(3, 3), r(3), e_path, e_alone
-    integer :: k
+    type(strip_wave_cache_type) :: caches(3)
+    real(wp) :: c(3, 3), r(3), err(3), t
+    integer :: i, j, k
     call level5_sea(field)
     call afloat(hull, c, r)
-    chained = new_strip_wave_cache(field, hull%n, new_slow_clock(0.1_wp, clock_reach))
-    alone = chained
-    call steady_pose(20.0_wp, c, r)
-    call strip_waves_refresh(chained, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
-    call steady_pose(20.1_wp, c, r)
-    call strip_waves_refresh(chained, hull, field, 20.1_wp, c, r, [(.true., k = 1, hull%n)])
-    call strip_waves_refresh(alone, hull, field, 20.1_wp, c, r, [(.true., k = 1, hull%n)])
-    e_path = path_error(chained, field, hull, 20.15_wp)
-    e_alone = path_error(alone, field, hull, 20.15_wp)
-    call note(state, "error on the path (of the largest load)", e_path)
-    call note(state, "error of the window alone", e_alone)
-    call check_true(state, e_path < 0.3_wp*e_alone, &
-                    "the path's error well below the window's alone")
+    caches = new_strip_wave_cache(field, hull%n, new_slow_clock(0.1_wp, clock_reach))
+    ! caches(i) sees the last i windows
+    do j = 1, 3
+      t = 19.9_wp + 0.1_wp*j
+      call moving_pose(t, c, r)
+      do i = 4 - j, 3
+        call strip_waves_refresh(caches(i), hull, field, t, c, r, [(.true., k = 1, hull%n)])
+      end do
+    end do
+    do i = 1, 3
+      err(i) = path_error(caches(i), field, hull, 20.25_wp)
+    end do
+    call note(state, "error of the window alone (of the largest load)", err(1))
+    call note(state, "error on the line through two samples", err(2))
+    call note(state, "error on the parabola through three samples", err(3))
+    call check_true(state, err(2) < 0.3_wp*err(1), "the line's error well below the window's")
+    call check_true(state, err(3) < 0.5_wp*err(2), "the parabola's error well below the line's")
   end subroutine hull_path
 
   !> A hull partly out of the water at t1 (its CG raised until 3 to 17 of its 20 sections
@@ -388,15 +393,19 @@ contains
     call check(state, err/scale, 0.0_wp, "caught-up loads vs exact", abs_tol=1.0e-3_wp)
   end subroutine catch_up
 
-  !> The steadily moving hull of hull_path at time t.
-  subroutine steady_pose(t, c, r)
+  !> The accelerating hull of hull_path at time t.
+  subroutine moving_pose(t, c, r)
     real(wp), intent(in) :: t
     real(wp), intent(out) :: c(3, 3), r(3)
-    c = rotation_matrix([0.05_wp, -0.03_wp, 0.4_wp] + (t - 20.0_wp)*[0.3_wp, -0.2_wp, 0.1_wp])
-    r = [3.0_wp, -2.0_wp, 1.5_wp] + (t - 20.0_wp)*[0.3_wp, -0.4_wp, 0.6_wp]
-  end subroutine steady_pose
+    real(wp) :: s
+    s = t - 20.0_wp
+    c = rotation_matrix([0.05_wp, -0.03_wp, 0.4_wp] + s*[0.3_wp, -0.2_wp, 0.1_wp] + &
+                        0.5_wp*s**2*[1.0_wp, 0.5_wp, -0.5_wp])
+    r = [3.0_wp, -2.0_wp, 1.5_wp] + s*[0.3_wp, -0.4_wp, 0.6_wp] + &
+        0.5_wp*s**2*[1.5_wp, 1.0_wp, -2.0_wp]
+  end subroutine moving_pose
 
-  !> Largest error of the window's section loads at time t for the steadily moving hull,
+  !> Largest error of the window's section loads at time t for the accelerating hull,
   !> relative to the largest exact load.
   real(wp) function path_error(cache, field, hull, t) result(err)
     type(strip_wave_cache_type), intent(in) :: cache
@@ -408,7 +417,7 @@ contains
     real(wp) :: scale
     integer :: k
     logical :: found
-    call steady_pose(t, c, r)
+    call moving_pose(t, c, r)
     err = 0.0_wp
     scale = 0.0_wp
     do k = 1, hull%n

@@ -76,10 +76,13 @@ module davit_boat_strip_waves
     !> window (heave, roll, the passing wave), so the load is expanded about the sampled
     !> geometry as the kinematics are about their reference points.
     real(wp), allocatable :: fd(:, :, :, :), g_ref(:, :)
-    !> The far end's geometry (as g_ref) and centre (x, y) [m]: the geometry of t1 carried
-    !> on at the rate it changed since the last window (g_ref where there is none), so the
+    !> The geometry's path from t1k, G(t) = G1 + gv s + ga s^2/2 (s = t - t1k, G the nine
+    !> parameters of sens: d0, x, y, gy, gz, c12, c22, c13, c23): velocity and acceleration
+    !> through the section's last two samples and t1k's (zero where there are none), so the
     !> expansion covers the departure from that path, not the whole move.
-    real(wp), allocatable :: g_far(:, :), p_far(:, :)
+    real(wp), allocatable :: gv(:, :), ga(:, :)
+    !> The sample before t1k's, (nine parameters, strip), and its time [s] (-huge: none).
+    real(wp), allocatable :: g_prev(:, :), t_prev(:)
     !> The loads' reference centre at their window's start (x, y) [m] and that start t1k
     !> [s]: the window's t1, or the step at which a section dry at t1 got wet (it is sampled
     !> then, for the rest of the window).
@@ -108,12 +111,13 @@ contains
     if (.not. cache%enabled) return
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
-              cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%g_far(7, n), cache%p_far(2, n), &
-              cache%p_load(2, n), cache%t_load(n))
+              cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%gv(9, n), cache%ga(9, n), &
+              cache%g_prev(9, n), cache%t_prev(n), cache%p_load(2, n), cache%t_load(n))
     allocate (cache%cr(field%n), cache%sr(field%n))
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%sampled = .false.
     cache%loaded = .false.
+    cache%t_prev = -huge(1.0_wp)
   end function new_strip_wave_cache
 
   !> After a step ending at t: true when the window should be renewed (the next step may
@@ -161,18 +165,19 @@ contains
     !> Precomputed grids of the surface and of the water below it (absent: the sea itself).
     type(wave_grid_type), intent(in), optional :: surface, volume
     type(section_wet_type) :: wet
-    real(wp) :: p(3), q(3), eta, ramp, rate(hull%n)
+    real(wp) :: p(3), q(3), eta, ramp
+    logical :: history(2, hull%n)
     integer :: k
     if (.not. cache%enabled) return
-    ! the sections' geometry is carried on at the rate it changed since its last sample
-    ! (in the window just ending only)
-    rate = 0.0_wp
+    ! the sections' geometry is carried on along its path through its last samples (those
+    ! of the windows just ending, each at most two windows before the next)
+    history = .false.
     if (cache%clock%valid) then
       do k = 1, hull%n
-        if (cache%loaded(k) .and. t > cache%t_load(k) .and. &
-            t - cache%t_load(k) <= 2.0_wp*cache%clock%interval) then
-          rate(k) = cache%clock%interval/(t - cache%t_load(k))
-        end if
+        history(1, k) = cache%loaded(k) .and. t > cache%t_load(k) .and. &
+                        t - cache%t_load(k) <= 2.0_wp*cache%clock%interval
+        history(2, k) = history(1, k) .and. cache%t_prev(k) < cache%t_load(k) .and. &
+                        cache%t_load(k) - cache%t_prev(k) <= 2.0_wp*cache%clock%interval
       end do
     end if
     call cache%clock%open(t)
@@ -185,7 +190,7 @@ contains
       call elevation_ends(cache, field, p(1), p(2), cache%ep(:, :, k), surface)
       if (.not. maybe_wet(k)) cycle
       eta = ramp*cache%ep(1, 1, k)
-      call sample_section_load(cache, hull, field, k, c, p, ramp, rate(k))
+      call sample_section_load(cache, hull, field, k, c, p, ramp, history(:, k))
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
       if (wet%area > 0.0_wp) then
         q = r + matmul(c, [hull%x(k), wet%centroid])
@@ -222,7 +227,8 @@ contains
       call cached_surface(cache, field, k, t, p(1), p(2), eta, slope)
       grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
       call sample_path(cache, hull, field, k, [t, cache%clock%window(2)], .false., p, &
-                       [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], 0.0_wp)
+                       [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], &
+                       [.false., .false.])
     end do
   end subroutine strip_waves_catch_up
 
@@ -330,76 +336,105 @@ contains
   !> polygon under the tangent plane at t1 and, where the section was sampled in the last
   !> window (rate > 0), for the geometry carried on to t2 at the rate it changed since
   !> then (each end with its own polygon); else for t1's polygon at both ends.
-  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp, rate)
+  pure subroutine sample_section_load(cache, hull, field, k, c, p, ramp, history)
     type(strip_wave_cache_type), intent(inout) :: cache
     type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
     integer, intent(in) :: k
-    real(wp), intent(in) :: c(3, 3), p(3), ramp, rate
+    real(wp), intent(in) :: c(3, 3), p(3), ramp
+    logical, intent(in) :: history(2)
     real(wp) :: grad(3), g1(7)
     grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
     g1 = [p(3) + ramp*cache%ep(1, 1, k), grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
-    call sample_path(cache, hull, field, k, cache%clock%window, .true., p, g1, rate)
+    call sample_path(cache, hull, field, k, cache%clock%window, .true., p, g1, history)
   end subroutine sample_section_load
 
   !> Strip k's section load on `window` (its start t1k, the window's end; `whole`: the
-  !> clock's whole window, whose far end's phases are the near end's turned) for
-  !> the geometry g1 with centre p at t1k, and at the far end for that geometry carried
-  !> on at `rate` (> 0: the rate it changed since its last sample), each end with its own
-  !> wet polygon; with rate 0, or the carried polygon dry, t1k's polygon at both ends.
-  pure subroutine sample_path(cache, hull, field, k, window, whole, p, g1, rate)
+  !> clock's whole window, whose far end's phases are the near end's turned) for the
+  !> geometry g1 with centre p at t1k, and at the far end for that geometry carried on
+  !> along its path: through its last sample (history(1): linear) and the one before
+  !> (history(2): quadratic), each end with its own wet polygon; with no history, or the
+  !> carried polygon dry, t1k's polygon at both ends.
+  pure subroutine sample_path(cache, hull, field, k, window, whole, p, g1, history)
     type(strip_wave_cache_type), intent(inout) :: cache
     type(boat_hull_type), intent(in) :: hull
     type(wave_field_type), intent(in) :: field
     integer, intent(in) :: k
-    real(wp), intent(in) :: window(2), p(3), g1(7), rate
-    logical, intent(in) :: whole
+    real(wp), intent(in) :: window(2), p(3), g1(7)
+    logical, intent(in) :: whole, history(2)
     type(section_wet_type) :: wet, wet2
-    real(wp) :: load(3, 2), rate_t(3, 2), g2(7), p2(2), dg(9), c(3, 3)
+    real(wp) :: load(3, 2), rate_t(3, 2), g(9), g2(9), g_old(9), v(9), a(9), c(3, 3), h
     integer :: j
-    g2 = g1 + rate*(g1 - cache%g_ref(:, k))
-    p2 = p(1:2) + rate*(p(1:2) - cache%p_load(:, k))
+    h = window(2) - window(1)
+    g = [g1(1), p(1:2), g1(2:7)]
+    g_old = [cache%g_ref(1, k), cache%p_load(:, k), cache%g_ref(2:7, k)]
+    call path_rates(g, window(1), g_old, cache%t_load(k), cache%g_prev(:, k), cache%t_prev(k), &
+                    history, v, a)
+    g2 = g + v*h + 0.5_wp*a*h**2
+    ! the samples' history moves on (the sample of t1k's window becomes the one before)
+    cache%t_prev(k) = merge(cache%t_load(k), -huge(1.0_wp), history(1))
+    cache%g_prev(:, k) = g_old
     cache%loaded(k) = .false.
-    wet = section_immersion(hull, k, g1(1), g1(2), g1(3))
+    wet = section_immersion(hull, k, g(1), g(4), g(5))
     if (wet%area <= 0.0_wp) return
     wet2 = wet
-    if (rate > 0.0_wp) wet2 = section_immersion(hull, k, g2(1), g2(2), g2(3))
+    if (history(1)) wet2 = section_immersion(hull, k, g2(1), g2(4), g2(5))
     ! the lags read only the horizontal parts of b2 and b3
     c = 0.0_wp
-    c(1:2, 2) = g1(4:5)
-    c(1:2, 3) = g1(6:7)
-    if (rate <= 0.0_wp .or. wet2%area <= 0.0_wp) then
-      g2 = g1
-      p2 = p(1:2)
+    c(1:2, 2) = g(6:7)
+    c(1:2, 3) = g(8:9)
+    if (.not. history(1) .or. wet2%area <= 0.0_wp) then
+      v = 0.0_wp
+      a = 0.0_wp
       if (whole) then
         ! both ends in one pass: they share the edge integrals, only the phase differs
-        call section_wave_loads(field, window, hull, wet, c, p, g1(1), g1(2), g1(3), load, &
+        call section_wave_loads(field, window, hull, wet, c, p, g(1), g(4), g(5), load, &
                                 rate_t, cache%cr, cache%sr, cache%fd(:, :, :, k))
       else
-        call section_wave_loads(field, window, hull, wet, c, p, g1(1), g1(2), g1(3), load, &
+        call section_wave_loads(field, window, hull, wet, c, p, g(1), g(4), g(5), load, &
                                 rate_t, sens=cache%fd(:, :, :, k))
       end if
     else
-      call section_wave_loads(field, window(1:1), hull, wet, c, p, g1(1), g1(2), g1(3), &
+      call section_wave_loads(field, window(1:1), hull, wet, c, p, g(1), g(4), g(5), &
                               load(:, 1:1), rate_t(:, 1:1), sens=cache%fd(:, :, 1:1, k))
-      c(1:2, 2) = g2(4:5)
-      c(1:2, 3) = g2(6:7)
-      call section_wave_loads(field, window(2:2), hull, wet2, c, [p2, p(3)], g2(1), g2(2), &
-                              g2(3), load(:, 2:2), rate_t(:, 2:2), sens=cache%fd(:, :, 2:2, k))
+      c(1:2, 2) = g2(6:7)
+      c(1:2, 3) = g2(8:9)
+      call section_wave_loads(field, window(2:2), hull, wet2, c, [g2(2:3), p(3)], g2(1), &
+                              g2(4), g2(5), load(:, 2:2), rate_t(:, 2:2), &
+                              sens=cache%fd(:, :, 2:2, k))
     end if
     ! the rates along the path: d/dt at fixed geometry plus the geometry's own change
-    dg = [g2(1) - g1(1), p2 - p(1:2), g2(2:7) - g1(2:7)]/(window(2) - window(1))
     do j = 1, 2
       cache%fk(:, 1, j, k) = load(:, j)
-      cache%fk(:, 2, j, k) = rate_t(:, j) + matmul(cache%fd(:, :, j, k), dg)
+      cache%fk(:, 2, j, k) = rate_t(:, j) + matmul(cache%fd(:, :, j, k), v + (j - 1)*h*a)
     end do
     cache%g_ref(:, k) = g1
-    cache%g_far(:, k) = g2
     cache%p_load(:, k) = p(1:2)
-    cache%p_far(:, k) = p2
+    cache%gv(:, k) = v
+    cache%ga(:, k) = a
     cache%t_load(k) = window(1)
     cache%loaded(k) = .true.
   end subroutine sample_path
+
+  !> The geometry's path at t through its samples g_old at t_old (history(1)) and g_pp at
+  !> t_pp (history(2)): velocity v and acceleration a of the line or the parabola through
+  !> them and g (zero without history).
+  pure subroutine path_rates(g, t, g_old, t_old, g_pp, t_pp, history, v, a)
+    real(wp), intent(in) :: g(9), t, g_old(9), t_old, g_pp(9), t_pp
+    logical, intent(in) :: history(2)
+    real(wp), intent(out) :: v(9), a(9)
+    real(wp) :: d1(9), d2(9)
+    v = 0.0_wp
+    a = 0.0_wp
+    if (.not. history(1)) return
+    d1 = (g_old - g)/(t_old - t)
+    v = d1
+    if (.not. history(2)) return
+    ! q(s) = g + v s + a s^2/2 through (t_old - t, g_old) and (t_pp - t, g_pp)
+    d2 = (g_pp - g)/(t_pp - t)
+    a = 2.0_wp*(d1 - d2)/(t_old - t_pp)
+    v = d1 - 0.5_wp*a*(t_old - t)
+  end subroutine path_rates
 
   !> Elevation [m] (up) at the horizontal point (x, y) near strip k's centre at time t.
   pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
@@ -510,7 +545,7 @@ contains
     real(wp), intent(out) :: load(3)
     !> Whether the window holds the load of strip k.
     logical, intent(out) :: found
-    real(wp) :: hw(4), dg(9), lam, gr(7), span(2)
+    real(wp) :: hw(4), dg(9), lam, gr(9), span(2), sk
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
@@ -521,9 +556,10 @@ contains
     ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned);
     ! the derivatives, like the gradients of the kinematics, linear in time (those of t1
     ! alone leave the water's own move times the window's time in the error: first order)
-    gr = (1.0_wp - lam)*cache%g_ref(:, k) + lam*cache%g_far(:, k)
-    dg = [g(1) - gr(1), pc - ((1.0_wp - lam)*cache%p_load(:, k) + lam*cache%p_far(:, k)), &
-          g(2:7) - gr(2:7)]
+    sk = t - span(1)
+    gr = [cache%g_ref(1, k), cache%p_load(:, k), cache%g_ref(2:7, k)] + cache%gv(:, k)*sk + &
+         0.5_wp*cache%ga(:, k)*sk**2
+    dg = [g(1), pc, g(2:7)] - gr
     associate (f => cache%fk(:, :, :, k), s => cache%fd(:, :, :, k))
       load = wave_ramp(field, t)*(hw(1)*f(:, 1, 1) + hw(2)*f(:, 2, 1) + hw(3)*f(:, 1, 2) + &
                                   hw(4)*f(:, 2, 2) + &
