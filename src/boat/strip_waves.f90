@@ -27,10 +27,11 @@
 !> sides, and its turn), Hermite-interpolated and expanded in the geometry's departure from
 !> a path: the geometry of t1 carried on to t2 along the parabola through the section's
 !> last two samples and t1's (a line with one; each end sampled for its own wet polygon;
-!> with no earlier sample, t1's polygon at both ends). Held fixed, the geometry cost the single-summation launch 0.6 %
-!> of its peak sling tension at h = 0.05 s and 1.5 % at 0.1 s (a beam sea rolls the boat by
-!> degrees per window, and the surface's departure from its tangent plane at the sides,
-!> a few cm, rides on the moving waterline); expanded about t1's geometry 0.01 % and
+!> with no earlier sample, t1's polygon at both ends). Held fixed, the geometry cost the
+!> single-summation launch 0.6 % of its peak sling tension at h = 0.05 s and 1.5 % at
+!> 0.1 s (a beam sea rolls the boat by degrees per window, and the surface's departure
+!> from its tangent plane at the sides, a few cm, rides on the moving waterline);
+!> expanded about t1's geometry 0.01 % and
 !> 0.3 %; about the path the double-summation launches keep 0.08 % at 0.15 s
 !> (doc/benchmarks/multirate.md). A section dry at t1 that wets within the window takes
 !> the exact sums until the next accepted step, which samples it for the rest of the
