@@ -16,7 +16,7 @@ module test_strip_waves
   use davit_core_slow_clock, only: new_slow_clock, clock_reach
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_refresh, cached_elevation, cached_kinematics, &
-                                    strip_waves_surface, cached_wave_load, cached_slope, &
+                                    strip_waves_surface, cached_wave_load, cached_surface, &
                                     strip_waves_catch_up
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
@@ -293,14 +293,15 @@ contains
     type(wave_field_type), intent(in) :: field
     type(boat_hull_type), intent(in) :: hull
     real(wp), intent(in) :: c(3, 3), r(3), t, dx(2)
-    real(wp) :: p(3), eta, exact(2)
+    real(wp) :: p(3), eta, exact(2), slope(2)
     integer :: k
     err = 0.0_wp
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
       p(1:2) = p(1:2) + dx
       call surface_plane(field, t, p(1), p(2), eta, exact)
-      err = max(err, norm2(cached_slope(cache, field, k, t, p(1), p(2)) - exact))
+      call cached_surface(cache, field, k, t, p(1), p(2), eta, slope)
+      err = max(err, norm2(slope - exact))
     end do
   end function slope_error
 
@@ -352,10 +353,8 @@ contains
     type(wave_field_type) :: field
     type(boat_hull_type) :: hull
     type(strip_wave_cache_type) :: cache
-    real(wp) :: c(3, 3), r(3), p(3), eta, slope(2), grad(3), d0, exact(3), rate(3), load(3)
-    real(wp) :: err, scale
-    type(section_wet_type) :: wet
-    logical :: dry_at_t1(20), found
+    real(wp) :: c(3, 3), r(3), exact(3), load(3), g(7), pc(2), err, scale
+    logical :: dry_at_t1(20), found, wet_now
     integer :: i, k, n_new
     call level5_sea(field)
     call afloat(hull, c, r)
@@ -374,15 +373,8 @@ contains
     scale = 0.0_wp
     do k = 1, hull%n
       if (.not. (dry_at_t1(k) .and. cache%loaded(k))) cycle
-      p = r + c(:, 1)*hull%x(k)
-      call surface_plane(field, 20.07_wp, p(1), p(2), eta, slope)
-      grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
-      d0 = p(3) + eta
-      wet = section_immersion(hull, k, d0, grad(2), grad(3))
-      call section_wave_load(field, 20.07_wp, hull, wet, c, p, d0, grad(2), grad(3), exact, &
-                             rate)
-      call cached_wave_load(cache, field, k, 20.07_wp, [d0, grad(2:3), c(1:2, 2), c(1:2, 3)], &
-                            p(1:2), load, found)
+      call exact_section(field, hull, k, 20.07_wp, c, r, exact, g, pc, wet_now)
+      call cached_wave_load(cache, field, k, 20.07_wp, g, pc, load, found)
       scale = max(scale, maxval(abs(exact)))
       err = max(err, maxval(abs(load - exact)))
     end do
@@ -412,30 +404,45 @@ contains
     type(wave_field_type), intent(in) :: field
     type(boat_hull_type), intent(in) :: hull
     real(wp), intent(in) :: t
-    type(section_wet_type) :: wet
-    real(wp) :: c(3, 3), r(3), p(3), eta, slope(2), grad(3), d0, exact(3), rate(3), load(3)
-    real(wp) :: scale
+    real(wp) :: c(3, 3), r(3), exact(3), load(3), g(7), pc(2), scale
     integer :: k
-    logical :: found
+    logical :: found, wet_now
     call moving_pose(t, c, r)
     err = 0.0_wp
     scale = 0.0_wp
     do k = 1, hull%n
       if (.not. cache%loaded(k)) cycle
-      p = r + c(:, 1)*hull%x(k)
-      call surface_plane(field, t, p(1), p(2), eta, slope)
-      grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
-      d0 = p(3) + eta
-      wet = section_immersion(hull, k, d0, grad(2), grad(3))
-      if (wet%area <= 0.0_wp) cycle
-      call section_wave_load(field, t, hull, wet, c, p, d0, grad(2), grad(3), exact, rate)
-      call cached_wave_load(cache, field, k, t, [d0, grad(2:3), c(1:2, 2), c(1:2, 3)], &
-                            p(1:2), load, found)
+      call exact_section(field, hull, k, t, c, r, exact, g, pc, wet_now)
+      if (.not. wet_now) cycle
+      call cached_wave_load(cache, field, k, t, g, pc, load, found)
       scale = max(scale, maxval(abs(exact)))
       err = max(err, maxval(abs(load - exact)))
     end do
     err = err/scale
   end function path_error
+
+  !> Strip k of the hull at (c, r) at time t: its exact section load (the wet polygon found
+  !> again under the surface's tangent plane there, section_wave_load; zero and wet_now =
+  !> .false. where dry) and the geometry the window reads (d0, gy, gz, c12, c22, c13, c23)
+  !> with the centre's horizontal position pc.
+  subroutine exact_section(field, hull, k, t, c, r, exact, g, pc, wet_now)
+    type(wave_field_type), intent(in) :: field
+    type(boat_hull_type), intent(in) :: hull
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp), intent(out) :: exact(3), g(7), pc(2)
+    logical, intent(out) :: wet_now
+    type(section_wet_type) :: wet
+    real(wp) :: p(3), eta, slope(2), grad(3), rate(3)
+    p = r + c(:, 1)*hull%x(k)
+    call surface_plane(field, t, p(1), p(2), eta, slope)
+    grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
+    g = [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
+    pc = p(1:2)
+    wet = section_immersion(hull, k, g(1), g(2), g(3))
+    wet_now = wet%area > 0.0_wp
+    call section_wave_load(field, t, hull, wet, c, p, g(1), g(2), g(3), exact, rate)
+  end subroutine exact_section
 
   !> Largest error of the window's section loads against the exact ones, relative to the
   !> largest exact load, for the hull of afloat moved by the scale s: expanded and frozen.
@@ -445,11 +452,9 @@ contains
     type(boat_hull_type), intent(in) :: hull
     real(wp), intent(in) :: t, s
     real(wp), intent(out) :: err, frozen
-    type(section_wet_type) :: wet
-    real(wp) :: c(3, 3), r(3), p(3), eta, slope(2), grad(3), d0
-    real(wp) :: exact(3), rate(3), load(3), still(3), scale
+    real(wp) :: c(3, 3), r(3), exact(3), load(3), still(3), g(7), pc(2), scale
     integer :: k
-    logical :: found
+    logical :: found, wet_now
     ! afloat's pose, moved
     c = rotation_matrix([0.05_wp + 0.03_wp*s, -0.03_wp + 0.02_wp*s, 0.4_wp - 0.03_wp*s])
     r = [3.0_wp, -2.0_wp, 1.5_wp] + s*[0.04_wp, -0.05_wp, 0.06_wp]
@@ -458,15 +463,9 @@ contains
     scale = 0.0_wp
     do k = 1, hull%n
       if (.not. cache%loaded(k)) cycle
-      p = r + c(:, 1)*hull%x(k)
-      call surface_plane(field, t, p(1), p(2), eta, slope)
-      grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
-      d0 = p(3) + eta
-      wet = section_immersion(hull, k, d0, grad(2), grad(3))
-      if (wet%area <= 0.0_wp) cycle
-      call section_wave_load(field, t, hull, wet, c, p, d0, grad(2), grad(3), exact, rate)
-      call cached_wave_load(cache, field, k, t, [d0, grad(2:3), c(1:2, 2), c(1:2, 3)], &
-                            p(1:2), load, found)
+      call exact_section(field, hull, k, t, c, r, exact, g, pc, wet_now)
+      if (.not. wet_now) cycle
+      call cached_wave_load(cache, field, k, t, g, pc, load, found)
       call cached_wave_load(cache, field, k, t, cache%g_ref(:, k), cache%p(:, k), still, &
                             found)
       scale = max(scale, maxval(abs(exact)))

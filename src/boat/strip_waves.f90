@@ -49,7 +49,7 @@ module davit_boat_strip_waves
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
   public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_catch_up
-  public :: cached_kinematics, cached_slope, cached_wave_load, cached_surface
+  public :: cached_kinematics, cached_wave_load, cached_surface
   public :: strip_waves_surface
 
 
@@ -452,8 +452,7 @@ contains
   end function cached_elevation
 
   !> Elevation [m] and slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip
-  !> k's centre at time t: value, slope and their rates cubic in time (Hermite), the
-  !> curvature linear in time, expanded to second order in the offset from the centre.
+  !> k's centre at time t (surface_terms, ramped).
   pure subroutine cached_surface(cache, field, k, t, x, y, eta, slope)
     !> The strips' window.
     type(strip_wave_cache_type), intent(in) :: cache
@@ -465,20 +464,33 @@ contains
     real(wp), intent(in) :: t, x, y
     !> Elevation [m] and slope [-].
     real(wp), intent(out) :: eta, slope(2)
-    real(wp) :: hw(4), lam, dx(2), g(2), hv(3), hdx(2), ramp
-    hw = cache%clock%weights(t)
-    lam = window_fraction(cache, t)
+    real(wp) :: ramp
+    call surface_terms(cache, k, cache%clock%weights(t), window_fraction(cache, t), x, y, &
+                       eta, slope)
     ramp = wave_ramp(field, t)
+    eta = ramp*eta
+    slope = ramp*slope
+  end subroutine cached_surface
+
+  !> Unramped elevation and slope at (x, y) near strip k's centre, at the time of the
+  !> Hermite weights hw and window fraction lam: value, slope and their rates cubic in
+  !> time, the curvature linear in time, expanded to second order in the offset.
+  pure subroutine surface_terms(cache, k, hw, lam, x, y, eta, slope)
+    type(strip_wave_cache_type), intent(in) :: cache
+    integer, intent(in) :: k
+    real(wp), intent(in) :: hw(4), lam, x, y
+    real(wp), intent(out) :: eta, slope(2)
+    real(wp) :: dx(2), g(2), hv(3), hdx(2)
     dx = [x, y] - cache%p(:, k)
     associate (e => cache%ep(:, :, k))
       g = hw(1)*e(3:4, 1) + hw(2)*e(8:9, 1) + hw(3)*e(3:4, 2) + hw(4)*e(8:9, 2)
       hv = (1.0_wp - lam)*e(5:7, 1) + lam*e(5:7, 2)
       hdx = [hv(1)*dx(1) + hv(2)*dx(2), hv(2)*dx(1) + hv(3)*dx(2)]
-      eta = ramp*(hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
-                  dot_product(g, dx) + 0.5_wp*dot_product(dx, hdx))
+      eta = hw(1)*e(1, 1) + hw(2)*e(2, 1) + hw(3)*e(1, 2) + hw(4)*e(2, 2) + &
+            dot_product(g, dx) + 0.5_wp*dot_product(dx, hdx)
     end associate
-    slope = ramp*(g + hdx)
-  end subroutine cached_surface
+    slope = g + hdx
+  end subroutine surface_terms
 
   !> Elevation and water velocity (inertial, z down; zero above the surface) at the point
   !> pt near strip k's wet centroid at time t, as wave_kinematics gives them.
@@ -493,14 +505,15 @@ contains
     real(wp), intent(in) :: t, pt(3)
     !> Surface elevation [m] and the water velocity at the point, inertial [m/s].
     real(wp), intent(out) :: eta, velocity(3)
-    real(wp) :: hw(4), lam, ramp, dx(3)
+    real(wp) :: hw(4), lam, ramp, dx(3), slope(2)
     integer :: i
     hw = cache%clock%weights(t)
     lam = window_fraction(cache, t)
     ramp = wave_ramp(field, t)
     dx(1:2) = pt(1:2) - cache%q(1:2, k)
     ! the surface from the strip centre's terms (second order in the offset)
-    eta = cached_elevation(cache, field, k, t, pt(1), pt(2))
+    call surface_terms(cache, k, hw, lam, pt(1), pt(2), eta, slope)
+    eta = ramp*eta
     velocity = 0.0_wp
     if (pt(3) + eta < 0.0_wp) return
     dx(3) = pt(3) + eta - cache%q(3, k)
@@ -512,21 +525,6 @@ contains
       end do
     end associate
   end subroutine cached_kinematics
-
-  !> Surface slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip k's
-  !> centre at time t (cached_surface's).
-  pure function cached_slope(cache, field, k, t, x, y) result(slope)
-    !> The strips' window.
-    type(strip_wave_cache_type), intent(in) :: cache
-    !> The sea (its start-up ramp).
-    type(wave_field_type), intent(in) :: field
-    !> Strip index.
-    integer, intent(in) :: k
-    !> Time [s] and horizontal position (inertial) [m].
-    real(wp), intent(in) :: t, x, y
-    real(wp) :: slope(2), eta
-    call cached_surface(cache, field, k, t, x, y, eta, slope)
-  end function cached_slope
 
   !> Dynamic section load (F2, F3, M1) of strip k at time t from the window (found), or
   !> found = .false. where the strip was dry at t1.
