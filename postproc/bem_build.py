@@ -242,7 +242,8 @@ def davit_variables(ds, ds_special, body, m6, hydro, headings_deg, g=G, nmax=12,
 
 
 def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardation,
-               tail=None, nmax=12, tol=0.02, passive_matrix=True, progress=True, hydro=None):
+               tail=None, nmax=12, tol=0.02, passive_matrix=True, progress=True, hydro=None,
+               a_zero=None):
     """The radiation memory's state-space fits from the frequency-domain data (davit's
     frame): the frequencies the mesh resolves (bem_fit.resolved_frequencies), K(t) on the
     retardation (dt, end, window) grid, the pairs fit_all finds significant and `zero`
@@ -251,7 +252,10 @@ def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardati
     rao_weights). The build's fitting stage, and `bem passive`'s re-fit of a stored
     database. Returns the davit variables SS_*, RETARDATION_TIME, RETARDATION and
     SS_ADDED_MASS_INF; fills hydro (min_eigen_damping(_unenforced), fit_last_omega) and
-    the last enforcement's Result (passive_result: None if not enforced)."""
+    the last enforcement's Result (passive_result: None if not enforced). a_zero: (6, 6)
+    A(0) of the data, or None; given (and passive_matrix), the enforcement holds every
+    fitted pair's zero-frequency added mass A_inf(fit) + K'(0) at it (the Munk moments of
+    the forward-speed terms, davit_ship_bem_loads' bem_speed_load, come from it)."""
     hydro = {} if hydro is None else hydro
     dt, end, window = retardation
     time = np.arange(0.0, end + 0.5 * dt, dt)
@@ -274,7 +278,8 @@ def fit_memory(omega, added_mass, damping, a_inf, m6, stiffness, zero, retardati
         weights = bem_passive.rao_weights(omega[keep], added_mass[keep], damping[keep],
                                           m6, stiffness, fits)
         passive = bem_passive.enforce(fits, omega[keep], added_mass[keep], damping[keep],
-                                      a_inf, omega_max=omega[-1], weights=weights)
+                                      a_inf, omega_max=omega[-1], weights=weights,
+                                      added_mass_zero=a_zero)
         if progress and augmented:
             print("bem: passivity: a pole pair at " f"{bem_passive.AUGMENT_FACTOR:g} x the "
                   "last frequency given to the diagonal fits of "

@@ -154,14 +154,18 @@ def augment(fits, omega_max, damping, tol=TOLERANCE):
 
 
 def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omega_max=None,
-            tol=TOLERANCE, iterations=60):
+            tol=TOLERANCE, iterations=60, added_mass_zero=None):
     """Perturb the residues of `fits` (dict (i, j) -> PairFit, changed in place: coef, c,
     the grid errors, min_damping) until the symmetric part of the fitted damping matrix
     has no eigenvalue below -tol (scaled) over dense_grid. omega, added_mass, damping: the
     grid and data the fits used; weights: dict (i, j) -> (nw,), each pair's error K_fit - K
     multiplied by it in the least change (default 1 / max |K_ij|: the relative error;
     rao_weights: the RAO's); omega_max: the database's last frequency (default omega[-1]).
-    Always feasible (zero residues satisfy every constraint). Returns a Result."""
+    added_mass_zero: (6, 6) A(0) of the BEM data, or None; given, every pair's memory keeps
+    its zero-frequency added mass A_inf(fit) + K'(0) equal to it (an equality constraint on
+    the residues, _zero_frequency_rows, held in every step; the result is then passive by
+    the same check, on the dense grid, as without it). Without it always feasible (zero
+    residues satisfy every constraint). Returns a Result."""
     omega = np.asarray(omega, float)
     w_top = omega[-1] if omega_max is None else omega_max
     wd = dense_grid(fits, w_top)
@@ -185,7 +189,7 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
         y0.append(np.linalg.lstsq(null, f.coef, rcond=None)[0])
         offsets.append(offsets[-1] + null.shape[1])
     result = Result(before, before, w_before, 0, before >= -tol, rms_before, dict(rms_before))
-    if result.converged:
+    if result.converged and added_mass_zero is None:
         return result
     n = offsets[-1]
     # least change || M (y - y0) ||^2, M block-diagonal over the pairs, = ||z||^2 with
@@ -200,6 +204,17 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
         r_inv[offsets[k]:offsets[k + 1], offsets[k]:offsets[k + 1]] = (
             np.linalg.inv(rk) / col[:, None])
     y0 = np.concatenate(y0)
+    # the equalities h . y = c (A(0) held) in the least-change variable z = R (y - y0):
+    # z = z_p + Q t, z_p the least z that meets them, Q spanning the z that keep them;
+    # ||z||^2 = ||z_p||^2 + ||t||^2, so the least change is the least ||t||
+    z_p, q = np.zeros(n), np.eye(n)
+    if added_mass_zero is not None:
+        h, c = _zero_frequency_rows(fits, pairs, data, offsets, added_mass_zero,
+                                    added_mass_inf)
+        e = h @ r_inv
+        z_p = np.linalg.lstsq(e, c - h @ y0, rcond=None)[0]
+        vt = np.linalg.svd(e)[2]
+        q = vt[np.linalg.matrix_rank(e):].T
 
     def rows(wm, vm):
         """g such that g . y = v^T (D^-1 B(w) D^-1) v for each (w, v)."""
@@ -216,7 +231,8 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
             f.a, f.b, f.c = bem_fit.realisation(f.poles, f.coef)
 
     g = np.zeros((0, n))
-    y = y0
+    y = y0 + r_inv @ z_p
+    apply(y)
     for it in range(1, iterations + 1):
         # constraints where it dips below -tol / 2: a margin for grids other than wd
         wm, vm = _violations(fits, wd, damping, 0.5 * tol)
@@ -225,7 +241,8 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
         g = np.vstack([g, rows(wm, vm)])
         # v^T B v >= -tol / 4 there (not >= 0: where B_fit -> 0, w -> 0 or beyond the
         # poles, exact zero can cost the fit far more than the tolerance allows for)
-        y = y0 + r_inv @ _min_norm(g @ r_inv, -(g @ y0) - 0.25 * tol)
+        gz = g @ r_inv
+        y = y0 + r_inv @ (z_p + q @ _min_norm(gz @ q, -(g @ y0) - 0.25 * tol - gz @ z_p))
         apply(y)
         result.iterations = it
     result.converged = _violations(fits, wd, damping, tol)[0].size == 0
@@ -239,6 +256,32 @@ def enforce(fits, omega, added_mass, damping, added_mass_inf, weights=None, omeg
             added_mass_inf[i, j], shift)
         f.min_damping = bem_fit.min_damping(f, w_top, damping[:, i, j])
     return result
+
+
+def _slope_at_zero(poles):
+    """d/ds of bem_fit._basis at s = 0 (real): -1/p^2 for a real pole; for a pair,
+    -(1/p^2 + 1/p*^2) and -(i/p^2 - i/p*^2). K'(0) = this . coef is the memory's
+    zero-frequency added mass less A_inf: A(w) = A_inf + Im K(i w)/w -> A_inf + K'(0)."""
+    cols = []
+    for p, m in bem_fit._split_poles(poles):
+        if m == 1:
+            cols.append(-1.0 / p.real**2)
+        else:
+            cols.append(-(1.0 / p**2 + 1.0 / np.conj(p)**2).real)
+            cols.append(-(1j / p**2 - 1j / np.conj(p)**2).real)
+    return np.array(cols)
+
+
+def _zero_frequency_rows(fits, pairs, data, offsets, added_mass_zero, added_mass_inf):
+    """(h, c): h . y = c holds every pair's zero-frequency added mass at the data's,
+    A_inf_ij + shift_ij + K_ij'(0) = A_ij(0) (shift: the impedance fit's, bem_fit)."""
+    h = np.zeros((len(pairs), offsets[-1]))
+    c = np.zeros(len(pairs))
+    for k, (i, j) in enumerate(pairs):
+        null, shift = data[(i, j)][0], data[(i, j)][3]
+        h[k, offsets[k]:offsets[k + 1]] = _slope_at_zero(fits[(i, j)].poles) @ null
+        c[k] = added_mass_zero[i, j] - added_mass_inf[i, j] - shift
+    return h, c
 
 
 def _min_norm(g, b):

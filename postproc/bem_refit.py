@@ -44,7 +44,8 @@ def _write(source, path, memory, attrs):
     ds.to_netcdf(path, engine="h5netcdf", invalid_netcdf=False)
 
 
-def refit_file(source, target, nmax=12, tol=0.02, command="", progress=False):
+def refit_file(source, target, nmax=12, tol=0.02, command="", progress=False,
+               hold_zero_frequency=True):
     """Database `source` with its radiation memory re-fitted passive (see the module doc),
     written to `target` (may be `source`: written to a temporary name and renamed when
     complete). nmax, tol: the build's --nmax, --fit-tol. Returns the hydro dict of
@@ -55,11 +56,12 @@ def refit_file(source, target, nmax=12, tol=0.02, command="", progress=False):
     tail = base.attrs.get(db.ATTR_FIT_TAIL)
     tail = None if tail is None else tuple(float(v) for v in np.ravel(tail))
     hydro = {}
+    a_zero = np.asarray(base[db.ADDED_MASS_ZERO]) if hold_zero_frequency else None
     memory = bem_build.fit_memory(base.omega, base.added_mass, base.damping,
                                   base.added_mass_inf, base.mass, base.stiffness,
                                   np.asarray(base[db.SS_ORDER]) == 0,
                                   _retardation(base.attrs), tail, nmax, tol, True, progress,
-                                  hydro)
+                                  hydro, a_zero=a_zero)
     attrs = {db.ATTR_FIT_MIN_EIGEN: hydro["min_eigen_damping"],
              db.ATTR_FIT_MIN_EIGEN_UNENFORCED: hydro["min_eigen_damping_unenforced"],
              db.ATTR_FIT_PASSIVE_MATRIX: np.int32(1),
