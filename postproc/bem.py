@@ -34,9 +34,10 @@
       re-fit an existing database's radiation memory as `build` fits it today, the fitted
       damping matrix made positive semi-definite (postproc.bem_refit: the build's fitting
       stage on the stored frequency-domain data; no BEM solve, every other variable
-      unchanged). For databases built before `build` enforced it (the shipped
-      input/boat_bem.nc was re-fitted so). Prints the fits, the smallest eigenvalue
-      before and after and each pair's cost; default: in place.
+      unchanged), each fitted pair's zero-frequency added mass held at the database's
+      A(0). For databases built before `build` enforced it (the shipped
+      input/boat_bem.nc and input/ship_bem.nc were re-fitted so). Prints the fits, the
+      smallest eigenvalue before and after and each pair's cost; default: in place.
 
   python -m postproc.bem compare FINE COARSE
       mesh convergence: max change of A, B, the excitation and the RAO peak of heave, roll
