@@ -20,8 +20,13 @@ FK_TOLERANCE = 0.01
 # hydrostatics: capytaine's waterplane integrals use panel centroids (BM 0.4 % low at 16
 # panels across the beam)
 HYDROSTATIC_TOLERANCE = 0.01
-# the state-space fits are built to 2 % (bem --fit-tol); the check allows a margin
-FIT_TOLERANCE = 0.025
+# the state-space fits are built to 2 % (bem --fit-tol), but the shipped file's were then
+# made passive as a matrix with the zero-frequency added mass held (`bem passive`,
+# input/ship_bem.md): that trades pair-wise accuracy for a memory that makes no energy
+# (surge A 4.6 %, roll A 3.9 % and B 4.2 %, the others <= 2.6 %; before, not passive:
+# <= 1.9 %). The motions they give are held to 1 % of each RAO's peak by
+# test_bem_passive_default.py; here each diagonal fit within 5 %.
+FIT_TOLERANCE = 0.05
 
 
 @pytest.fixture(scope="module")
@@ -144,7 +149,10 @@ def test_state_space_fit_reproduces_added_mass_and_damping(base, dof):
     c = base[db.SS_C][dof, dof, :n]
     w = base.omega
     k = bem_fit.transfer(a, b, c, 1j * w)
-    a_fit = base.added_mass_inf[dof, dof] + k.imag / w
+    # Cummins' A(inf) of the fits (an impedance fit shifts it: davit_ss_added_mass_inf)
+    with h5py.File(DATABASE, "r") as f:
+        a_inf = f["davit_ss_added_mass_inf"][dof, dof]
+    a_fit = a_inf + k.imag / w
     b_fit = k.real
     am, bd = base.added_mass[:, dof, dof], base.damping[:, dof, dof]
     a_err = np.max(np.abs(a_fit - am)) / np.max(np.abs(am - base.added_mass_inf[dof, dof]))
