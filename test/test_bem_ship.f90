@@ -5,7 +5,8 @@ module test_bem_ship
   use davit_kinds, only: wp, pi, gravity, rho_water
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
-  use davit_ship_bem_database, only: bem_database_type, read_bem_database, bem_excitation
+  use davit_ship_bem_database, only: bem_database_type, read_bem_database, bem_excitation, &
+                                     bracket
   use davit_ship_ship_model, only: ship_system_type
   use davit_core_rotation, only: rotation_matrix, cross
   use davit_ship_bem_loads, only: bem_memory
@@ -34,8 +35,28 @@ contains
                    new_case("long_wave_limits", long_wave), &
                    new_case("beam_sea_no_mean_sway", beam_sea_mean_sway), &
                    new_case("fk_box_beam_sea_no_mean_sway", box_beam_sea_mean_sway), &
-                   new_case("cummins_in_the_seakeeping_frame", seakeeping_frame)]
+                   new_case("cummins_in_the_seakeeping_frame", seakeeping_frame), &
+                   new_case("bracket_places_values_on_a_grid", grid_bracket)]
   end function collect_bem_ship
+
+  !> The database's interpolation places a value in the interval that holds it (the left
+  !> one at a node), clamped at both ends: on the uneven grid 0, 1, 3, 6, 10 by hand.
+  subroutine grid_bracket(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: x(5) = [0.0_wp, 1.0_wp, 3.0_wp, 6.0_wp, 10.0_wp]
+    real(wp), parameter :: v(9) = [-1.0_wp, 0.0_wp, 0.5_wp, 1.0_wp, 2.0_wp, 5.25_wp, 9.0_wp, &
+                                   10.0_wp, 12.0_wp]
+    integer, parameter :: i_expected(9) = [1, 1, 1, 1, 2, 3, 4, 4, 4]
+    real(wp), parameter :: s_expected(9) = [0.0_wp, 0.0_wp, 0.5_wp, 1.0_wp, 0.5_wp, 0.75_wp, &
+                                            0.75_wp, 1.0_wp, 1.0_wp]
+    real(wp) :: s
+    integer :: i, j
+    do j = 1, size(v)
+      call bracket(x, v(j), i, s)
+      call check_true(state, i == i_expected(j), "interval of the value")
+      call check(state, s, s_expected(j), "weight of the interval's right end", abs_tol=1e-14_wp)
+    end do
+  end subroutine grid_bracket
 
   subroutine load(db)
     type(bem_database_type), intent(out) :: db

@@ -17,7 +17,7 @@ module test_strip_waves
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
                                     strip_waves_refresh, cached_elevation, cached_kinematics, &
                                     strip_waves_surface, cached_wave_load, cached_surface, &
-                                    strip_waves_catch_up
+                                    strip_waves_renew_loads
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -37,6 +37,7 @@ contains
                    new_case("slope_cubic_in_time_and_curved_in_space", slope_orders), &
                    new_case("window_section_loads_follow_the_hull_path", hull_path), &
                    new_case("window_samples_sections_that_wet_later", catch_up), &
+                   new_case("section_loads_renewed_in_their_own_windows", own_windows), &
                    new_case("coupled_boat_with_and_without_clock", coupled_boat)]
   end function collect_strip_waves
 
@@ -344,10 +345,11 @@ contains
 
   !> A hull partly out of the water at t1 (its CG raised until 3 to 17 of its 20 sections
   !> are wet in the Level 5 sea) lowered by 0.5 m at t1 + 0.03 s: sections dry at t1 are
-  !> wet then. After the step the window samples them on [t, t2] (before, their stages
-  !> took the exact sums): read at t1 + 0.07 s, each such section's load against its exact
-  !> one at its geometry then (the wet polygon found again), within 1e-3 of the largest.
-  !> Fails where the catch-up samples nothing, or on the wrong span.
+  !> wet then. After the step the window samples them over a quarter of the load span,
+  !> [t, t + 0.025 s] (before, their stages took the exact sums): read at t1 + 0.05 s,
+  !> each such section's load against its exact one at its geometry then (the wet polygon
+  !> found again), within 1e-3 of the largest; renewed at t + 0.025 s, over twice that, to
+  !> the window's end. Fails where the catch-up samples nothing, or on the wrong span.
   subroutine catch_up(state)
     type(case_state), intent(inout) :: state
     type(wave_field_type) :: field
@@ -367,14 +369,16 @@ contains
     dry_at_t1 = .not. cache%loaded
     call note(state, "CG height raised to (m, z down)", r(3))
     r(3) = r(3) + 0.5_wp
-    call strip_waves_catch_up(cache, hull, field, 20.03_wp, c, r)
+    call strip_waves_renew_loads(cache, hull, field, 20.03_wp, c, r)
     n_new = count(dry_at_t1 .and. cache%loaded)
     err = 0.0_wp
     scale = 0.0_wp
     do k = 1, hull%n
       if (.not. (dry_at_t1(k) .and. cache%loaded(k))) cycle
-      call exact_section(field, hull, k, 20.07_wp, c, r, exact, g, pc, wet_now)
-      call cached_wave_load(cache, field, k, 20.07_wp, g, pc, load, found)
+      call check(state, cache%t_end(k) - cache%t_load(k), 0.025_wp, "onset span", &
+                 abs_tol=1.0e-12_wp)
+      call exact_section(field, hull, k, 20.05_wp, c, r, exact, g, pc, wet_now)
+      call cached_wave_load(cache, field, k, 20.05_wp, g, pc, load, found)
       scale = max(scale, maxval(abs(exact)))
       err = max(err, maxval(abs(load - exact)))
     end do
@@ -383,7 +387,59 @@ contains
     call note(state, "error (of the largest load)", err/max(scale, tiny(1.0_wp)))
     call check_true(state, n_new >= 3, "sections wetted since t1 sampled")
     call check(state, err/scale, 0.0_wp, "caught-up loads vs exact", abs_tol=1.0e-3_wp)
+    call strip_waves_renew_loads(cache, hull, field, 20.055_wp, c, r)
+    do k = 1, hull%n
+      if (.not. (dry_at_t1(k) .and. cache%loaded(k))) cycle
+      call check(state, cache%t_end(k), 20.1_wp, "renewed onset to the window's end", &
+                 abs_tol=1.0e-12_wp)
+      call check(state, cache%t_load(k), 20.055_wp, "renewed at the step", abs_tol=1.0e-12_wp)
+    end do
   end subroutine catch_up
+
+  !> The accelerating hull of hull_path on a 0.3 s window from 20.0 s (one before it): the
+  !> section loads' windows are 0.15 s (the interval in two), renewed at the accepted
+  !> steps (every 0.01 s) that reach their ends. Read at 20.2 s, each wet section against
+  !> its exact load: the renewed windows' error must be well below that of the first
+  !> load window run on past its end (the same cache without renewals) and within 1e-4 of
+  !> the largest load, and every loaded section's window at most 0.15 s long and renewed
+  !> at 20.15 s. Fails where the loads are sampled over the whole interval, not renewed,
+  !> or renewed off their path (5.4e-4).
+  subroutine own_windows(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(boat_hull_type) :: hull
+    type(strip_wave_cache_type) :: renewed, kept
+    real(wp) :: c(3, 3), r(3), t, err(2)
+    integer :: j, k
+    call level5_sea(field)
+    call afloat(hull, c, r)
+    renewed = new_strip_wave_cache(field, hull%n, new_slow_clock(0.3_wp, clock_reach))
+    do j = 0, 1
+      t = 19.7_wp + 0.3_wp*j
+      call moving_pose(t, c, r)
+      call strip_waves_refresh(renewed, hull, field, t, c, r, [(.true., k = 1, hull%n)])
+    end do
+    kept = renewed
+    call check(state, maxval(renewed%t_end - renewed%t_load, mask=renewed%loaded), 0.15_wp, &
+               "first load windows: half the interval", abs_tol=1.0e-12_wp)
+    do j = 1, 20
+      t = 20.0_wp + 0.01_wp*j
+      call moving_pose(t, c, r)
+      call strip_waves_renew_loads(renewed, hull, field, t, c, r)
+    end do
+    err(1) = path_error(renewed, field, hull, 20.2_wp)
+    err(2) = path_error(kept, field, hull, 20.2_wp)
+    call note(state, "error with the renewed windows (of the largest load)", err(1))
+    call note(state, "error of the first window run on", err(2))
+    call check_true(state, count(renewed%loaded) >= 10, "sections loaded")
+    call check_true(state, all(pack(renewed%t_load, renewed%loaded) >= 20.15_wp - 1.0e-9_wp), &
+                    "every load window renewed at the step that reached its end")
+    call check_true(state, maxval(renewed%t_end - renewed%t_load, mask=renewed%loaded) <= &
+                    0.15_wp + 1.0e-9_wp, "renewed windows at most 0.15 s")
+    call check_true(state, err(1) < 0.3_wp*err(2), "renewed well below run on")
+    ! on the path through the last samples 3e-6; renewed with the path dropped 5.4e-4
+    call check(state, err(1), 0.0_wp, "renewed windows' error", abs_tol=1.0e-4_wp)
+  end subroutine own_windows
 
   !> The accelerating hull of hull_path at time t.
   subroutine moving_pose(t, c, r)

@@ -33,9 +33,17 @@
 !> from its tangent plane at the sides, a few cm, rides on the moving waterline);
 !> expanded about t1's geometry 0.01 % and
 !> 0.3 %; about the path the double-summation launches keep 0.08 % at 0.15 s
-!> (doc/benchmarks/multirate.md). A section dry at t1 that wets within the window takes
-!> the exact sums until the next accepted step, which samples it for the rest of the
-!> window (strip_waves_catch_up).
+!> (doc/benchmarks/multirate.md).
+!> The section loads keep windows of their own inside the clock's: at most max_load_span
+!> long (the clock's interval split in equal parts), each renewed at the first accepted
+!> step that reaches its end, along the path through its last samples
+!> (strip_waves_renew_loads). A section dry at its last sample that wets takes the exact
+!> sums until the next accepted step, which samples it over a quarter of that span, then
+!> half, then the whole: at its onset a section's wet breadth grows like the square root
+!> of its immersion (a round bilge), so the expansion in the immersion about a sliver
+!> is poorest there. Sampled over the whole window, the onsets and the long
+!> extrapolation of the path cost the Level 5 beam-sea launch of seed 2 2.3 % of its peak
+!> sling tension at h = 0.3 s; in their own windows 0.22 % (exact section loads: 0.24 %).
 module davit_boat_strip_waves
   use davit_kinds, only: wp
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, rotation_phasors
@@ -44,11 +52,12 @@ module davit_boat_strip_waves
   use davit_core_slow_clock, only: slow_clock_type, clock_renewed
   use davit_core_hermite, only: hermite_weights
   use davit_boat_strip_sums, only: ne, nv, nep, elevation_pass, kinematic_pass
-  use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_elevation, grid_kinematics
+  use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_kinematics
+  use davit_boat_strip_grid, only: grid_holds, grid_ends
   implicit none
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
-  public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_catch_up
+  public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_renew_loads
   public :: cached_kinematics, cached_wave_load, cached_surface
   public :: strip_waves_surface
 
@@ -88,12 +97,25 @@ module davit_boat_strip_waves
     !> [s]: the window's t1, or the step at which a section dry at t1 got wet (it is sampled
     !> then, for the rest of the window).
     real(wp), allocatable :: p_load(:, :), t_load(:)
+    !> The end of each strip's load window [s]: at most load_span after t_load.
+    real(wp), allocatable :: t_end(:)
+    !> Length of the section loads' windows [s]: the clock's interval in equal parts of at
+    !> most max_load_span.
+    real(wp) :: load_span = 0.0_wp
+    !> Per component, cos(w s) and sin(w s) of the load span s.
+    real(wp), allocatable :: crl(:), srl(:)
     !> Per strip, whether its samples were taken (it was possibly wet).
     logical, allocatable :: loaded(:)
     !> Per component, cos(w h) and sin(w h): the window's far end from its near end by
     !> angle addition, one sine and cosine per component for both ends.
     real(wp), allocatable :: cr(:), sr(:)
   end type strip_wave_cache_type
+
+  !> The longest window of the section loads [s]: over 0.15 s the double-summation launches
+  !> keep their peak sling tensions within 0.08 % (doc/benchmarks/multirate.md).
+  real(wp), parameter :: max_load_span = 0.15_wp
+  !> A section that wets starts on this part of the load span, doubled at each renewal.
+  real(wp), parameter :: onset_part = 0.25_wp
 
 contains
 
@@ -113,9 +135,12 @@ contains
     allocate (cache%p(2, n), cache%q(3, n), cache%ep(nep, 2, n), &
               cache%vq(3, nv, 2, n), cache%sampled(n), cache%fk(3, 2, 2, n), cache%loaded(n), &
               cache%fd(3, 9, 2, n), cache%g_ref(7, n), cache%gv(9, n), cache%ga(9, n), &
-              cache%g_prev(9, n), cache%t_prev(n), cache%p_load(2, n), cache%t_load(n))
-    allocate (cache%cr(field%n), cache%sr(field%n))
+              cache%g_prev(9, n), cache%t_prev(n), cache%p_load(2, n), cache%t_load(n), &
+              cache%t_end(n))
+    allocate (cache%cr(field%n), cache%sr(field%n), cache%crl(field%n), cache%srl(field%n))
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
+    cache%load_span = clock%interval/real(ceiling(clock%interval/max_load_span - 1.0e-9_wp), wp)
+    call rotation_phasors(field, cache%load_span, cache%crl, cache%srl)
     cache%sampled = .false.
     cache%loaded = .false.
     cache%t_prev = -huge(1.0_wp)
@@ -204,11 +229,12 @@ contains
     end do
   end subroutine strip_waves_refresh
 
-  !> After an accepted step at t inside the window: sample the section load of each strip
-  !> whose velocity the window holds but which was dry at t1 and is wet now, on [t, t2]
-  !> (its stages took the exact sums until now; sampled, the rest of the window reads it).
-  !> The geometry comes from the window's surface at the strip's centre.
-  pure subroutine strip_waves_catch_up(cache, hull, field, t, c, r)
+  !> After an accepted step at t inside the window: renew the load window of each strip
+  !> that reached its end (the next as long again, at most load_span), and sample each
+  !> strip whose velocity the window holds, dry at its last sample and wet now, over
+  !> onset_part of load_span (its stages took the exact sums until now). The geometry
+  !> comes from the window's surface at the strip's centre.
+  pure subroutine strip_waves_renew_loads(cache, hull, field, t, c, r)
     !> The strips' window.
     type(strip_wave_cache_type), intent(inout) :: cache
     !> The hull.
@@ -217,21 +243,47 @@ contains
     type(wave_field_type), intent(in) :: field
     !> Time of the accepted step [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3), slope(2), grad(3), eta
+    real(wp) :: p(3), slope(2), grad(3), eta, span
+    logical :: history(2)
     integer :: k
     if (.not. (cache%enabled .and. cache%clock%covers(t))) return
-    ! too close to the window's end: the few stages left take the exact sums
-    if (cache%clock%window(2) - t < 0.25_wp*cache%clock%interval) return
     do k = 1, hull%n
-      if (.not. cache%sampled(k) .or. cache%loaded(k)) cycle
+      if (.not. cache%sampled(k)) cycle
+      history = .false.
+      span = onset_part*cache%load_span
+      if (cache%loaded(k)) then
+        if (t < cache%t_end(k) - 1.0e-9_wp) cycle
+        span = cache%t_end(k) - cache%t_load(k)
+        history(1) = .true.
+        history(2) = cache%t_prev(k) < cache%t_load(k) .and. &
+                     cache%t_load(k) - cache%t_prev(k) <= 2.0_wp*cache%clock%interval
+        span = min(2.0_wp*span, cache%load_span)
+      end if
+      ! too close to the window's end: the few stages left run on or take the exact sums
+      if (cache%clock%window(2) - t < 0.25_wp*span) cycle
       p = r + c(:, 1)*hull%x(k)
       call cached_surface(cache, field, k, t, p(1), p(2), eta, slope)
       grad = c(3, :) + slope(1)*c(1, :) + slope(2)*c(2, :)
-      call sample_path(cache, hull, field, k, [t, cache%clock%window(2)], .false., p, &
-                       [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], &
-                       [.false., .false.])
+      call sample_path(cache, hull, field, k, [t, load_end(cache, t, span)], .false., p, &
+                       [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], history)
     end do
-  end subroutine strip_waves_catch_up
+  end subroutine strip_waves_renew_loads
+
+  !> End of a load window of at most span from t: the clock's window's end where it is
+  !> that close, half way to it where less than half a span would be left after a span.
+  pure real(wp) function load_end(cache, t, span) result(t_end)
+    type(strip_wave_cache_type), intent(in) :: cache
+    real(wp), intent(in) :: t, span
+    real(wp) :: rest
+    rest = cache%clock%window(2) - t
+    if (rest <= span) then
+      t_end = cache%clock%window(2)
+    else if (rest < 1.5_wp*span) then
+      t_end = t + 0.5_wp*rest
+    else
+      t_end = t + span
+    end if
+  end function load_end
 
   !> The ramped elevation and its gradient at the strip centres at the window's start, as
   !> sampled by the last refresh (exact sums: the surface watch takes them).
@@ -265,50 +317,6 @@ contains
     end if
     call elevation_pass(field, cache%clock%window(1), x, y, 2, cache%cr, cache%sr, e)
   end subroutine elevation_ends
-
-  !> Whether the grid holds (x, y) and the four points half a spacing from it at both ends
-  !> of the window (the curvature's differences).
-  pure logical function grid_holds(grid, window, x, y)
-    type(wave_grid_type), intent(in) :: grid
-    real(wp), intent(in) :: window(2), x, y
-    real(wp) :: dl
-    integer :: j
-    dl = 0.5_wp*grid%h
-    grid_holds = .false.
-    do j = 1, 2
-      if (.not. (grid_covers(grid, window(j), x, y) .and. &
-                 grid_covers(grid, window(j), x - dl, y) .and. &
-                 grid_covers(grid, window(j), x + dl, y) .and. &
-                 grid_covers(grid, window(j), x, y - dl) .and. &
-                 grid_covers(grid, window(j), x, y + dl))) return
-    end do
-    grid_holds = .true.
-  end function grid_holds
-
-  !> Elevation terms at both window ends from the grid: the curvature by central
-  !> differences of its slope field half a spacing around (x, y), the slope's rates those
-  !> of its chord over the window (the slope linear in time).
-  pure subroutine grid_ends(grid, window, x, y, e)
-    type(wave_grid_type), intent(in) :: grid
-    real(wp), intent(in) :: window(2), x, y
-    real(wp), intent(out) :: e(nep, 2)
-    real(wp) :: dl, xp(ne), xm(ne), yp(ne), ym(ne)
-    integer :: j
-    dl = 0.5_wp*grid%h
-    do j = 1, 2
-      call grid_elevation(grid, window(j), x, y, e(1:ne, j))
-      call grid_elevation(grid, window(j), x + dl, y, xp)
-      call grid_elevation(grid, window(j), x - dl, y, xm)
-      call grid_elevation(grid, window(j), x, y + dl, yp)
-      call grid_elevation(grid, window(j), x, y - dl, ym)
-      e(ne + 1, j) = (xp(3) - xm(3))/(2.0_wp*dl)
-      e(ne + 2, j) = 0.5_wp*((xp(4) - xm(4)) + (yp(3) - ym(3)))/(2.0_wp*dl)
-      e(ne + 3, j) = (yp(4) - ym(4))/(2.0_wp*dl)
-    end do
-    do j = 1, 2
-      e(ne + 4:nep, j) = (e(3:4, 2) - e(3:4, 1))/(window(2) - window(1))
-    end do
-  end subroutine grid_ends
 
   !> Elevation and velocity terms at both ends of the window at (x, y, d): from the grid
   !> where it holds both, else the exact sums in one pass.
@@ -347,11 +355,12 @@ contains
     real(wp) :: grad(3), g1(7)
     grad = c(3, :) + ramp*(cache%ep(3, 1, k)*c(1, :) + cache%ep(4, 1, k)*c(2, :))
     g1 = [p(3) + ramp*cache%ep(1, 1, k), grad(2), grad(3), c(1:2, 2), c(1:2, 3)]
-    call sample_path(cache, hull, field, k, cache%clock%window, .true., p, g1, history)
+    call sample_path(cache, hull, field, k, cache%clock%window(1) + [0.0_wp, cache%load_span], &
+                     .true., p, g1, history)
   end subroutine sample_section_load
 
-  !> Strip k's section load on `window` (its start t1k, the window's end; `whole`: the
-  !> clock's whole window, whose far end's phases are the near end's turned) for the
+  !> Strip k's section load on `window` (its start t1k and end; `whole`: a window of
+  !> load_span, whose far end's phases are the near end's turned) for the
   !> geometry g1 with centre p at t1k, and at the far end for that geometry carried on
   !> along its path: through its last sample (history(1): linear) and the one before
   !> (history(2): quadratic), each end with its own wet polygon; with no history, or the
@@ -390,7 +399,7 @@ contains
       if (whole) then
         ! both ends in one pass: they share the edge integrals, only the phase differs
         call section_wave_loads(field, window, hull, wet, c, p, g(1), g(4), g(5), load, &
-                                rate_t, cache%cr, cache%sr, cache%fd(:, :, :, k))
+                                rate_t, cache%crl, cache%srl, cache%fd(:, :, :, k))
       else
         call section_wave_loads(field, window, hull, wet, c, p, g(1), g(4), g(5), load, &
                                 rate_t, sens=cache%fd(:, :, :, k))
@@ -414,6 +423,7 @@ contains
     cache%gv(:, k) = v
     cache%ga(:, k) = a
     cache%t_load(k) = window(1)
+    cache%t_end(k) = window(2)
     cache%loaded(k) = .true.
   end subroutine sample_path
 
@@ -548,8 +558,11 @@ contains
     load = 0.0_wp
     found = cache%loaded(k)
     if (.not. found) return
-    ! the strip's own window: from the step it was sampled at to the window's end
-    span = [cache%t_load(k), cache%clock%window(2)]
+    ! the strip's own window; a stage past its end (the step that reaches it) runs on by at
+    ! most half its length, further ones take the exact sums
+    span = [cache%t_load(k), cache%t_end(k)]
+    found = t <= span(2) + 0.5_wp*(span(2) - span(1))
+    if (.not. found) return
     hw = hermite_weights(span, t)
     lam = (t - span(1))/(span(2) - span(1))
     ! the section's displacement from the sampled geometry (deeper, moved, tilted, turned);

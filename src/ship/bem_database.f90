@@ -335,11 +335,18 @@ contains
     integer, intent(out) :: i
     !> Weight of x(i+1) in the linear interpolation, clamped to 0..1.
     real(wp), intent(out) :: s
-    integer :: n
-    n = size(x)
+    integer :: j, m
+    ! bisection for the last i <= n - 1 with x(i) < v (1 where there is none): a sea of
+    ! 1300 components places each of them on the grids at every heading refresh
     i = 1
-    do while (i < n - 1 .and. v > x(i + 1))
-      i = i + 1
+    j = size(x) - 1
+    do while (i < j)
+      m = (i + j + 1)/2
+      if (v > x(m)) then
+        i = m
+      else
+        j = m - 1
+      end if
     end do
     s = min(1.0_wp, max(0.0_wp, (v - x(i))/(x(i + 1) - x(i))))
   end subroutine bracket

@@ -9,7 +9,7 @@ module davit_system_events
   use davit_boat_fenders, only: fender_set_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_due, &
                                     strip_waves_refresh, strip_waves_surface, &
-                                    strip_waves_catch_up
+                                    strip_waves_renew_loads
   use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
                                       strip_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
@@ -78,8 +78,8 @@ contains
     integer :: j
     call strip_waves_due(hist%waves, t, due)
     if (.not. due) then
-      ! sections that got wet since t1 are sampled now (their stages took the exact sums)
-      call strip_waves_catch_up(hist%waves, par%water%hull, par%sea, t, c, r)
+      ! section loads whose own window ended, and sections that got wet, are sampled now
+      call strip_waves_renew_loads(hist%waves, par%water%hull, par%sea, t, c, r)
       return
     end if
     do j = 1, par%water%hull%n
