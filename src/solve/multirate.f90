@@ -65,7 +65,6 @@ module davit_solve_multirate
   contains
     procedure :: init => multirate_init
     procedure :: step => multirate_step
-    procedure :: name => multirate_name
     procedure :: stiff_step => substep
   end type multirate_type
 
@@ -87,6 +86,15 @@ contains
     self%rhs_evaluations = 0
     self%slow_evaluations = 0
     self%fast_evaluations = 0
+    if (self%chained .and. self%c(1) == 1.0_wp) then
+      self%method = "mri2b"
+    else if (self%chained) then
+      self%method = "mri2"
+    else if (size(self%c) == 2) then
+      self%method = "multirate2"
+    else
+      self%method = "multirate"
+    end if
   end subroutine multirate_init
 
   !> One macro step of size dt (always the whole of it: there is no error control). Stage i
@@ -211,21 +219,6 @@ contains
       v = v + (h/6.0_wp)*(self%k1 + 2.0_wp*(self%k2 + self%k3) + self%k4)
     end do
   end subroutine fast_stage
-
-  pure function multirate_name(self) result(name)
-    !> The integrator.
-    class(multirate_type), intent(in) :: self
-    character(len=:), allocatable :: name
-    if (self%chained .and. self%c(1) == 1.0_wp) then
-      name = "mri2b"
-    else if (self%chained) then
-      name = "mri2"
-    else if (size(self%c) == 2) then
-      name = "multirate2"
-    else
-      name = "multirate"
-    end if
-  end function multirate_name
 
   !> The fast part's RK4 substep of a macro step h (the stability limit applies to it).
   pure real(wp) function substep(self, h) result(hs)
