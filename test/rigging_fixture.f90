@@ -7,6 +7,7 @@ module rigging_fixture
   use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
+  use davit_rigging_falls_ends, only: falls_ends_type
   use davit_core_body, only: rigid_body_type, body_mass_diagonal, body_w_phi, body_qdot, &
                              body_gravity_force, body_point_force, body_point_velocity, &
                              body_kinetic_energy
@@ -113,7 +114,7 @@ contains
     real(wp) :: hook_pos(3, 2), hook_vel(3, 2), c(3, 3), fh(3, 2), f(6)
     integer :: a
     call hooks(y, hook_pos, hook_vel, c)
-    call self%rig%rhs(t, y(13:), hook_pos, hook_vel, ship0, dydt(13:), fh)
+    call self%rig%rhs(t, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), dydt(13:), fh)
     f = body_gravity_force(self%boat, c)
     do a = 1, 2
       f = f + body_point_force(hooks_b(:, a), matmul(transpose(c), fh(:, a)))
@@ -140,7 +141,7 @@ contains
     real(wp) :: f(p%rig%nseg), sl(p%rig%nlump + 1, 2), hook_pos(3, 2), hook_vel(3, 2)
     real(wp) :: c(3, 3)
     call hooks(y, hook_pos, hook_vel, c)
-    call p%rig%observe(t, y(13:), hook_pos, hook_vel, ship0, f, sl)
+    call p%rig%observe(t, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), f, sl)
   end function tensions
 
   !> Static tension per cable part, in closed form: each block hangs on two parts of the

@@ -5,6 +5,7 @@ module test_block_balance
   use davit_kinds, only: wp, gravity
   use davit_error, only: error_type
   use davit_core_pose, only: pose_type
+  use davit_rigging_falls_ends, only: falls_ends_type
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_rigging, only: rigging_type, new_rigging
   use davit_io_config, only: config_type
@@ -88,7 +89,8 @@ contains
     call setup(rig, "sling_damping = 0, cable_damping = 0", y, state)
     hook_vel = 0.0_wp
     hook_vel(3, :) = 1.0_wp
-    call rig%block_state(0.0_wp, y, hooks0, hook_vel, ship0, br, bv, solved, it, left)
+    call rig%block_state(0.0_wp, y, falls_ends_type(hooks0, hook_vel, ship0), br, bv, solved, &
+                         it, left)
     call check_true(state, solved, "balance solved")
     h = br(3, 1) - head_z
     l = hypot(h, half_spacing)
@@ -97,7 +99,7 @@ contains
     stretch = (hooks0(3, 1) - br(3, 1)) - rig%sling%l0_seg
     t = (k_s*stretch + rig%block_mass*gravity)/(2.0_wp*cosa)
     allocate (f(rig%nseg), sl(1, 2))
-    call rig%observe(0.0_wp, y, hooks0, hook_vel, ship0, f, sl)
+    call rig%observe(0.0_wp, y, falls_ends_type(hooks0, hook_vel, ship0), f, sl)
     call check(state, f(4), t, "2 T cos a = k_s (D - l_s) + m_b g", rel_tol=1.0e-9_wp)
     call check(state, br(1, 1), hooks0(1, 1), "block 1 midway under its sheaves", &
                abs_tol=1.0e-9_wp)
@@ -143,10 +145,11 @@ contains
       u = 0.02_wp*real(i - 1, wp)/real(n - 1, wp)
       hooks = hooks0
       hooks(3, 1) = hooks0(3, 1) - u
-      call rig%block_state(0.0_wp, y, hooks, hook_vel, ship0, br, bv, solved, it, left)
+      call rig%block_state(0.0_wp, y, falls_ends_type(hooks, hook_vel, ship0), br, bv, solved, &
+                           it, left)
       if (.not. solved .or. left > 1.0e-3_wp) n_bad = n_bad + 1
       y(rig%block_r(1):rig%block_r(2)) = reshape(br, [6])
-      call rig%observe(0.0_wp, y, hooks, hook_vel, ship0, f, sl)
+      call rig%observe(0.0_wp, y, falls_ends_type(hooks, hook_vel, ship0), f, sl)
       d = norm2(br(:, 1) - hooks(:, 1))
       s = rig%sling%k_seg*max(0.0_wp, d - rig%sling%l0_seg)
       if (d <= rig%sling%l0_seg) nslack = nslack + 1
@@ -188,7 +191,8 @@ contains
     do a = 1, 2
       hook_vel(:, a) = [0.5_wp, -0.3_wp, 0.85_wp]
     end do
-    call rig%block_state(0.0_wp, y, hooks, hook_vel, ship0, br, bv, solved, it, left)
+    call rig%block_state(0.0_wp, y, falls_ends_type(hooks, hook_vel, ship0), br, bv, solved, it, &
+                         left)
     call check_true(state, solved, "balance solved")
     do a = 1, 2
       pen = rig%stop%height - (hooks(3, a) - br(3, a))
@@ -255,7 +259,8 @@ contains
             hooks(3, 2) = hooks(3, 2) + 0.3_wp*up(k)
             hook_vel(:, 1) = [2.0_wp, -1.0_wp, 3.4_wp]*(side(i) + 0.5_wp)/2.0_wp
             hook_vel(:, 2) = [-1.0_wp, 2.0_wp, -3.4_wp]*(side(j) - 0.5_wp)/2.0_wp
-            call rig%block_state(0.0_wp, y, hooks, hook_vel, ship0, br, bv, solved, it, left)
+            call rig%block_state(0.0_wp, y, falls_ends_type(hooks, hook_vel, ship0), br, bv, &
+                                 solved, it, left)
             if (.not. solved .or. .not. left < 1.0e-3_wp) then
               n_bad = n_bad + 1
               call note(state, "bad", real(it, wp))

@@ -515,19 +515,22 @@ contains
                rel_tol=1.0e-3_wp)
   end subroutine limited_substeps
 
-  !> The factory knows all three names, passes tolerances and fixed_step on, rejects unknown
-  !> names.
+  !> The factory knows every name of &simulation integrator and each product reports that
+  !> name (the output's integrator attribute; the multirate family tells its four tableaux
+  !> apart), passes tolerances and fixed_step on, rejects unknown names.
   subroutine factory_names(state)
     type(case_state), intent(inout) :: state
     class(integrator_type), allocatable :: integ
     type(error_type), allocatable :: error
-    character(len=10), parameter :: names(3) = [character(len=10) :: "rk4", "dopri5", &
-                                                "rosenbrock"]
+    character(len=10), parameter :: names(8) = [character(len=10) :: "rk4", "dopri5", &
+                                                "rosenbrock", "rosw", "multirate", &
+                                                "multirate2", "mri2", "mri2b"]
     integer :: i
-    do i = 1, 3
+    do i = 1, size(names)
       call new_integrator(trim(names(i)), 3, integ, error)
       call check_true(state, .not. allocated(error), trim(names(i))//" is known")
-      if (allocated(integ)) call check_true(state, integ%name() == trim(names(i)), "name()")
+      if (allocated(integ)) call check_true(state, integ%name() == trim(names(i)), &
+                                            "name() of "//trim(names(i)))
     end do
     call new_integrator("dopri5", 3, integ, error, rtol=1.0e-8_wp, atol=1.0e-12_wp)
     select type (integ)

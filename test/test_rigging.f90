@@ -6,6 +6,7 @@ module test_rigging
   use davit_error, only: error_type
   use davit_core_rotation, only: rotation_matrix
   use davit_core_pose, only: pose_type
+  use davit_rigging_falls_ends, only: falls_ends_type
   use davit_core_kane, only: kane_v, kane_w_phi, kane_f
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_rigging, only: new_rigging
@@ -134,14 +135,14 @@ contains
     call check_true(state, .not. allocated(error), "initial equilibrium with moved ship")
     call check(state, res, 0.0_wp, "residual with moved ship", abs_tol=1.0e-12_wp)
     allocate (dydt(p%rig%nstate))
-    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, pose_type(sr, ship_c, ship0%v, ship0%w), &
-                   dydt, fh)
+    call p%rig%rhs(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, &
+                   pose_type(sr, ship_c, ship0%v, ship0%w)), dydt, fh)
     call check(state, maxval(abs(dydt(p%rig%lumps%u(1):p%rig%drum%q(1) - 1))), 0.0_wp, &
                "rigging at rest with moved ship", abs_tol=1.0e-6_wp)
     call check(state, sum(fh(3, :)), -weight, "hooks carry W", rel_tol=1.0e-9_wp)
     sc = rotation_matrix([0.1_wp, 0.0_wp, 0.0_wp])
-    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, pose_type(sr, sc, ship0%v, ship0%w), &
-                   dydt, fh)
+    call p%rig%rhs(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, &
+                   pose_type(sr, sc, ship0%v, ship0%w)), dydt, fh)
     call check_true(state, maxval(abs(dydt(p%rig%blocks%u(1):p%rig%blocks%u(2)))) > 1.0_wp, &
                     "rolled ship moves the blocks")
   end subroutine ship_pose
@@ -175,8 +176,10 @@ contains
       call hooks(y, hook_pos, hook_vel, c)
       allocate (dydt(rig%nstate), kane(3, rig%nstate), kane0(3, rig%nstate))
       kane = 0.0_wp
-      call rig%kane_blocks(0.0_wp, y(13:), hook_pos, hook_vel, ship0, dydt, kane, fh)
-      call p0%rig%kane_blocks(0.0_wp, y0(13:), hook_pos, hook_vel, ship0, dydt, kane0, fh)
+      call rig%kane_blocks(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), dydt, &
+                           kane, fh)
+      call p0%rig%kane_blocks(0.0_wp, y0(13:), falls_ends_type(hook_pos, hook_vel, ship0), dydt, &
+                              kane0, fh)
       r1 = y(12 + rig%lumps%q(1):12 + rig%lumps%q(1) + 2)
       br = rig%block_positions(y(13:))
       d1 = r1 - hook_pos(:, 1)

@@ -8,6 +8,7 @@ module test_rigging_static
   use davit_solve_integrator, only: integrator_type
   use davit_io_config, only: config_type, read_config
   use davit_system_model, only: system_type
+  use davit_rigging_falls_ends, only: falls_ends_type
   use system_fixture, only: new_test_system
   use davit_run_recorders, only: boat_recorder
   use davit_run_run_summary, only: run_summary
@@ -71,7 +72,8 @@ contains
       y(12 + p%rig%block_r(1):12 + p%rig%block_r(1) + 2) = br0(:, 1) + offset
       y(12 + p%rig%block_r(1) + 3:12 + p%rig%block_r(2)) = br0(:, 2) - offset
       call hooks(y, hook_pos, hook_vel, c)
-      call p%rig%block_state(0.0_wp, y(13:), hook_pos, hook_vel, ship0, br, bv, solved, it)
+      call p%rig%block_state(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), br, bv, &
+                             solved, it)
       call check_true(state, solved, "balance solved "//trim(decks(i)))
       call check(state, maxval(abs(br - br0)), 0.0_wp, "blocks at the static equilibrium "// &
                  trim(decks(i)), abs_tol=1.0e-9_wp)
@@ -80,7 +82,7 @@ contains
       call check(state, maxval(abs(f - t_exp))/t_exp, 0.0_wp, "t=0 parts = T "// &
                  trim(decks(i)), abs_tol=1.0e-9_wp)
       allocate (dydt(p%rig%nstate))
-      call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, ship0, dydt, fh)
+      call p%rig%rhs(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), dydt, fh)
       deallocate (dydt)
       call check(state, fh(3, 1), -0.5_wp*weight, "fore hook W/2", rel_tol=1.0e-9_wp)
       call check(state, fh(3, 2), -0.5_wp*weight, "aft hook W/2", rel_tol=1.0e-9_wp)
@@ -122,14 +124,15 @@ contains
     call setup(p, "blocks = 'quasi_static', drum_speed = 0", y, state, res)
     call hooks(y, hook_pos, hook_vel, c)
     hook_pos(3, 1) = hook_pos(3, 1) - 0.6_wp
-    call p%rig%block_state(0.0_wp, y(13:), hook_pos, hook_vel, ship0, br, bv, solved, it)
+    call p%rig%block_state(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), br, bv, &
+                           solved, it)
     call check_true(state, solved, "balance solved")
     call note(state, "Newton iterations", real(it, wp))
     allocate (dydt(p%rig%nstate))
     y(12 + p%rig%block_r(1):12 + p%rig%block_r(2)) = reshape(br, [6])
-    call p%rig%rhs(0.0_wp, y(13:), hook_pos, hook_vel, ship0, dydt, fh)
+    call p%rig%rhs(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), dydt, fh)
     allocate (f(p%rig%nseg), sl(1, 2))
-    call p%rig%observe(0.0_wp, y(13:), hook_pos, hook_vel, ship0, f, sl)
+    call p%rig%observe(0.0_wp, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), f, sl)
     tension = f(4)
     head_z = -20.55_wp
     cos1 = (br(3, 1) - head_z)/hypot(br(3, 1) - head_z, 0.16_wp)
@@ -190,11 +193,11 @@ contains
       yp = y + h*dydt
       ym = y - h*dydt
       call hooks(yp, hook_pos, hook_vel, c)
-      call p%rig%block_state(t + h, yp(13:), hook_pos, hook_vel, ship0, rp, vdum)
+      call p%rig%block_state(t + h, yp(13:), falls_ends_type(hook_pos, hook_vel, ship0), rp, vdum)
       call hooks(ym, hook_pos, hook_vel, c)
-      call p%rig%block_state(t - h, ym(13:), hook_pos, hook_vel, ship0, rm, vdum)
+      call p%rig%block_state(t - h, ym(13:), falls_ends_type(hook_pos, hook_vel, ship0), rm, vdum)
       call hooks(y, hook_pos, hook_vel, c)
-      call p%rig%block_state(t, y(13:), hook_pos, hook_vel, ship0, &
+      call p%rig%block_state(t, y(13:), falls_ends_type(hook_pos, hook_vel, ship0), &
                              br, bv)
       err = maxval(abs((rp - rm)/(2.0_wp*h) - bv))/maxval(abs(bv))
       call check(state, err, 0.0_wp, "bv = d/dt of the balance "//trim(decks(i)), &

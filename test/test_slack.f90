@@ -9,6 +9,7 @@ module test_slack
   use davit_core_pose, only: pose_type
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_rigging, only: rigging_type, new_rigging
+  use davit_rigging_falls_ends, only: falls_ends_type
   use davit_rigging_sling_chain, only: sling_chain_type, chain_forces
   use davit_rigging_block_stop, only: stop_force
   use davit_solve_integrator, only: ode_problem, integrator_type
@@ -84,7 +85,7 @@ contains
     real(wp), intent(out) :: dydt(:)
     real(wp) :: r(3, 2), v(3, 2), a(3, 2), fh(3, 2)
     call hook_motion(self, t, r, v, a)
-    call self%rig%rhs(t, y, r, v, ship0, dydt, fh)
+    call self%rig%rhs(t, y, falls_ends_type(r, v, ship0), dydt, fh)
   end subroutine heave_rhs
 
   !> (c) The dashpots' coefficients and signs. A sling stretched by x = 1 mm whose block
@@ -291,12 +292,12 @@ contains
     do i = 1, nint(12.0_wp/dt)
       call rk%step(p, t, y, dt)
       call hook_motion(p, t, r, v, a)
-      call p%rig%observe(t, y, r, v, ship0, seg, sl)
+      call p%rig%observe(t, y, falls_ends_type(r, v, ship0), seg, sl)
       worst = max(worst, maxval(sl))
       finite = finite .and. all(abs(y) < huge(1.0_wp))
       if (t < 4.0_wp) cycle
       ! the block's offset from its hook along the sway, from the second period on
-      call p%rig%block_state(t, y, r, v, ship0, br, bv)
+      call p%rig%block_state(t, y, falls_ends_type(r, v, ship0), br, bv)
       lo = min(lo, br(1, 1) - r(1, 1))
       hi = max(hi, br(1, 1) - r(1, 1))
     end do
@@ -304,9 +305,9 @@ contains
     call check_true(state, finite, "finite state")
     call check_true(state, worst < bound, "largest sling tension below the snatch bound")
     call hook_motion(p, t, r, v, a)
-    call p%rig%block_state(t, y, r, v, ship0, br, bv, solved)
+    call p%rig%block_state(t, y, falls_ends_type(r, v, ship0), br, bv, solved)
     call check_true(state, solved, "blocks' balance (or states) valid")
-    call p%rig%rhs(t, y, r, v, ship0, dydt, fh)
+    call p%rig%rhs(t, y, falls_ends_type(r, v, ship0), dydt, fh)
     do i = 1, 2
       call check(state, r(3, i) - br(3, i), stop_h, "block rests on its stop", abs_tol=1.0e-3_wp)
       call check(state, fh(3, i), m_b*(gravity - a(3, i)), "hook carries the block", &

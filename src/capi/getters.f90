@@ -279,12 +279,9 @@ contains
     integer(c_int), value, intent(in) :: len
     type(capi_handle), pointer :: p
     type(rule_check) :: c(n_checks)
-    p => ready_handle(h, rc)
+    p => ready_handle(h, rc, len >= n_checks, &
+                      "rule checks: the buffers are shorter than davit_sizes says")
     if (.not. associated(p)) return
-    if (len < n_checks) then
-      rc = fail(p, e_arg, "rule checks: the buffers are shorter than davit_sizes says")
-      return
-    end if
     c = p%s%log%checks()
     value(1:n_checks) = c%value
     limit(1:n_checks) = c%limit

@@ -191,12 +191,18 @@ contains
     call copy_c_string(m, buf, len)
   end function davit_error_message
 
-  !> The handle ready to run, or null with the code set.
-  function ready_handle(h, rc) result(p)
+  !> The handle ready to run, or null with the code set; a call whose arguments fail its
+  !> condition `valid` is refused (e_arg) with the message `why`.
+  function ready_handle(h, rc, valid, why) result(p)
     !> The C handle.
     type(c_ptr), intent(in) :: h
-    !> Error code (e_ok, or e_arg for a null handle, or the failed handle's code).
+    !> Error code (e_ok, or e_arg for a null handle or refused arguments, or the failed
+    !> handle's code).
     integer(c_int), intent(out) :: rc
+    !> Whether the call's other arguments are acceptable (absent: they are).
+    logical, intent(in), optional :: valid
+    !> What is wrong with them when not `valid`.
+    character(len=*), intent(in), optional :: why
     type(capi_handle), pointer :: p
     p => handle_of(h)
     rc = e_arg
@@ -210,6 +216,12 @@ contains
     rc = e_ok
     p%code = e_ok
     p%message = ""
+    if (present(valid)) then
+      if (.not. valid) then
+        rc = fail(p, e_arg, why)
+        p => null()
+      end if
+    end if
   end function ready_handle
 
   integer(c_int) function davit_advance_to(h, t) bind(c) result(rc)
@@ -219,12 +231,9 @@ contains
     real(c_double), value, intent(in) :: t
     type(capi_handle), pointer :: p
     type(error_type), allocatable :: error
-    p => ready_handle(h, rc)
+    p => ready_handle(h, rc, abs(t) < huge(1.0_wp), &
+                      "advance_to: the time is not a finite number")
     if (.not. associated(p)) return
-    if (.not. abs(t) < huge(1.0_wp)) then
-      rc = fail(p, e_arg, "advance_to: the time is not a finite number")
-      return
-    end if
     call session_advance_to(p%s, real(t, wp), error)
     if (allocated(error)) rc = fail(p, e_run, error%message)
   end function davit_advance_to
@@ -235,12 +244,9 @@ contains
     !> Time to step by [s].
     real(c_double), value, intent(in) :: dt
     type(capi_handle), pointer :: p
-    p => ready_handle(h, rc)
+    p => ready_handle(h, rc, dt >= 0.0_c_double .and. dt < huge(1.0_wp), &
+                      "advance: dt must be a finite number >= 0")
     if (.not. associated(p)) return
-    if (.not. (dt >= 0.0_c_double .and. dt < huge(1.0_wp))) then
-      rc = fail(p, e_arg, "advance: dt must be a finite number >= 0")
-      return
-    end if
     rc = davit_advance_to(h, p%s%t + dt)
   end function davit_advance
 

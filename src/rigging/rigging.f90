@@ -40,6 +40,7 @@ module davit_rigging_rigging
   use davit_kinds, only: wp, gravity, pi
   use davit_error, only: error_type, fatal_error
   use davit_core_pose, only: pose_type
+  use davit_rigging_falls_ends, only: falls_ends_type
   use davit_core_kane, only: kane_v, kane_w_phi, kane_f, kane_rates
   use davit_io_rigging_keys, only: rigging_config
   use davit_rigging_winch, only: winch_speed
@@ -148,72 +149,64 @@ contains
   !> 59-65); massive blocks m_b, 0, cable + sling + weight (eqs. 73, 78-81); sheaves I, 0,
   !> torque - M_f tanh(omega/omega_f) (eqs. 71, 87). Also the forces ON the two boat hooks
   !> (inertial components).
-  pure subroutine rigging_kane_blocks(self, t, y, hook_pos, hook_vel, ship, dydt, kane, &
-                                      hook_force)
-    ! 9 arguments: the Kane-block interface every subsystem shares (time, own state, the
-    ! bodies it hangs between, its two Kane results) plus the hook forces it returns.
+  pure subroutine rigging_kane_blocks(self, t, y, ends, dydt, kane, hook_force)
     !> The rigging.
     class(rigging_type), intent(in) :: self
-    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
-    !> velocities [m/s].
-    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
-    !> The ship's pose (the davit heads, sheaves and drum move with it).
-    type(pose_type), intent(in) :: ship
+    !> Time [s] and the rigging's own state slice.
+    real(wp), intent(in) :: t, y(:)
+    !> The falls' ends: the hooks' positions and velocities, the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
     !> Time derivative of the rigging's states (kinematic rows set); the Kane blocks (mass and
     !> force rows).
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     !> Forces on the two boat hooks (3, hook), inertial [N].
     real(wp), intent(out) :: hook_force(3, 2)
     type(rig_forces_type) :: out
-    call evaluate(self, t, y, hook_pos, hook_vel, ship, dydt, kane, out)
+    call evaluate(self, t, y, ends, dydt, kane, out)
     hook_force = out%hook_force
   end subroutine rigging_kane_blocks
 
   !> Time derivative of the rigging states (kane_blocks, then eq. 89 by kane_rates) and
   !> the forces ON the two boat hooks.
-  pure subroutine rigging_rhs(self, t, y, hook_pos, hook_vel, ship, dydt, hook_force)
+  pure subroutine rigging_rhs(self, t, y, ends, dydt, hook_force)
     !> The rigging.
     class(rigging_type), intent(in) :: self
-    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
-    !> velocities [m/s].
-    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
-    !> The ship's pose.
-    type(pose_type), intent(in) :: ship
+    !> Time [s] and the rigging's own state slice.
+    real(wp), intent(in) :: t, y(:)
+    !> The falls' ends: the hooks' positions and velocities, the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
     !> Time derivative of the rigging's states.
     real(wp), intent(inout) :: dydt(:)
     !> Forces on the two boat hooks (3, hook), inertial [N].
     real(wp), intent(out) :: hook_force(3, 2)
     real(wp) :: kane(3, self%nstate)
-    call self%kane_blocks(t, y, hook_pos, hook_vel, ship, dydt, kane, hook_force)
+    call self%kane_blocks(t, y, ends, dydt, kane, hook_force)
     call kane_rates(self%layout, kane, dydt)
   end subroutine rigging_rhs
 
   !> Segment tensions [N] (cable 1 segments from the drum, then cable 2) and sling segment
   !> tensions (segment k above lump k-1, k = 1 at the hook; column = sling).
-  pure subroutine rigging_observe(self, t, y, hook_pos, hook_vel, ship, seg_tension, &
-                                  sling_tension)
+  pure subroutine rigging_observe(self, t, y, ends, seg_tension, sling_tension)
     !> The rigging.
     class(rigging_type), intent(in) :: self
-    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
-    !> velocities [m/s].
-    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
-    !> The ship's pose.
-    type(pose_type), intent(in) :: ship
+    !> Time [s] and the rigging's own state slice.
+    real(wp), intent(in) :: t, y(:)
+    !> The falls' ends: the hooks' positions and velocities, the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
     !> Cable segment tensions [N]; sling segment tensions (segment, sling) [N].
     real(wp), intent(out) :: seg_tension(self%nseg), sling_tension(self%nlump + 1, 2)
     real(wp) :: dydt(self%nstate), kane(3, self%nstate)
     type(rig_forces_type) :: out
-    call evaluate(self, t, y, hook_pos, hook_vel, ship, dydt, kane, out)
+    call evaluate(self, t, y, ends, dydt, kane, out)
     seg_tension = out%seg(1:self%nseg)
     sling_tension = out%sl(1:self%nlump + 1, :)
   end subroutine rigging_observe
 
   !> The rigging's Kane blocks and forces (kane_blocks, observe).
-  pure subroutine evaluate(self, t, y, hook_pos, hook_vel, ship, dydt, kane, out)
-    ! 9 arguments: kane_blocks' inputs and results, with all forces in `out`.
+  pure subroutine evaluate(self, t, y, ends, dydt, kane, out)
     type(rigging_type), intent(in) :: self
-    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
-    type(pose_type), intent(in) :: ship
+    real(wp), intent(in) :: t, y(:)
+    type(falls_ends_type), intent(in) :: ends
     real(wp), intent(inout) :: dydt(:), kane(:, :)
     type(rig_forces_type), intent(out) :: out
     real(wp) :: torque(max_sheaves), br(3, 2), bv(3, 2)
@@ -226,18 +219,18 @@ contains
     bv(:, 2) = y(self%block_v(1) + 3:self%block_v(2))
     solved = .true.
     if (self%static_blocks) then
-      call solve_blocks(self%falls_type, balance_input(self, y, hook_pos, hook_vel, drive), &
-                        ship, br, bv, solved)
+      call solve_blocks(self%falls_type, balance_input(self, y, ends%hook_pos, ends%hook_vel, &
+                        drive), ends%ship, br, bv, solved)
     end if
     out%seg = 0.0_wp
     out%sl = 0.0_wp
     out%block_f = 0.0_wp
     out%block_f(3, :) = self%block_mass*gravity
-    call lump_kane(self, y, hook_pos, hook_vel, br, bv, dydt, kane, out)
-    call add_stop_forces(self%stop, hook_pos, hook_vel, br, bv, .not. self%static_blocks, &
-                         out%block_f, out%hook_force)
+    call lump_kane(self, y, ends%hook_pos, ends%hook_vel, br, bv, dydt, kane, out)
+    call add_stop_forces(self%stop, ends%hook_pos, ends%hook_vel, br, bv, &
+                         .not. self%static_blocks, out%block_f, out%hook_force)
     torque = 0.0_wp
-    call cable_forces(self, drive, br, bv, ship, out%block_f, torque, out%seg)
+    call cable_forces(self, drive, br, bv, ends%ship, out%block_f, torque, out%seg)
     call block_kane(self, y, br, bv, solved, out%block_f, dydt, kane)
     call sheave_kane(self, y, torque, dydt, kane)
     dydt(self%drum%q(1)) = drive%v_drum
@@ -385,17 +378,13 @@ contains
   !> for quasi-static blocks the solved balance at this state (the copies in y are only the
   !> start). solved is .false. if the balance did not converge; iterations: Newton's
   !> balance evaluations; residual: the elastic force left on a block [N].
-  pure subroutine rigging_block_state(self, t, y, hook_pos, hook_vel, ship, r, v, solved, &
-                                      iterations, residual)
-    ! 11 arguments: the evaluation's inputs as in kane_blocks, and three optional
-    ! diagnostics.
+  pure subroutine rigging_block_state(self, t, y, ends, r, v, solved, iterations, residual)
     !> The rigging.
     class(rigging_type), intent(in) :: self
-    !> Time [s], the rigging's own state slice, the hooks' positions (3, hook), inertial [m], and
-    !> velocities [m/s].
-    real(wp), intent(in) :: t, y(:), hook_pos(3, 2), hook_vel(3, 2)
-    !> The ship's pose.
-    type(pose_type), intent(in) :: ship
+    !> Time [s] and the rigging's own state slice.
+    real(wp), intent(in) :: t, y(:)
+    !> The falls' ends: the hooks' positions and velocities, the ship's pose.
+    type(falls_ends_type), intent(in) :: ends
     !> Block positions [m] and velocities [m/s] (3, block), inertial.
     real(wp), intent(out) :: r(3, 2), v(3, 2)
     !> Whether the quasi-static balance converged.
@@ -413,9 +402,9 @@ contains
     it = 0
     left = 0.0_wp
     if (self%static_blocks) then
-      call solve_blocks(self%falls_type, balance_input(self, y, hook_pos, hook_vel, &
-                        rigging_drive(self, y, winch_speed(self%winch, t))), ship, r, v, ok, it, &
-                        left)
+      call solve_blocks(self%falls_type, balance_input(self, y, ends%hook_pos, ends%hook_vel, &
+                        rigging_drive(self, y, winch_speed(self%winch, t))), ends%ship, r, v, &
+                        ok, it, left)
     end if
     if (present(solved)) solved = ok
     if (present(iterations)) iterations = it

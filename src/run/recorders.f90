@@ -10,10 +10,9 @@ module davit_run_recorders
   use davit_system_model, only: system_type
   use davit_ship_ship_model, only: ship_system_type
   use davit_sea_wave_field, only: wave_field_type, wave_none
-  use davit_run_sea_run, only: write_components
   implicit none
   private
-  public :: recorder_type, boat_recorder, ship_recorder
+  public :: recorder_type, boat_recorder, ship_recorder, write_components
 
   type, abstract :: recorder_type
     !> Number of samples taken.
@@ -421,5 +420,24 @@ contains
       name = "ship "//trim(body_names(k))
     end if
   end function ship_state_name
+
+  !> The realised component table: enough to rebuild the sea anywhere (eq. 43).
+  subroutine write_components(w, field)
+    !> The open output file.
+    type(h5_writer_type), intent(inout) :: w
+    !> The realised sea.
+    type(wave_field_type), intent(in) :: field
+    call w%group("sea/components")
+    call w%write_1d("sea/components/omega", field%omega, "rad/s", "Component frequency", &
+                    dims="wave_component")
+    call w%write_1d("sea/components/wavenumber", field%k, "rad/m", &
+                    "Component wave number, deep water k = omega^2/g", dims="wave_component")
+    call w%write_1d("sea/components/direction", field%direction, "rad", &
+                    "Propagation direction from N1 towards N2", dims="wave_component")
+    call w%write_1d("sea/components/amplitude", field%amplitude, "m", &
+                    "Amplitude a = sqrt(2 S dw D_j) (regular: H/2)", dims="wave_component")
+    call w%write_1d("sea/components/phase", field%phase, "rad", &
+                    "Phase eps in cos(w t + eps - k (x cos g + y sin g))", dims="wave_component")
+  end subroutine write_components
 
 end module davit_run_recorders

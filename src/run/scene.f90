@@ -5,8 +5,9 @@
 !> and 'sea' the wave field alone. Callers ask the bindings what differs: whether there is
 !> a boat, whether it hangs on the davit's rigging, whether the 6-DOF ship moves with it,
 !> whether wind acts, what the run holds in memory, how it is run and linearised. How a
-!> scene is run (`run`) is in the submodule davit_run_scene_run (src/run/scene_run.f90),
-!> because the time loop it calls writes the scenario, which asks the scene.
+!> scene is run (`run`) is in the submodules davit_run_scene_run (src/run/scene_run.f90)
+!> and davit_run_sea_run (src/run/sea_run.f90), because the time loop it calls writes the
+!> scenario, which asks the scene.
 module davit_run_scene
   use davit_kinds, only: wp
   use davit_error, only: error_type, fatal_error

@@ -1,8 +1,8 @@
-!> How each scene is run (the `run` bindings of davit_run_scene): a submodule, because the
-!> time loop it calls (davit_run_driver) writes the run's scenario, which asks the scene.
+!> How the boat and ship scenes are run (the `run` bindings of davit_run_scene; the sea's
+!> is in davit_run_sea_run): a submodule, because the time loop it calls
+!> (davit_run_driver) writes the run's scenario, which asks the scene.
 submodule (davit_run_scene) davit_run_scene_run
   use davit_run_driver, only: integrate_scene
-  use davit_run_sea_run, only: run_sea
   use davit_run_recorders, only: boat_recorder, ship_recorder
   use davit_run_launch_log, only: launch_log, new_launch_log
   implicit none
@@ -29,9 +29,5 @@ contains
     if (allocated(error)) return
     call integrate_scene(cfg, ship, y, srec, out_path, summary, error, progress=progress)
   end procedure ship_run
-
-  module procedure sea_run
-    call run_sea(cfg, out_path, summary, error)
-  end procedure sea_run
 
 end submodule davit_run_scene_run

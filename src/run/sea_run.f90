@@ -1,34 +1,23 @@
 !> The 'sea' scene: the wave field alone, recorded at fixed probes. The probes' spatial
 !> phasors are computed once and the time phasors advanced by rotation (recomputed exactly
 !> every `resync` samples so round-off cannot accumulate), so a sample costs one dot
-!> product per probe.
-module davit_run_sea_run
-  use davit_kinds, only: wp, i8
-  use davit_error, only: error_type
-  use davit_io_config, only: config_type
+!> product per probe. The `run` binding of the 'sea' scene (davit_run_scene), a submodule
+!> like davit_run_scene_run.
+submodule (davit_run_scene) davit_run_sea_run
+  use davit_kinds, only: i8
   use davit_io_hdf5_writer, only: h5_writer_type
   use davit_sea_wave_field, only: wave_field_type, point_phasors, time_phasors, &
                                   rotation_phasors, advance_phasors, elevation_from_phasors
   use davit_system_sea_builder, only: build_wave_field
-  use davit_run_run_summary, only: run_summary
   use davit_run_scenario, only: write_root_attributes
+  use davit_run_recorders, only: write_components
   implicit none
-  private
-  public :: run_sea, write_components
 
   integer, parameter :: resync = 256
 
 contains
 
-  subroutine run_sea(cfg, out_path, summary, error)
-    !> The 'sea' deck's configuration.
-    type(config_type), intent(in) :: cfg
-    !> Path of the HDF5 file written.
-    character(len=*), intent(in) :: out_path
-    !> Wall time and completion of the run.
-    type(run_summary), intent(out) :: summary
-    !> Set when the sea cannot be built or the file not written.
-    type(error_type), allocatable, intent(out) :: error
+  module procedure sea_run
     type(wave_field_type) :: field
     type(h5_writer_type) :: writer
     type(error_type), allocatable :: none
@@ -79,25 +68,6 @@ contains
     call writer%attr_str("/sea", "wave_type", cfg%sea%wave_type)
     call writer%attr_real("/sea", "ramp_time", field%ramp_time)
     call writer%close(error)
-  end subroutine run_sea
+  end procedure sea_run
 
-  !> The realised component table: enough to rebuild the sea anywhere (eq. 43).
-  subroutine write_components(w, field)
-    !> The open output file.
-    type(h5_writer_type), intent(inout) :: w
-    !> The realised sea.
-    type(wave_field_type), intent(in) :: field
-    call w%group("sea/components")
-    call w%write_1d("sea/components/omega", field%omega, "rad/s", "Component frequency", &
-                    dims="wave_component")
-    call w%write_1d("sea/components/wavenumber", field%k, "rad/m", &
-                    "Component wave number, deep water k = omega^2/g", dims="wave_component")
-    call w%write_1d("sea/components/direction", field%direction, "rad", &
-                    "Propagation direction from N1 towards N2", dims="wave_component")
-    call w%write_1d("sea/components/amplitude", field%amplitude, "m", &
-                    "Amplitude a = sqrt(2 S dw D_j) (regular: H/2)", dims="wave_component")
-    call w%write_1d("sea/components/phase", field%phase, "rad", &
-                    "Phase eps in cos(w t + eps - k (x cos g + y sin g))", dims="wave_component")
-  end subroutine write_components
-
-end module davit_run_sea_run
+end submodule davit_run_sea_run

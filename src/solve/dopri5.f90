@@ -41,7 +41,6 @@ module davit_solve_dopri5
     real(wp), allocatable :: k2(:), k3(:), k4(:), k5(:), k6(:), k7(:)
   contains
     procedure :: init => dopri5_init
-    procedure :: name => dopri5_name
     procedure :: start => dopri5_start
     procedure :: attempt => dopri5_attempt
     procedure :: next_step => pi_controller
@@ -62,6 +61,7 @@ contains
     ! Rosenbrock one
     self%fac_max = 10.0_wp
     self%err_old = 1.0e-4_wp
+    self%method = "dopri5"
   end subroutine dopri5_init
 
   !> k1 = f0 = f(t, y); inside a macro step the last stage of the accepted step (FSAL,
@@ -140,12 +140,5 @@ contains
     self%err_old = max(err, 1.0e-4_wp)
     self%f0 = self%k7
   end subroutine dopri5_accepted
-
-  pure function dopri5_name(self) result(name)
-    !> The integrator.
-    class(dopri5_type), intent(in) :: self
-    character(len=:), allocatable :: name
-    name = "dopri5"
-  end function dopri5_name
 
 end module davit_solve_dopri5

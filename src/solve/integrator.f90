@@ -65,10 +65,12 @@ module davit_solve_integrator
     !> instead of reaching t + dt, so that the time loop's after-step hook, its monitors
     !> and event location see every step, and dt is only the largest step (issue 14).
     logical :: single_step = .false.
+    !> The method's name as &simulation integrator gives it (each method's init sets it).
+    character(len=:), allocatable :: method
   contains
     procedure(init_interface), deferred :: init
     procedure(step_interface), deferred :: step
-    procedure(name_interface), deferred :: name
+    procedure :: name => integrator_name
     procedure :: stiff_step => whole_step
   end type integrator_type
 
@@ -97,16 +99,18 @@ module davit_solve_integrator
       !> Step to take [s] (with single_step, the largest step).
       real(wp), intent(in) :: dt
     end subroutine step_interface
-
-    pure function name_interface(self) result(name)
-      import :: integrator_type
-      !> The integrator.
-      class(integrator_type), intent(in) :: self
-      character(len=:), allocatable :: name
-    end function name_interface
   end interface
 
 contains
+
+  !> The method's name (empty before init).
+  pure function integrator_name(self) result(name)
+    !> The integrator.
+    class(integrator_type), intent(in) :: self
+    character(len=:), allocatable :: name
+    name = ""
+    if (allocated(self%method)) name = self%method
+  end function integrator_name
 
   subroutine no_rhs_slow(self, t, y, dydt)
     !> The problem.

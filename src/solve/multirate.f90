@@ -65,7 +65,6 @@ module davit_solve_multirate
   contains
     procedure :: init => multirate_init
     procedure :: step => multirate_step
-    procedure :: name => multirate_name
     procedure :: stiff_step => substep
   end type multirate_type
 
@@ -87,9 +86,22 @@ contains
     self%rhs_evaluations = 0
     self%slow_evaluations = 0
     self%fast_evaluations = 0
+    if (self%chained .and. self%c(1) == 1.0_wp) then
+      self%method = "mri2b"
+    else if (self%chained) then
+      self%method = "mri2"
+    else if (size(self%c) == 2) then
+      self%method = "multirate2"
+    else
+      self%method = "multirate"
+    end if
   end subroutine multirate_init
 
-  !> One macro step of size dt (always the whole of it: there is no error control).
+  !> One macro step of size dt (always the whole of it: there is no error control). Stage i
+  !> evaluates the slow part at its start, Y_(i-1) at t + c_(i-1) dt, then integrates the
+  !> fast part with that forcing: MIS restarts each stage from y_n over c_i dt; the chained
+  !> MRI-GARK stages continue from Y_(i-1) over dc_i dt, their forcing the gamma
+  !> combination of the slow evaluations so far (chained_forcing).
   subroutine multirate_step(self, problem, t, y, dt)
     !> The integrator (work arrays, counters).
     class(multirate_type), intent(inout) :: self
@@ -101,64 +113,62 @@ contains
     real(wp), intent(inout) :: y(:)
     !> Macro step H [s].
     real(wp), intent(in) :: dt
-    real(wp) :: c_prev
+    real(wp) :: c_prev, dc, t0
     integer :: i, nsub
-    if (self%chained) then
-      call chained_step(self, problem, t, y, dt)
-      return
-    end if
-    self%y0 = y
+    logical :: fast
+    if (.not. self%chained) self%y0 = y
     c_prev = 0.0_wp
     do i = 1, size(self%c)
-      ! y holds Y_(i-1): its slow tendency drives stage i, which restarts from y_n
-      call problem%rhs_slow(t + c_prev*dt, y, self%slow)
-      nsub = max(1, nint(self%c(i)*real(self%substeps, wp)))
-      y = self%y0
-      call fast_stage(self, problem, t, y, self%c(i)*dt, nsub)
+      if (self%chained) then
+        call problem%rhs_slow(t + c_prev*dt, y, self%fs(:, i))
+        dc = self%c(i) - c_prev
+        t0 = t + c_prev*dt
+        call chained_forcing(self, i, dc, dt, y, fast)
+        if (.not. fast) cycle
+      else
+        ! y holds Y_(i-1): its slow tendency drives stage i, which restarts from y_n
+        call problem%rhs_slow(t + c_prev*dt, y, self%slow)
+        y = self%y0
+        dc = self%c(i)
+        t0 = t
+      end if
+      nsub = max(1, nint(dc*real(self%substeps, wp)))
+      call fast_stage(self, problem, t0, y, dc*dt, nsub)
       c_prev = self%c(i)
     end do
     call finish_step(self, t, dt)
   end subroutine multirate_step
 
-  !> One MRI-GARK macro step: stage i from Y_i over dc_i H, Y_(s+1) = y_(n+1). The
-  !> tableau's c here are the stage ends, as for MIS (c = 1/2, 1 for ERK22a).
-  subroutine chained_step(self, problem, t, y, dt)
-    !> The integrator (chained, with its gamma and fs).
+  !> The forcing of chained stage i of length dc (of dt), (1/dc) sum_j gamma_ij f_slow(Y_j),
+  !> in self%slow; for a stage of zero length (ERK22b's last) the slow part's correction
+  !> sum_j gamma_ij dt f_slow(Y_j) is added to y instead, and there is no fast stage.
+  subroutine chained_forcing(self, i, dc, dt, y, fast)
+    !> The integrator (chained, with its gamma and fs; slow written).
     type(multirate_type), intent(inout) :: self
-    !> The problem, split into f_slow and f_fast.
-    class(ode_problem), intent(in) :: problem
-    !> Time [s], advanced by dt.
-    real(wp), intent(inout) :: t
-    !> State vector, advanced by one macro step.
+    !> The stage.
+    integer, intent(in) :: i
+    !> The stage's length as a fraction of the macro step, and the macro step H [s].
+    real(wp), intent(in) :: dc, dt
+    !> State vector: Y_(i-1), advanced by the correction of a zero-length stage.
     real(wp), intent(inout) :: y(:)
-    !> Macro step H [s].
-    real(wp), intent(in) :: dt
-    real(wp) :: c_prev, dc
-    integer :: i, j, nsub
-    c_prev = 0.0_wp
-    do i = 1, size(self%c)
-      call problem%rhs_slow(t + c_prev*dt, y, self%fs(:, i))
-      dc = self%c(i) - c_prev
-      if (dc == 0.0_wp) then
-        ! a stage of zero length (ERK22b's last): the slow part's correction alone
-        do j = 1, i
-          if (self%gamma(i, j) /= 0.0_wp) y = y + (self%gamma(i, j)*dt)*self%fs(:, j)
-        end do
-        self%slow_evaluations = self%slow_evaluations + 1
-        cycle
-      end if
-      self%slow = 0.0_wp
+    !> Whether the stage has a fast part (dc > 0).
+    logical, intent(out) :: fast
+    integer :: j
+    fast = dc /= 0.0_wp
+    if (.not. fast) then
       do j = 1, i
-        if (self%gamma(i, j) /= 0.0_wp) then
-          self%slow = self%slow + (self%gamma(i, j)/dc)*self%fs(:, j)
-        end if
+        if (self%gamma(i, j) /= 0.0_wp) y = y + (self%gamma(i, j)*dt)*self%fs(:, j)
       end do
-      nsub = max(1, nint(dc*real(self%substeps, wp)))
-      call fast_stage(self, problem, t + c_prev*dt, y, dc*dt, nsub)
-      c_prev = self%c(i)
+      self%slow_evaluations = self%slow_evaluations + 1
+      return
+    end if
+    self%slow = 0.0_wp
+    do j = 1, i
+      if (self%gamma(i, j) /= 0.0_wp) then
+        self%slow = self%slow + (self%gamma(i, j)/dc)*self%fs(:, j)
+      end if
     end do
-    call finish_step(self, t, dt)
-  end subroutine chained_step
+  end subroutine chained_forcing
 
   !> The end of a macro step: the clock and the counters (slow plus fast evaluations).
   subroutine finish_step(self, t, dt)
@@ -209,21 +219,6 @@ contains
       v = v + (h/6.0_wp)*(self%k1 + 2.0_wp*(self%k2 + self%k3) + self%k4)
     end do
   end subroutine fast_stage
-
-  pure function multirate_name(self) result(name)
-    !> The integrator.
-    class(multirate_type), intent(in) :: self
-    character(len=:), allocatable :: name
-    if (self%chained .and. self%c(1) == 1.0_wp) then
-      name = "mri2b"
-    else if (self%chained) then
-      name = "mri2"
-    else if (size(self%c) == 2) then
-      name = "multirate2"
-    else
-      name = "multirate"
-    end if
-  end function multirate_name
 
   !> The fast part's RK4 substep of a macro step h (the stability limit applies to it).
   pure real(wp) function substep(self, h) result(hs)

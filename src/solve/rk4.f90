@@ -13,7 +13,6 @@ module davit_solve_rk4
   contains
     procedure :: init => rk4_init
     procedure :: step => rk4_step
-    procedure :: name => rk4_name
   end type rk4_type
 
 contains
@@ -27,6 +26,7 @@ contains
     allocate (self%k1(n), self%k2(n), self%k3(n), self%k4(n), self%ytmp(n))
     self%steps = 0
     self%rhs_evaluations = 0
+    self%method = "rk4"
   end subroutine rk4_init
 
   subroutine rk4_step(self, problem, t, y, dt)
@@ -54,12 +54,5 @@ contains
     self%steps = self%steps + 1
     self%rhs_evaluations = self%rhs_evaluations + 4
   end subroutine rk4_step
-
-  pure function rk4_name(self) result(name)
-    !> The integrator.
-    class(rk4_type), intent(in) :: self
-    character(len=:), allocatable :: name
-    name = "rk4"
-  end function rk4_name
 
 end module davit_solve_rk4

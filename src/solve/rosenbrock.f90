@@ -87,7 +87,6 @@ module davit_solve_rosenbrock
   contains
     procedure :: init => rosenbrock_init
     procedure :: step => rosenbrock_step
-    procedure :: name => rosenbrock_name
     procedure :: start => linearise
     procedure :: prepare => factor
     procedure :: attempt => stages
@@ -105,6 +104,7 @@ contains
     allocate (self%k(n, ns), self%dfdt(n), self%jac(n, n), self%lu(n, n), self%ipiv(n))
     self%jacobians = 0
     self%decompositions = 0
+    self%method = "rosenbrock"
   end subroutine rosenbrock_init
 
   !> The shared driver, but each call runs to t + dt: single_step is not honoured.
@@ -291,12 +291,5 @@ contains
       if (e(i) /= 0.0_wp) yerr = yerr + e(i)*k(:, i)
     end do
   end subroutine stage_combination
-
-  pure function rosenbrock_name(self) result(name)
-    !> The integrator.
-    class(rosenbrock_type), intent(in) :: self
-    character(len=:), allocatable :: name
-    name = "rosenbrock"
-  end function rosenbrock_name
 
 end module davit_solve_rosenbrock

@@ -77,7 +77,6 @@ module davit_solve_rosenbrock_w
     real(wp) :: h_lu = -1.0_wp
   contains
     procedure :: init => rosw_init
-    procedure :: name => rosw_name
     procedure :: start => rosw_start
     procedure :: prepare => rosw_prepare
     procedure :: attempt => stages
@@ -115,6 +114,7 @@ contains
     self%decompositions = 0
     self%age = -1
     self%h_lu = -1.0_wp
+    self%method = "rosw"
   end subroutine rosw_init
 
   !> f0 = f(t, y) at every new point; on the first call, the problem's stiff and coupled
@@ -343,12 +343,5 @@ contains
     end do
     call stage_combination(y, self%m, self%e, self%u, self%ynew, self%yerr)
   end subroutine stages
-
-  pure function rosw_name(self) result(name)
-    !> The integrator.
-    class(rosenbrock_w_type), intent(in) :: self
-    character(len=:), allocatable :: name
-    name = "rosw"
-  end function rosw_name
 
 end module davit_solve_rosenbrock_w

@@ -18,8 +18,7 @@ module davit_system_model
   use davit_solve_integrator, only: ode_problem
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
-                                     hook_kinematics, fender_gaps, falls_ends_type, &
-                                     falls_ends_at
+                                     fender_gaps, falls_ends_type, falls_ends_at
   use davit_system_history, only: system_history_type
   use davit_system_contact_policy, only: contact_policy_type, limits_steps, contact_max_step
   use davit_system_boat_loads, only: boat_kane_blocks, loads_all, loads_slow, loads_fast
@@ -162,7 +161,7 @@ contains
     real(wp), intent(in) :: t, y(:)
     type(pose_type), intent(in) :: pose
     real(wp), intent(inout) :: dydt(:), kane(:, :)
-    real(wp) :: hook_pos(3, nslings), hook_vel(3, nslings), hook_force(3, nslings), c(3, 3)
+    real(wp) :: hook_force(3, nslings), c(3, 3)
     integer :: i, i0, i1
     i0 = rig_slice(1)
     i1 = rig_slice(2)
@@ -170,9 +169,8 @@ contains
       call kane_at_rest(dydt(i0:i1), kane(:, i0:i1))
       return
     end if
-    call hook_kinematics(boat_part, hooks, y, hook_pos, hook_vel)
-    call rig%kane_blocks(t, y(i0:i1), hook_pos, hook_vel, pose, dydt(i0:i1), kane(:, i0:i1), &
-                         hook_force)
+    call rig%kane_blocks(t, y(i0:i1), falls_ends_at(boat_part, hooks, pose, y), dydt(i0:i1), &
+                         kane(:, i0:i1), hook_force)
     associate (b => boat_part)
       c = rotation_matrix(y(b%q(1):b%q(1) + 2))
       do i = 1, nslings

@@ -63,7 +63,7 @@ contains
     !> sling, row 1 at the hook), paid-out length [m] and lump positions [m] (inertial,
     !> (3, rig%nlump, sling)).
     real(wp), intent(out) :: seg(:), sling(:, :), paid, lumps(:, :, :)
-    call rig%observe(t, yr, ends%hook_pos, ends%hook_vel, ends%ship, seg, sling)
+    call rig%observe(t, yr, ends, seg, sling)
     ! Released hooks carry nothing: the frozen slings would otherwise report the stretch
     ! to wherever the boat has moved on the waves (MN on a 4 m sea, III.A decks).
     if (released) sling = 0.0_wp

@@ -18,6 +18,7 @@ module davit_system_parameters
   use davit_boat_wind_loads, only: boat_wind_type
   use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_probe
   use davit_rigging_rigging, only: rigging_type
+  use davit_rigging_falls_ends, only: falls_ends_type
   implicit none
   private
   public :: system_params_type, nslings, ship_pose, side_plane, hook_kinematics, fender_gaps
@@ -86,16 +87,6 @@ module davit_system_parameters
     !> Delay of the release after the boat is waterborne (its condition held for 1 s) [s].
     real(wp) :: release_delay = 0.0_wp
   end type system_params_type
-
-  !> Where the davit's falls end at a state: the hooks (on the boat) and the ship that
-  !> carries the davit heads, lead sheave and drum.
-  type :: falls_ends_type
-    !> Positions [m] and velocities [m/s] of the hooks, inertial components, one column
-    !> per sling.
-    real(wp) :: hook_pos(3, nslings) = 0.0_wp, hook_vel(3, nslings) = 0.0_wp
-    !> The ship's pose.
-    type(pose_type) :: ship
-  end type falls_ends_type
 
 contains
 

@@ -260,6 +260,23 @@ def test_bad_controls_are_refused_and_the_run_goes_on():
         assert run.time == pytest.approx(2.0, abs=1e-12)
 
 
+
+def test_bad_steps_are_refused_and_the_run_goes_on():
+    """A negative or non-finite step and a non-finite target time are refused (E_ARG, the
+    message naming the call) before the run moves; the handle stays usable."""
+    with davit.Launch.from_file(DEFAULT_DECK) as run:
+        run.advance_to(0.5)
+        t = run.time
+        for call, value, text in ((run.advance, -0.1, "advance: dt must be a finite number"),
+                                  (run.advance, float("inf"), "advance: dt must be a finite"),
+                                  (run.advance_to, float("nan"), "advance_to: the time is not")):
+            with pytest.raises(davit.DavitError) as err:
+                call(value)
+            assert err.value.code == davit.E_ARG and text in err.value.message
+            assert run.time == t
+        run.advance(0.5)
+        assert run.time == pytest.approx(t + 0.5, abs=1e-12)
+
 def test_c_header_compiles_and_runs(tmp_path):
     """A C program against include/davit.h and build/libdavit.so: 1 s of the default
     launch, its sling tension equal to the Python package's."""
