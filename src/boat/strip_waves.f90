@@ -276,7 +276,7 @@ contains
     real(wp), intent(in) :: t, span
     real(wp) :: rest
     rest = cache%clock%window(2) - t
-    if (rest <= span) then
+    if (rest <= span + 1.0e-9_wp) then
       t_end = cache%clock%window(2)
     else if (rest < 1.5_wp*span) then
       t_end = t + 0.5_wp*rest
