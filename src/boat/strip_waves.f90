@@ -94,8 +94,8 @@ module davit_boat_strip_waves
     !> The sample before t1k's, (nine parameters, strip), and its time [s] (-huge: none).
     real(wp), allocatable :: g_prev(:, :), t_prev(:)
     !> The loads' reference centre at their window's start (x, y) [m] and that start t1k
-    !> [s]: the window's t1, or the step at which a section dry at t1 got wet (it is sampled
-    !> then, for the rest of the window).
+    !> [s]: the window's t1, the step that renewed the load window, or the step at which a
+    !> section dry at its last sample got wet.
     real(wp), allocatable :: p_load(:, :), t_load(:)
     !> The end of each strip's load window [s]: at most load_span after t_load.
     real(wp), allocatable :: t_end(:)
