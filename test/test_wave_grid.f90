@@ -209,9 +209,7 @@ contains
                                 .true., single_equal_energy, rng, 0.0_wp)
         label = "single"
       end if
-      g = new_wave_grid(field, 1.0_wp, 0.1_wp, 0.0_wp, 3.0_wp, .true.)
-      call grid_prepare(g, field, 30.0_wp, 50.0_wp, &
-                        reshape([-7.0_wp, 10.0_wp, 7.0_wp, 16.0_wp], [2, 2]))
+      g = level5_grid(field, 50.0_wp)
       b = grid_error_bounds(g, field)
       err = 0.0_wp
       mx = 0.0_wp
@@ -264,9 +262,7 @@ contains
     rng = new_rng(5)
     call new_irregular_sea(field, 4.0_wp, pi/2, 1, pi/6, 100, 13, 0.3_wp, 3.0_wp, .true., &
                            .true., rng, 0.0_wp)
-    g = new_wave_grid(field, 1.0_wp, 0.1_wp, 0.0_wp, 3.0_wp, .true.)
-    call grid_prepare(g, field, 30.0_wp, 40.0_wp, &
-                      reshape([-7.0_wp, 10.0_wp, 7.0_wp, 16.0_wp], [2, 2]))
+    g = level5_grid(field, 40.0_wp)
     err = 0.0_wp
     rms_curv = 0.0_wp
     do i = 1, 500
@@ -299,5 +295,16 @@ contains
     call check_true(state, .not. grid_holds(g, [30.0_wp, 30.1_wp], 6.8_wp, 12.0_wp), &
                     "a point half a spacing from the edge is not held")
   end subroutine window_ends
+
+  !> The default grid (1 m, 0.1 s, 3 m deep) of a Level 5 sea, prepared over x -7..7 m,
+  !> y 10..16 m from 30 s to t_end.
+  function level5_grid(field, t_end) result(g)
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t_end
+    type(wave_grid_type) :: g
+    g = new_wave_grid(field, 1.0_wp, 0.1_wp, 0.0_wp, 3.0_wp, .true.)
+    call grid_prepare(g, field, 30.0_wp, t_end, &
+                      reshape([-7.0_wp, 10.0_wp, 7.0_wp, 16.0_wp], [2, 2]))
+  end function level5_grid
 
 end module test_wave_grid

@@ -200,10 +200,7 @@ contains
     history = .false.
     if (cache%clock%valid) then
       do k = 1, hull%n
-        history(1, k) = cache%loaded(k) .and. t > cache%t_load(k) .and. &
-                        t - cache%t_load(k) <= 2.0_wp*cache%clock%interval
-        history(2, k) = history(1, k) .and. cache%t_prev(k) < cache%t_load(k) .and. &
-                        cache%t_load(k) - cache%t_prev(k) <= 2.0_wp*cache%clock%interval
+        history(:, k) = path_history(cache, k, t)
       end do
     end if
     call cache%clock%open(t)
@@ -249,16 +246,12 @@ contains
     if (.not. (cache%enabled .and. cache%clock%covers(t))) return
     do k = 1, hull%n
       if (.not. cache%sampled(k)) cycle
-      history = .false.
       span = onset_part*cache%load_span
       if (cache%loaded(k)) then
         if (t < cache%t_end(k) - 1.0e-9_wp) cycle
-        span = cache%t_end(k) - cache%t_load(k)
-        history(1) = .true.
-        history(2) = cache%t_prev(k) < cache%t_load(k) .and. &
-                     cache%t_load(k) - cache%t_prev(k) <= 2.0_wp*cache%clock%interval
-        span = min(2.0_wp*span, cache%load_span)
+        span = min(2.0_wp*(cache%t_end(k) - cache%t_load(k)), cache%load_span)
       end if
+      history = path_history(cache, k, t)
       ! too close to the window's end: the few stages left run on or take the exact sums
       if (cache%clock%window(2) - t < 0.25_wp*span) cycle
       p = r + c(:, 1)*hull%x(k)
@@ -268,6 +261,19 @@ contains
                        [p(3) + eta, grad(2), grad(3), c(1:2, 2), c(1:2, 3)], history)
     end do
   end subroutine strip_waves_renew_loads
+
+  !> Whether strip k's geometry at t has a path through its samples: its last one (loaded,
+  !> before t) and the one before that, each at most two intervals before the next.
+  pure function path_history(cache, k, t) result(history)
+    type(strip_wave_cache_type), intent(in) :: cache
+    integer, intent(in) :: k
+    real(wp), intent(in) :: t
+    logical :: history(2)
+    associate (reach => 2.0_wp*cache%clock%interval, t1 => cache%t_load(k))
+      history(1) = cache%loaded(k) .and. t > t1 .and. t - t1 <= reach
+      history(2) = history(1) .and. cache%t_prev(k) < t1 .and. t1 - cache%t_prev(k) <= reach
+    end associate
+  end function path_history
 
   !> End of a load window of at most span from t: the clock's window's end where it is
   !> that close, half way to it where less than half a span would be left after a span.
