@@ -3,7 +3,7 @@
 !> rule, the wind's direction convention.
 module test_core
   use davit_kinds, only: wp, pi
-  use davit_core_hermite, only: hermite_weights, hermite_interpolate
+  use davit_core_hermite, only: hermite_weights, hermite_interpolate, hermite_max
   use davit_core_slow_clock, only: slow_clock_type, new_slow_clock, clock_grid, clock_reach, &
                                    clock_kept, clock_shifted, clock_renewed
   use davit_core_layout, only: state_layout_type, state_part_type
@@ -22,6 +22,7 @@ contains
     suite%name = "core"
     suite%cases = [new_case("hermite_reproduces_cubics", hermite_cubics), &
                    new_case("hermite_interpolate_cubics_and_quartic", interpolate_cubics), &
+                   new_case("hermite_max_of_cubics_by_hand", cubic_maxima), &
                    new_case("slow_clock_windows_by_hand", clock_windows), &
                    new_case("slow_clock_sine_error_bound_and_order4", clock_sine), &
                    new_case("layout_ranges_by_hand", layout_ranges), &
@@ -58,6 +59,25 @@ contains
       df = c(2) + x*(2.0_wp*c(3) + 3.0_wp*x*c(4))
     end function df
   end subroutine hermite_cubics
+
+  !> hermite_max against maxima worked by hand: t^3 - 3 t on [-2, 1.5] peaks inside at
+  !> t = -1 (2; the ends give -2 and -1.125); -(t - 1)^2 on [0, 2] at t = 1 (0; ends -1);
+  !> 2 - (t - 1)^2 on [0, 1.5] at t = 1 (2, near the end: 1.75); monotone t^3 + t on
+  !> [-1, 2] at its right end (10); a straight line (the derivative's quadratic
+  !> degenerate) at its larger end.
+  subroutine cubic_maxima(state)
+    type(case_state), intent(inout) :: state
+    call check(state, hermite_max([-2.0_wp, 1.5_wp], -2.0_wp, 9.0_wp, -1.125_wp, 3.75_wp), &
+               2.0_wp, "t^3 - 3 t on [-2, 1.5]", abs_tol=1.0e-13_wp)
+    call check(state, hermite_max([0.0_wp, 2.0_wp], -1.0_wp, 2.0_wp, -1.0_wp, -2.0_wp), &
+               0.0_wp, "-(t - 1)^2 on [0, 2]", abs_tol=1.0e-13_wp)
+    call check(state, hermite_max([0.0_wp, 1.5_wp], 1.0_wp, 2.0_wp, 1.75_wp, -1.0_wp), &
+               2.0_wp, "2 - (t - 1)^2 on [0, 1.5]", abs_tol=1.0e-13_wp)
+    call check(state, hermite_max([-1.0_wp, 2.0_wp], -2.0_wp, 4.0_wp, 10.0_wp, 13.0_wp), &
+               10.0_wp, "t^3 + t on [-1, 2]", abs_tol=1.0e-13_wp)
+    call check(state, hermite_max([0.0_wp, 1.0_wp], 3.0_wp, -2.0_wp, 1.0_wp, -2.0_wp), &
+               3.0_wp, "3 - 2 t on [0, 1]", abs_tol=1.0e-13_wp)
+  end subroutine cubic_maxima
 
   !> hermite_interpolate on vectors: two cubics through their values and rates at the ends
   !> of [1.3, 1.8] come back everywhere inside (1e-12), and for t^4 on [0, 2] the remainder

@@ -15,9 +15,11 @@ module test_strip_waves
   use davit_boat_strip_pressure, only: section_wave_load, surface_plane
   use davit_core_slow_clock, only: new_slow_clock, clock_reach
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
-                                    strip_waves_refresh, cached_elevation, cached_kinematics, &
+                                    strip_waves_open, strip_waves_sample, cached_elevation, &
+                                    cached_kinematics, &
                                     strip_waves_surface, cached_wave_load, cached_surface, &
-                                    strip_waves_renew_loads
+                                    strip_waves_renew_loads, strip_waves_bounds
+  use davit_boat_strip_sums, only: elevation_sums, ne
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -38,6 +40,7 @@ contains
                    new_case("window_section_loads_follow_the_hull_path", hull_path), &
                    new_case("window_samples_sections_that_wet_later", catch_up), &
                    new_case("section_loads_renewed_in_their_own_windows", own_windows), &
+                   new_case("window_bounds_hold_the_surface_over_the_window", window_bounds), &
                    new_case("coupled_boat_with_and_without_clock", coupled_boat)]
   end function collect_strip_waves
 
@@ -104,7 +107,7 @@ contains
     do i = 1, 2
       h = 0.4_wp/real(2**i, wp)
       cache = new_strip_wave_cache(field, hull%n, new_slow_clock(h, clock_reach))
-      call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
+      call refresh(cache, hull, field, 20.0_wp, c, r)
       call max_errors(cache, field, hull, c, r, 20.0_wp + 0.37_wp*h, [0.0_wp, 0.0_wp, 0.0_wp], &
                       e_eta(i), e_v(i))
       bound_eta = h**4/384*sum(field%amplitude*field%omega**4)
@@ -134,7 +137,7 @@ contains
     call level5_sea(field)
     call afloat(hull, c, r)
     cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.05_wp, clock_reach))
-    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
+    call refresh(cache, hull, field, 20.0_wp, c, r)
     do i = 1, 2
       dx = [0.08_wp, -0.06_wp, 0.04_wp]/real(i, wp)
       call max_errors(cache, field, hull, c, r, 20.0_wp, dx, e_eta(i), e_v(i))
@@ -172,7 +175,7 @@ contains
     call level5_sea(field)
     call afloat(hull, c, r)
     cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.05_wp, clock_reach))
-    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
+    call refresh(cache, hull, field, 20.0_wp, c, r)
     t2 = cache%clock%window(2)
     err_eta = 0.0_wp
     err_v = 0.0_wp
@@ -236,7 +239,7 @@ contains
     call level5_sea(field)
     call afloat(hull, c, r)
     cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.1_wp, clock_reach))
-    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., i = 1, hull%n)])
+    call refresh(cache, hull, field, 20.0_wp, c, r)
     t = 20.05_wp
     do i = 1, 2
       call moved_errors(cache, field, hull, t, 0.5_wp**(i - 1), err(i), frozen(i))
@@ -267,13 +270,13 @@ contains
     do i = 1, 2
       h = 0.4_wp/real(2**i, wp)
       cache = new_strip_wave_cache(field, hull%n, new_slow_clock(h, clock_reach))
-      call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
+      call refresh(cache, hull, field, 20.0_wp, c, r)
       e_t(i) = slope_error(cache, field, hull, c, r, 20.0_wp + 0.37_wp*h, [0.0_wp, 0.0_wp])
       bound = h**4/384*sum(field%amplitude*field%k*field%omega**4)
       call check_true(state, e_t(i) <= bound, "slope error within h^4/384 sum a k w^4")
     end do
     cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.05_wp, clock_reach))
-    call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., k = 1, hull%n)])
+    call refresh(cache, hull, field, 20.0_wp, c, r)
     do i = 1, 2
       dx = [0.08_wp, -0.06_wp]/real(i, wp)
       e_x(i) = slope_error(cache, field, hull, c, r, 20.0_wp, dx)
@@ -330,7 +333,7 @@ contains
       t = 19.9_wp + 0.1_wp*j
       call moving_pose(t, c, r)
       do i = 4 - j, 3
-        call strip_waves_refresh(caches(i), hull, field, t, c, r, [(.true., k = 1, hull%n)])
+        call refresh(caches(i), hull, field, t, c, r)
       end do
     end do
     do i = 1, 3
@@ -363,7 +366,7 @@ contains
     cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.1_wp, clock_reach))
     do k = 0, 60
       r(3) = 1.5_wp - 0.1_wp*k
-      call strip_waves_refresh(cache, hull, field, 20.0_wp, c, r, [(.true., i = 1, hull%n)])
+      call refresh(cache, hull, field, 20.0_wp, c, r)
       if (count(cache%loaded) <= hull%n - 3) exit
     end do
     dry_at_t1 = .not. cache%loaded
@@ -396,13 +399,13 @@ contains
     end do
   end subroutine catch_up
 
-  !> The accelerating hull of hull_path on a 0.3 s window from 20.0 s (two before it, so
-  !> its paths are parabolas): the section loads' windows are 0.15 s (the interval in
+  !> The accelerating hull of hull_path on a 0.6 s window from 20.0 s (two before it, so
+  !> its paths are parabolas): the section loads' windows are 0.3 s (the interval in
   !> two), renewed at the accepted steps (every 0.01 s) that reach their ends. Read at
-  !> 20.2 s, each wet section against its exact load: the renewed windows' error well below
+  !> 20.4 s, each wet section against its exact load: the renewed windows' error well below
   !> that of the first load window run on past its end (the same cache without renewals)
-  !> and within 1e-4 of the largest load; every loaded section's window at most 0.15 s long
-  !> and renewed at 20.15 s. Fails where the loads are sampled over the whole interval, not
+  !> and within 2.5e-3 of the largest load; every loaded section's window at most 0.3 s long
+  !> and renewed at 20.3 s. Fails where the loads are sampled over the whole interval, not
   !> renewed, or renewed off their path.
   subroutine own_windows(state)
     type(case_state), intent(inout) :: state
@@ -414,23 +417,23 @@ contains
     logical :: found, wet_now
     call level5_sea(field)
     call afloat(hull, c, r)
-    renewed = new_strip_wave_cache(field, hull%n, new_slow_clock(0.3_wp, clock_reach))
+    renewed = new_strip_wave_cache(field, hull%n, new_slow_clock(0.6_wp, clock_reach))
     do j = 0, 2
-      t = 19.4_wp + 0.3_wp*j
+      t = 18.8_wp + 0.6_wp*j
       call moving_pose(t, c, r)
-      call strip_waves_refresh(renewed, hull, field, t, c, r, [(.true., k = 1, hull%n)])
+      call refresh(renewed, hull, field, t, c, r)
     end do
     kept = renewed
-    call check(state, maxval(renewed%t_end - renewed%t_load, mask=renewed%loaded), 0.15_wp, &
+    call check(state, maxval(renewed%t_end - renewed%t_load, mask=renewed%loaded), 0.3_wp, &
                "first load windows: half the interval", abs_tol=1.0e-12_wp)
     jump = 0.0_wp
     scale = 0.0_wp
-    do j = 1, 20
+    do j = 1, 40
       t = 20.0_wp + 0.01_wp*j
       call moving_pose(t, c, r)
       before = renewed
       call strip_waves_renew_loads(renewed, hull, field, t, c, r)
-      if (j /= 15) cycle
+      if (j /= 30) cycle
       do k = 1, hull%n
         if (.not. (before%loaded(k) .and. renewed%loaded(k))) cycle
         call exact_section(field, hull, k, t, c, r, exact, g, pc, wet_now)
@@ -440,20 +443,79 @@ contains
         scale = max(scale, maxval(abs(exact)))
       end do
     end do
-    err(1) = path_error(renewed, field, hull, 20.2_wp)
-    err(2) = path_error(kept, field, hull, 20.2_wp)
+    err(1) = path_error(renewed, field, hull, 20.4_wp)
+    err(2) = path_error(kept, field, hull, 20.4_wp)
     call note(state, "error with the renewed windows (of the largest load)", err(1))
     call note(state, "error of the first window run on", err(2))
-    call note(state, "the first windows' error at 20.15 s (of the largest load)", jump/scale)
+    call note(state, "the first windows' error at 20.3 s (of the largest load)", jump/scale)
     call check_true(state, count(renewed%loaded) >= 10, "sections loaded")
-    call check_true(state, all(pack(renewed%t_load, renewed%loaded) >= 20.15_wp - 1.0e-9_wp), &
+    call check_true(state, all(pack(renewed%t_load, renewed%loaded) >= 20.3_wp - 1.0e-9_wp), &
                     "every load window renewed at the step that reached its end")
     call check_true(state, maxval(renewed%t_end - renewed%t_load, mask=renewed%loaded) <= &
-                    0.15_wp + 1.0e-9_wp, "renewed windows at most 0.15 s")
+                    0.3_wp + 1.0e-9_wp, "renewed windows at most 0.3 s")
     call check_true(state, err(1) < 0.3_wp*err(2), "renewed well below run on")
-    ! on the path through the last samples 4.6e-5; renewed with the path dropped 6.6e-4
-    call check(state, err(1), 0.0_wp, "renewed windows' error", abs_tol=1.0e-4_wp)
+    ! on the path through the last samples 1.5e-3; renewed with the path dropped 3.6e-3
+    call check(state, err(1), 0.0_wp, "renewed windows' error", abs_tol=2.5e-3_wp)
   end subroutine own_windows
+
+  !> The window's bounds of the elevation and of |grad eta| at the strip centres (the
+  !> cubics' extremes plus their h^4/384 remainder) against the exact sums sampled every
+  !> 5 ms over 200 windows of 0.3 s at random times and boat positions in the Level 5 sea:
+  !> no sample above its bound; and the bounds tight (the elevation's largest excess over
+  !> the sampled maximum under 2 cm: the boat hangs this close to the crests before it
+  !> samples the water, against ~10 m of the Lipschitz bound sum |a| w h). Fails on a
+  !> wrong extreme (a root of the cubic's derivative missed or misplaced, a sign of the
+  !> slope's lower cubic), a wrong rate term, or a bound taken at one end only.
+  subroutine window_bounds(state)
+    type(case_state), intent(inout) :: state
+    type(wave_field_type) :: field
+    type(boat_hull_type) :: hull
+    type(strip_wave_cache_type) :: cache
+    real(wp) :: c(3, 3), r(3), x(4), e(ne), eta_up(20), slope_up(20), top(20), steep(20)
+    real(wp) :: excess, over, t0, t
+    integer :: i, j, k
+    call level5_sea(field)
+    call afloat(hull, c, r)
+    cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.3_wp, clock_reach))
+    excess = 0.0_wp
+    over = -huge(1.0_wp)
+    do i = 1, 200
+      call random_number(x)
+      t0 = 10.0_wp + 200.0_wp*x(1)
+      c = rotation_matrix([0.0_wp, 0.0_wp, 2.0_wp*pi*x(2)])
+      r = [60.0_wp*x(3), 60.0_wp*x(4), -5.0_wp]
+      call strip_waves_open(cache, hull, field, t0, c, r)
+      call strip_waves_bounds(cache, field, eta_up, slope_up)
+      top = -huge(1.0_wp)
+      steep = 0.0_wp
+      do j = 0, 60
+        t = t0 + 0.005_wp*j
+        do k = 1, hull%n
+          call elevation_sums(field, t, cache%p(1, k), cache%p(2, k), e)
+          top(k) = max(top(k), e(1))
+          steep(k) = max(steep(k), norm2(e(3:4)))
+        end do
+      end do
+      over = max(over, maxval(top - eta_up), maxval(steep - slope_up))
+      excess = max(excess, maxval(eta_up - top))
+    end do
+    call note(state, "largest sample over its bound (m or -; <= 0)", over)
+    call note(state, "largest excess of the elevation's bound (m)", excess)
+    call check_true(state, over <= 0.0_wp, "no sample above its bound")
+    call check(state, excess, 0.0_wp, "the elevation's bound tight", abs_tol=0.02_wp)
+  end subroutine window_bounds
+
+  !> Open the window at t and sample every strip (the hull may wet any).
+  subroutine refresh(cache, hull, field, t, c, r)
+    type(strip_wave_cache_type), intent(inout) :: cache
+    type(boat_hull_type), intent(in) :: hull
+    type(wave_field_type), intent(in) :: field
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    logical :: every(hull%n)
+    every = .true.
+    call strip_waves_open(cache, hull, field, t, c, r)
+    call strip_waves_sample(cache, hull, field, c, r, every)
+  end subroutine refresh
 
   !> The accelerating hull of hull_path at time t.
   subroutine moving_pose(t, c, r)

@@ -8,9 +8,11 @@
 module davit_boat_strip_sums
   use davit_kinds, only: wp
   use davit_sea_wave_field, only: wave_field_type, wave_chunk, component_phases, advance_phasors
+  use davit_core_fastmath, only: fast_sincos
   implicit none
   private
-  public :: ne, nv, nep, elevation_sums, elevation_pass, kinematic_sums, kinematic_pass
+  public :: ne, nv, nep, elevation_sums, elevation_pass, elevation_line, kinematic_sums
+  public :: kinematic_pass
 
   !> Elevation terms: value, d/dt, d/dx, d/dy. Velocity terms: the same and d/dd.
   integer, parameter :: ne = 4, nv = 5
@@ -75,6 +77,47 @@ contains
       end do
     end do
   end subroutine elevation_pass
+
+  !> Elevation terms with the curvature and the slope's rates (nep) at t and t + h at points
+  !> evenly spaced on a line, (x, y) + (j - 1) (dx, dy), j = 1.. size(e, 3) (the strip
+  !> centres): each point's phases are the last one's turned by -k . (dx, dy) (angle
+  !> addition: one sine and cosine per component for the line, not one per point).
+  pure subroutine elevation_line(field, t, x, y, dx, dy, cr, sr, e)
+    !> The sea.
+    type(wave_field_type), intent(in) :: field
+    !> Time [s], the first point and the step between points (inertial) [m].
+    real(wp), intent(in) :: t, x, y, dx, dy
+    !> cos(w h) and sin(w h) of every component.
+    real(wp), intent(in) :: cr(:), sr(:)
+    !> Unramped elevation terms (term, time, point).
+    real(wp), intent(out) :: e(:, :, :)
+    real(wp) :: s(wave_chunk), cs(wave_chunk), s2(wave_chunk), c2(wave_chunk)
+    real(wp) :: sd(wave_chunk), cd(wave_chunk), acc(lanes, nep, 2, size(e, 3))
+    integer :: i0, i1, m, q, j, k
+    acc = 0.0_wp
+    do i0 = 1, field%n, wave_chunk
+      m = min(wave_chunk, field%n - i0 + 1)
+      i1 = i0 + m - 1
+      call component_phases(field, i0, m, t, x, y, s, cs)
+      s2(1:m) = -(field%kx(i0:i1)*dx + field%ky(i0:i1)*dy)
+      call fast_sincos(s2(1:m), sd(1:m), cd(1:m))
+      do k = 1, size(e, 3)
+        if (k > 1) call advance_phasors(cs(1:m), s(1:m), cd(1:m), sd(1:m))
+        call add_curvature(field, i0, m, s, cs, acc(:, :, 1, k))
+        c2(1:m) = cs(1:m)
+        s2(1:m) = s(1:m)
+        call advance_phasors(c2(1:m), s2(1:m), cr(i0:i1), sr(i0:i1))
+        call add_curvature(field, i0, m, s2, c2, acc(:, :, 2, k))
+      end do
+    end do
+    do k = 1, size(e, 3)
+      do j = 1, 2
+        do q = 1, nep
+          e(q, j, k) = sum(acc(:, q, j, k))
+        end do
+      end do
+    end do
+  end subroutine elevation_line
 
   !> Add components i0.. i0 + m - 1 (phases' sines s and cosines cs) to the lanes' partial
   !> sums of the elevation terms.

@@ -17,9 +17,8 @@
 !> component of amplitude a, frequency w and wavenumber k the error is at most
 !> a [ (w h)^4/384 + (k |dx|)^2/2 + ... ] (velocity: times w; the elevation at the
 !> centres (k |dx|)^3/6), |dx| the strip's travel since t1: ~1e-6 a at h = 0.05 s and
-!> ~1e-3 a for the shortest components when the strip moves 5 cm. The start-up ramp
-!> multiplies the result exactly. Stages outside the window fall back to the exact sum.
-!> Regular and Stokes-2 seas (one component) are always evaluated exactly.
+!> ~1e-3 a for the shortest components when the strip moves 5 cm. The ramp multiplies
+!> exactly. Other stages, and regular and Stokes-2 seas, take the exact sums.
 !> The pressure level's dynamic section load (davit_boat_strip_pressure: the pressure's
 !> decay with depth and phase across the breadth) is sampled in the window as well, with its
 !> time derivative and its first derivatives in the section's geometry (its immersion, its
@@ -31,9 +30,7 @@
 !> single-summation launch 0.6 % of its peak sling tension at h = 0.05 s and 1.5 % at
 !> 0.1 s (a beam sea rolls the boat by degrees per window, and the surface's departure
 !> from its tangent plane at the sides, a few cm, rides on the moving waterline);
-!> expanded about t1's geometry 0.01 % and
-!> 0.3 %; about the path the double-summation launches keep 0.08 % at 0.15 s
-!> (doc/benchmarks/multirate.md).
+!> expanded about t1's geometry 0.01 % and 0.3 % (doc/benchmarks/multirate.md).
 !> The section loads keep windows of their own inside the clock's: at most max_load_span
 !> long (the clock's interval split in equal parts), each renewed at the first accepted
 !> step that reaches its end, along the path through its last samples
@@ -41,9 +38,10 @@
 !> sums until the next accepted step, which samples it over a quarter of that span, then
 !> half, then the whole: at its onset a section's wet breadth grows like the square root
 !> of its immersion (a round bilge), so the expansion in the immersion about a sliver
-!> is poorest there. Sampled over the whole window, the onsets and the long
-!> extrapolation of the path cost the Level 5 beam-sea launch of seed 2 2.3 % of its peak
-!> sling tension at h = 0.3 s; in their own windows 0.22 % (exact section loads: 0.24 %).
+!> is poorest there. With the onsets sampled over the whole window the Level 5 beam-sea
+!> launch of seed 2 lost 2.3 % of its peak sling tension at h = 0.3 s; on their own spans
+!> 0.28 % (exact section loads: 0.24 %); split in two 0.42 % (renewed along a path
+!> extrapolated from the window's start), so only windows over 0.3 s are split.
 module davit_boat_strip_waves
   use davit_kinds, only: wp
   use davit_sea_wave_field, only: wave_field_type, wave_irregular, wave_ramp, rotation_phasors
@@ -51,16 +49,15 @@ module davit_boat_strip_waves
   use davit_boat_strip_pressure, only: section_wave_loads
   use davit_core_slow_clock, only: slow_clock_type, clock_renewed
   use davit_core_hermite, only: hermite_weights
-  use davit_boat_strip_sums, only: ne, nv, nep, elevation_pass, kinematic_pass
-  use davit_sea_wave_grid, only: wave_grid_type, grid_covers, grid_kinematics
-  use davit_boat_strip_grid, only: grid_holds, grid_ends
+  use davit_boat_strip_sums, only: ne, nv, nep
+  use davit_sea_wave_grid, only: wave_grid_type
+  use davit_boat_strip_grid, only: window_elevations, window_kinematics, window_bounds
   implicit none
   private
-  public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_refresh
+  public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_open, strip_waves_sample
+  public :: strip_waves_bounds
   public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_renew_loads
-  public :: cached_kinematics, cached_wave_load, cached_surface
-  public :: strip_waves_surface
-
+  public :: cached_kinematics, cached_wave_load, cached_surface, strip_waves_surface
 
   type :: strip_wave_cache_type
     !> Whether the slow clock is on.
@@ -102,6 +99,11 @@ module davit_boat_strip_waves
     !> Length of the section loads' windows [s]: the clock's interval in equal parts of at
     !> most max_load_span.
     real(wp) :: load_span = 0.0_wp
+    !> sum |a| w^4 and sum |a| k w^4 over the components: the fourth time derivatives'
+    !> bounds of the elevation and of a slope component (strip_waves_bounds).
+    real(wp) :: quartic(2) = 0.0_wp
+    !> Whether the window just opened follows one (the path history of its samples holds).
+    logical :: continued = .false.
     !> Per component, cos(w s) and sin(w s) of the load span s.
     real(wp), allocatable :: crl(:), srl(:)
     !> Per strip, whether its samples were taken (it was possibly wet).
@@ -111,9 +113,10 @@ module davit_boat_strip_waves
     real(wp), allocatable :: cr(:), sr(:)
   end type strip_wave_cache_type
 
-  !> The longest window of the section loads [s]: over 0.15 s the double-summation launches
-  !> keep their peak sling tensions within 0.08 % (doc/benchmarks/multirate.md).
-  real(wp), parameter :: max_load_span = 0.15_wp
+  !> The longest window of the section loads [s]: the 12 double-summation launches of
+  !> doc/benchmarks/multirate.md keep their peak sling tensions within 0.28 % on one 0.3 s
+  !> load window (0.42 % split in two); on one 0.4 s window 0.88 % (0.81 % in two).
+  real(wp), parameter :: max_load_span = 0.3_wp
   !> A section that wets starts on this part of the load span, doubled at each renewal.
   real(wp), parameter :: onset_part = 0.25_wp
 
@@ -141,6 +144,8 @@ contains
     call rotation_phasors(field, clock%interval, cache%cr, cache%sr)
     cache%load_span = clock%interval/real(ceiling(clock%interval/max_load_span - 1.0e-9_wp), wp)
     call rotation_phasors(field, cache%load_span, cache%crl, cache%srl)
+    cache%quartic = [sum(abs(field%amplitude)*field%omega**4), &
+                     sum(abs(field%amplitude)*field%k*field%omega**4)]
     cache%sampled = .false.
     cache%loaded = .false.
     cache%t_prev = -huge(1.0_wp)
@@ -169,16 +174,13 @@ contains
     strip_waves_cover = cache%clock%covers(t)
   end function strip_waves_cover
 
-  !> New window [t, t + h] for the boat at (c, r): references at the strip centres and at
-  !> the wet centroids of the sections at t (the keel line of a dry section, where it
-  !> would first get wet). The elevation is sampled at every strip centre (every stage
-  !> needs it to find the wet sections), the velocity only at the strips in `maybe_wet` (a
-  !> strip the surface watch proves dry over the window needs none; should it get wet
-  !> after all, its stages take the exact kinematics).
-  !> With the grids (`&sea kinematics = 'grid'`), the elevation terms come from `surface`
-  !> and the velocity terms from `volume` wherever they hold the point, else the exact sums.
-  pure subroutine strip_waves_refresh(cache, hull, field, t, c, r, maybe_wet, surface, volume)
-    !> The strips' window, refilled.
+  !> New window [t, t + h] for the boat at (c, r): the elevation terms at both ends at
+  !> every strip centre (every stage needs them to find the wet sections; the surface
+  !> watch takes its bounds from them, strip_waves_bounds). strip_waves_sample then
+  !> samples the strips the hull may wet. With the grids (`&sea kinematics = 'grid'`),
+  !> the elevation terms come from `surface` wherever it holds the point.
+  pure subroutine strip_waves_open(cache, hull, field, t, c, r, surface)
+    !> The strips' window, opened.
     type(strip_wave_cache_type), intent(inout) :: cache
     !> The hull.
     type(boat_hull_type), intent(in) :: hull
@@ -186,32 +188,58 @@ contains
     type(wave_field_type), intent(in) :: field
     !> Window start [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    !> Per strip, whether it may be wet in the window (only those are sampled).
-    logical, intent(in) :: maybe_wet(:)
-    !> Precomputed grids of the surface and of the water below it (absent: the sea itself).
-    type(wave_grid_type), intent(in), optional :: surface, volume
-    type(section_wet_type) :: wet
-    real(wp) :: p(3), q(3), eta, ramp
-    logical :: history(2, hull%n)
+    !> Precomputed grid of the surface (absent: the sea itself).
+    type(wave_grid_type), intent(in), optional :: surface
     integer :: k
     if (.not. cache%enabled) return
     ! the sections' geometry is carried on along its path through its last samples (those
     ! of the windows just ending, each at most two windows before the next)
+    cache%continued = cache%clock%valid
+    call cache%clock%open(t)
+    do k = 1, hull%n
+      cache%p(:, k) = r(1:2) + c(1:2, 1)*hull%x(k)
+    end do
+    call window_elevations(field, cache%clock%window, cache%cr, cache%sr, cache%p, &
+                           hull%thickness*c(1:2, 1), cache%ep, surface)
+    cache%sampled = .false.
+  end subroutine strip_waves_open
+
+  !> Sample the window just opened at the strips in `maybe_wet` (a strip the surface watch
+  !> proves dry over the window needs none; should it get wet after all, its stages take
+  !> the exact sums): the section loads, and the velocity at the wet centroids of the
+  !> sections at t (the keel line of a dry section, where it would first get wet); from
+  !> the grid `volume` wherever it holds the point.
+  pure subroutine strip_waves_sample(cache, hull, field, c, r, maybe_wet, volume)
+    !> The strips' window, opened at the boat's pose (c, r).
+    type(strip_wave_cache_type), intent(inout) :: cache
+    !> The hull.
+    type(boat_hull_type), intent(in) :: hull
+    !> The sea.
+    type(wave_field_type), intent(in) :: field
+    !> Rotation b -> inertial, CG position (inertial) [m] at the window's start.
+    real(wp), intent(in) :: c(3, 3), r(3)
+    !> Per strip, whether it may be wet in the window (only those are sampled).
+    logical, intent(in) :: maybe_wet(:)
+    !> Precomputed grid of the water below the surface (absent: the sea itself).
+    type(wave_grid_type), intent(in), optional :: volume
+    type(section_wet_type) :: wet
+    real(wp) :: p(3), q(3), eta, ramp, t
+    logical :: history(2, hull%n)
+    integer :: k
+    if (.not. cache%enabled) return
+    t = cache%clock%window(1)
     history = .false.
-    if (cache%clock%valid) then
+    if (cache%continued) then
       do k = 1, hull%n
         history(:, k) = path_history(cache, k, t)
       end do
     end if
-    call cache%clock%open(t)
     ramp = wave_ramp(field, t)
     cache%sampled = maybe_wet
     cache%loaded = .false.
     do k = 1, hull%n
-      p = r + c(:, 1)*hull%x(k)
-      cache%p(:, k) = p(1:2)
-      call elevation_ends(cache, field, p(1), p(2), cache%ep(:, :, k), surface)
       if (.not. maybe_wet(k)) cycle
+      p = r + c(:, 1)*hull%x(k)
       eta = ramp*cache%ep(1, 1, k)
       call sample_section_load(cache, hull, field, k, c, p, ramp, history(:, k))
       wet = section_immersion(hull, k, p(3) + eta, c(3, 2), c(3, 3))
@@ -222,9 +250,22 @@ contains
       end if
       eta = ramp*(cache%ep(1, 1, k) + sum(cache%ep(3:4, 1, k)*(q(1:2) - p(1:2))))
       cache%q(:, k) = [q(1), q(2), max(0.0_wp, q(3) + eta)]
-      call kinematic_ends(cache, field, q(1), q(2), cache%q(3, k), cache%vq(:, :, :, k), volume)
+      call window_kinematics(field, cache%clock%window, cache%cr, cache%sr, q(1), q(2), &
+                             cache%q(3, k), cache%vq(:, :, :, k), volume)
     end do
-  end subroutine strip_waves_refresh
+  end subroutine strip_waves_sample
+
+  !> Upper bounds over the window just opened of the ramped elevation and of the slope's
+  !> size at each strip centre (davit_boat_strip_grid's window_bounds).
+  pure subroutine strip_waves_bounds(cache, field, eta_up, slope_up)
+    !> The strips' window.
+    type(strip_wave_cache_type), intent(in) :: cache
+    !> The sea (its start-up ramp).
+    type(wave_field_type), intent(in) :: field
+    !> Per strip: the bounds of the elevation [m] and of |grad eta| over the window.
+    real(wp), intent(out) :: eta_up(:), slope_up(:)
+    call window_bounds(field, cache%clock%window, cache%ep, cache%quartic, eta_up, slope_up)
+  end subroutine strip_waves_bounds
 
   !> After an accepted step at t inside the window: renew the load window of each strip
   !> that reached its end (the next as long again, at most load_span), and sample each
@@ -306,46 +347,6 @@ contains
     eta = ramp*cache%ep(1, 1, :)
     grad = ramp*cache%ep(3:4, 1, :)
   end subroutine strip_waves_surface
-
-  !> Elevation terms at both ends of the window at (x, y): from the grid where it holds
-  !> both, else the exact sums in one pass.
-  pure subroutine elevation_ends(cache, field, x, y, e, grid)
-    type(strip_wave_cache_type), intent(in) :: cache
-    type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: x, y
-    real(wp), intent(out) :: e(nep, 2)
-    type(wave_grid_type), intent(in), optional :: grid
-    if (present(grid)) then
-      if (grid_holds(grid, cache%clock%window, x, y)) then
-        call grid_ends(grid, cache%clock%window, x, y, e)
-        return
-      end if
-    end if
-    call elevation_pass(field, cache%clock%window(1), x, y, 2, cache%cr, cache%sr, e)
-  end subroutine elevation_ends
-
-  !> Elevation and velocity terms at both ends of the window at (x, y, d): from the grid
-  !> where it holds both, else the exact sums in one pass.
-  pure subroutine kinematic_ends(cache, field, x, y, d, v, grid)
-    type(strip_wave_cache_type), intent(in) :: cache
-    type(wave_field_type), intent(in) :: field
-    real(wp), intent(in) :: x, y, d
-    real(wp), intent(out) :: v(3, nv, 2)
-    type(wave_grid_type), intent(in), optional :: grid
-    real(wp) :: e(ne, 2)
-    integer :: j
-    if (present(grid)) then
-      if (grid_covers(grid, cache%clock%window(1), x, y, d) .and. &
-          grid_covers(grid, cache%clock%window(2), x, y, d)) then
-        do j = 1, 2
-          call grid_kinematics(grid, cache%clock%window(j), x, y, d, e(:, j), v(:, :, j))
-        end do
-        return
-      end if
-    end if
-    call kinematic_pass(field, cache%clock%window(1), x, y, d, 2, cache%cr, cache%sr, e, v, &
-                        .false.)
-  end subroutine kinematic_ends
 
   !> Dynamic section load of strip k (centre p) at both ends of the window: for its wet
   !> polygon under the tangent plane at t1 and, where the section was sampled in the last

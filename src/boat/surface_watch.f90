@@ -12,6 +12,9 @@
 !> slope is sampled too and bounded the same way, |grad eta| <= |grad eta_c| + S_t |dt| +
 !> S_x |dp|, S_t = sum a k (omega + r'_max), S_x = sum a k^2 (+ Stokes terms).
 !> When every strip is surely dry the strip loads are exactly zero and need not be formed.
+!> In an irregular sea these Lipschitz constants are sums over every component (~30 m/s
+!> in the Level 5 sea), so inside a window of the strips' slow clock the watch takes the
+!> window's own bounds instead (watch_set_window: the cubics through its exact samples).
 !> An irregular sea of 1300 components costs 1300 sines per strip and stage: this keeps
 !> that cost out of the hanging phase.
 module davit_boat_surface_watch
@@ -25,7 +28,7 @@ module davit_boat_surface_watch
   implicit none
   private
   public :: surface_watch_type, new_surface_watch, watch_refresh, watch_set, watch_due, &
-            surely_dry, strip_surely_dry
+            surely_dry, strip_surely_dry, watch_set_window
 
   type :: surface_watch_type
     !> Whether the samples below have been taken.
@@ -49,6 +52,11 @@ module davit_boat_surface_watch
     !> Until this time [s] the watch, though older than its interval, still proves the hull
     !> dry (checked an interval ahead): no refresh needed before (see watch_due).
     real(wp) :: kept_until = -huge(1.0_wp)
+    !> A window [t1, t2] of the strips' slow clock, over which eta_up and slope_up bound
+    !> the surface at the strips' points (empty: none; watch_set_window) [s].
+    real(wp) :: window(2) = [1.0_wp, 0.0_wp]
+    !> Per strip, the bounds over the window of the elevation [m] and of |grad eta| [-].
+    real(wp), allocatable :: eta_up(:), slope_up(:)
   end type surface_watch_type
 
 contains
@@ -117,6 +125,7 @@ contains
     w%t = t
     w%valid = .true.
     w%kept_until = -huge(1.0_wp)
+    w%window = [1.0_wp, 0.0_wp]
   end subroutine watch_refresh
 
   !> Whether the watch must be refreshed after a step ending at t (boat at (c, r)): it is
@@ -160,7 +169,25 @@ contains
     w%t = t
     w%valid = .true.
     w%kept_until = -huge(1.0_wp)
+    w%window = [1.0_wp, 0.0_wp]
   end subroutine watch_set
+
+  !> Bounds over a window [t1, t2] of the elevation and of the slope at the strips' points
+  !> (those the last watch_set took; from the strips' slow clock, whose cubics with their
+  !> remainder bound them: davit_boat_strip_grid's window_bounds). Inside the window they
+  !> replace the Lipschitz growth from the sample, which in an irregular sea of 1300
+  !> components (sum |a| w ~ 30 m/s) proved nothing dry within metres of the crests.
+  pure subroutine watch_set_window(w, window, eta_up, slope_up)
+    !> The watch.
+    type(surface_watch_type), intent(inout) :: w
+    !> The window [t1, t2] [s].
+    real(wp), intent(in) :: window(2)
+    !> Per strip: the bounds of the elevation [m] and of |grad eta| over the window.
+    real(wp), intent(in) :: eta_up(:), slope_up(:)
+    w%window = window
+    w%eta_up = eta_up
+    w%slope_up = slope_up
+  end subroutine watch_set_window
 
   !> True only if no strip can touch the water at time t with the boat at (c, r).
   pure logical function surely_dry(w, s, t, c, r)
@@ -198,11 +225,16 @@ contains
     dist = norm2(p(1:2) - w%xy(:, k))
     radius = hypot(0.5_wp*s%hull%breadth(k), max(abs(s%hull%keel), &
                                                  abs(s%hull%keel - s%hull%height)))
-    grid_error = 0.0_wp
-    if (w%from_grid(k)) grid_error = w%grid_error
-    eta_up = w%eta(k) + grid_error(1) + w%rate_bound*abs(t - w%t) + w%slope_bound*dist + &
-             radius*min(w%slope_bound, w%slope(k) + grid_error(2) + &
-                        w%slope_rate_bound*abs(t - w%t) + w%curvature_bound*dist)
+    if (t >= w%window(1) .and. t <= w%window(2)) then
+      eta_up = w%eta_up(k) + w%slope_bound*dist + &
+               radius*min(w%slope_bound, w%slope_up(k) + w%curvature_bound*dist)
+    else
+      grid_error = 0.0_wp
+      if (w%from_grid(k)) grid_error = w%grid_error
+      eta_up = w%eta(k) + grid_error(1) + w%rate_bound*abs(t - w%t) + w%slope_bound*dist + &
+               radius*min(w%slope_bound, w%slope(k) + grid_error(2) + &
+                          w%slope_rate_bound*abs(t - w%t) + w%curvature_bound*dist)
+    end if
     wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
     strip_surely_dry = wet%area <= 0.0_wp
   end function strip_surely_dry

@@ -8,7 +8,7 @@ module davit_core_hermite
   use davit_kinds, only: wp
   implicit none
   private
-  public :: hermite_weights, hermite_interpolate
+  public :: hermite_weights, hermite_interpolate, hermite_max
 
 contains
 
@@ -39,6 +39,35 @@ contains
     b = cubic_basis(s, s)
     f = b(1)*f1 + h*b(2)*d1 + b(3)*f2 + h*b(4)*d2
   end function hermite_interpolate
+
+  !> The largest value over the window of the cubic through values f1, f2 and rates d1, d2
+  !> at its ends: the larger end, or the cubic at a root of its derivative inside (the
+  !> derivative, a quadratic in s, solved in the form that does not cancel).
+  pure real(wp) function hermite_max(window, f1, d1, f2, d2) result(top)
+    !> Window [t1, t2] of the two samples [s].
+    real(wp), intent(in) :: window(2)
+    !> Values f1, f2 and rates d1, d2 at t1 and t2.
+    real(wp), intent(in) :: f1, d1, f2, d2
+    real(wp) :: h, qa, qb, qc, disc, root, s(2)
+    integer :: i
+    top = max(f1, f2)
+    h = window(2) - window(1)
+    ! f(s) = f1 + h d1 s + (3 df - h (2 d1 + d2)) s^2 + (h (d1 + d2) - 2 df) s^3, df = f2 - f1:
+    ! f'(s) = qc + qb s + qa s^2
+    qc = h*d1
+    qb = 2.0_wp*(3.0_wp*(f2 - f1) - h*(2.0_wp*d1 + d2))
+    qa = 3.0_wp*(h*(d1 + d2) - 2.0_wp*(f2 - f1))
+    disc = qb*qb - 4.0_wp*qa*qc
+    if (disc < 0.0_wp) return
+    root = -0.5_wp*(qb + sign(sqrt(disc), qb))
+    s = -1.0_wp
+    if (root /= 0.0_wp) s(1) = qc/root
+    if (qa /= 0.0_wp) s(2) = root/qa
+    do i = 1, 2
+      if (s(i) > 0.0_wp .and. s(i) < 1.0_wp) top = max(top, &
+          f1 + s(i)*(qc + s(i)*(0.5_wp*qb + s(i)*qa/3.0_wp)))
+    end do
+  end function hermite_max
 
   !> h00, hs (1 - s)^2, h01, hs s (s - 1) at s in [0, 1]: with hs = s the four cubics of
   !> the unit interval, with hs = h s the rates' two already times the window length h.

@@ -8,10 +8,10 @@ module davit_system_events
   use davit_boat_contact_law, only: phase_compression, fender_state_type
   use davit_boat_fenders, only: fender_set_type
   use davit_boat_strip_waves, only: strip_wave_cache_type, strip_waves_due, &
-                                    strip_waves_refresh, strip_waves_surface, &
-                                    strip_waves_renew_loads
+                                    strip_waves_open, strip_waves_sample, strip_waves_surface, &
+                                    strip_waves_renew_loads, strip_waves_bounds
   use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
-                                      strip_surely_dry
+                                      strip_surely_dry, watch_set_window
   use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      hook_kinematics, fender_gaps, falls_ends_at
@@ -42,7 +42,11 @@ contains
       ! the boat's pose, once for the watch and the strips' window
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
-      call watch_due(hist%watch, par%water, t, c, r, due)
+      ! with the strips' slow clock summing exactly, each window sets the watch (below)
+      due = .false.
+      if (.not. hist%waves%enabled .or. hist%surface_grid%enabled) then
+        call watch_due(hist%watch, par%water, t, c, r, due)
+      end if
       if (due) then
         if (hist%surface_grid%enabled) then
           call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, &
@@ -52,7 +56,8 @@ contains
           call watch_refresh(hist%watch, par%water, par%sea, t, c, r)
         end if
       end if
-      call refresh_strip_waves(par, hist, t, c, r, q(3))
+      call refresh_strip_waves(par, hist, t, c, r, q(3), &
+                               y(par%boat_part%u(1):par%boat_part%u(2)))
     end associate
     if (par%on_davit .and. hist%release_time < 0.0_wp) call watch_waterborne(par, hist, t, y)
     if (par%contact) then
@@ -66,15 +71,21 @@ contains
     end if
   end subroutine advance_history
 
-  !> Sample the water at the strips the hull may wet within the window (the watch's bound
-  !> at its far end): otherwise the stages of a hull just above the crests would all take
-  !> the exact sums.
-  subroutine refresh_strip_waves(par, hist, t, c, r, yaw)
+  !> Open the strips' window when due and sample the water at the strips the hull may wet
+  !> within it: otherwise the stages of a hull just above the crests would all take the
+  !> exact sums. Summed exactly, the window's samples at the strip centres bound the
+  !> surface over it (the watch's window) and decide which strips may wet, the boat
+  !> lowered by how far it can move in the window; with the grids, the watch's Lipschitz
+  !> bound at the window's end.
+  subroutine refresh_strip_waves(par, hist, t, c, r, yaw, u)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(inout) :: hist
     !> Time [s], the boat's rotation (boat -> inertial), CG position (inertial) [m], yaw [rad].
     real(wp), intent(in) :: t, c(3, 3), r(3), yaw
+    !> The boat's speeds (Kane order: angular [rad/s], then linear [m/s]).
+    real(wp), intent(in) :: u(6)
     logical :: due, maybe_wet(par%water%hull%n)
+    real(wp) :: travel
     integer :: j
     call strip_waves_due(hist%waves, t, due)
     if (.not. due) then
@@ -82,20 +93,29 @@ contains
       call strip_waves_renew_loads(hist%waves, par%water%hull, par%sea, t, c, r)
       return
     end if
-    do j = 1, par%water%hull%n
-      maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
-                                            t + hist%waves%clock%interval, c, r)
-    end do
-    if (any(maybe_wet) .and. hist%surface_grid%enabled) then
-      associate (span => hist%waves%clock%interval)
-        call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, span, c, r)
-        call prepare_grid(par%water%hull, par%sea, hist%volume_grid, t, span, c, r, maybe_wet)
-      end associate
-      call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet, &
-                               hist%surface_grid, hist%volume_grid)
-    else if (any(maybe_wet)) then
-      call strip_waves_refresh(hist%waves, par%water%hull, par%sea, t, c, r, maybe_wet)
+    if (hist%surface_grid%enabled) then
+      do j = 1, par%water%hull%n
+        maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
+                                              t + hist%waves%clock%interval, c, r)
+      end do
+      if (any(maybe_wet)) then
+        associate (span => hist%waves%clock%interval)
+          call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, span, c, r)
+          call prepare_grid(par%water%hull, par%sea, hist%volume_grid, t, span, c, r, maybe_wet)
+        end associate
+        call strip_waves_open(hist%waves, par%water%hull, par%sea, t, c, r, hist%surface_grid)
+        call strip_waves_sample(hist%waves, par%water%hull, par%sea, c, r, maybe_wet, &
+                                hist%volume_grid)
+      end if
+    else
+      call strip_waves_open(hist%waves, par%water%hull, par%sea, t, c, r)
       call refresh_watch_from_strips(hist%waves, par%sea, par%water%hull%n, t, hist%watch)
+      travel = boat_travel(par%water%hull, u, hist%waves%clock%interval)
+      do j = 1, par%water%hull%n
+        maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, t, c, &
+                                              r + [0.0_wp, 0.0_wp, travel])
+      end do
+      call strip_waves_sample(hist%waves, par%water%hull, par%sea, c, r, maybe_wet)
     end if
     ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
     if (par%bem_water .and. any(maybe_wet)) then
@@ -104,6 +124,17 @@ contains
       call hist%diffraction%clock%invalidate()
     end if
   end subroutine refresh_strip_waves
+
+  !> How far a point of the hull can move within one of the strips' windows [m]: its
+  !> CG's speed and its spin times its half length, over the window (the speeds of now).
+  pure real(wp) function boat_travel(hull, u, interval) result(travel)
+    type(boat_hull_type), intent(in) :: hull
+    !> The boat's speeds (Kane order: angular [rad/s], then linear [m/s]).
+    real(wp), intent(in) :: u(6)
+    !> The window's length [s].
+    real(wp), intent(in) :: interval
+    travel = (norm2(u(4:6)) + norm2(u(1:3))*0.5_wp*hull%n*hull%thickness)*interval
+  end function boat_travel
 
   !> The window just opened sampled the exact elevation at every strip centre at t: the
   !> surface watch takes it instead of summing the sea again (its next refresh comes an
@@ -119,9 +150,11 @@ contains
     real(wp), intent(in) :: t
     !> The surface watch, set from the strips' samples.
     type(surface_watch_type), intent(inout) :: watch
-    real(wp) :: xy(2, n), eta(n), grad(2, n)
+    real(wp) :: xy(2, n), eta(n), grad(2, n), eta_up(n), slope_up(n)
     call strip_waves_surface(waves, sea, xy, eta, grad)
     call watch_set(watch, t, xy, eta, grad)
+    call strip_waves_bounds(waves, sea, eta_up, slope_up)
+    call watch_set_window(watch, waves%clock%window, eta_up, slope_up)
   end subroutine refresh_watch_from_strips
 
   !> Make grid g of the sea hold the footprint of the boat's strip hull h (the corners of
