@@ -57,7 +57,7 @@ contains
         end if
       end if
       call refresh_strip_waves(par, hist, t, c, r, q(3), &
-                               y(par%boat_part%u(1):par%boat_part%u(2)))
+                               y(par%boat_part%u(1):par%boat_part%u(2)), lagged_immersion(par, y))
     end associate
     if (par%on_davit .and. hist%release_time < 0.0_wp) call watch_waterborne(par, hist, t, y)
     if (par%contact) then
@@ -77,13 +77,15 @@ contains
   !> surface over it (the watch's window) and decide which strips may wet, the boat
   !> lowered by how far it can move in the window; with the grids, the watch's Lipschitz
   !> bound at the window's end.
-  subroutine refresh_strip_waves(par, hist, t, c, r, yaw, u)
+  subroutine refresh_strip_waves(par, hist, t, c, r, yaw, u, immersion)
     type(system_params_type), intent(in) :: par
     type(system_history_type), intent(inout) :: hist
     !> Time [s], the boat's rotation (boat -> inertial), CG position (inertial) [m], yaw [rad].
     real(wp), intent(in) :: t, c(3, 3), r(3), yaw
     !> The boat's speeds (Kane order: angular [rad/s], then linear [m/s]).
     real(wp), intent(in) :: u(6)
+    !> The BEM water's lagged immersion (0 without it): its diffraction acts while > 0.
+    real(wp), intent(in) :: immersion
     logical :: due, maybe_wet(par%water%hull%n)
     real(wp) :: travel
     integer :: j
@@ -117,13 +119,22 @@ contains
       end do
       call strip_waves_sample(hist%waves, par%water%hull, par%sea, c, r, maybe_wet)
     end if
-    ! the diffraction acts only on a wet hull (immersion s > 0), on the same window
-    if (par%bem_water .and. any(maybe_wet)) then
+    ! the diffraction acts only on a wet hull (lagged immersion s > 0), on the same window
+    if (par%bem_water .and. (any(maybe_wet) .or. immersion > 0.0_wp)) then
       call diffraction_refresh(par%bem, par%sea, hist%waves%clock, r, yaw, hist%diffraction)
     else
       call hist%diffraction%clock%invalidate()
     end if
   end subroutine refresh_strip_waves
+
+  !> The BEM water's lagged immersion s in the state y (0 for the strips alone).
+  pure real(wp) function lagged_immersion(par, y) result(s)
+    type(system_params_type), intent(in) :: par
+    !> The system's state.
+    real(wp), intent(in) :: y(:)
+    s = 0.0_wp
+    if (par%bem_water) s = y(par%radiation_part%q(1))
+  end function lagged_immersion
 
   !> How far a point of the hull can move within one of the strips' windows [m]: its
   !> CG's speed and its spin times its half length, over the window (the speeds of now).
