@@ -45,9 +45,9 @@ module davit_io_hdf5_writer
   contains
     procedure :: create => writer_create
     procedure :: group => writer_group
-    procedure :: write_1d => writer_write_real
-    procedure :: write_2d => writer_write_real
-    procedure :: write_3d => writer_write_real
+    procedure :: write_1d => writer_write_1d
+    procedure :: write_2d => writer_write_2d
+    procedure :: write_3d => writer_write_3d
     procedure :: write_1d_int => writer_write_1d_int
     procedure :: write_strings => writer_write_strings
     procedure :: attr_str => writer_attr_str
@@ -133,38 +133,50 @@ contains
     if (hdferr == 0) call h5gclose_f(gid, hdferr)
   end subroutine writer_group
 
-  !> Real dataset of rank 1 to 3 (write_1d, write_2d, write_3d), stored as given in Fortran
-  !> order (HDF5 shows a 2-D or 3-D one transposed). The values go through a heap buffer
-  !> filled through a pointer of their rank: a section passed as the argument is copied
-  !> without a stack temporary (the build's -fstack-arrays), however long the run.
-  subroutine writer_write_real(self, name, data, units, description, dims)
+  subroutine writer_write_1d(self, name, data, units, description, dims)
     !> The writer.
     class(h5_writer_type), intent(inout) :: self
     !> Path of the dataset; its units; what it holds.
     character(len=*), intent(in) :: name, units, description
-    !> The values, of rank 1, 2 or 3 (another rank is a failure reported by close()).
-    real(wp), intent(in) :: data(..)
+    !> The values.
+    real(wp), intent(in) :: data(:)
     !> Dimension names, one per axis of `data` (see the module comment).
     character(len=*), intent(in), optional :: dims
     real(wp), allocatable, target :: buf(:)
-    real(wp), pointer :: b2(:, :), b3(:, :, :)
-    allocate (buf(size(data)))
-    select rank (data)
-    rank (1)
-      buf = data
-    rank (2)
-      b2(1:size(data, 1), 1:size(data, 2)) => buf
-      b2 = data
-    rank (3)
-      b3(1:size(data, 1), 1:size(data, 2), 1:size(data, 3)) => buf
-      b3 = data
-    rank default
-      call note_failure(self%failed_what, -1, name//" (rank not 1 to 3)")
-      return
-    end select
+    buf = data
     call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
                        H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
-  end subroutine writer_write_real
+  end subroutine writer_write_1d
+
+  subroutine writer_write_2d(self, name, data, units, description, dims)
+    !> The writer.
+    class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
+    character(len=*), intent(in) :: name, units, description
+    !> The values (Fortran order; HDF5 shows them transposed).
+    real(wp), intent(in) :: data(:, :)
+    !> Dimension names, one per axis of `data` (see the module comment).
+    character(len=*), intent(in), optional :: dims
+    real(wp), allocatable, target :: buf(:, :)
+    buf = data
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
+  end subroutine writer_write_2d
+
+  subroutine writer_write_3d(self, name, data, units, description, dims)
+    !> The writer.
+    class(h5_writer_type), intent(inout) :: self
+    !> Path of the dataset; its units; what it holds.
+    character(len=*), intent(in) :: name, units, description
+    !> The values (Fortran order; HDF5 shows them transposed).
+    real(wp), intent(in) :: data(:, :, :)
+    !> Dimension names, one per axis of `data` (see the module comment).
+    character(len=*), intent(in), optional :: dims
+    real(wp), allocatable, target :: buf(:, :, :)
+    buf = data
+    call write_dataset(self, name, shape(data, kind=hsize_t), H5T_NATIVE_DOUBLE, &
+                       H5T_NATIVE_DOUBLE, c_loc(buf), units, description, dims)
+  end subroutine writer_write_3d
 
   !> 64-bit integer dataset (codes, counts, flags), with its units and description.
   subroutine writer_write_1d_int(self, name, data, units, description, dims)
