@@ -72,17 +72,26 @@ contains
   subroutine write_cases(w, cases)
     type(h5_writer_type), intent(inout) :: w
     type(sweep_case), intent(in) :: cases(:)
-    ! through an allocatable (heap), as in write_count
+    ! each column through an allocatable (heap): an expression or a component of the rows
+    ! passed as the argument would be a temporary on the stack, as long as the sweep
     integer(i8), allocatable :: icol(:)
     call w%group("cases")
-    call write_count(w, "cases/index", cases%index, "Case number, 1-based")
-    call write_count(w, "cases/realisation", cases%realisation, &
-                     "Realisation of the combination of the other inputs, 1-based")
-    call write_count(w, "cases/seed", cases%seed, "Random seed of the case "// &
-                     "(SplitMix64 of the base seed and the case index, top 31 bits)")
-    call write_count(w, "cases/level", cases%level, &
-                     "Sea-state level (3-5: the wave height and wind presets)")
-    call write_count(w, "cases/wave_type", cases%wave_type, "Wave type: "//wave_type_codes)
+    icol = int(cases%index, i8)
+    call w%write_1d_int("cases/index", icol, "-", "Case number, 1-based", &
+                        dims="case")
+    icol = int(cases%realisation, i8)
+    call w%write_1d_int("cases/realisation", icol, "-", &
+                        "Realisation of the combination of the other inputs, 1-based", dims="case")
+    icol = int(cases%seed, i8)
+    call w%write_1d_int("cases/seed", icol, "-", "Random seed of the case "// &
+                        "(SplitMix64 of the base seed and the case index, top 31 bits)", &
+                        dims="case")
+    icol = int(cases%level, i8)
+    call w%write_1d_int("cases/level", icol, "-", &
+                        "Sea-state level (3-5: the wave height and wind presets)", dims="case")
+    icol = int(cases%wave_type, i8)
+    call w%write_1d_int("cases/wave_type", icol, "-", &
+                        "Wave type: "//wave_type_codes, dims="case")
     call w%attr_str("cases/wave_type", "codes", wave_type_codes)
     icol = merge(1_i8, 0_i8, cases%wind)
     call w%write_1d_int("cases/wind", icol, "-", &
@@ -90,37 +99,29 @@ contains
     call write_columns(w, "cases", case_columns, case_matrix(cases))
   end subroutine write_cases
 
-  !> One integer column of the cases (dimension "case", no units) as 64-bit integers. The
-  !> column goes through an allocatable (heap): a component of the rows or an expression
-  !> passed to the writer would be a temporary on the stack, as long as the sweep.
-  subroutine write_count(w, path, values, description)
-    type(h5_writer_type), intent(inout) :: w
-    character(len=*), intent(in) :: path, description
-    integer, intent(in) :: values(:)
-    integer(i8), allocatable :: icol(:)
-    icol = int(values, i8)
-    call w%write_1d_int(path, icol, "-", description, dims="case")
-  end subroutine write_count
-
   subroutine write_results(w, r)
     type(h5_writer_type), intent(inout) :: w
     type(case_result), intent(in) :: r(:)
-    ! through an allocatable (heap), as in write_count
+    ! each column through an allocatable (heap): an expression or a component of the rows
+    ! passed as the argument would be a temporary on the stack, as long as the sweep
     integer(i8), allocatable :: icol(:)
     character(len=:), allocatable :: texts(:)
     call w%group("results")
-    call write_count(w, "results/status", r%status, &
-                     "0 not run, 1 ok, 2 failed (see message), 3 not needed "// &
-                     "(adaptive realisations: its cell converged; see message)")
+    icol = int(r%status, i8)
+    call w%write_1d_int("results/status", icol, "-", &
+                        "0 not run, 1 ok, 2 failed (see message), 3 not needed "// &
+                        "(adaptive realisations: its cell converged; see message)", dims="case")
     texts = text_column(r, "message")
     call w%write_strings("results/message", texts, "-", &
                          "'ok', the error of a failed case, why it was not needed, or "// &
                          "empty when not run", dims="case")
-    call write_count(w, "results/collided", r%collided, &
-                     "1 if min_clearance < 0 (a fender touched the ship), else 0; -1 "// &
-                     "if not status 1")
-    call write_count(w, "results/impacts", r%impacts, "Separate contact "// &
-                     "episodes over the lowering; -1 if not status 1")
+    icol = int(r%collided, i8)
+    call w%write_1d_int("results/collided", icol, "-", &
+                        "1 if min_clearance < 0 (a fender touched the ship), else 0; -1 "// &
+                        "if not status 1", dims="case")
+    icol = int(r%impacts, i8)
+    call w%write_1d_int("results/impacts", icol, "-", "Separate contact "// &
+                        "episodes over the lowering; -1 if not status 1", dims="case")
     texts = text_column(r, "outcome")
     call w%write_strings("results/outcome", texts, "-", "How the "// &
                          "launch ended: released, waterborne, or not waterborne and why; "// &
