@@ -12,7 +12,7 @@ module test_mmg
   use davit_kinds, only: wp, pi
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config, read_config
-  use davit_ship_mmg, only: mmg_type, mmg_hull, mmg_propeller, mmg_rudder, mmg_wake, &
+  use davit_ship_mmg, only: mmg_type, mmg_motion, mmg_hull, mmg_propeller, mmg_rudder, mmg_wake, &
                             mmg_rudder_inflow, mmg_total, mmg_self_propulsion
   use davit_ship_mmg_loads, only: mmg_body_load
   use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
@@ -100,23 +100,23 @@ contains
       real(wp) :: f(3), uv(2)
       integer :: k
       character(len=*), parameter :: names(3) = ["X", "Y", "N"]
-      f = mmg_hull(p, s(1), s(2), s(3))
+      f = mmg_hull(p, mmg_motion(s(1), s(2), s(3)))
       do k = 1, 3
         call check(state, f(k), hull(k), what//": hull "//names(k), rel_tol=1e-10_wp)
       end do
-      call check(state, mmg_wake(p, s(1), s(2), s(3)), wake, what//": 1 - w_P", &
+      call check(state, mmg_wake(p, mmg_motion(s(1), s(2), s(3))), wake, what//": 1 - w_P", &
                  rel_tol=1e-12_wp)
-      f = mmg_propeller(p, s(1), s(2), s(3), s(5))
+      f = mmg_propeller(p, mmg_motion(s(1), s(2), s(3), n=s(5)))
       call check(state, f(1), prop, what//": X_P", rel_tol=1e-10_wp)
       call check(state, maxval(abs(f(2:3))), 0.0_wp, what//": Y_P, N_P", abs_tol=0.0_wp)
-      uv = mmg_rudder_inflow(p, s(1), s(2), s(3), s(5))
+      uv = mmg_rudder_inflow(p, mmg_motion(s(1), s(2), s(3), n=s(5)))
       call check(state, uv(1), inflow(1), what//": u_R", rel_tol=1e-10_wp)
       call check(state, uv(2), inflow(2), what//": v_R", rel_tol=1e-10_wp)
-      f = mmg_rudder(p, s(1), s(2), s(3), s(4), s(5))
+      f = mmg_rudder(p, mmg_motion(s(1), s(2), s(3), s(4), s(5)))
       do k = 1, 3
         call check(state, f(k), rudder(k), what//": rudder "//names(k), rel_tol=1e-10_wp)
       end do
-      f = mmg_total(p, s(1), s(2), s(3), s(4), s(5))
+      f = mmg_total(p, mmg_motion(s(1), s(2), s(3), s(4), s(5)))
       call check(state, f(1), hull(1) + prop + rudder(1), what//": total X", rel_tol=1e-10_wp)
     end subroutine compare
   end subroutine terms_by_hand
@@ -137,7 +137,7 @@ contains
     n = mmg_self_propulsion(p, 1.176_wp)
     call note(state, "self-propulsion rps", n)
     call check(state, n, 11.821433597518_wp, "n at 1.176 m/s", rel_tol=1e-10_wp)
-    f = mmg_total(p, 1.176_wp, 0.0_wp, 0.0_wp, 0.0_wp, n)
+    f = mmg_total(p, mmg_motion(1.176_wp, 0.0_wp, 0.0_wp, 0.0_wp, n))
     call check(state, f(1), 0.0_wp, "X at the self-propulsion point", abs_tol=1e-10_wp)
   end subroutine self_propulsion
 

@@ -12,6 +12,7 @@ module test_slack
   use davit_rigging_falls_ends, only: falls_ends_type
   use davit_rigging_sling_chain, only: sling_chain_type, chain_forces
   use davit_rigging_block_stop, only: stop_force
+  use davit_rigging_cable, only: ramp_factor, ramp_slope
   use davit_solve_integrator, only: ode_problem, integrator_type
   use davit_solve_factory, only: new_integrator
   use rigging_fixture, only: make_config
@@ -50,7 +51,8 @@ contains
     suite%cases = [new_case("dashpot_coefficients_and_signs", coefficients), &
                    new_case("dropped_block_snatch_and_log_decrement", dropped_block), &
                    new_case("slack_falls_heaving_hooks_massive", heave_massive), &
-                   new_case("slack_falls_heaving_hooks_quasi_static", heave_static)]
+                   new_case("slack_falls_heaving_hooks_quasi_static", heave_static), &
+                   new_case("dashpot_ramp_smooth_step_and_slope", dashpot_ramp)]
   end function collect_slack
 
   !> Rigging from deck text (defaults for every key not given).
@@ -87,6 +89,39 @@ contains
     call hook_motion(self, t, r, v, a)
     call self%rig%rhs(t, y, falls_ends_type(r, v, ship0), dydt, fh)
   end subroutine heave_rhs
+
+  !> The dashpot's share at stretch e over a ramp of length a is the smooth step
+  !> phi = 3 x^2 - 2 x^3, x = e/a clamped to [0, 1]: 0 when slack, 1/2 at mid-ramp, 1 from
+  !> e = a on and always 1 with a = 0; its slope is 6 x (1 - x)/a, 3/(2a) at mid-ramp, 0
+  !> outside the ramp and with a = 0, and agrees with a central difference of phi inside it
+  !> (h = 1e-6 a: truncation 2 (h/a)^2, rounding ~1e-10, relative).
+  subroutine dashpot_ramp(state)
+    type(case_state), intent(inout) :: state
+    real(wp), parameter :: a = 0.02_wp, h = 1.0e-6_wp*a
+    real(wp) :: e, fd
+    integer :: i
+    call check(state, ramp_factor(-1.0e-3_wp, a), 0.0_wp, "slack: share 0", abs_tol=0.0_wp)
+    call check(state, ramp_factor(0.5_wp*a, a), 0.5_wp, "mid-ramp: share 1/2", &
+               abs_tol=1.0e-15_wp)
+    call check(state, ramp_factor(0.25_wp*a, a), 0.15625_wp, "quarter: 3/16 - 2/64", &
+               abs_tol=1.0e-15_wp)
+    call check(state, ramp_factor(2.0_wp*a, a), 1.0_wp, "beyond the ramp: share 1", &
+               abs_tol=0.0_wp)
+    call check(state, ramp_factor(-1.0_wp, 0.0_wp), 1.0_wp, "no ramp: share 1", &
+               abs_tol=0.0_wp)
+    call check(state, ramp_slope(0.5_wp*a, a), 1.5_wp/a, "mid-ramp slope 3/(2a)", &
+               rel_tol=1.0e-14_wp)
+    call check(state, ramp_slope(-1.0e-3_wp, a), 0.0_wp, "slack: slope 0", abs_tol=0.0_wp)
+    call check(state, ramp_slope(2.0_wp*a, a), 0.0_wp, "beyond: slope 0", abs_tol=0.0_wp)
+    call check(state, ramp_slope(0.01_wp, 0.0_wp), 0.0_wp, "no ramp: slope 0", &
+               abs_tol=0.0_wp)
+    do i = 1, 9
+      e = 0.1_wp*real(i, wp)*a
+      fd = (ramp_factor(e + h, a) - ramp_factor(e - h, a))/(2.0_wp*h)
+      call check(state, ramp_slope(e, a), fd, "slope = d share/de (central difference)", &
+                 rel_tol=1.0e-8_wp)
+    end do
+  end subroutine dashpot_ramp
 
   !> (c) The dashpots' coefficients and signs. A sling stretched by x = 1 mm whose block
   !> moves away from (towards) the hook at 0.5 m/s carries k x + c 0.5 (k x - c 0.5), with

@@ -362,9 +362,7 @@ contains
     !> Stretch [m] and the ramp length [m] (0: none).
     real(wp), intent(in) :: e, ramp
     real(wp) :: x
-    phi = 1.0_wp
-    if (ramp <= 0.0_wp) return
-    x = min(1.0_wp, max(0.0_wp, e/ramp))
+    x = ramp_position(e, ramp)
     phi = x*x*(3.0_wp - 2.0_wp*x)
   end function ramp_factor
 
@@ -373,11 +371,19 @@ contains
     !> Stretch [m] and the ramp length [m] (0: none).
     real(wp), intent(in) :: e, ramp
     real(wp) :: x
+    x = ramp_position(e, ramp)
     dphi = 0.0_wp
-    if (ramp <= 0.0_wp) return
-    x = min(1.0_wp, max(0.0_wp, e/ramp))
-    dphi = 6.0_wp*x*(1.0_wp - x)/ramp
+    if (ramp > 0.0_wp) dphi = 6.0_wp*x*(1.0_wp - x)/ramp
   end function ramp_slope
+
+  !> x = e/ramp clamped to [0, 1], the smooth step's argument; 1 (the step passed) with
+  !> ramp = 0, where both the factor (1) and its slope (0) follow from it.
+  elemental real(wp) function ramp_position(e, ramp) result(x)
+    !> Stretch [m] and the ramp length [m] (0: none).
+    real(wp), intent(in) :: e, ramp
+    x = 1.0_wp
+    if (ramp > 0.0_wp) x = min(1.0_wp, max(0.0_wp, e/ramp))
+  end function ramp_position
 
   !> The part of d across lam: (I - lam lam^T) d.
   pure function across(lam, d) result(p)

@@ -11,8 +11,8 @@ module davit_ship_mmg
   use davit_kinds, only: wp, pi, rho_water
   implicit none
   private
-  public :: mmg_type, mmg_hull, mmg_propeller, mmg_rudder, mmg_total, mmg_self_propulsion, &
-            mmg_wake, mmg_rudder_inflow
+  public :: mmg_type, mmg_motion, mmg_hull, mmg_propeller, mmg_rudder, mmg_total, &
+            mmg_self_propulsion, mmg_wake, mmg_rudder_inflow
 
   !> The coefficients (primed: non-dimensional on 1/2 rho L d U^2 for forces and
   !> 1/2 rho L^2 d U^2 for moments; v' = v_m/U, r' = r L/U; lengths x' on L).
@@ -49,23 +49,32 @@ module davit_ship_mmg
   end type mmg_type
 
   !> Below this speed [m/s] the hull's non-dimensional angles are undefined: zero force.
+  !> The ship's motion and controls the MMG force laws read, the same for all of them.
+  type :: mmg_motion
+    !> Surge speed u [m/s], sway speed at midship v_m [m/s] and yaw rate r [rad/s].
+    real(wp) :: u = 0.0_wp, vm = 0.0_wp, r = 0.0_wp
+    !> Rudder angle delta [rad] (> 0 turns the ship to starboard) and propeller
+    !> revolutions n [1/s].
+    real(wp) :: delta = 0.0_wp, n = 0.0_wp
+  end type mmg_motion
+
   real(wp), parameter :: u_small = 1.0e-9_wp
 
 contains
 
   !> Hull forces (eq. 8-10): X_H = 1/2 rho L d U^2 (-R'_0 + X'_vv v'^2 + X'_vr v' r' +
   !> X'_rr r'^2 + X'_vvvv v'^4); Y_H, N_H the cubic polynomials in v', r'.
-  pure function mmg_hull(p, u, vm, r) result(f)
+  pure function mmg_hull(p, s) result(f)
     !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
-    !> Surge speed u [m/s], sway speed at midship v_m [m/s] and yaw rate r [rad/s].
-    real(wp), intent(in) :: u, vm, r
+    !> The motion (u, v_m, r).
+    type(mmg_motion), intent(in) :: s
     real(wp) :: f(3), uu, v, w, q
     f = 0.0_wp
-    uu = hypot(u, vm)
+    uu = hypot(s%u, s%vm)
     if (uu < u_small) return
-    v = vm/uu
-    w = r*p%lpp/uu
+    v = s%vm/uu
+    w = s%r*p%lpp/uu
     q = 0.5_wp*rho_water*p%lpp*p%draught*uu**2
     f(1) = q*(-p%r0 + p%xvv*v**2 + p%xvr*v*w + p%xrr*w**2 + p%xvvvv*v**4)
     f(2) = q*(p%yv*v + p%yr*w + p%yvvv*v**3 + p%yvvr*v**2*w + p%yvrr*v*w**2 + p%yrrr*w**3)
@@ -75,16 +84,16 @@ contains
 
   !> 1 - w_P (eq. 16): (1 - w_P0) [1 + (1 - exp(-C_1 |beta_P|)) (C_2 - 1)],
   !> beta_P = beta - x'_P r', beta = atan(-v_m/u); C_2 by the sign of beta_P.
-  pure real(wp) function mmg_wake(p, u, vm, r) result(one_minus_w)
+  pure real(wp) function mmg_wake(p, s) result(one_minus_w)
     !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
-    !> Surge speed u [m/s], sway speed at midship v_m [m/s] and yaw rate r [rad/s].
-    real(wp), intent(in) :: u, vm, r
+    !> The motion (u, v_m, r).
+    type(mmg_motion), intent(in) :: s
     real(wp) :: uu, beta_p, c2
     one_minus_w = 1.0_wp - p%wp0
-    uu = hypot(u, vm)
+    uu = hypot(s%u, s%vm)
     if (uu < u_small) return
-    beta_p = atan2(-vm, u) - p%xp*r*p%lpp/uu
+    beta_p = atan2(-s%vm, s%u) - p%xp*s%r*p%lpp/uu
     c2 = merge(p%c2_plus, p%c2_minus, beta_p > 0.0_wp)
     one_minus_w = one_minus_w*(1.0_wp + (1.0_wp - exp(-p%c1*abs(beta_p)))*(c2 - 1.0_wp))
   end function mmg_wake
@@ -98,68 +107,63 @@ contains
   end function thrust_per_rho
 
   !> Propeller (eq. 14): X_P = (1 - t_P) rho n^2 D_P^4 K_T(J_P), J_P = u (1 - w_P)/(n D_P).
-  pure function mmg_propeller(p, u, vm, r, n) result(f)
+  pure function mmg_propeller(p, s) result(f)
     !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
-    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s] and propeller
-    !> revolutions n [1/s].
-    real(wp), intent(in) :: u, vm, r, n
+    !> The motion (u, v_m, r) and the propeller revolutions n.
+    type(mmg_motion), intent(in) :: s
     real(wp) :: f(3)
     f = 0.0_wp
-    f(1) = (1.0_wp - p%tp)*rho_water*thrust_per_rho(p, u*mmg_wake(p, u, vm, r), n)
+    f(1) = (1.0_wp - p%tp)*rho_water*thrust_per_rho(p, s%u*mmg_wake(p, s), s%n)
   end function mmg_propeller
 
   !> Rudder inflow (eqs. 23-26): u_R = epsilon u_P sqrt(eta {1 + kappa (sqrt(1 +
   !> 8 K_T/(pi J^2)) - 1)}^2 + 1 - eta), eta = D_P/H_R; v_R = U gamma_R beta_R,
   !> beta_R = beta - l'_R r'. u_P sqrt(1 + 8 K_T/(pi J^2)) = sqrt(u_P^2 + 8 T/(pi rho D^2))
   !> keeps it finite at u_P -> 0.
-  pure function mmg_rudder_inflow(p, u, vm, r, n) result(uv)
+  pure function mmg_rudder_inflow(p, s) result(uv)
     !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
-    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s] and propeller
-    !> revolutions n [1/s].
-    real(wp), intent(in) :: u, vm, r, n
+    !> The motion (u, v_m, r) and the propeller revolutions n.
+    type(mmg_motion), intent(in) :: s
     real(wp) :: uv(2), up, race, eta, uu, beta_r
-    up = u*mmg_wake(p, u, vm, r)
-    race = sqrt(max(up**2 + 8.0_wp*thrust_per_rho(p, up, n)/(pi*p%dp**2), 0.0_wp))
+    up = s%u*mmg_wake(p, s)
+    race = sqrt(max(up**2 + 8.0_wp*thrust_per_rho(p, up, s%n)/(pi*p%dp**2), 0.0_wp))
     race = (1.0_wp - p%kappa)*up + p%kappa*race
     eta = p%dp/p%span
     uv(1) = p%eps*sqrt(eta*race**2 + (1.0_wp - eta)*up**2)
     uv(2) = 0.0_wp
-    uu = hypot(u, vm)
+    uu = hypot(s%u, s%vm)
     if (uu < u_small) return
-    beta_r = atan2(-vm, u) - p%lr*r*p%lpp/uu
+    beta_r = atan2(-s%vm, s%u) - p%lr*s%r*p%lpp/uu
     uv(2) = uu*merge(p%gamma_plus, p%gamma_minus, beta_r > 0.0_wp)*beta_r
   end function mmg_rudder_inflow
 
   !> Rudder (eqs. 18-22): F_N = 1/2 rho A_R U_R^2 f_alpha sin(alpha_R), alpha_R = delta -
   !> atan(v_R/u_R); X_R = -(1 - t_R) F_N sin(delta), Y_R = -(1 + a_H) F_N cos(delta),
   !> N_R = -(x_R + a_H x_H) F_N cos(delta).
-  pure function mmg_rudder(p, u, vm, r, delta, n) result(f)
+  pure function mmg_rudder(p, s) result(f)
     !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
-    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s], rudder angle
-    !> delta [rad] (> 0 turns the ship to starboard) and propeller revolutions n [1/s].
-    real(wp), intent(in) :: u, vm, r, delta, n
+    !> The motion (u, v_m, r), the rudder angle delta and the propeller revolutions n.
+    type(mmg_motion), intent(in) :: s
     real(wp) :: f(3), uv(2), fn
-    uv = mmg_rudder_inflow(p, u, vm, r, n)
+    uv = mmg_rudder_inflow(p, s)
     fn = 0.5_wp*rho_water*p%area*(uv(1)**2 + uv(2)**2)*p%f_alpha* &
-         sin(delta - atan2(uv(2), uv(1)))
-    f(1) = -(1.0_wp - p%tr)*fn*sin(delta)
-    f(2) = -(1.0_wp + p%ah)*fn*cos(delta)
-    f(3) = -(p%xr + p%ah*p%xh)*p%lpp*fn*cos(delta)
+         sin(s%delta - atan2(uv(2), uv(1)))
+    f(1) = -(1.0_wp - p%tr)*fn*sin(s%delta)
+    f(2) = -(1.0_wp + p%ah)*fn*cos(s%delta)
+    f(3) = -(p%xr + p%ah*p%xh)*p%lpp*fn*cos(s%delta)
   end function mmg_rudder
 
   !> X, Y, N about midship: hull + propeller + rudder (eq. 5).
-  pure function mmg_total(p, u, vm, r, delta, n) result(f)
+  pure function mmg_total(p, s) result(f)
     !> The MMG coefficients.
     type(mmg_type), intent(in) :: p
-    !> Surge speed u [m/s], sway speed at midship v_m [m/s], yaw rate r [rad/s], rudder angle
-    !> delta [rad] (> 0 turns the ship to starboard) and propeller revolutions n [1/s].
-    real(wp), intent(in) :: u, vm, r, delta, n
+    !> The motion (u, v_m, r), the rudder angle delta and the propeller revolutions n.
+    type(mmg_motion), intent(in) :: s
     real(wp) :: f(3)
-    f = mmg_hull(p, u, vm, r) + mmg_propeller(p, u, vm, r, n) + &
-        mmg_rudder(p, u, vm, r, delta, n)
+    f = mmg_hull(p, s) + mmg_propeller(p, s) + mmg_rudder(p, s)
   end function mmg_total
 
   !> The propeller revolutions [1/s] that hold the speed u in straight running with the

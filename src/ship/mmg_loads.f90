@@ -5,7 +5,7 @@
 !> speeds, the seakeeping the wave-frequency motions about them).
 module davit_ship_mmg_loads
   use davit_kinds, only: wp
-  use davit_ship_mmg, only: mmg_type, mmg_total
+  use davit_ship_mmg, only: mmg_type, mmg_motion, mmg_total
   implicit none
   private
   public :: mmg_body_load
@@ -34,7 +34,7 @@ contains
     vl = matmul(transpose(m), u(4:6))
     r = dot_product(m(:, 3), u(1:3))
     vm = vl(2) - x_g*r
-    f = mmg_total(p, vl(1), vm, r, delta, n)
+    f = mmg_total(p, mmg_motion(vl(1), vm, r, delta, n))
     f(1) = f(1) + (my*vm - mx*vl(2))*r
     f(2) = f(2) + (my - mx)*vl(1)*r
     ! moment about G of the midship forces

@@ -126,13 +126,21 @@ contains
     real(wp), intent(in) :: dt
     real(wp) :: t_end, tc, h, h_new
     integer :: tries
-    logical :: last, rejected
+    logical :: last, rejected, ok
 
     if (self%failed) return
     t_end = t + dt
     call self%start(problem, t, y, .true.)
-    if (self%fixed_step) then
-      call fixed(self, problem, t, y, dt)
+    if (self%fixed_step) then  ! one step of dt, no error control
+      call self%prepare(problem, t, y, dt, ok)
+      if (.not. ok) then
+        call record_failure(self, t, dt, "singular iteration matrix")
+        return
+      end if
+      call self%attempt(problem, t, y, dt, .false.)
+      y = self%ynew
+      t = t + dt
+      self%steps = self%steps + 1
       return
     end if
     if (self%h <= 0.0_wp) then
@@ -223,30 +231,6 @@ contains
     call self%on_rejection()
     rejected = .true.
   end subroutine reject
-
-  !> One step of dt without error control (fixed_step).
-  subroutine fixed(self, problem, t, y, dt)
-    !> The integrator.
-    class(adaptive_integrator), intent(inout) :: self
-    !> The problem y' = f(t, y).
-    class(ode_problem), intent(in) :: problem
-    !> Time [s], advanced by dt.
-    real(wp), intent(inout) :: t
-    !> State vector, advanced by one step.
-    real(wp), intent(inout) :: y(:)
-    !> Step [s].
-    real(wp), intent(in) :: dt
-    logical :: ok
-    call self%prepare(problem, t, y, dt, ok)
-    if (.not. ok) then
-      call record_failure(self, t, dt, "singular iteration matrix")
-      return
-    end if
-    call self%attempt(problem, t, y, dt, .false.)
-    y = self%ynew
-    t = t + dt
-    self%steps = self%steps + 1
-  end subroutine fixed
 
   !> Before each trial step of size h from (t, y): form and factor what the method solves
   !> with. ok = .false. (the matrix is singular) with self%h set to the step to retry

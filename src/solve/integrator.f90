@@ -5,7 +5,10 @@ module davit_solve_integrator
   use davit_kinds, only: wp, i8
   implicit none
   private
-  public :: ode_problem, integrator_type
+  public :: ode_problem, integrator_type, part_slow, part_fast
+
+  !> The two parts of the multirate split f = f_slow + f_fast that `rhs_part` evaluates.
+  integer, parameter :: part_slow = 1, part_fast = 2
 
   !> An ODE y' = f(t, y). The system state (parameters, layout) lives in the extension.
   type, abstract :: ode_problem
@@ -28,12 +31,11 @@ module davit_solve_integrator
     procedure :: coupled_states => no_stiff_states
     procedure :: n_modes => no_n_modes
     procedure :: modes => no_modes
-    !> The multirate split f = f_slow + f_fast (davit_solve_multirate): the slow part is
-    !> evaluated once per stage of the macro step, the fast part at every substep. By
-    !> default everything is fast (f_slow = 0), and the multirate method is RK4 at the
-    !> substep.
-    procedure :: rhs_slow => no_rhs_slow
-    procedure :: rhs_fast => all_rhs_fast
+    !> The multirate split f = f_slow + f_fast (davit_solve_multirate), one part
+    !> (part_slow, part_fast) at a time: the slow part is evaluated once per stage of the
+    !> macro step, the fast part at every substep. By default everything is fast
+    !> (f_slow = 0), and the multirate method is RK4 at the substep.
+    procedure :: rhs_part => all_fast
   end type ode_problem
 
   abstract interface
@@ -112,29 +114,24 @@ contains
     if (allocated(self%method)) name = self%method
   end function integrator_name
 
-  subroutine no_rhs_slow(self, t, y, dydt)
+  subroutine all_fast(self, t, y, dydt, part)
     !> The problem.
     class(ode_problem), intent(in) :: self
     !> Time [s].
     real(wp), intent(in) :: t
     !> State vector.
     real(wp), intent(in) :: y(:)
-    !> Slow part of y' (zero here).
+    !> The part of y' asked for: zero for the slow part, the whole right-hand side for the
+    !> fast part.
     real(wp), intent(out) :: dydt(:)
-    dydt = 0.0_wp
-  end subroutine no_rhs_slow
-
-  subroutine all_rhs_fast(self, t, y, dydt)
-    !> The problem.
-    class(ode_problem), intent(in) :: self
-    !> Time [s].
-    real(wp), intent(in) :: t
-    !> State vector.
-    real(wp), intent(in) :: y(:)
-    !> Fast part of y' (the whole right-hand side here).
-    real(wp), intent(out) :: dydt(:)
-    call self%rhs(t, y, dydt)
-  end subroutine all_rhs_fast
+    !> part_slow or part_fast.
+    integer, intent(in) :: part
+    if (part == part_slow) then
+      dydt = 0.0_wp
+    else
+      call self%rhs(t, y, dydt)
+    end if
+  end subroutine all_fast
 
   subroutine no_after_step(self, t, y)
     !> The problem, its history updated after the step.

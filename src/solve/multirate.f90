@@ -40,7 +40,7 @@
 !> takes 3 + 3 of 1.67e-3 s (24).
 module davit_solve_multirate
   use davit_kinds, only: wp
-  use davit_solve_integrator, only: ode_problem, integrator_type
+  use davit_solve_integrator, only: ode_problem, integrator_type, part_slow, part_fast
   implicit none
   private
   public :: multirate_type
@@ -120,14 +120,14 @@ contains
     c_prev = 0.0_wp
     do i = 1, size(self%c)
       if (self%chained) then
-        call problem%rhs_slow(t + c_prev*dt, y, self%fs(:, i))
+        call problem%rhs_part(t + c_prev*dt, y, self%fs(:, i), part_slow)
         dc = self%c(i) - c_prev
         t0 = t + c_prev*dt
         call chained_forcing(self, i, dc, dt, y, fast)
         if (.not. fast) cycle
       else
         ! y holds Y_(i-1): its slow tendency drives stage i, which restarts from y_n
-        call problem%rhs_slow(t + c_prev*dt, y, self%slow)
+        call problem%rhs_part(t + c_prev*dt, y, self%slow, part_slow)
         y = self%y0
         dc = self%c(i)
         t0 = t
@@ -205,16 +205,16 @@ contains
     half = 0.5_wp*h
     do k = 0, nsub - 1
       ts = t0 + real(k, wp)*h
-      call problem%rhs_fast(ts, v, self%k1)
+      call problem%rhs_part(ts, v, self%k1, part_fast)
       self%k1 = self%k1 + self%slow
       self%ytmp = v + half*self%k1
-      call problem%rhs_fast(ts + half, self%ytmp, self%k2)
+      call problem%rhs_part(ts + half, self%ytmp, self%k2, part_fast)
       self%k2 = self%k2 + self%slow
       self%ytmp = v + half*self%k2
-      call problem%rhs_fast(ts + half, self%ytmp, self%k3)
+      call problem%rhs_part(ts + half, self%ytmp, self%k3, part_fast)
       self%k3 = self%k3 + self%slow
       self%ytmp = v + h*self%k3
-      call problem%rhs_fast(ts + h, self%ytmp, self%k4)
+      call problem%rhs_part(ts + h, self%ytmp, self%k4, part_fast)
       self%k4 = self%k4 + self%slow
       v = v + (h/6.0_wp)*(self%k1 + 2.0_wp*(self%k2 + self%k3) + self%k4)
     end do

@@ -15,7 +15,7 @@ module davit_system_model
   use davit_rigging_rigging, only: rigging_type
   use davit_core_kane, only: kane_f, kane_rates, kane_at_rest
   use davit_core_body, only: body_point_force
-  use davit_solve_integrator, only: ode_problem
+  use davit_solve_integrator, only: ode_problem, part_slow, part_fast
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      fender_gaps, falls_ends_type, falls_ends_at
@@ -41,8 +41,7 @@ module davit_system_model
     type(ship_system_type) :: ship
   contains
     procedure :: rhs => system_rhs
-    procedure :: rhs_slow => system_rhs_slow
-    procedure :: rhs_fast => system_rhs_fast
+    procedure :: rhs_part => system_rhs_part
     procedure :: after_step => system_after_step
     procedure :: max_step => system_max_step
     procedure :: stiff_states => system_stiff_states
@@ -73,42 +72,30 @@ contains
     call kane_rates(self%par%layout, kane, dydt)
   end subroutine system_rhs
 
-  !> The slow part of the multirate split (davit_solve_multirate): the one-way coupled
-  !> ship whole, and the boat's water and wind loads (with the BEM water states); eq. 89
-  !> with the same V, so slow + fast = system_rhs.
-  subroutine system_rhs_slow(self, t, y, dydt)
+  !> One part of the multirate split (davit_solve_multirate), eq. 89 with the same V for
+  !> both, so slow + fast = system_rhs. The slow part: the one-way coupled ship whole, and
+  !> the boat's water and wind loads (with the BEM water states). The fast part: the boat's
+  !> kinematics, gyroscopic terms, gravity, slings and fenders, and the rigging with its
+  !> hook forces; the ship has no rates there.
+  subroutine system_rhs_part(self, t, y, dydt, part)
     !> The system.
     class(system_type), intent(in) :: self
     !> Time [s].
     real(wp), intent(in) :: t
     !> State vector (the layout's: boat, its water states, rigging, ship).
     real(wp), intent(in) :: y(:)
-    !> The slow part of y'.
+    !> The part of y' asked for (the fast part's ship rows zero).
     real(wp), intent(out) :: dydt(:)
+    !> part_slow or part_fast.
+    integer, intent(in) :: part
     real(wp) :: kane(3, size(y))
-    call kane_blocks(self, t, y, dydt, kane, loads_slow)
-    call kane_rates(self%par%layout, kane, dydt)
-  end subroutine system_rhs_slow
-
-  !> The fast part: the boat's kinematics, gyroscopic terms, gravity, slings and fenders,
-  !> and the rigging with its hook forces; the ship has no rates here.
-  subroutine system_rhs_fast(self, t, y, dydt)
-    !> The system.
-    class(system_type), intent(in) :: self
-    !> Time [s].
-    real(wp), intent(in) :: t
-    !> State vector (the layout's: boat, its water states, rigging, ship).
-    real(wp), intent(in) :: y(:)
-    !> The fast part of y' (the ship's rows zero).
-    real(wp), intent(out) :: dydt(:)
-    real(wp) :: kane(3, size(y))
-    call kane_blocks(self, t, y, dydt, kane, loads_fast)
-    if (self%par%with_ship) then
+    call kane_blocks(self, t, y, dydt, kane, merge(loads_slow, loads_fast, part == part_slow))
+    if (part == part_fast .and. self%par%with_ship) then
       call kane_rates(self%par%layout, kane, dydt, self%par%ship_slice)
     else
       call kane_rates(self%par%layout, kane, dydt)
     end if
-  end subroutine system_rhs_fast
+  end subroutine system_rhs_part
 
   !> Every body's q_dot and Kane blocks at (t, y): the ship, the boat and, on the davit,
   !> the rigging, whose hook forces act on the boat through the hooks' partial
