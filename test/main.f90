@@ -38,6 +38,7 @@ program main
   use test_small_laws, only: collect_small_laws
   use test_scene, only: collect_scene
   use test_system_parts, only: collect_system_parts
+  use test_surface_watch, only: collect_surface_watch
   implicit none
   interface
     integer(c_int) function setenv(name, value, overwrite) bind(c, name="setenv")
@@ -60,7 +61,8 @@ program main
             collect_boat_water(), &
             collect_rigging(), collect_rigging_static(), collect_slack(), &
             collect_integrators(), collect_sweep(), &
-            collect_strip_waves(), collect_bem_ship(), collect_ship_drift(), &
+            collect_strip_waves(), collect_surface_watch(), collect_bem_ship(), &
+            collect_ship_drift(), &
             collect_launch_log(), &
             collect_boat_bem(), collect_strip_pressure(), collect_strip_levels(), &
             collect_events(), &

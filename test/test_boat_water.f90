@@ -8,9 +8,6 @@ module test_boat_water
   use davit_core_rotation, only: rotation_matrix
   use davit_core_body, only: body_qdot
   use davit_boat_strip_loads, only: strip_velocity, strip_partial_velocities, strip_loads
-  use davit_boat_surface_watch, only: watch_refresh, watch_due, surely_dry, watch_set, &
-                                      watch_set_window, surface_watch_type
-  use davit_boat_strip_waves, only: strip_waves_open, strip_waves_surface, strip_waves_bounds
   use davit_boat_contact, only: hertz_elastoplastic_law_type, hertz_stiffness
   use davit_boat_fenders, only: side_plane_type, fender_set_type, new_fender_set, fender_probe
   use davit_core_rotation, only: cross
@@ -20,7 +17,7 @@ module test_boat_water
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
-  public :: collect_boat_water
+  public :: collect_boat_water, strip_config
 
   !> A free boat (no slings) in still air, off the ship: the base of these tests.
   character(len=*), parameter :: free_deck = "&slings attached = .false. / "// &
@@ -48,9 +45,6 @@ contains
                    new_case("fender_impact_in_system", fender_impact), &
                    new_case("approach_rate_eq33_moving_side_vs_fd", moving_side_rate), &
                    new_case("fender_probe_deepest_point_vs_every_point", probe_deepest), &
-                   new_case("surface_watch_never_skips_a_wet_hull", surface_watch), &
-                   new_case("surface_watch_kept_high_refreshed_low", watch_kept), &
-                   new_case("surface_watch_window_never_skips_a_wet_hull", watch_window), &
                    new_case("contact_approach_graded_vs_window", contact_approach), &
                    new_case("strip_sway_drag_half_rho_cd_a_v2", sway_drag)]
   end function collect_boat_water
@@ -446,143 +440,6 @@ contains
     k = k/norm2(w)
     r = r + sin(a)*k + (1.0_wp - cos(a))*matmul(k, k)
   end function rotation_about
-
-  !> The surface watch may skip the strip loads only when they are exactly zero: in an
-  !> irregular Level 5 sea (1300 components), 4000 random boat poses at heights from 12 m
-  !> above the water to 1 m into it, 0-0.05 s after the sample and up to 0.3 m and 0.1 rad
-  !> away from the sampled pose: every pose it calls dry has zero strip force and volume;
-  !> and it does call the boat dry high up (it is useful: > 25 % of the poses).
-  subroutine surface_watch(state)
-    type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
-    type(system_type) :: sys
-    real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, z, x(9)
-    real(wp), allocatable :: y0(:)
-    integer :: i, dry, missed
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
-    dry = 0
-    missed = 0
-    do i = 1, 4000
-      call random_number(x)
-      z = -12.0_wp + 13.0_wp*x(1)
-      c0 = rotation_matrix([0.2_wp*(x(2) - 0.5_wp), 0.1_wp*(x(3) - 0.5_wp), 6.0_wp*x(4)])
-      r0 = [50.0_wp*x(5), 50.0_wp*x(6), z]
-      call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 10.0_wp*x(7), c0, r0)
-      t = sys%hist%watch%t + 0.05_wp*x(8)
-      c = matmul(rotation_matrix(0.1_wp*[x(9), 1.0_wp - x(9), x(3)]), c0)
-      r = r0 + 0.3_wp*[x(9) - 0.5_wp, x(2) - 0.5_wp, x(4) - 0.5_wp]
-      call tally_dry(sys, t, c, r, dry, missed)
-    end do
-    call note(state, "poses called dry", real(dry, wp))
-    call note(state, "rate bound (m/s)", sys%hist%watch%rate_bound)
-    call note(state, "slope bound (-)", sys%hist%watch%slope_bound)
-    call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
-    call check_true(state, dry > 1000, "the watch skips the high poses")
-  end subroutine surface_watch
-
-  !> A pose (t, c, r) the watch calls dry counts in `dry`, and in `missed` as well when the
-  !> strips' water loads there are not exactly zero (the watch must never skip those).
-  subroutine tally_dry(sys, t, c, r, dry, missed)
-    type(system_type), intent(in) :: sys
-    real(wp), intent(in) :: t, c(3, 3), r(3)
-    integer, intent(inout) :: dry, missed
-    real(wp) :: f(6), volume, u(6)
-    if (.not. surely_dry(sys%hist%watch, sys%par%water, t, c, r)) return
-    dry = dry + 1
-    u = 0.0_wp
-    call strip_loads(sys%par%water, sys%par%sea, t, c, r, u, f, volume)
-    if (volume /= 0.0_wp .or. any(f /= 0.0_wp)) missed = missed + 1
-  end subroutine tally_dry
-
-  !> An old watch is kept while it proves the hull dry two intervals ahead (watch_due): a
-  !> boat 12 m above the Level 5 sea (1300 components) keeps a watch sampled 0.06 s
-  !> before; 0.5 m above the water it is refreshed. A kept watch stays rigorous at any
-  !> age: 2000 poses around the high one, 0-1 s after the sample, called dry by it, all
-  !> have zero strip force and volume.
-  subroutine watch_kept(state)
-    type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
-    type(system_type) :: sys
-    real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, x(5)
-    real(wp), allocatable :: y0(:)
-    integer :: i, dry, missed
-    logical :: due_high, due_low
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
-    c0 = rotation_matrix([0.05_wp, -0.02_wp, 0.3_wp])
-    r0 = [5.0_wp, -3.0_wp, -12.0_wp]
-    call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 30.0_wp, c0, r0)
-    call watch_due(sys%hist%watch, sys%par%water, 30.06_wp, c0, &
-                   [r0(1), r0(2), -0.5_wp], due_low)
-    call watch_due(sys%hist%watch, sys%par%water, 30.06_wp, c0, r0, due_high)
-    call check_true(state, .not. due_high, "kept 12 m above the water")
-    call check_true(state, due_low, "refreshed 0.5 m above the water")
-    dry = 0
-    missed = 0
-    do i = 1, 2000
-      call random_number(x)
-      t = 30.0_wp + 0.3_wp*x(1)
-      c = matmul(rotation_matrix(0.1_wp*[x(2), 1.0_wp - x(2), x(3)]), c0)
-      r = r0 + [0.5_wp*(x(4) - 0.5_wp), 0.5_wp*(x(3) - 0.5_wp), 6.0_wp*x(5)]
-      call tally_dry(sys, t, c, r, dry, missed)
-    end do
-    call note(state, "poses called dry by the old watch", real(dry, wp))
-    call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
-    call check_true(state, dry > 200, "the old watch still skips high poses")
-  end subroutine watch_kept
-
-  !> The watch's window (its bounds from the strips' window at the strip centres, as each
-  !> window of the strips' slow clock sets it): in the Level 5 sea (1300 components, 0.3 s
-  !> windows), 300 windows opened at random times and boat positions from 4 m above the
-  !> still water to 1 m into it, 10 poses in each (any time in the window, moved up to
-  !> 0.1 m and 0.03 rad): every pose it calls dry has zero strip force and volume (exact
-  !> sums); and it calls > 25 % of them dry, where the Lipschitz bound from the same
-  !> samples (sum |a| w ~ 30 m/s) proves almost none dry this close to the water.
-  subroutine watch_window(state)
-    type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
-    type(system_type) :: sys
-    type(surface_watch_type) :: lipschitz
-    real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, x(7), xy(2, 20), eta(20), grad(2, 20)
-    real(wp) :: eta_up(20), slope_up(20)
-    real(wp), allocatable :: y0(:)
-    integer :: i, j, dry, missed, dry_old
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&simulation wave_update = 0.3 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
-    dry = 0
-    missed = 0
-    dry_old = 0
-    do i = 1, 300
-      call random_number(x)
-      c0 = rotation_matrix([0.1_wp*(x(2) - 0.5_wp), 0.05_wp*(x(3) - 0.5_wp), 6.0_wp*x(4)])
-      r0 = [50.0_wp*x(5), 50.0_wp*x(6), -4.0_wp + 5.0_wp*x(1)]
-      associate (w => sys%hist%waves, hull => sys%par%water%hull)
-        call strip_waves_open(w, hull, sys%par%sea, 10.0_wp*x(7), c0, r0)
-        call strip_waves_surface(w, sys%par%sea, xy, eta, grad)
-        call watch_set(sys%hist%watch, w%clock%window(1), xy, eta, grad)
-        lipschitz = sys%hist%watch
-        call strip_waves_bounds(w, sys%par%sea, eta_up, slope_up)
-        call watch_set_window(sys%hist%watch, w%clock%window, eta_up, slope_up)
-        do j = 1, 10
-          call random_number(x)
-          t = w%clock%window(1) + 0.3_wp*x(1)
-          c = matmul(rotation_matrix(0.03_wp*[x(2) - 0.5_wp, x(3) - 0.5_wp, x(4) - 0.5_wp]), c0)
-          r = r0 + 0.1_wp*[x(5) - 0.5_wp, x(6) - 0.5_wp, x(7) - 0.5_wp]
-          call tally_dry(sys, t, c, r, dry, missed)
-          if (surely_dry(lipschitz, sys%par%water, t, c, r)) dry_old = dry_old + 1
-        end do
-      end associate
-    end do
-    call note(state, "poses called dry (of 3000)", real(dry, wp))
-    call note(state, "of them by the Lipschitz bound", real(dry_old, wp))
-    call check(state, real(missed, wp), 0.0_wp, "dry poses with water loads", abs_tol=0.0_wp)
-    call check_true(state, dry > 750, "the window's watch skips the poses clear of the crests")
-  end subroutine watch_window
 
   !> The strips' quadratic drag (eq. 20's drag term, 0.5 rho C_D A |v| v) in sway: the
   !> boat upright in calm water with its keel 0.6 m deep, moving sideways at +-V: the odd

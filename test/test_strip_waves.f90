@@ -18,14 +18,13 @@ module test_strip_waves
                                     strip_waves_open, strip_waves_sample, cached_elevation, &
                                     cached_kinematics, &
                                     strip_waves_surface, cached_wave_load, cached_surface, &
-                                    strip_waves_renew_loads, strip_waves_bounds
-  use davit_boat_strip_sums, only: elevation_sums, ne
+                                    strip_waves_renew_loads
   use davit_system_model, only: system_type
   use system_fixture, only: new_test_system, drop_cg
   use harness, only: suite_type, case_state, new_case, check, check_true, note
   implicit none
   private
-  public :: collect_strip_waves
+  public :: collect_strip_waves, level5_sea, afloat
 
 contains
 
@@ -40,7 +39,6 @@ contains
                    new_case("window_section_loads_follow_the_hull_path", hull_path), &
                    new_case("window_samples_sections_that_wet_later", catch_up), &
                    new_case("section_loads_renewed_in_their_own_windows", own_windows), &
-                   new_case("window_bounds_hold_the_surface_over_the_window", window_bounds), &
                    new_case("coupled_boat_with_and_without_clock", coupled_boat)]
   end function collect_strip_waves
 
@@ -457,53 +455,6 @@ contains
     ! on the path through the last samples 1.5e-3; renewed with the path dropped 3.6e-3
     call check(state, err(1), 0.0_wp, "renewed windows' error", abs_tol=2.5e-3_wp)
   end subroutine own_windows
-
-  !> The window's bounds of the elevation and of |grad eta| at the strip centres (the
-  !> cubics' extremes plus their h^4/384 remainder) against the exact sums sampled every
-  !> 5 ms over 200 windows of 0.3 s at random times and boat positions in the Level 5 sea:
-  !> no sample above its bound; and the bounds tight (the elevation's largest excess over
-  !> the sampled maximum under 2 cm: the boat hangs this close to the crests before it
-  !> samples the water, against ~10 m of the Lipschitz bound sum |a| w h). Fails on a
-  !> wrong extreme (a root of the cubic's derivative missed or misplaced, a sign of the
-  !> slope's lower cubic), a wrong rate term, or a bound taken at one end only.
-  subroutine window_bounds(state)
-    type(case_state), intent(inout) :: state
-    type(wave_field_type) :: field
-    type(boat_hull_type) :: hull
-    type(strip_wave_cache_type) :: cache
-    real(wp) :: c(3, 3), r(3), x(4), e(ne), eta_up(20), slope_up(20), top(20), steep(20)
-    real(wp) :: excess, over, t0, t
-    integer :: i, j, k
-    call level5_sea(field)
-    call afloat(hull, c, r)
-    cache = new_strip_wave_cache(field, hull%n, new_slow_clock(0.3_wp, clock_reach))
-    excess = 0.0_wp
-    over = -huge(1.0_wp)
-    do i = 1, 200
-      call random_number(x)
-      t0 = 10.0_wp + 200.0_wp*x(1)
-      c = rotation_matrix([0.0_wp, 0.0_wp, 2.0_wp*pi*x(2)])
-      r = [60.0_wp*x(3), 60.0_wp*x(4), -5.0_wp]
-      call strip_waves_open(cache, hull, field, t0, c, r)
-      call strip_waves_bounds(cache, field, eta_up, slope_up)
-      top = -huge(1.0_wp)
-      steep = 0.0_wp
-      do j = 0, 60
-        t = t0 + 0.005_wp*j
-        do k = 1, hull%n
-          call elevation_sums(field, t, cache%p(1, k), cache%p(2, k), e)
-          top(k) = max(top(k), e(1))
-          steep(k) = max(steep(k), norm2(e(3:4)))
-        end do
-      end do
-      over = max(over, maxval(top - eta_up), maxval(steep - slope_up))
-      excess = max(excess, maxval(eta_up - top))
-    end do
-    call note(state, "largest sample over its bound (m or -; <= 0)", over)
-    call note(state, "largest excess of the elevation's bound (m)", excess)
-    call check_true(state, over <= 0.0_wp, "no sample above its bound")
-    call check(state, excess, 0.0_wp, "the elevation's bound tight", abs_tol=0.02_wp)
-  end subroutine window_bounds
 
   !> Open the window at t and sample every strip (the hull may wet any).
   subroutine refresh(cache, hull, field, t, c, r)
