@@ -123,9 +123,9 @@ contains
   !> Upper bounds over `window` of the ramped elevation and of the slope's size at each
   !> strip centre from its samples e (exact sums) at both ends: the extremes of the cubics
   !> through the value and its rate (the slope's two components each) plus the cubic's
-  !> remainder h^4/384 max|f| (f of a component of the linear sea is a w^4 times a
-  !> cosine: at most quartic(1) = sum |a| w^4, and quartic(2) = sum |a| k w^4 for a slope
-  !> component).
+  !> remainder h^4/384 max|d4f/dt4| (the fourth time derivative of a component of the
+  !> linear sea is a w^4 times a cosine: at most quartic(1) = sum |a| w^4, and quartic(2)
+  !> = sum |a| k w^4 for a slope component).
   pure subroutine window_bounds(field, window, e, quartic, eta_up, slope_up)
     !> The sea (its start-up ramp).
     type(wave_field_type), intent(in) :: field
