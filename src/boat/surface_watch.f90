@@ -28,7 +28,7 @@ module davit_boat_surface_watch
   implicit none
   private
   public :: surface_watch_type, new_surface_watch, watch_refresh, watch_set, watch_due, &
-            surely_dry, strip_surely_dry, watch_set_window
+            surely_dry, strip_surely_dry, watch_set_window, hull_surely_dry
 
   type :: surface_watch_type
     !> Whether the samples below have been taken.
@@ -200,11 +200,48 @@ contains
     integer :: k
     surely_dry = .false.
     if (.not. w%valid) return
+    surely_dry = hull_surely_dry(w, s, t, c, r)
+    if (surely_dry) return
     do k = 1, s%hull%n
       if (.not. strip_surely_dry(w, s, k, t, c, r)) return
     end do
     surely_dry = .true.
   end function surely_dry
+
+  !> True only if every strip is surely dry by strip_surely_dry's test with each strip's
+  !> terms replaced by their largest over the strips (the surface's bound, the distance
+  !> from the sampled point, the section's radius) and every section's corners by the
+  !> lowest point of the hull's box: one test instead of one per strip, which implies
+  !> theirs, for a hull hanging clear of the waves.
+  pure logical function hull_surely_dry(w, s, t, c, r)
+    !> The watch (valid).
+    type(surface_watch_type), intent(in) :: w
+    !> The strip model.
+    type(strip_model_type), intent(in) :: s
+    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    real(wp) :: dist, radius, eta_up, grid_error(2), lowest
+    associate (h => s%hull)
+      dist = sqrt(maxval((r(1) + c(1, 1)*h%x - w%xy(1, :))**2 + &
+                         (r(2) + c(2, 1)*h%x - w%xy(2, :))**2))
+      radius = hypot(0.5_wp*maxval(h%breadth), max(abs(h%keel), abs(h%keel - h%height)))
+      if (t >= w%window(1) .and. t <= w%window(2)) then
+        eta_up = maxval(w%eta_up) + w%slope_bound*dist + &
+                 radius*min(w%slope_bound, maxval(w%slope_up) + w%curvature_bound*dist)
+      else
+        grid_error = 0.0_wp
+        if (any(w%from_grid)) grid_error = w%grid_error
+        eta_up = maxval(w%eta) + grid_error(1) + w%rate_bound*abs(t - w%t) + &
+                 w%slope_bound*dist + &
+                 radius*min(w%slope_bound, maxval(w%slope) + grid_error(2) + &
+                            w%slope_rate_bound*abs(t - w%t) + w%curvature_bound*dist)
+      end if
+      ! the deepest point of the sections' box (z down): x at the ends, y at the widest
+      lowest = r(3) + abs(c(3, 1))*maxval(abs(h%x)) + abs(c(3, 2))*0.5_wp*maxval(h%breadth) + &
+               max(c(3, 3)*h%keel, c(3, 3)*(h%keel - h%height))
+    end associate
+    hull_surely_dry = lowest + eta_up <= 0.0_wp
+  end function hull_surely_dry
 
   !> True only if strip k cannot touch the water at time t with the boat at (c, r).
   pure logical function strip_surely_dry(w, s, k, t, c, r)
