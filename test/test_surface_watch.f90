@@ -5,7 +5,6 @@
 !> exact strip loads or the exact sums at random poses and times in the Level 5 sea.
 module test_surface_watch
   use davit_kinds, only: wp, pi
-  use davit_io_config, only: config_type
   use davit_core_rotation, only: rotation_matrix
   use davit_sea_wave_field, only: wave_field_type
   use davit_boat_hull, only: boat_hull_type
@@ -38,6 +37,18 @@ contains
                    new_case("hull_test_implies_every_strip_test", hull_test)]
   end function collect_surface_watch
 
+  !> The boat alone (no slings, no contact) in the Level 5 irregular sea with no ramp,
+  !> and the groups in `extra` (namelist text).
+  subroutine level5_system(sys, extra)
+    type(system_type), intent(out) :: sys
+    character(len=*), intent(in) :: extra
+    real(wp), allocatable :: y0(:)
+    y0 = new_test_system(sys, strip_config("&sea level = 5 wave_type = 'irregular' "// &
+                                           "ramp_periods = 0.0 / "//extra// &
+                                           "&slings attached = .false. / "// &
+                                           "&contact enabled = .false. /"))
+  end subroutine level5_system
+
   !> The surface watch may skip the strip loads only when they are exactly zero: in an
   !> irregular Level 5 sea (1300 components), 4000 random boat poses at heights from 12 m
   !> above the water to 1 m into it, 0-0.05 s after the sample and up to 0.3 m and 0.1 rad
@@ -45,14 +56,10 @@ contains
   !> and it does call the boat dry high up (it is useful: > 25 % of the poses).
   subroutine surface_watch(state)
     type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
     type(system_type) :: sys
     real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, z, x(9)
-    real(wp), allocatable :: y0(:)
     integer :: i, dry, missed
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
+    call level5_system(sys, "")
     dry = 0
     missed = 0
     do i = 1, 4000
@@ -94,15 +101,11 @@ contains
   !> have zero strip force and volume.
   subroutine watch_kept(state)
     type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
     type(system_type) :: sys
     real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, x(5)
-    real(wp), allocatable :: y0(:)
     integer :: i, dry, missed
     logical :: due_high, due_low
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
+    call level5_system(sys, "")
     c0 = rotation_matrix([0.05_wp, -0.02_wp, 0.3_wp])
     r0 = [5.0_wp, -3.0_wp, -12.0_wp]
     call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 30.0_wp, c0, r0)
@@ -134,17 +137,12 @@ contains
   !> samples (sum |a| w ~ 30 m/s) proves almost none dry this close to the water.
   subroutine watch_window(state)
     type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
     type(system_type) :: sys
     type(surface_watch_type) :: lipschitz
     real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, x(7), xy(2, 20), eta(20), grad(2, 20)
     real(wp) :: eta_up(20), slope_up(20)
-    real(wp), allocatable :: y0(:)
     integer :: i, j, dry, missed, dry_old
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&simulation wave_update = 0.3 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
+    call level5_system(sys, "&simulation wave_update = 0.3 / ")
     dry = 0
     missed = 0
     dry_old = 0
@@ -231,15 +229,11 @@ contains
   !> bound taken at one strip.
   subroutine hull_test(state)
     type(case_state), intent(inout) :: state
-    type(config_type) :: cfg
     type(system_type) :: sys
     real(wp) :: c(3, 3), r(3), t, x(8)
-    real(wp), allocatable :: y0(:)
     integer :: i, k, hull_dry, strips_dry, wrong
     logical :: all_strips
-    cfg = strip_config("&sea level = 5 wave_type = 'irregular' ramp_periods = 0.0 / "// &
-                      "&slings attached = .false. / &contact enabled = .false. /")
-    y0 = new_test_system(sys, cfg)
+    call level5_system(sys, "")
     hull_dry = 0
     strips_dry = 0
     wrong = 0

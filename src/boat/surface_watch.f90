@@ -71,8 +71,11 @@ contains
     real(wp), intent(in) :: interval
     type(surface_watch_type) :: w
     real(wp) :: amp, ramp_rate, stokes
-    allocate (w%eta(nstrips), w%xy(2, nstrips), w%slope(nstrips), w%from_grid(nstrips))
+    allocate (w%eta(nstrips), w%xy(2, nstrips), w%slope(nstrips), w%from_grid(nstrips), &
+              w%eta_up(nstrips), w%slope_up(nstrips))
     w%from_grid = .false.
+    w%eta_up = 0.0_wp
+    w%slope_up = 0.0_wp
     w%interval = interval
     if (field%kind == wave_none) return
     amp = sum(abs(field%amplitude))
@@ -220,22 +223,13 @@ contains
     type(strip_model_type), intent(in) :: s
     !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: dist, radius, eta_up, grid_error(2), lowest
+    real(wp) :: dist, radius, eta_up, lowest
     associate (h => s%hull)
       dist = sqrt(maxval((r(1) + c(1, 1)*h%x - w%xy(1, :))**2 + &
                          (r(2) + c(2, 1)*h%x - w%xy(2, :))**2))
       radius = hypot(0.5_wp*maxval(h%breadth), max(abs(h%keel), abs(h%keel - h%height)))
-      if (t >= w%window(1) .and. t <= w%window(2)) then
-        eta_up = maxval(w%eta_up) + w%slope_bound*dist + &
-                 radius*min(w%slope_bound, maxval(w%slope_up) + w%curvature_bound*dist)
-      else
-        grid_error = 0.0_wp
-        if (any(w%from_grid)) grid_error = w%grid_error
-        eta_up = maxval(w%eta) + grid_error(1) + w%rate_bound*abs(t - w%t) + &
-                 w%slope_bound*dist + &
-                 radius*min(w%slope_bound, maxval(w%slope) + grid_error(2) + &
-                            w%slope_rate_bound*abs(t - w%t) + w%curvature_bound*dist)
-      end if
+      eta_up = raised_surface(w, t, maxval(w%eta_up), maxval(w%slope_up), maxval(w%eta), &
+                              maxval(w%slope), any(w%from_grid), dist, radius)
       ! the deepest point of the sections' box (z down): x at the ends, y at the widest
       lowest = r(3) + abs(c(3, 1))*maxval(abs(h%x)) + abs(c(3, 2))*0.5_wp*maxval(h%breadth) + &
                max(c(3, 3)*h%keel, c(3, 3)*(h%keel - h%height))
@@ -253,7 +247,7 @@ contains
     integer, intent(in) :: k
     !> Time [s], rotation b -> inertial, CG position (inertial) [m].
     real(wp), intent(in) :: t, c(3, 3), r(3)
-    real(wp) :: p(3), eta_up, dist, radius, grid_error(2)
+    real(wp) :: p(3), eta_up, dist, radius
     type(section_wet_type) :: wet
     strip_surely_dry = .false.
     if (.not. w%valid) return
@@ -262,18 +256,40 @@ contains
     dist = norm2(p(1:2) - w%xy(:, k))
     radius = hypot(0.5_wp*s%hull%breadth(k), max(abs(s%hull%keel), &
                                                  abs(s%hull%keel - s%hull%height)))
-    if (t >= w%window(1) .and. t <= w%window(2)) then
-      eta_up = w%eta_up(k) + w%slope_bound*dist + &
-               radius*min(w%slope_bound, w%slope_up(k) + w%curvature_bound*dist)
-    else
-      grid_error = 0.0_wp
-      if (w%from_grid(k)) grid_error = w%grid_error
-      eta_up = w%eta(k) + grid_error(1) + w%rate_bound*abs(t - w%t) + w%slope_bound*dist + &
-               radius*min(w%slope_bound, w%slope(k) + grid_error(2) + &
-                          w%slope_rate_bound*abs(t - w%t) + w%curvature_bound*dist)
-    end if
+    eta_up = raised_surface(w, t, w%eta_up(k), w%slope_up(k), w%eta(k), w%slope(k), &
+                            w%from_grid(k), dist, radius)
     wet = section_immersion(s%hull, k, p(3) + eta_up, c(3, 2), c(3, 3))
     strip_surely_dry = wet%area <= 0.0_wp
   end function strip_surely_dry
+
+  !> The highest the surface can stand at time t over a section whose centre is dist from
+  !> the sampled point and whose corners are within radius of its centre (the tangent
+  !> plane rises across it by at most |grad eta| radius): inside the window from the
+  !> window's bounds (eta_w, slope_w), else from the sample (eta_s, slope_s, with the grid's
+  !> error where it came from the grid) grown by the field's Lipschitz constants.
+  pure real(wp) function raised_surface(w, t, eta_w, slope_w, eta_s, slope_s, on_grid, dist, &
+                                        radius) result(eta_up)
+    !> The watch.
+    type(surface_watch_type), intent(in) :: w
+    !> Time [s].
+    real(wp), intent(in) :: t
+    !> The window's bounds of the elevation [m] and of |grad eta| there, and the sample's.
+    real(wp), intent(in) :: eta_w, slope_w, eta_s, slope_s
+    !> Whether the sample came from the grid.
+    logical, intent(in) :: on_grid
+    !> Distance from the sampled point [m] and the section's radius [m].
+    real(wp), intent(in) :: dist, radius
+    real(wp) :: eta, slope, grid_error(2)
+    if (t >= w%window(1) .and. t <= w%window(2)) then
+      eta = eta_w
+      slope = slope_w
+    else
+      grid_error = 0.0_wp
+      if (on_grid) grid_error = w%grid_error
+      eta = eta_s + grid_error(1) + w%rate_bound*abs(t - w%t)
+      slope = slope_s + grid_error(2) + w%slope_rate_bound*abs(t - w%t)
+    end if
+    eta_up = eta + w%slope_bound*dist + radius*min(w%slope_bound, slope + w%curvature_bound*dist)
+  end function raised_surface
 
 end module davit_boat_surface_watch

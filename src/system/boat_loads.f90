@@ -21,6 +21,7 @@ module davit_system_boat_loads
   use davit_boat_bem_water, only: boat_bem_loads, boat_bem_immersion
   use davit_system_parameters, only: system_params_type, nslings
   use davit_system_history, only: system_history_type
+  use davit_solve_integrator, only: part_slow, part_fast
   implicit none
   private
   public :: boat_kane_blocks, water_loads
@@ -29,8 +30,9 @@ module davit_system_boat_loads
   !> Which of the boat's terms boat_kane_blocks forms (the multirate split,
   !> davit_solve_multirate): all of them; the slow ones (water by strips and BEM with the
   !> BEM states' rates, wind); the fast ones (q_dot, W phi, gravity, foundation slings,
-  !> fenders). Slow plus fast is all, term by term.
-  integer, parameter :: loads_all = 0, loads_slow = 1, loads_fast = 2
+  !> fenders). Slow plus fast is all, term by term. The two parts are the integrator's
+  !> (ode_problem%rhs_part's part_slow, part_fast), so a part passes straight through.
+  integer, parameter :: loads_all = 0, loads_slow = part_slow, loads_fast = part_fast
 
 contains
 

@@ -144,7 +144,7 @@ contains
     real(wp), intent(in) :: u(6)
     !> The window's length [s].
     real(wp), intent(in) :: interval
-    travel = (norm2(u(4:6)) + norm2(u(1:3))*0.5_wp*hull%n*hull%thickness)*interval
+    travel = (norm2(u(4:6)) + norm2(u(1:3))*0.5_wp*hull%length)*interval
   end function boat_travel
 
   !> The window just opened sampled the exact elevation at every strip centre at t: the

@@ -15,7 +15,7 @@ module davit_system_model
   use davit_rigging_rigging, only: rigging_type
   use davit_core_kane, only: kane_f, kane_rates, kane_at_rest
   use davit_core_body, only: body_point_force
-  use davit_solve_integrator, only: ode_problem, part_slow, part_fast
+  use davit_solve_integrator, only: ode_problem, part_fast
   use davit_ship_ship_model, only: ship_system_type
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      fender_gaps, falls_ends_type, falls_ends_at
@@ -89,7 +89,7 @@ contains
     !> part_slow or part_fast.
     integer, intent(in) :: part
     real(wp) :: kane(3, size(y))
-    call kane_blocks(self, t, y, dydt, kane, merge(loads_slow, loads_fast, part == part_slow))
+    call kane_blocks(self, t, y, dydt, kane, part)
     if (part == part_fast .and. self%par%with_ship) then
       call kane_rates(self%par%layout, kane, dydt, self%par%ship_slice)
     else
