@@ -6,6 +6,9 @@
   the MMG forces written from the paper's formulas, integrated by scipy's DOP853 at
   rtol 1e-10 with the zig-zag reversals as located events (davit: 6 DOF about G, RK4 at
   0.02 s, reversals checked after each step): the two agree within 0.5 % and 0.15 deg;
+* ShipMMG (github.com/ShipMMG/shipmmg), another group's implementation of the same model:
+  its right-hand side's accelerations at stated states and its own zig-zag's overshoots
+  (its two departures from the paper set to the paper's; numbers below);
 * the published 35 deg turning circle (Yasukawa & Yoshimura 2015, KVLCC2 simulation and
   free-running model test: advance about 3.1 L, tactical diameter 3.1-3.3 L) within 10 %;
 * analytic trajectories for the measuring code itself (a circle; a sine heading).
