@@ -30,7 +30,10 @@ davit's model and coefficients the same as Yasukawa & Yoshimura's and two more o
 transcriptions (ShipMMG.jl, VesselManoeuvringModels), and the tank's own condition (MARIN's
 propeller rate of 10.32 1/s with a skin-friction tow force, its approach speed) moves the
 10/10 first overshoot by 0.3 deg at most (5.26 deg): the gap is the model with these
-coefficients, not a slip, and the xfails stay. No published *simulation* of this model
+coefficients, not a slip, and the xfails stay. Two implementations by other groups,
+ShipMMG and mmgdynamics, run with the deck's values and the paper's equations, give
+davit's overshoots within 0.08 deg (4.96/13.59 and 4.95/13.61 deg at 10/10;
+doc/howto/manoeuvres.md, "Independent implementations"). No published *simulation* of this model
 (Yasukawa & Yoshimura's coefficients) stating its zig-zag overshoots was found to compare
 with instead; the sources checked are listed in doc/howto/manoeuvres.md ("Published
 simulations of this model").
