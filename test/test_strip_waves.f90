@@ -188,8 +188,7 @@ contains
       call cached_surface(cache, field, k, t2, p(1), p(2), eta, slope)
       err_eta = max(err_eta, abs(eta - wave_elevation(field, t2, p(1), p(2))))
       if (cache%q(3, k) < 0.05_wp) cycle
-      ! the reference's stretched depth below each surface: the window's (from the strip
-      ! centre's terms) and the sums'
+      ! the reference's stretched depth below the window's surface and the sums'
       pt = [cache%q(1, k), cache%q(2, k), 0.0_wp]
       call cached_surface(cache, field, k, t2, pt(1), pt(2), eta, slope)
       pt(3) = cache%q(3, k) - eta
