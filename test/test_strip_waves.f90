@@ -15,7 +15,7 @@ module test_strip_waves
   use davit_boat_strip_pressure, only: section_wave_load, surface_plane
   use davit_core_slow_clock, only: new_slow_clock, clock_reach
   use davit_boat_strip_waves, only: strip_wave_cache_type, new_strip_wave_cache, &
-                                    strip_waves_open, strip_waves_sample, cached_elevation, &
+                                    strip_waves_open, strip_waves_sample, &
                                     cached_kinematics, &
                                     strip_waves_surface, cached_wave_load, cached_surface, &
                                     strip_waves_renew_loads
@@ -68,15 +68,15 @@ contains
     type(boat_hull_type), intent(in) :: hull
     real(wp), intent(in) :: c(3, 3), r(3), t, dx(3)
     real(wp), intent(out) :: err_eta, err_v
-    real(wp) :: p(3), pt(3), eta, eta_x, v(3), v_x(3), a(3), pw
+    real(wp) :: p(3), pt(3), eta, eta_x, v(3), v_x(3), a(3), pw, slope(2)
     integer :: k, nwet
     err_eta = 0.0_wp
     nwet = 0
     err_v = 0.0_wp
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k) + dx
-      err_eta = max(err_eta, abs(cached_elevation(cache, field, k, t, p(1), p(2)) - &
-                                 wave_elevation(field, t, p(1), p(2))))
+      call cached_surface(cache, field, k, t, p(1), p(2), eta, slope)
+      err_eta = max(err_eta, abs(eta - wave_elevation(field, t, p(1), p(2))))
       ! a point below the surface at the reference's stretched depth, shifted by dx (not
       ! at references on the surface, where Wheeler's zero above it is a jump)
       if (cache%q(3, k) < 0.05_wp) cycle
@@ -168,7 +168,7 @@ contains
     type(section_wet_type) :: wet
     real(wp) :: c(3, 3), r(3), t2, p(3), pt(3), eta, eta_x, v(3), v_x(3), a(3), pw
     real(wp) :: err_eta, err_v, err_load, err_watch, scale, grad(3), d0, load(3), rate(3)
-    real(wp) :: xy(2, 20), eta1(20), grad1(2, 20)
+    real(wp) :: xy(2, 20), eta1(20), grad1(2, 20), slope(2)
     integer :: k, nload
     call level5_sea(field)
     call afloat(hull, c, r)
@@ -185,13 +185,13 @@ contains
     do k = 1, hull%n
       p = r + c(:, 1)*hull%x(k)
       err_watch = max(err_watch, abs(eta1(k) - wave_elevation(field, 20.0_wp, p(1), p(2))))
-      err_eta = max(err_eta, abs(cached_elevation(cache, field, k, t2, p(1), p(2)) - &
-                                 wave_elevation(field, t2, p(1), p(2))))
+      call cached_surface(cache, field, k, t2, p(1), p(2), eta, slope)
+      err_eta = max(err_eta, abs(eta - wave_elevation(field, t2, p(1), p(2))))
       if (cache%q(3, k) < 0.05_wp) cycle
-      ! the reference's stretched depth below each surface: the window's (from the strip
-      ! centre's terms) and the sums'
+      ! the reference's stretched depth below the window's surface and the sums'
       pt = [cache%q(1, k), cache%q(2, k), 0.0_wp]
-      pt(3) = cache%q(3, k) - cached_elevation(cache, field, k, t2, pt(1), pt(2))
+      call cached_surface(cache, field, k, t2, pt(1), pt(2), eta, slope)
+      pt(3) = cache%q(3, k) - eta
       call cached_kinematics(cache, field, k, t2, pt, eta, v)
       pt(3) = cache%q(3, k) - wave_elevation(field, t2, pt(1), pt(2))
       call wave_kinematics(field, t2, pt, eta_x, v_x, a, pw)

@@ -29,7 +29,7 @@ module davit_boat_strip_level
   use davit_sea_wave_field, only: wave_field_type, wave_none, wave_elevation, wave_ramp
   use davit_boat_hull, only: boat_hull_type, section_wet_type
   use davit_boat_strip_pressure, only: surface_plane, section_wave_load
-  use davit_boat_strip_waves, only: strip_wave_cache_type, cached_elevation, cached_surface, &
+  use davit_boat_strip_waves, only: strip_wave_cache_type, cached_surface, &
                                     cached_wave_load
   implicit none
   private
@@ -149,13 +149,14 @@ contains
     type(strip_wave_cache_type), intent(in), optional :: cache
     !> Elevation [m] and slope of the surface at each strip centre.
     real(wp), intent(out) :: eta(s%hull%n), slope(2, s%hull%n)
-    real(wp) :: p(3)
+    real(wp) :: p(3), plane(2)
     integer :: k
     slope = 0.0_wp
     do k = 1, s%hull%n
       p = r + c(:, 1)*s%hull%x(k)
       if (window) then
-        eta(k) = cached_elevation(cache, field, k, t, p(1), p(2))
+        ! the cached surface's slope is not used: this level's surface is level
+        call cached_surface(cache, field, k, t, p(1), p(2), eta(k), plane)
       else
         eta(k) = wave_elevation(field, t, p(1), p(2))
       end if

@@ -56,7 +56,7 @@ module davit_boat_strip_waves
   private
   public :: strip_wave_cache_type, new_strip_wave_cache, strip_waves_open, strip_waves_sample
   public :: strip_waves_bounds
-  public :: strip_waves_due, strip_waves_cover, cached_elevation, strip_waves_renew_loads
+  public :: strip_waves_due, strip_waves_cover, strip_waves_renew_loads
   public :: cached_kinematics, cached_wave_load, cached_surface, strip_waves_surface
 
   type :: strip_wave_cache_type
@@ -453,20 +453,6 @@ contains
     a = 2.0_wp*(d1 - d2)/(t_old - t_pp)
     v = d1 - 0.5_wp*a*(t_old - t)
   end subroutine path_rates
-
-  !> Elevation [m] (up) at the horizontal point (x, y) near strip k's centre at time t.
-  pure real(wp) function cached_elevation(cache, field, k, t, x, y) result(eta)
-    !> The strips' window.
-    type(strip_wave_cache_type), intent(in) :: cache
-    !> The sea (its start-up ramp).
-    type(wave_field_type), intent(in) :: field
-    !> Strip index.
-    integer, intent(in) :: k
-    !> Time [s] and horizontal position (inertial) [m].
-    real(wp), intent(in) :: t, x, y
-    real(wp) :: slope(2)
-    call cached_surface(cache, field, k, t, x, y, eta, slope)
-  end function cached_elevation
 
   !> Elevation [m] and slope (d eta/dx, d eta/dy) at the horizontal point (x, y) near strip
   !> k's centre at time t (surface_terms, ramped).

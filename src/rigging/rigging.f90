@@ -524,8 +524,8 @@ contains
     en = en + stop_energy(self%stop, hook_pos, br)
   end function rigging_energy
 
-  !> Unstretched length of cable c [m]: sum L0_i = sum L0_i(0) + s_drum (the sheave
-  !> passages telescope), or L0_tot(0) + s_drum for quasi-static sheaves.
+  !> Unstretched length of cable c [m] at the rigging's state y: the falls'
+  !> cable_unstretched_length with the drum's passage of y (davit_rigging_falls).
   pure function unstretched_length(self, y, c) result(len0)
     !> The rigging.
     class(rigging_type), intent(in) :: self
