@@ -61,11 +61,15 @@ contains
   subroutine system_rhs(self, t, y, dydt)
     !> The system.
     class(system_type), intent(in) :: self
-    !> Time [s] and the state vector (the layout's: boat, its water states, rigging, ship).
-    real(wp), intent(in) :: t, y(:)
+    !> Time [s].
+    real(wp), intent(in) :: t
+    !> State vector (the layout's: boat, its water states, rigging, ship).
+    real(wp), intent(in) :: y(:)
     !> Its time derivative y' = (q_dot, (F - W phi)/V).
     real(wp), intent(out) :: dydt(:)
-    call system_rhs_part(self, t, y, dydt, loads_all)
+    real(wp) :: kane(3, size(y))
+    call kane_blocks(self, t, y, dydt, kane, loads_all)
+    call kane_rates(self%par%layout, kane, dydt)
   end subroutine system_rhs
 
   !> One part of the multirate split (davit_solve_multirate), eq. 89 with the same V for
@@ -82,7 +86,7 @@ contains
     real(wp), intent(in) :: y(:)
     !> The part of y' asked for (the fast part's ship rows zero).
     real(wp), intent(out) :: dydt(:)
-    !> part_slow or part_fast (loads_all: the whole y', system_rhs).
+    !> part_slow or part_fast.
     integer, intent(in) :: part
     real(wp) :: kane(3, size(y))
     call kane_blocks(self, t, y, dydt, kane, part)
