@@ -49,6 +49,15 @@ contains
                                            "&contact enabled = .false. /"))
   end subroutine level5_system
 
+  !> A boat pose from uniform randoms x(1:6): heel and trim within +-roll/2 and +-pitch/2
+  !> [rad], any heading, the CG anywhere in a 50 m square, z_low + z_span x(1) [m] (z down).
+  subroutine random_pose(x, roll, pitch, z_low, z_span, c, r)
+    real(wp), intent(in) :: x(:), roll, pitch, z_low, z_span
+    real(wp), intent(out) :: c(3, 3), r(3)
+    c = rotation_matrix([roll*(x(2) - 0.5_wp), pitch*(x(3) - 0.5_wp), 6.0_wp*x(4)])
+    r = [50.0_wp*x(5), 50.0_wp*x(6), z_low + z_span*x(1)]
+  end subroutine random_pose
+
   !> The surface watch may skip the strip loads only when they are exactly zero: in an
   !> irregular Level 5 sea (1300 components), 4000 random boat poses at heights from 12 m
   !> above the water to 1 m into it, 0-0.05 s after the sample and up to 0.3 m and 0.1 rad
@@ -57,16 +66,14 @@ contains
   subroutine surface_watch(state)
     type(case_state), intent(inout) :: state
     type(system_type) :: sys
-    real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, z, x(9)
+    real(wp) :: c0(3, 3), r0(3), c(3, 3), r(3), t, x(9)
     integer :: i, dry, missed
     call level5_system(sys, "")
     dry = 0
     missed = 0
     do i = 1, 4000
       call random_number(x)
-      z = -12.0_wp + 13.0_wp*x(1)
-      c0 = rotation_matrix([0.2_wp*(x(2) - 0.5_wp), 0.1_wp*(x(3) - 0.5_wp), 6.0_wp*x(4)])
-      r0 = [50.0_wp*x(5), 50.0_wp*x(6), z]
+      call random_pose(x, 0.2_wp, 0.1_wp, -12.0_wp, 13.0_wp, c0, r0)
       call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 10.0_wp*x(7), c0, r0)
       t = sys%hist%watch%t + 0.05_wp*x(8)
       c = matmul(rotation_matrix(0.1_wp*[x(9), 1.0_wp - x(9), x(3)]), c0)
@@ -148,8 +155,7 @@ contains
     dry_old = 0
     do i = 1, 300
       call random_number(x)
-      c0 = rotation_matrix([0.1_wp*(x(2) - 0.5_wp), 0.05_wp*(x(3) - 0.5_wp), 6.0_wp*x(4)])
-      r0 = [50.0_wp*x(5), 50.0_wp*x(6), -4.0_wp + 5.0_wp*x(1)]
+      call random_pose(x, 0.1_wp, 0.05_wp, -4.0_wp, 5.0_wp, c0, r0)
       associate (w => sys%hist%waves, hull => sys%par%water%hull)
         call strip_waves_open(w, hull, sys%par%sea, 10.0_wp*x(7), c0, r0)
         call strip_waves_surface(w, sys%par%sea, xy, eta, grad)
@@ -239,8 +245,7 @@ contains
     wrong = 0
     do i = 1, 4000
       call random_number(x)
-      c = rotation_matrix([0.6_wp*(x(2) - 0.5_wp), 0.3_wp*(x(3) - 0.5_wp), 6.0_wp*x(4)])
-      r = [50.0_wp*x(5), 50.0_wp*x(6), -12.0_wp + 13.0_wp*x(1)]
+      call random_pose(x, 0.6_wp, 0.3_wp, -12.0_wp, 13.0_wp, c, r)
       call watch_refresh(sys%hist%watch, sys%par%water, sys%par%sea, 10.0_wp*x(7), c, r)
       t = sys%hist%watch%t + 0.6_wp*x(8)
       all_strips = .true.
