@@ -11,7 +11,7 @@ module davit_system_events
                                     strip_waves_open, strip_waves_sample, strip_waves_surface, &
                                     strip_waves_renew_loads, strip_waves_bounds
   use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
-                                      strip_surely_dry, watch_set_window
+                                      strips_maybe_wet, watch_set_window
   use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      hook_kinematics, fender_gaps, falls_ends_at
@@ -88,7 +88,6 @@ contains
     real(wp), intent(in) :: immersion
     logical :: due, maybe_wet(par%water%hull%n)
     real(wp) :: travel
-    integer :: j
     call strip_waves_due(hist%waves, t, due)
     if (.not. due) then
       ! section loads whose own window ended, and sections that got wet, are sampled now
@@ -96,10 +95,8 @@ contains
       return
     end if
     if (hist%surface_grid%enabled) then
-      do j = 1, par%water%hull%n
-        maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, &
-                                              t + hist%waves%clock%interval, c, r)
-      end do
+      call strips_maybe_wet(hist%watch, par%water, t + hist%waves%clock%interval, c, r, &
+                            maybe_wet)
       if (any(maybe_wet)) then
         associate (span => hist%waves%clock%interval)
           call prepare_grid(par%water%hull, par%sea, hist%surface_grid, t, span, c, r)
@@ -113,10 +110,8 @@ contains
       call strip_waves_open(hist%waves, par%water%hull, par%sea, t, c, r)
       call refresh_watch_from_strips(hist%waves, par%sea, par%water%hull%n, t, hist%watch)
       travel = boat_travel(par%water%hull, u, hist%waves%clock%interval)
-      do j = 1, par%water%hull%n
-        maybe_wet(j) = .not. strip_surely_dry(hist%watch, par%water, j, t, c, &
-                                              r + [0.0_wp, 0.0_wp, travel])
-      end do
+      call strips_maybe_wet(hist%watch, par%water, t, c, r + [0.0_wp, 0.0_wp, travel], &
+                            maybe_wet)
       call strip_waves_sample(hist%waves, par%water%hull, par%sea, c, r, maybe_wet)
     end if
     ! the diffraction acts only on a wet hull (lagged immersion s > 0), on the same window
