@@ -28,8 +28,7 @@ module davit_boat_surface_watch
   implicit none
   private
   public :: surface_watch_type, new_surface_watch, watch_refresh, watch_set, watch_due, &
-            surely_dry, strip_surely_dry, watch_set_window, hull_surely_dry, &
-            strips_maybe_wet
+            surely_dry, strip_surely_dry, watch_set_window, hull_surely_dry
 
   type :: surface_watch_type
     !> Whether the samples below have been taken.
@@ -237,28 +236,6 @@ contains
     end associate
     hull_surely_dry = lowest + eta_up <= 0.0_wp
   end function hull_surely_dry
-
-  !> Per strip, whether it may touch the water at time t with the boat at (c, r): not
-  !> strip_surely_dry, every strip dry at once where the whole hull's test proves it
-  !> (hull_surely_dry implies each strip's).
-  pure subroutine strips_maybe_wet(w, s, t, c, r, maybe_wet)
-    !> The watch.
-    type(surface_watch_type), intent(in) :: w
-    !> The strip model.
-    type(strip_model_type), intent(in) :: s
-    !> Time [s], rotation b -> inertial, CG position (inertial) [m].
-    real(wp), intent(in) :: t, c(3, 3), r(3)
-    !> Per strip, whether it may be wet.
-    logical, intent(out) :: maybe_wet(:)
-    integer :: k
-    maybe_wet = .false.
-    if (w%valid) then
-      if (hull_surely_dry(w, s, t, c, r)) return
-    end if
-    do k = 1, s%hull%n
-      maybe_wet(k) = .not. strip_surely_dry(w, s, k, t, c, r)
-    end do
-  end subroutine strips_maybe_wet
 
   !> True only if strip k cannot touch the water at time t with the boat at (c, r).
   pure logical function strip_surely_dry(w, s, k, t, c, r)

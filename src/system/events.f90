@@ -11,7 +11,7 @@ module davit_system_events
                                     strip_waves_open, strip_waves_sample, strip_waves_surface, &
                                     strip_waves_renew_loads, strip_waves_bounds
   use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
-                                      strips_maybe_wet, watch_set_window
+                                      strip_surely_dry, watch_set_window, hull_surely_dry
   use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      hook_kinematics, fender_gaps, falls_ends_at
@@ -21,6 +21,7 @@ module davit_system_events
   use davit_sea_wave_grid, only: wave_grid_type, grid_prepare
   use davit_sea_wave_field, only: wave_field_type
   use davit_boat_hull, only: boat_hull_type
+  use davit_boat_strip_loads, only: strip_model_type
   use davit_core_layout, only: state_part_type
   implicit none
   private
@@ -121,6 +122,24 @@ contains
       call hist%diffraction%clock%invalidate()
     end if
   end subroutine refresh_strip_waves
+
+  !> Which strips may touch the water at time t with the boat at (c, r): none where the
+  !> watch's test of the whole hull proves it dry (it implies every strip's), else each
+  !> strip that strip_surely_dry cannot prove dry.
+  pure subroutine strips_maybe_wet(watch, water, t, c, r, maybe_wet)
+    type(surface_watch_type), intent(in) :: watch
+    type(strip_model_type), intent(in) :: water
+    real(wp), intent(in) :: t, c(3, 3), r(3)
+    logical, intent(out) :: maybe_wet(:)
+    integer :: k
+    maybe_wet = .false.
+    if (watch%valid) then
+      if (hull_surely_dry(watch, water, t, c, r)) return
+    end if
+    do k = 1, water%hull%n
+      maybe_wet(k) = .not. strip_surely_dry(watch, water, k, t, c, r)
+    end do
+  end subroutine strips_maybe_wet
 
   !> The BEM water's lagged immersion s in the state y (0 for the strips alone).
   pure real(wp) function lagged_immersion(par, y) result(s)
