@@ -23,6 +23,7 @@ program main
   use test_ship_drift, only: collect_ship_drift
   use test_launch_log, only: collect_launch_log
   use test_boat_bem, only: collect_boat_bem
+  use test_force_levels, only: collect_force_levels
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use test_strip_pressure, only: collect_strip_pressure
   use test_events, only: collect_events
@@ -69,7 +70,8 @@ program main
             collect_assess(), collect_adaptive(), collect_core(), &
             collect_wave_grid(), collect_multirate(), collect_block_balance(), &
             collect_capi(), collect_mmg(), collect_mmg_bem(), collect_small_laws(), &
-            collect_scene(), collect_ship_speed(), collect_system_parts()]
+            collect_scene(), collect_ship_speed(), collect_system_parts(), &
+            collect_force_levels()]
   call run_suites(suites, trim(filter), npass, nfail)
   write (output_unit, "(i0,a,i0,a)") npass, " passed, ", nfail, " failed"
   if (nfail > 0 .or. npass == 0) error stop 1, quiet=.true.

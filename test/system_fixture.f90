@@ -9,9 +9,16 @@ module system_fixture
   use davit_solve_rk4, only: rk4_type
   use davit_core_rotation, only: rotation_matrix
   use davit_boat_contact, only: hertz_law_type, hertz_peak
+  use davit_ship_ship_model, only: ship_system_type
+  use davit_ship_ship_hydro, only: bem_hydro_type
+  use davit_ship_manoeuvring, only: mmg_manoeuvring_type
+  use davit_ship_bem_loads, only: bem_ship_type
+  use davit_boat_water_terms, only: bem_terms_type
+  use davit_boat_bem_water, only: boat_bem_type
   implicit none
   private
   public :: new_test_system, nstate, deck_config, drop_cg, system_hertz_peak
+  public :: ship_bem, is_bem_ship, boat_bem, is_mmg_ship, ship_rps
 
   !> State length of a boat on foundation slings (the boat's part alone, eqs. 3-4).
   integer, parameter :: nstate = 12
@@ -69,5 +76,53 @@ contains
       call hertz_peak(law, mass, v0, delta_m, f_m)
     end select
   end subroutine system_hertz_peak
+
+
+  !> The BEM ship's database, mass and damping (empty for the box ship).
+  function ship_bem(ship) result(bem)
+    !> The ship.
+    type(ship_system_type), intent(in) :: ship
+    type(bem_ship_type) :: bem
+    select type (h => ship%par%hydro)
+    type is (bem_hydro_type)
+      bem = h%bem
+    end select
+  end function ship_bem
+
+  !> Whether the ship's hydrodynamics are the BEM ship's.
+  logical function is_bem_ship(ship)
+    !> The ship.
+    type(ship_system_type), intent(in) :: ship
+    is_bem_ship = same_type_as(ship%par%hydro, bem_hydro_type())
+  end function is_bem_ship
+
+  !> The boat's BEM water model (empty with the strips alone).
+  function boat_bem(sys) result(bem)
+    !> The system.
+    type(system_type), intent(in) :: sys
+    type(boat_bem_type) :: bem
+    select type (w => sys%par%water_terms)
+    type is (bem_terms_type)
+      bem = w%bem
+    end select
+  end function boat_bem
+
+  !> Whether the ship manoeuvres by the MMG model.
+  logical function is_mmg_ship(ship)
+    !> The ship.
+    type(ship_system_type), intent(in) :: ship
+    is_mmg_ship = same_type_as(ship%par%manoeuvring, mmg_manoeuvring_type())
+  end function is_mmg_ship
+
+  !> The MMG ship's propeller revolutions [1/s] (0 for Kijima's model).
+  real(wp) function ship_rps(ship)
+    !> The ship.
+    type(ship_system_type), intent(in) :: ship
+    ship_rps = 0.0_wp
+    select type (m => ship%par%manoeuvring)
+    type is (mmg_manoeuvring_type)
+      ship_rps = m%rps
+    end select
+  end function ship_rps
 
 end module system_fixture

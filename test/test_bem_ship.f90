@@ -8,8 +8,9 @@ module test_bem_ship
   use davit_ship_bem_database, only: bem_database_type, read_bem_database, bem_excitation, &
                                      bracket
   use davit_ship_ship_model, only: ship_system_type
+  use system_fixture, only: ship_bem, is_bem_ship
   use davit_core_rotation, only: rotation_matrix, cross
-  use davit_ship_bem_loads, only: bem_memory
+  use davit_ship_bem_loads, only: bem_memory, bem_ship_type
   use davit_run_ship_scene, only: build_ship_scene
   use davit_run_rao, only: rao_case
   use davit_solve_rk4, only: rk4_type
@@ -450,6 +451,7 @@ contains
     type(rk4_type) :: rk
     real(wp), allocatable :: y(:)
     real(wp) :: t, dt, ydot0, coef(2)
+    type(bem_ship_type) :: bem
     integer :: i
     write (phase, "(f6.1)") phase_deg
     call parse_config("t.nml", "&ship model = '"//model//"', database = '"//database// &
@@ -462,7 +464,8 @@ contains
     coef = ship%wave_coefficients(2, 1)
     amplitude = hypot(coef(1), coef(2))
     mass = ship%par%hull%mass
-    if (ship%par%bem) mass = ship%par%hydro%mass
+    bem = ship_bem(ship)
+    if (is_bem_ship(ship)) mass = bem%mass
     period = 2.0_wp*pi/ship%par%sea%omega(1)
     dt = period/per_period
     call rk%init(size(y))
@@ -511,21 +514,23 @@ contains
     real(wp), allocatable :: y(:), dydt(:), xdot(:)
     real(wp) :: m(3, 3), c(3, 3), om(3), v(3), acc(6), mu(6), lhs(6), rhs(6), a(6, 6)
     real(wp) :: delta(6), scale, list
+    type(bem_ship_type) :: bem
     integer :: k, i0
     call parse_config("t.nml", deck, cfg, error)
     if (allocated(error)) error stop error%message
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
     list = 6.0_wp*pi/180.0_wp
-    a = ship%par%hydro%db%added_mass_inf
-    allocate (dydt(size(y)), xdot(ship%par%hydro%db%nrad))
+    bem = ship_bem(ship)
+    a = bem%db%added_mass_inf
+    allocate (dydt(size(y)), xdot(bem%db%nrad))
     ! a general state: attitude, heave, speeds, memory
     om = [0.05_wp, -0.02_wp, 0.01_wp]
     v = [0.0_wp, -0.5_wp, 0.8_wp]    ! no surge: the manoeuvring and resistance terms vanish
     y(ship%par%body%q(1):ship%par%body%q(1) + 2) = [list + 0.1_wp, 0.05_wp, 0.3_wp]
     y(ship%par%body%q(1) + 5) = y(ship%par%body%q(1) + 5) + 0.4_wp
     y(ship%par%body%u(1):ship%par%body%u(2)) = [om, v]
-    do k = 1, ship%par%hydro%db%nrad
+    do k = 1, bem%db%nrad
       y(ship%par%radiation%q(1) + k - 1) = 0.1_wp*sin(real(k, wp))
     end do
     call residual()
@@ -537,8 +542,8 @@ contains
     c = rotation_matrix([list, 0.0_wp, 0.0_wp])
     y(ship%par%body%u(1):ship%par%body%u(2)) = [0.0_wp, 0.0_wp, 0.0_wp, c(3, :)]
     y(ship%par%radiation%q(1):ship%par%radiation%q(2)) = 0.0_wp
-    do k = 1, size(ship%par%hydro%db%pairs)
-      associate (p => ship%par%hydro%db%pairs(k))
+    do k = 1, size(bem%db%pairs)
+      associate (p => bem%db%pairs(k))
         i0 = ship%par%radiation%q(1) + p%first - 1
         if (p%j == 3) y(i0:i0 + p%n - 1) = p%b     ! the states after a 1 m/s, 1 s heave
       end associate
@@ -564,13 +569,13 @@ contains
         v = u(4:6)
         acc = [dydt(ship%par%body%u(1) + 3:ship%par%body%u(2)) + cross(om, v), &
                dydt(ship%par%body%u(1):ship%par%body%u(1) + 2)]
-        lhs(1:3) = ship%par%hydro%mass*acc(1:3)
-        lhs(4:6) = ship%par%hydro%inertia*acc(4:6) + cross(om, ship%par%hydro%inertia*om)
-        call bem_memory(ship%par%hydro%db, y(ship%par%radiation%q(1):ship%par%radiation%q(2)), &
+        lhs(1:3) = bem%mass*acc(1:3)
+        lhs(4:6) = bem%inertia*acc(4:6) + cross(om, bem%inertia*om)
+        call bem_memory(bem%db, y(ship%par%radiation%q(1):ship%par%radiation%q(2)), &
                         [matmul(transpose(m), v), matmul(transpose(m), om)], xdot, mu)
         delta = [0.0_wp, 0.0_wp, q(6) - ship%par%z_eq, q(1) - list, q(2), 0.0_wp]
         f = -matmul(a, [matmul(transpose(m), acc(1:3)), matmul(transpose(m), acc(4:6))]) - mu &
-            - matmul(ship%par%hydro%db%stiffness, delta)
+            - matmul(bem%db%stiffness, delta)
         rhs = [matmul(m, f(1:3)), matmul(m, f(4:6))]
         scale = max(maxval(abs(lhs)), maxval(abs(mu)), maxval(abs(rhs)))
       end associate

@@ -14,10 +14,10 @@ module test_boat_bem
   use davit_ship_bem_database, only: bem_database_type, read_bem_database
   use davit_error, only: error_type
   use davit_system_model, only: system_type
-  use system_fixture, only: new_test_system, deck_config
+  use system_fixture, only: new_test_system, deck_config, boat_bem
   use davit_solve_rk4, only: rk4_type
   use davit_core_slow_clock, only: slow_clock_type, new_slow_clock, clock_reach
-  use davit_boat_bem_water, only: boat_bem_loads, diffraction_cache_type, &
+  use davit_boat_bem_water, only: boat_bem_type, boat_bem_loads, diffraction_cache_type, &
                                   diffraction_refresh
   use davit_core_rotation, only: rotation_matrix
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -249,11 +249,13 @@ contains
     type(case_state), intent(inout) :: state
     type(system_type) :: sys
     type(bem_database_type) :: db
+    type(boat_bem_type) :: bem
     real(wp), allocatable :: y(:), dydt(:), kane(:, :)
     real(wp) :: f(6), m(6, 6), residual(6), s, d(6)
     integer, parameter :: perm(6) = [4, 5, 6, 1, 2, 3]
     integer :: k, j
     y = new_test_system(sys, deck_config(base//" &boat "//water//" /"))
+    bem = boat_bem(sys)
     db = boat_database()
     allocate (dydt(size(y)), kane(3, size(y)))
     f = [1.0e4_wp, -2.0e4_wp, 5.0e3_wp, 3.0e3_wp, -1.0e3_wp, 2.0e3_wp]
@@ -263,7 +265,7 @@ contains
       kane(kane_w_phi, :) = 0.0_wp
       kane(kane_f, :) = 0.0_wp
       associate (u => sys%par%boat_part%u)
-        kane(kane_v, u(1):u(2)) = 1.0_wp + s*sys%par%bem%lambda
+        kane(kane_v, u(1):u(2)) = 1.0_wp + s*bem%lambda
         kane(kane_f, u(1):u(2)) = f
         dydt = 0.0_wp
         call kane_rates(sys%par%layout, kane, dydt)
@@ -361,6 +363,7 @@ contains
     type(config_type) :: cfg
     type(system_type) :: sys
     type(diffraction_cache_type) :: cache, none
+    type(boat_bem_type) :: bem
     type(slow_clock_type) :: clock
     real(wp), allocatable :: y(:)
     real(wp) :: r0(3), r(3), c(3, 3), u(6), f_exact(6), f_cached(6), v(6), xdot(400)
@@ -371,6 +374,7 @@ contains
                       "wave_type = 'irregular', ramp_periods = 0.0 / "// &
                       "&boat position = 0.0, 13.3, 0.3, database = '"//database//"' /")
     y = new_test_system(sys, cfg)
+    bem = boat_bem(sys)
     nrad = sys%par%radiation_part%q(2) - sys%par%radiation_part%q(1) + 1
     x = 0.0_wp
     x(1) = 1.0_wp
@@ -379,15 +383,15 @@ contains
     r0 = [0.0_wp, 13.3_wp, 0.3_wp]
     clock = new_slow_clock(0.05_wp, clock_reach)
     call clock%open(20.0_wp)
-    call diffraction_refresh(sys%par%bem, sys%par%sea, clock, r0, 0.3_wp, cache)
+    call diffraction_refresh(bem, sys%par%sea, clock, r0, 0.3_wp, cache)
     worst = 0.0_wp
     scale = 0.0_wp
     do i = 0, 4
       t = 20.0_wp + 0.0125_wp*real(i, wp)
       r = r0 + [0.08_wp, -0.06_wp, 0.0_wp]*real(i, wp)/4.0_wp
-      call boat_bem_loads(sys%par%bem, sys%par%sea, t, c, r, 0.3_wp, u, 1.0_wp, &
+      call boat_bem_loads(bem, sys%par%sea, t, c, r, 0.3_wp, u, 1.0_wp, &
                           x(1:nrad), none, xdot(1:nrad), f_exact, v)
-      call boat_bem_loads(sys%par%bem, sys%par%sea, t, c, r, 0.3_wp, u, 1.0_wp, &
+      call boat_bem_loads(bem, sys%par%sea, t, c, r, 0.3_wp, u, 1.0_wp, &
                           x(1:nrad), cache, xdot(1:nrad), f_cached, v)
       worst = max(worst, maxval(abs(f_cached - f_exact)))
       scale = max(scale, maxval(abs(f_exact)))
@@ -410,10 +414,12 @@ contains
     type(case_state), intent(inout) :: state
     type(system_type) :: sys
     type(diffraction_cache_type) :: none
+    type(boat_bem_type) :: bem
     real(wp), allocatable :: y(:), x(:), xdot(:)
     real(wp) :: c(3, 3), rz(3, 3), u(6), f(6), v(6), fh(3), phi, psi, driven
     integer :: k, i0
     y = new_test_system(sys, deck_config(base//" &boat "//water//" /"))
+    bem = boat_bem(sys)
     associate (q => sys%par%radiation_part%q)
       allocate (x(q(2) - q(1) + 1), xdot(q(2) - q(1) + 1))
     end associate
@@ -424,18 +430,18 @@ contains
     u = [0.0_wp, 0.0_wp, 0.0_wp, c(3, :)]    ! 1 m/s along the inertial vertical
     x = 0.0_wp
     x(1) = 1.0_wp
-    do k = 1, size(sys%par%bem%db%pairs)
-      associate (p => sys%par%bem%db%pairs(k))
+    do k = 1, size(bem%db%pairs)
+      associate (p => bem%db%pairs(k))
         i0 = 1 + p%first
         if (p%i == 3 .and. p%j == 3) x(i0:i0 + p%n - 1) = p%b
       end associate
     end do
-    call boat_bem_loads(sys%par%bem, sys%par%sea, 0.0_wp, c, matmul(c, [0.0_wp, 0.0_wp, &
+    call boat_bem_loads(bem, sys%par%sea, 0.0_wp, c, matmul(c, [0.0_wp, 0.0_wp, &
                         z_float]), psi, u, 1.0_wp, x, none, xdot, f, v)
     fh = matmul(transpose(rz), matmul(c, f(4:6)))    ! the force in the seakeeping frame
     driven = 0.0_wp
-    do k = 1, size(sys%par%bem%db%pairs)
-      associate (p => sys%par%bem%db%pairs(k))
+    do k = 1, size(bem%db%pairs)
+      associate (p => bem%db%pairs(k))
         i0 = 1 + p%first
         if (p%j == 2 .or. p%j == 4) driven = max(driven, maxval(abs(xdot(i0:i0 + p%n - 1))))
       end associate

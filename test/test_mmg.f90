@@ -19,6 +19,7 @@ module test_mmg
                                rudder_servo_time
   use davit_core_rotation, only: rotation_matrix
   use davit_ship_ship_model, only: ship_system_type
+  use system_fixture, only: is_bem_ship, is_mmg_ship
   use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
   use harness, only: suite_type, case_state, new_case, check, check_true, note
@@ -329,7 +330,7 @@ contains
     call build_ship_scene(cfg, ship, y, error)
     call check_true(state, .not. allocated(error), "accepted")
     if (allocated(error)) return
-    call check_true(state, ship%par%bem .and. ship%par%mmg_on, "BEM ship with MMG")
+    call check_true(state, is_bem_ship(ship) .and. is_mmg_ship(ship), "BEM ship with MMG")
     call check(state, ship%par%frame_speed, 2.0_wp, "frame speed", abs_tol=0.0_wp)
     call check(state, ship%par%frame_velocity(1), 2.0_wp*cos(30.0_wp*deg), "frame velocity x", &
                abs_tol=1e-14_wp)

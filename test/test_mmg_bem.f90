@@ -10,6 +10,7 @@ module test_mmg_bem
   use davit_io_config, only: config_type, parse_config
   use davit_core_rotation, only: rotation_matrix
   use davit_ship_ship_model, only: ship_system_type, ship_loads
+  use system_fixture, only: is_bem_ship, is_mmg_ship, ship_rps
   use davit_core_slow_clock, only: slow_clock_type
   use davit_ship_rudder, only: rudder_type, rudder_order, autopilot_integral_rate, &
                                autopilot_order, autopilot_states, notch_period
@@ -151,7 +152,7 @@ contains
         edits(:, 4) = [character(len=160) :: "manoeuvring = 'mmg'", &
                        "manoeuvring = '"//manoeuvring//"'"]
         call headway_ship(edits, ship, y)
-        call check_true(state, ship%par%mmg_on .eqv. manoeuvring == "mmg", "manoeuvring model")
+        call check_true(state, is_mmg_ship(ship) .eqv. manoeuvring == "mmg", "manoeuvring model")
         q = y(ship%par%body%q(1):ship%par%body%q(2))
         u = y(ship%par%body%u(1):ship%par%body%u(2))
         c = rotation_matrix(q(1:3))
@@ -233,9 +234,9 @@ contains
         side = max(side, abs(q(3)) + abs(q(5)) + abs(y(ship%par%rudder%q(1))))
       end associate
     end do
-    call note(state, "self-propulsion rps", ship%par%rps)
+    call note(state, "self-propulsion rps", ship_rps(ship))
     call note(state, "largest relative speed error", worst)
-    call check_true(state, ship%par%bem .and. ship%par%mmg_on, "the BEM/MMG ship")
+    call check_true(state, is_bem_ship(ship) .and. is_mmg_ship(ship), "the BEM/MMG ship")
     call check(state, worst, 0.0_wp, "speed held within 1 %", abs_tol=0.01_wp)
     ! the self-propulsion point balances exactly: a load left out of it (the windage:
     ! 0.6 % in 200 s) shows at once

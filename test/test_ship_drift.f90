@@ -8,6 +8,8 @@ module test_ship_drift
   use davit_io_config, only: config_type, parse_config
   use davit_ship_bem_database, only: bem_database_type, read_bem_database, bem_drift
   use davit_ship_ship_model, only: ship_system_type, ship_loads
+  use system_fixture, only: ship_bem
+  use davit_ship_bem_loads, only: bem_ship_type
   use davit_ship_wave_drift, only: drift_mean, drift_newman, drift_coefficients, drift_load, &
                                    wave_drift_type, mean_drift_type, newman_drift_type
   use davit_system_law_factory, only: new_wave_drift
@@ -368,6 +370,7 @@ contains
     type(rk4_type) :: rk
     real(wp), allocatable :: y(:)
     real(wp) :: t, dt, c(3, 3), load(6), d(3), f(2), chi
+    type(bem_ship_type) :: bem
     character(len=16) :: direction
     character(len=:), allocatable :: keys
     integer :: i
@@ -385,10 +388,11 @@ contains
     if (allocated(error)) error stop error%message
     call build_ship_scene(cfg, ship, y, error)
     if (allocated(error)) error stop error%message
-    d = bem_drift(ship%par%hydro%db, ship%par%sea%omega(1), &
+    bem = ship_bem(ship)
+    d = bem_drift(bem%db, ship%par%sea%omega(1), &
                   ship%par%sea%direction(1) - ship%heading_reference())
     d_a2 = d(2)*ship%par%sea%amplitude(1)**2
-    me = ship%par%hydro%mass + ship%par%hydro%db%added_mass(2, 2, 1)
+    me = bem%mass + bem%db%added_mass(2, 2, 1)
     period = 2.0_wp*pi/ship%par%sea%omega(1)
     dt = period/per_period
     call rk%init(size(y))

@@ -11,6 +11,8 @@ module test_ship_speed
   use davit_error, only: error_type
   use davit_io_config, only: config_type, parse_config
   use davit_ship_ship_model, only: ship_system_type
+  use system_fixture, only: ship_bem
+  use davit_ship_bem_loads, only: bem_ship_type
   use davit_ship_bem_loads, only: bem_memory, bem_speed_load, solve_small
   use davit_run_ship_scene, only: build_ship_scene
   use davit_solve_rk4, only: rk4_type
@@ -94,9 +96,11 @@ contains
     type(ship_system_type) :: ship
     real(wp), allocatable :: y(:), x(:), k1(:), k2(:), k3(:), k4(:)
     real(wp) :: u(6), mu(6), load(6), speed
+    type(bem_ship_type) :: bem
     integer :: i, s
     call speed_ship(12.72_wp, 45.0_wp, "stf", ship, y)
-    associate (db => ship%par%hydro%db)
+    bem = ship_bem(ship)
+    associate (db => bem%db)
       allocate (x(db%nrad), k1(db%nrad), k2(db%nrad), k3(db%nrad), k4(db%nrad))
       do s = 1, 3
         speed = speeds(s)
@@ -111,7 +115,7 @@ contains
           x = x + h/6*(k1 + 2*k2 + 2*k3 + k4)
         end do
         call bem_memory(db, x, u, k1, mu)
-        load = bem_speed_load(ship%par%hydro, x, u, speed, .true.) - mu
+        load = bem_speed_load(bem, x, u, speed, .true.) - mu
         if (s == 1) then
           call note(state, "pitch moment / (U^2 theta) [kg]", load(5)/(speed**2*theta))
           call note(state, "yaw moment / (U^2 psi) [kg]", load(6)/(speed**2*psi))
@@ -125,7 +129,7 @@ contains
         call check(state, load(2), 0.0_wp, "no steady sway force", &
                    abs_tol=1e-3_wp*a22_0*headway**2*psi)
         ! 'heave_pitch': the same pitch moment, no yaw moment
-        load = bem_speed_load(ship%par%hydro, x, u, speed, .false.) - mu
+        load = bem_speed_load(bem, x, u, speed, .false.) - mu
         call check(state, load(5), a33_0*speed**2*theta, "heave_pitch: pitch moment", &
                    rel_tol=1e-3_wp, abs_tol=1.0_wp)
         call check(state, load(6), 0.0_wp, "heave_pitch: no yaw moment", &

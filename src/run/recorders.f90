@@ -344,7 +344,8 @@ contains
               self%velocity(3, nmax), self%angular_velocity(3, nmax))
     select type (problem)
     type is (ship_system_type)
-      if (problem%par%mmg_on) allocate (self%rudder(nmax))
+      ! a steered ship (the MMG model) has a rudder angle among its states
+      if (problem%par%rudder%q(2) >= problem%par%rudder%q(1)) allocate (self%rudder(nmax))
     end select
   end subroutine ship_init
 

@@ -5,13 +5,10 @@
 !> operator between steps, davit_capi_session). What never changes is in
 !> davit_ship_ship_parameters.
 module davit_ship_ship_history
-  use davit_kinds, only: wp, pi
+  use davit_kinds, only: wp
   use davit_core_slow_clock, only: slow_clock_type, clock_kept, clock_shifted
   use davit_sea_wave_field, only: wave_ramp, wave_chunk, component_phases
-  use davit_ship_bem_loads, only: bem_wave_coefficients
-  use davit_ship_froude_krylov, only: fk_box_load, fk_transfer
   use davit_ship_rudder, only: rudder_type
-  use davit_ship_wave_drift, only: drift_coefficients
   use davit_ship_ship_parameters, only: ship_params_type, phase_origin
   implicit none
   private
@@ -55,27 +52,9 @@ contains
     type(ship_params_type), intent(in) :: par
     !> Heading [rad].
     real(wp), intent(in) :: psi
-    real(wp) :: raw(6)
-    integer :: i
     hist%psi_ref = psi
-    if (par%bem) then
-      call bem_wave_coefficients(par%hydro, par%sea, psi, hist%fk_sin, hist%fk_cos)
-      if (allocated(par%drift)) call drift_coefficients(par%hydro%db, par%sea, psi, &
-                                                        hist%drift_coef)
-      return
-    end if
-    associate (s => par%sea, h => par%hull)
-      do i = 1, s%n
-        ! X, Y, K, M go with sin(Phi), Z and N with cos(Phi); split before the transfer to
-        ! G, which mixes them (M_G gets x_G Z, N_G gets -x_G Y)
-        raw = fk_box_load(h%box, s%amplitude(i), s%k(i), s%direction(i) - psi, 0.5_wp*pi)
-        raw([3, 6]) = 0.0_wp
-        hist%fk_sin(:, i) = fk_transfer(raw, h%cg_x, h%cg_z)
-        raw = fk_box_load(h%box, s%amplitude(i), s%k(i), s%direction(i) - psi, 0.0_wp)
-        raw([1, 2, 4, 5]) = 0.0_wp
-        hist%fk_cos(:, i) = fk_transfer(raw, h%cg_x, h%cg_z)
-      end do
-    end associate
+    call par%hydro%heading_coefficients(par%hull, par%sea, psi, hist%fk_sin, hist%fk_cos, &
+                                        hist%drift_coef)
   end subroutine refresh_heading
 
   !> Keep the Hermite window of the Froude-Krylov loads on the grid interval that holds t:

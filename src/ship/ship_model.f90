@@ -28,31 +28,23 @@ module davit_ship_ship_model
   use davit_core_rotation, only: rotation_matrix, euler_rates
   use davit_core_kane, only: kane_rates, kane_at_rest
   use davit_core_slow_clock, only: slow_clock_type
-  use davit_ship_bem_loads, only: bem_ship_type, bem_restoring, bem_memory, turn_to_body, &
-                                 bem_speed_load
-  use davit_ship_ship_blocks, only: box_blocks, bem_blocks
+  use davit_ship_bem_loads, only: turn_to_body
+  use davit_ship_ship_hydro, only: ship_hydro_type, level_to_body
   use davit_ship_ship_parameters, only: ship_params_type, phase_origin
   use davit_ship_ship_history, only: ship_history_type, refresh_heading, advance_wave_clock, &
                                      wave_loads
-  use davit_core_quadrature, only: gx => gauss8_x, gw => gauss8_w
   use davit_solve_integrator, only: ode_problem
   use davit_sea_wave_field, only: wave_field_type, wave_none
   use davit_sea_wind, only: wind_type, wind_velocity
   use davit_ship_hull, only: hull_type
   use davit_ship_wind_load, only: ship_wind_load
   use davit_ship_mmg, only: mmg_type, mmg_self_propulsion
-  use davit_ship_mmg_loads, only: mmg_body_load
-  use davit_ship_rudder, only: rudder_type, rudder_order, rudder_rate, rudder_switch, &
-                               autopilot_order, autopilot_states
+  use davit_ship_rudder, only: rudder_type, autopilot_states
+  use davit_ship_manoeuvring, only: kijima_type, mmg_manoeuvring_type, crossflow
   use davit_ship_wave_drift, only: wave_drift_type, drift_load
   implicit none
   private
   public :: ship_system_type, new_ship_system, ship_loads, ship_state
-
-  !> Surge resistance coefficient on the wetted surface (review G12; Mumford's surface).
-  real(wp), parameter :: surge_ct = 0.003_wp
-  !> Gauss points along the hull for the cross-flow drag integral.
-  integer, parameter :: ngauss = 8
 
   !> The ship as an ODE problem: its parameters (set at build) and its history (written by
   !> the after-step hook and set_heading only); its state is the solver's vector, laid out
@@ -84,7 +76,7 @@ module davit_ship_ship_model
 contains
 
   subroutine new_ship_system(self, hull, sea, wind, frozen, position, heading, &
-                             phase_at_initial, headway, clock, bem)
+                             phase_at_initial, headway, clock, hydro)
     ! 11 arguments: the ship's parts as the deck gives them (hull, sea, wind, pose, switches,
     ! slow clock)
     !> The ship built.
@@ -101,19 +93,15 @@ contains
     real(wp), intent(in) :: position(3), heading, headway
     !> The slow clock of the Froude-Krylov loads (rule clock_grid; interval 0: off).
     type(slow_clock_type), intent(in) :: clock
-    !> The BEM hydrodynamics (absent: the box ship's).
-    type(bem_ship_type), intent(in), optional :: bem
+    !> The level of its hydrodynamics: the paper's box or the BEM ship.
+    class(ship_hydro_type), intent(in) :: hydro
     real(wp) :: water(6), air(6)
     self%hist%clock = clock
     associate (par => self%par)
       par%phase_at_initial = phase_at_initial
-      par%origin = position(1:2) - [cos(heading), sin(heading)]*hull%cg_x
-      if (present(bem)) then
-        ! the database's loads are about the CG, their phases at its horizontal position
-        par%bem = .true.
-        par%hydro = bem
-        par%origin = position(1:2)
-      end if
+      allocate (par%hydro, source=hydro)
+      allocate (par%manoeuvring, source=kijima_type())
+      par%origin = hydro%wave_origin(hull, position, heading)
       par%hull = hull
       par%sea = sea
       par%wind = wind
@@ -134,9 +122,7 @@ contains
       allocate (self%hist%fk_sin(6, sea%n), self%hist%fk_cos(6, sea%n))
       call refresh_heading(self%hist, par, heading)
       call par%layout%add("ship", 6, 6, par%body)
-      if (.not. par%bem) return
-      call par%layout%add("ship_radiation", par%hydro%db%nrad, 0, par%radiation)
-      call par%layout%couple(par%body%u, par%hydro%v_inv)
+      call hydro%add_states(par%layout, par%body, par%radiation)
     end associate
   end subroutine new_ship_system
 
@@ -162,7 +148,6 @@ contains
     class(wave_drift_type), intent(in) :: level
     if (allocated(self%par%drift)) deallocate (self%par%drift)
     allocate (self%par%drift, source=level)
-    if (.not. self%par%bem) return
     if (allocated(self%hist%drift_coef)) deallocate (self%hist%drift_coef)
     allocate (self%hist%drift_coef(3, self%par%sea%n))
     call refresh_heading(self%hist, self%par, self%hist%psi_ref)
@@ -183,11 +168,7 @@ contains
       associate (q => y(par%body%q(1):par%body%q(2)))
         self%hist%anchor = [q(4), q(5), q(3)]
       end associate
-      inertia = [par%hull%mass + par%hull%added_mass(1:2), &
-                 par%hull%inertia(3) + par%hull%added_inertia(3)]
-      if (par%bem) inertia = [par%hydro%mass + par%hydro%db%added_mass_inf(1, 1), &
-                              par%hydro%mass + par%hydro%db%added_mass_inf(2, 2), &
-                              par%hydro%inertia(3) + par%hydro%db%added_mass_inf(6, 6)]
+      inertia = par%hydro%horizontal_inertia(par%hull)
       ! a period <= 0 leaves that motion free
       par%moor_k = 0.0_wp
       where (period > 0.0_wp) par%moor_k = inertia*(2.0_wp*pi/period)**2
@@ -213,20 +194,20 @@ contains
     type(rudder_type), intent(in) :: steer
     !> Propeller revolutions [1/s] (0: self-propulsion) and headway [m/s].
     real(wp), intent(in) :: rps, headway
-    real(wp) :: air(6), extra
+    real(wp) :: air(6), extra, n
     associate (par => self%par, psi => self%hist%psi_ref)
-      par%mmg_on = .true.
-      par%mmg = p
       self%hist%steer = steer
       self%hist%steer%heading = psi
-      par%rps = rps
+      n = rps
       ! the self-propulsion point overcomes the hull's R_0 and the windage in still air
       extra = 0.0_wp
       if (par%hull%empirical) then
         air = ship_wind_load(par%hull%wind, [-headway, 0.0_wp, 0.0_wp])
         extra = -air(1)
       end if
-      if (rps <= 0.0_wp) par%rps = mmg_self_propulsion(p, headway, extra)
+      if (rps <= 0.0_wp) n = mmg_self_propulsion(p, headway, extra)
+      deallocate (par%manoeuvring)
+      allocate (par%manoeuvring, source=mmg_manoeuvring_type(mmg=p, rps=n))
       call par%layout%add("ship_rudder", 1, 0, par%rudder)
       if (autopilot_states(steer) > 0) then
         call par%layout%add("ship_autopilot", autopilot_states(steer), 0, par%autopilot)
@@ -287,7 +268,7 @@ contains
     real(wp) :: yaw
     associate (par => self%par, hist => self%hist)
       yaw = y(par%body%q(1) + 2)
-      if (par%mmg_on) call rudder_switch(hist%steer, t, yaw)
+      call par%manoeuvring%switch(hist%steer, t, yaw)
       if (abs(yaw - hist%psi_ref) > heading_tolerance) then
         call refresh_heading(hist, par, yaw)
         call hist%clock%invalidate()
@@ -325,7 +306,7 @@ contains
     real(wp), intent(in) :: t, y(:)
     !> The rates of its q and of its other states, and its Kane blocks (davit_core_kane).
     real(wp), intent(inout) :: dydt(:), kane(:, :)
-    real(wp) :: c(3, 3), m(3, 3), load(6), mu(6), vh(3), wh(3)
+    real(wp) :: c(3, 3), load(6)
     if (self%par%frozen) then
       call kane_at_rest(dydt, kane)
       return
@@ -337,60 +318,17 @@ contains
         load = ship_loads(self, t, q, u, c)
         dydt(b%q(1):b%q(1) + 2) = euler_rates(q(1:3), u(1:3))
         dydt(b%q(1) + 3:b%q(2)) = matmul(c, u(4:6))
-        if (par%mmg_on) call mmg_blocks(par, self%hist%steer, t, q, u, c, y, load, dydt)
+        call par%manoeuvring%add_steering(par%hull, par%hydro, self%hist%steer, par%rudder, &
+                                          par%autopilot, t, q, u, c, y, load, dydt)
         if (z(2) >= z(1)) then
           call integral_control(par%moor_i, self%hist%anchor, q, c, y(z(1):z(2)), load, &
                                 dydt(z(1):z(2)))
         end if
-        if (par%bem) then
-          ! the memory of Cummins' equation in the seakeeping frame (bem_loads): fed the
-          ! speeds resolved there relative to the frame's own (u - U: zero-speed memory
-          ! functions about the steady forward motion), its load turned into ship axes
-          m = level_to_body(q(3), c)
-          vh = matmul(transpose(m), u(4:6))
-          if (par%frame_speed /= 0.0_wp) vh(1) = vh(1) - par%frame_speed
-          ! speed_terms: the body-frame heave speed w + U theta (bem_speed_load)
-          if (par%hull%speed_terms) vh(3) = vh(3) + par%frame_speed*(q(2) - par%hull%trim)
-          wh = matmul(transpose(m), u(1:3))
-          call bem_memory(par%hydro%db, y(r%q(1):r%q(2)), [vh, wh], dydt(r%q(1):r%q(2)), mu)
-          if (par%hull%speed_terms) mu = mu - bem_speed_load(par%hydro, y(r%q(1):r%q(2)), &
-                                                             [vh, wh], par%frame_speed, &
-                                                             par%hull%speed_sway_yaw)
-          call bem_blocks(par%hydro, par%hull%restrained, u, m, load - turn_to_body(m, mu), &
-                          kane(:, b%u(1):b%u(2)))
-        else
-          call box_blocks(par%hull, u, level_to_body(q(3), c), load, kane(:, b%u(1):b%u(2)))
-        end if
+        call par%hydro%blocks(par%hull, par%frame_speed, q, u, c, load, &
+                              y(r%q(1):r%q(2)), dydt(r%q(1):r%q(2)), kane(:, b%u(1):b%u(2)))
       end associate
     end associate
   end subroutine ship_kane_blocks
-
-  !> The MMG loads at the rudder angle of state y, added to `load`, and the rates of the
-  !> steering gear (`steer`) and of the autopilot's integral (into dydt).
-  pure subroutine mmg_blocks(par, steer, t, q, u, c, y, load, dydt)
-    type(ship_params_type), intent(in) :: par
-    type(rudder_type), intent(in) :: steer
-    real(wp), intent(in) :: t, q(6), u(6), c(3, 3), y(:)
-    real(wp), intent(inout) :: load(6), dydt(:)
-    real(wp) :: a(2), order
-    integer :: k, j
-    ! the horizontal added masses that the ship's mass matrix holds: the MMG set's on the
-    ! box (davit_ship_hull), the BEM ship's A(inf) (its memory adds the rest at low frequency)
-    a = par%hull%added_mass(1:2)
-    if (par%bem) a = [par%hydro%db%added_mass_inf(1, 1), par%hydro%db%added_mass_inf(2, 2)]
-    associate (delta => y(par%rudder%q(1)))
-      load = load + mmg_body_load(par%mmg, par%hull%cg_x, a(1), a(2), &
-                                  level_to_body(q(3), c), u, delta, par%rps)
-      if (par%autopilot%q(2) >= par%autopilot%q(1)) then
-        k = par%autopilot%q(1)
-        j = par%autopilot%q(2)
-        call autopilot_order(steer, t, q(3), u(3), y(k:j), order, dydt(k:j))
-      else
-        order = rudder_order(steer, t, q(3), u(3))
-      end if
-      dydt(par%rudder%q(1)) = rudder_rate(steer, delta, order)
-    end associate
-  end subroutine mmg_blocks
 
   !> The integral term of the heading and station keeping: its states z integrate the
   !> errors from the set-point `anchor` (inertial x, y of the CG; yaw), and -k_i z adds to
@@ -412,30 +350,11 @@ contains
     !> -> inertial.
     real(wp), intent(in) :: t, q(6), u(6), c(3, 3)
     real(wp) :: load(6)
-    real(wp) :: fz, wz, p, vrel(3), o(2)
+    real(wp) :: vrel(3), o(2)
     associate (par => self%par, h => self%par%hull, om => u(1:3), v => u(4:6))
-      p = om(1)
-      if (par%bem) then
-        ! the database's hydrostatics; radiation damping is the memory (ship_kane_blocks)
-        load = bem_restoring(par%hydro, q(6) - par%z_eq, q(1) - h%list, q(2) - h%trim, &
-                             level_to_body(q(3), c))
-        load(4) = load(4) - par%hydro%b44*p - h%b44q*abs(p)*p
-      else
-        ! hydrostatic restoring about the equilibrium (weight and buoyancy cancel there)
-        fz = -h%c33*(q(6) - par%z_eq)
-        ! radiation damping of heave acts on the vertical velocity in N
-        wz = dot_product(c(3, :), v)
-        fz = fz - h%b33*wz
-        load(1:3) = fz*c(3, :)
-        load(4) = -h%c44*(q(1) - h%list) - h%b44*p - h%b44q*abs(p)*p
-        load(5) = -h%c55*(q(2) - h%trim) - h%b55*om(2)
-        load(6) = 0.0_wp
-      end if
+      load = par%hydro%still_water(h, par%z_eq, q, u, c)
       if (h%empirical) then
-        if (.not. par%mmg_on) then
-          load = load + crossflow(h, par%wetted, v, om(3)) + manoeuvring(h, v, om(3))
-          load(1) = load(1) + par%thrust
-        end if
+        call par%manoeuvring%add_hull_loads(h, par%wetted, par%thrust, u, load)
         vrel = matmul(transpose(c), wind_velocity(par%wind)) - v
         load = load + ship_wind_load(h%wind, vrel)
       end if
@@ -473,48 +392,5 @@ contains
     real(wp) :: out(6)
     out = turn_to_body(level_to_body(euler(3), c), load)
   end function heading_to_body
-
-  !> m = C^T Rz(psi): components in the level frame yawed by psi (the seakeeping frame)
-  !> to ship axes.
-  pure function level_to_body(psi, c) result(m)
-    real(wp), intent(in) :: psi, c(3, 3)
-    real(wp) :: m(3, 3)
-    m = matmul(transpose(c), rotation_matrix([0.0_wp, 0.0_wp, psi]))
-  end function level_to_body
-
-
-  !> Zero-speed cross-flow drag for sway and yaw, -1/2 rho d C_D |v + x r| (v + x r) along
-  !> the hull, and surge resistance -1/2 rho S C_T |u| u (review G12).
-  pure function crossflow(h, wetted, v, r) result(load)
-    type(hull_type), intent(in) :: h
-    real(wp), intent(in) :: wetted, v(3), r
-    real(wp) :: load(6), x, vl, half
-    integer :: k
-    load = 0.0_wp
-    half = 0.5_wp*h%lpp
-    do k = 1, ngauss
-      x = half*gx(k)
-      vl = v(2) + x*r
-      load(2) = load(2) - gw(k)*half*abs(vl)*vl
-      load(6) = load(6) - gw(k)*half*abs(vl)*vl*x
-    end do
-    load([2, 6]) = 0.5_wp*rho_water*h%draught*h%cd*load([2, 6])
-    load(1) = -0.5_wp*rho_water*wetted*surge_ct*abs(v(1))*v(1)
-  end function crossflow
-
-  !> Linear MMG hull forces (Kijima), written dimensionally so they vanish smoothly as the
-  !> forward speed u -> 0 (no division by U): Y = 1/2 rho L d |u| (Y'_v v + Y'_r L r), and
-  !> N alike with one more L. The lifting-hull derivatives hold for small drift angles when
-  !> making way, so they scale with the forward speed |u|, not |V|: a ship drifting
-  !> sideways at zero headway (drift angle 90 deg) feels only the cross-flow drag.
-  pure function manoeuvring(h, v, r) result(load)
-    type(hull_type), intent(in) :: h
-    real(wp), intent(in) :: v(3), r
-    real(wp) :: load(6), q
-    load = 0.0_wp
-    q = 0.5_wp*rho_water*h%lpp*h%draught*abs(v(1))
-    load(2) = q*(h%yv*v(2) + h%yr*h%lpp*r)
-    load(6) = q*h%lpp*(h%nv*v(2) + h%nr*h%lpp*r)
-  end function manoeuvring
 
 end module davit_ship_ship_model

@@ -9,8 +9,8 @@ module davit_ship_ship_parameters
   use davit_sea_wave_field, only: wave_field_type
   use davit_sea_wind, only: wind_type
   use davit_ship_hull, only: hull_type
-  use davit_ship_bem_loads, only: bem_ship_type
-  use davit_ship_mmg, only: mmg_type
+  use davit_ship_ship_hydro, only: ship_hydro_type
+  use davit_ship_manoeuvring, only: manoeuvring_type
   use davit_ship_wave_drift, only: wave_drift_type
   implicit none
   private
@@ -56,19 +56,13 @@ module davit_ship_ship_parameters
     type(state_layout_type) :: layout
     !> The parts' ranges in the ship's own state.
     type(state_part_type) :: body, radiation, control, rudder, autopilot
-    !> The BEM ship (Cummins' equation from a Capytaine database) in place of the box's
-    !> hydrodynamics.
-    logical :: bem = .false.
-    !> The BEM ship's database, mass and damping (davit_ship_bem_loads).
-    type(bem_ship_type) :: hydro
-    !> The MMG manoeuvring model (set_mmg) in place of the cross-flow drag, Kijima
-    !> derivatives and constant thrust: its coefficients and the propeller revolutions
-    !> [1/s]; the steering is in the history (its zig-zag switches).
-    logical :: mmg_on = .false.
-    !> The MMG coefficients (davit_ship_mmg).
-    type(mmg_type) :: mmg
-    !> Propeller revolutions [1/s].
-    real(wp) :: rps = 0.0_wp
+    !> The hydrodynamics' level (davit_ship_ship_hydro): the paper's box or the BEM ship
+    !> (Cummins' equation from a Capytaine database), chosen at build.
+    class(ship_hydro_type), allocatable :: hydro
+    !> The manoeuvring model (davit_ship_manoeuvring): Kijima's derivatives, cross-flow
+    !> drag and constant thrust, or (set_mmg) the MMG model with its propeller
+    !> revolutions; the steering is in the history (its zig-zag switches).
+    class(manoeuvring_type), allocatable :: manoeuvring
     !> The BEM ship's wave drift level (davit_ship_wave_drift: drift_mean, drift_newman;
     !> not allocated: no drift load); its heading-dependent coefficients are in the history.
     class(wave_drift_type), allocatable :: drift

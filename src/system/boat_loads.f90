@@ -18,7 +18,6 @@ module davit_system_boat_loads
   use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_loads
   use davit_boat_contact_law, only: fender_state_type
   use davit_boat_surface_watch, only: surface_watch_type, surely_dry
-  use davit_boat_bem_water, only: boat_bem_loads, boat_bem_immersion
   use davit_system_parameters, only: system_params_type, nslings
   use davit_system_history, only: system_history_type
   use davit_solve_integrator, only: part_slow, part_fast
@@ -101,7 +100,7 @@ contains
       call slow_forces(par, hist, t, q, u, x, c, r, f, xdot, v)
     else
       xdot = 0.0_wp
-      if (par%bem_water) v = 1.0_wp + x(1)*par%bem%lambda
+      call par%water_terms%modal_masses(x, v)
     end if
     if (fast .and. par%contact) call fender_forces(par%fenders, hist%fender_states, side, c, r, &
                                                   u, f)
@@ -136,12 +135,8 @@ contains
     real(wp) :: fw(6), volume
     call water_loads(par%water, par%sea, hist%watch, hist%waves, t, c, r, u, fw, volume)
     f = f + fw
-    if (par%bem_water) then
-      call boat_bem_loads(par%bem, par%sea, t, c, r, q(3), u, &
-                          boat_bem_immersion(par%bem, volume), x, hist%diffraction, xdot, &
-                          fw, v)
-      f = f + fw
-    end if
+    call par%water_terms%add_loads(par%sea, t, c, r, q(3), u, volume, x, hist%diffraction, &
+                                   xdot, f, v)
     f(4:6) = f(4:6) + par%air%force(u(4:6) - matmul(wind_velocity(par%wind), c), &
                                     max(0.0_wp, 1.0_wp - volume/par%hull_volume))
   end subroutine slow_forces

@@ -13,7 +13,8 @@ module davit_system_build
   use davit_boat_hull, only: new_boat_hull
   use davit_boat_strip_loads, only: strip_model_type, new_strip_model
   use davit_boat_strip_level, only: strip_level_type
-  use davit_boat_bem_water, only: boat_bem_type, new_boat_bem, boat_bem_immersion
+  use davit_boat_bem_water, only: boat_bem_type, new_boat_bem
+  use davit_boat_water_terms, only: strips_alone_type, bem_terms_type
   use davit_system_boat_loads, only: water_loads
   use davit_core_body, only: body_mass_diagonal
   use davit_boat_contact_law, only: contact_law_type, fender_state_type
@@ -32,6 +33,7 @@ module davit_system_build
   use davit_ship_mmg, only: mmg_type
   use davit_ship_rudder, only: rudder_type, notch_period
   use davit_ship_ship_model, only: ship_system_type, new_ship_system, ship_state
+  use davit_ship_ship_hydro, only: bem_hydro_type, box_hydro_type
   use davit_ship_bem_database, only: bem_database_type, read_bem_database
   use davit_ship_bem_loads, only: bem_ship_type, new_bem_ship
   use davit_ship_wave_drift, only: wave_drift_type
@@ -88,6 +90,8 @@ contains
       if (cfg%boat%water_model == "bem") then
         call new_boat_water(par, cfg, error)
         if (allocated(error)) return
+      else
+        allocate (par%water_terms, source=strips_alone_type())
       end if
       ! the ship's side at rest, the fenders and the contact step policy
       par%contact = cfg%contact%enabled
@@ -120,12 +124,13 @@ contains
     type(config_type), intent(in) :: cfg
     type(error_type), allocatable, intent(out) :: error
     type(bem_database_type) :: db
+    type(boat_bem_type) :: bem
     associate (b => cfg%boat)
       call read_bem_database(beside(cfg%filename, b%database), db, error)
       if (.not. allocated(error)) then
         call new_boat_bem(db, par%sea, body_mass_diagonal(par%boat), b%roll_damping, &
                           b%mass*gravity*par%water%metacentric_height, b%full_immersion, &
-                          b%mass/rho_water, par%bem, error)
+                          b%mass/rho_water, bem, error)
       end if
       if (allocated(error)) then
         error%message = cfg%filename//": &boat: database = '"//b%database//"': "// &
@@ -133,9 +138,8 @@ contains
         return
       end if
     end associate
-    par%bem_water = .true.
-    call par%layout%add("boat_radiation", par%bem%db%nrad + 1, 0, par%radiation_part)
-    call par%layout%couple(par%boat_part%u, par%bem%modes, modal=.true.)
+    allocate (par%water_terms, source=bem_terms_type(bem=bem))
+    call par%water_terms%add_states(par%layout, par%boat_part, par%radiation_part)
   end subroutine new_boat_water
 
   !> The davit rigging in place of the foundation slings, its parts after the boat's.
@@ -214,7 +218,8 @@ contains
           return
         end if
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
-                             s%wave_phase == "initial", s%headway, clock, bem)
+                             s%wave_phase == "initial", s%headway, clock, &
+                             bem_hydro_type(bem=bem))
         if (s%drift /= "none" .and. .not. db%has_drift) then
           call fatal_error(error, cfg%filename//": &ship: drift = '"//s%drift//"' needs "// &
                            "the mean drift coefficients (davit_drift), which database '"// &
@@ -235,7 +240,8 @@ contains
         return
       else
         call new_ship_system(ship, hull, sea, wind, s%frozen, s%position, s%heading, &
-                             s%wave_phase == "initial", s%headway, clock)
+                             s%wave_phase == "initial", s%headway, clock, &
+                             box_hydro_type())
       end if
       if (s%manoeuvring == "mmg") call new_mmg(ship, cfg)
     end associate
@@ -378,11 +384,11 @@ contains
       c = rotation_matrix(cfg%boat%euler)
       y(b%q(1):b%q(2)) = [cfg%boat%euler, matmul(transpose(c), cfg%boat%position)]
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
-      if (par%bem_water) then
-        y(par%radiation_part%q(1):par%radiation_part%q(2)) = 0.0_wp
-        y(par%radiation_part%q(1)) = initial_immersion(par%water, par%sea, self%hist%watch, &
-                                                       self%hist%waves, par%bem, b, y)
-      end if
+      associate (x => par%radiation_part%q)
+        call par%water_terms%start_states(initial_wet_volume(par%water, par%sea, &
+                                                             self%hist%watch, self%hist%waves, &
+                                                             b, y), y(x(1):x(2)))
+      end associate
       if (.not. par%on_davit) return
       call hook_kinematics(b, par%hooks, y, hook_pos, hook_vel)
       pose = ship_pose(par%with_ship, s, par%ship_rest, y)
@@ -414,30 +420,27 @@ contains
     end do
   end function hook_loads
 
-  !> The boat's immersion state at the start: the geometric immersion of its initial pose
-  !> (a boat released afloat starts with its added mass; no radiation memory yet).
-  pure real(wp) function initial_immersion(water, sea, watch, waves, bem, boat_part, y) &
-    result(s)
+  !> The hull's wet volume [m^3] in its initial pose (the water terms' initial states
+  !> take it).
+  pure real(wp) function initial_wet_volume(water, sea, watch, waves, boat_part, y) &
+    result(volume)
     !> The strip model of the boat in the water, the sea, the surface watch and the strips'
     !> slow clock (the water_loads' parts).
     type(strip_model_type), intent(in) :: water
     type(wave_field_type), intent(in) :: sea
     type(surface_watch_type), intent(in) :: watch
     type(strip_wave_cache_type), intent(in) :: waves
-    !> The boat's BEM water model.
-    type(boat_bem_type), intent(in) :: bem
     !> The boat's rigid-body part of the state.
     type(state_part_type), intent(in) :: boat_part
     !> The initial state (the boat's part set).
     real(wp), intent(in) :: y(:)
-    real(wp) :: c(3, 3), f(6), volume
+    real(wp) :: c(3, 3), f(6)
     associate (q => y(boat_part%q(1):boat_part%q(2)), &
                u => y(boat_part%u(1):boat_part%u(2)))
       c = rotation_matrix(q(1:3))
       call water_loads(water, sea, watch, waves, 0.0_wp, c, matmul(c, q(4:6)), u, f, volume)
     end associate
-    s = boat_bem_immersion(bem, volume)
-  end function initial_immersion
+  end function initial_wet_volume
 
   !> The ship at rest in its equilibrium attitude: list, trim, heading; CG at the deck's
   !> position; making its headway; no radiation memory yet.

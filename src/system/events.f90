@@ -12,7 +12,6 @@ module davit_system_events
                                     strip_waves_renew_loads, strip_waves_bounds
   use davit_boat_surface_watch, only: surface_watch_type, watch_refresh, watch_set, watch_due, &
                                       strip_surely_dry, watch_set_window, hull_surely_dry
-  use davit_boat_bem_water, only: diffraction_refresh
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, side_plane, &
                                      hook_kinematics, fender_gaps, falls_ends_at
   use davit_system_history, only: system_history_type
@@ -116,11 +115,8 @@ contains
       call strip_waves_sample(hist%waves, par%water%hull, par%sea, c, r, maybe_wet)
     end if
     ! the diffraction acts only on a wet hull (lagged immersion s > 0), on the same window
-    if (par%bem_water .and. (any(maybe_wet) .or. immersion > 0.0_wp)) then
-      call diffraction_refresh(par%bem, par%sea, hist%waves%clock, r, yaw, hist%diffraction)
-    else
-      call hist%diffraction%clock%invalidate()
-    end if
+    call par%water_terms%refresh(par%sea, hist%waves%clock, r, yaw, &
+                                 any(maybe_wet) .or. immersion > 0.0_wp, hist%diffraction)
   end subroutine refresh_strip_waves
 
   !> Which strips may touch the water at time t with the boat at (c, r): none where the
@@ -146,8 +142,7 @@ contains
     type(system_params_type), intent(in) :: par
     !> The system's state.
     real(wp), intent(in) :: y(:)
-    s = 0.0_wp
-    if (par%bem_water) s = y(par%radiation_part%q(1))
+    s = par%water_terms%immersion(y(par%radiation_part%q(1):par%radiation_part%q(2)))
   end function lagged_immersion
 
   !> How far a point of the hull can move within one of the strips' windows [m]: its

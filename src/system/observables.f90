@@ -15,7 +15,6 @@ module davit_system_observables
   use davit_system_parameters, only: system_params_type, nslings, ship_pose, hook_kinematics, &
                                      falls_ends_type
   use davit_system_history, only: system_history_type
-  use davit_boat_bem_water, only: boat_bem_kinetic_energy
   implicit none
   private
   public :: boat_kinematics, rigging_state, sling_tensions, contact_state, energy
@@ -146,8 +145,8 @@ contains
       c = rotation_matrix(q(1:3))
       r = matmul(c, q(4:6))
       e = body_kinetic_energy(par%boat, u) - par%boat%mass*gravity*r(3)
-      if (par%bem_water) e = e + boat_bem_kinetic_energy(par%bem, &
-                                                         y(par%radiation_part%q(1)), u)
+      call par%water_terms%add_kinetic_energy(y(par%radiation_part%q(1): &
+                                                par%radiation_part%q(2)), u, e)
     end associate
     if (par%on_davit) then
       pose = ship_pose(par%with_ship, par%ship_part, par%ship_rest, y)

@@ -14,7 +14,7 @@ module davit_system_parameters
   use davit_sea_wave_field, only: wave_field_type
   use davit_sea_wind, only: wind_type
   use davit_boat_strip_loads, only: strip_model_type
-  use davit_boat_bem_water, only: boat_bem_type
+  use davit_boat_water_terms, only: water_terms_type
   use davit_boat_wind_loads, only: boat_wind_type
   use davit_boat_fenders, only: side_plane_type, fender_set_type, fender_probe
   use davit_rigging_rigging, only: rigging_type
@@ -52,11 +52,10 @@ module davit_system_parameters
     !> The strip model of the boat in the water (sections, level of detail, drag and
     !> damping coefficients).
     type(strip_model_type) :: water
-    !> Added mass, radiation, diffraction and roll damping from the hull's BEM database on
-    !> top of the strips (&boat water_model = 'bem').
-    logical :: bem_water = .false.
-    !> The boat's BEM water model (database, modes, roll damping), built when bem_water.
-    type(boat_bem_type) :: bem
+    !> The water's terms on top of the strips (davit_boat_water_terms): none, or added
+    !> mass, radiation, diffraction and roll damping from the hull's BEM database
+    !> (&boat water_model = 'bem'), chosen at build.
+    class(water_terms_type), allocatable :: water_terms
     !> Wind drag and lift on the boat, the lift form chosen at build.
     class(boat_wind_type), allocatable :: air
     !> The sea: wave components (amplitudes, frequencies, directions, phases) and ramp.
