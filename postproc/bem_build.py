@@ -28,10 +28,7 @@ FIT_WINDOW = 30.0                # [s] of the K(t) error
 LIFEBOAT_RETARDATION = (0.02, 20.0, 10.0)
 # and its fits see the data extended past 8 rad/s (postproc.bem_fit.fit_all, tail)
 LIFEBOAT_FIT_TAIL = (1.25, 1.5, 2.0, 3.0, 4.0, 6.0)
-# the infinite-frequency added mass of the fitted model (Cummins' mass M + A_inf): the BEM's
-# davit_added_mass_inf but where an impedance fit shifted it (postproc.bem_fit.fit_impedance);
-# davit reads it when present (databases without it: davit_added_mass_inf)
-SS_ADDED_MASS_INF = "davit_ss_added_mass_inf"
+SS_ADDED_MASS_INF = db.SS_ADDED_MASS_INF
 FIT_VARIABLES = {
     SS_ADDED_MASS_INF: ((db.DIM_I, db.DIM_J), db._UNITS_6x6,
                         "A_inf of the fitted memory model (Cummins' mass M + A_inf): "
@@ -450,7 +447,7 @@ def build(hull, out, cg=(0.0, 0.0, 0.0), mass=None, gyradii=None, omegas=None,
         db.ATTR_DRIFT_ROLL_DAMPING: drift_roll_damping, "drift_roll_damping_visc": b44,
         "drift_theta_points": np.int32(bem_drift.N_THETA),
         db.ATTR_COMMAND_LINE: command, db.ATTR_SOLVE_TIME: elapsed,
-        "davit_conventions": db.__doc__.strip(),
+        db.ATTR_CONVENTIONS: db.__doc__.strip(),
         "frame_of_capytaine_variables": "Capytaine's (x forward, y port, z up; e^{-i w t}; "
                                         "wave_direction from x towards y, port)",
     }

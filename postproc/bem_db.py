@@ -43,6 +43,12 @@ SS_FIT_ERROR_RETARDATION = "davit_ss_fit_error_retardation"
 RETARDATION_TIME = "davit_retardation_time"
 RETARDATION = "davit_retardation"
 DRIFT = "davit_drift"
+# the infinite-frequency added mass of the fitted model (Cummins' mass M + A_inf): the BEM's
+# davit_added_mass_inf but where an impedance fit shifted it (postproc.bem_fit.fit_impedance);
+# davit reads it when present (databases without it: davit_added_mass_inf)
+SS_ADDED_MASS_INF = "davit_ss_added_mass_inf"
+# the frame and conventions above, as a root attribute of every database built
+ATTR_CONVENTIONS = "davit_conventions"
 DRIFT_ENERGY_DEFECT = "davit_drift_energy_defect"
 
 # root attributes of the database read back (the full list: postproc.bem_build.build)

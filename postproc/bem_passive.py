@@ -35,7 +35,6 @@ TOLERANCE = 1e-3          # smallest eigenvalue allowed (scaled matrix): -TOLERA
 OMEGA_FACTOR = 20.0
 POLE_FACTOR = 10.0
 POINTS = 20000
-SS_ADDED_MASS_INF = "davit_ss_added_mass_inf"     # postproc.bem_build.SS_ADDED_MASS_INF
 REGULARISATION = 1e-9     # of the residues' change, relative (rank-deficient directions)
 # augment: a damped pole pair p = AUGMENT_FACTOR w_N (-z + i sqrt(1 - z^2)), z =
 # AUGMENT_DAMPING, given with zero residue to the diagonal fits of the DOFs in the worst

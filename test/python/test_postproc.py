@@ -127,3 +127,35 @@ def test_sensitivity_counts_collisions_per_sea_state_and_angle(tmp_path):
     assert p == {(2.5, 10.0, 45.0): (2, 3), (2.5, 10.0, 90.0): (0, 2),
                  (4.0, 12.7, 45.0): (0, 3), (4.0, 12.7, 90.0): (3, 3)}
     assert "| s | 2/3 | 0/2 | 0/3 | 3/3 |" in sensitivity.table([path])
+
+
+# --- bem_db.py is the one module that knows the BEM database's variables -------------------
+_DATABASE_NAME = re.compile(r"^davit_[a-z0-9_]+$")
+
+
+def _database_literals(tree):
+    """(line, text) of every literal in `tree` (docstrings aside) that names a variable or
+    attribute of the BEM database: a string of the form davit_<name>."""
+    skip = _docstrings(tree)
+    return sorted({(node.lineno, node.value) for node in ast.walk(tree)
+                   if isinstance(node, ast.Constant) and isinstance(node.value, str)
+                   and id(node) not in skip and _DATABASE_NAME.match(node.value)})
+
+
+def test_only_bem_db_names_database_variables():
+    """The database's schema is postproc/bem_db.py's (its names, shapes and units); davit's
+    output files are layout.py's, whose root attribute davit_version is the one davit_ name it
+    holds; doc_blocks.py's page keys (davit_help) name no variable."""
+    allowed = {"layout.py": {"davit_version"}, "doc_blocks.py": {"davit_help"}}
+    offenders = [f"{path.name}:{line}: {text!r}"
+                 for path in sorted(POSTPROC.glob("*.py")) if path.name != "bem_db.py"
+                 for line, text in _database_literals(ast.parse(path.read_text()))
+                 if text not in allowed.get(path.name, set())]
+    assert not offenders, "BEM database names outside postproc/bem_db.py:\n" + \
+        "\n".join(offenders)
+
+
+def test_the_database_check_sees_raw_names():
+    found = _database_literals(ast.parse('"""davit_docstring"""\nx = f["davit_omega"]\n'
+                                         'y = "davit omega"\n'))
+    assert found == [(2, "davit_omega")]
