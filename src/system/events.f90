@@ -56,8 +56,11 @@ contains
           call watch_refresh(hist%watch, par%water, par%sea, t, c, r)
         end if
       end if
+      ! the BEM water's lagged immersion s (0 for the strips alone)
       call refresh_strip_waves(par, hist, t, c, r, q(3), &
-                               y(par%boat_part%u(1):par%boat_part%u(2)), lagged_immersion(par, y))
+                               y(par%boat_part%u(1):par%boat_part%u(2)), &
+                               par%water_terms%immersion(y(par%radiation_part%q(1): &
+                                                           par%radiation_part%q(2))))
     end associate
     if (par%on_davit .and. hist%release_time < 0.0_wp) call watch_waterborne(par, hist, t, y)
     if (par%contact) then
@@ -136,14 +139,6 @@ contains
       maybe_wet(k) = .not. strip_surely_dry(watch, water, k, t, c, r)
     end do
   end subroutine strips_maybe_wet
-
-  !> The BEM water's lagged immersion s in the state y (0 for the strips alone).
-  pure real(wp) function lagged_immersion(par, y) result(s)
-    type(system_params_type), intent(in) :: par
-    !> The system's state.
-    real(wp), intent(in) :: y(:)
-    s = par%water_terms%immersion(y(par%radiation_part%q(1):par%radiation_part%q(2)))
-  end function lagged_immersion
 
   !> How far a point of the hull can move within one of the strips' windows [m]: its
   !> CG's speed and its spin times its half length, over the window (the speeds of now).
