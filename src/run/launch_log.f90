@@ -70,6 +70,10 @@ module davit_run_launch_log
     integer :: snatches = 0
     !> Whether the falls were slack at the last step.
     logical :: slack = .false.
+    !> On the davit, the largest cable segment or sling tension at the last step [N] (0 once
+    !> the hooks are released): the sweep's metrics read it rather than evaluate the
+    !> rigging's state a second time.
+    real(wp) :: step_tension = 0.0_wp
   contains
     procedure :: watch => log_watch
     procedure :: outcome => log_outcome
@@ -182,6 +186,7 @@ contains
     real(wp), intent(in) :: t, y(:)
     real(wp) :: seg(sys%par%rig%nseg), sling(sys%par%rig%nlump + 1, 2), paid
     real(wp) :: lumps(3, sys%par%rig%nlump, 2), fall
+    self%step_tension = 0.0_wp
     if (sys%hist%release_time >= 0.0_wp) return
     if (.not. sys%par%on_davit) then
       if (sys%par%slings_attached) call self%loads%update(t, [real(wp) ::], &
@@ -192,6 +197,7 @@ contains
     call self%loads%update(t, seg, maxval(sling, dim=1))
     call self%rules%loads(t, max(0.0_wp, maxval(seg)), sum(max(0.0_wp, maxval(sling, dim=1))))
     fall = max(max(0.0_wp, maxval(seg)), maxval(sling))
+    self%step_tension = fall
     if (self%slack .and. fall > 0.1_wp*self%weight) self%snatches = self%snatches + 1
     if (fall < 0.01_wp*self%weight) then
       self%slack = .true.

@@ -157,7 +157,12 @@ contains
       self%end_time = t
       call watch_contact(self, sys, t, y)
       call watch_acceleration(self, sys, t, y)
-      self%peak_tension = max(self%peak_tension, largest_tension(sys, t, y))
+      ! on the davit the log has just formed the step's largest tension (0 once released)
+      if (sys%par%on_davit) then
+        self%peak_tension = max(self%peak_tension, self%log%step_tension)
+      else
+        self%peak_tension = max(self%peak_tension, maxval(sys%sling_tensions(y)))
+      end if
       self%waterborne_time = sys%hist%waterborne_time
       if (lowering_over(sys)) then
         self%open = .false.
@@ -208,26 +213,6 @@ contains
     self%v_prev = v
     self%t_prev = t
   end subroutine watch_acceleration
-
-  !> Largest tension of any cable or sling segment at state y [N].
-  real(wp) function largest_tension(sys, t, y) result(tension)
-    !> The launch system.
-    type(system_type), intent(in) :: sys
-    !> Time [s] and state vector.
-    real(wp), intent(in) :: t, y(:)
-    real(wp) :: seg(sys%par%rig%nseg), sling(sys%par%rig%nlump + 1, 2), paid
-    real(wp) :: lumps(3, sys%par%rig%nlump, 2)
-    if (sys%par%on_davit) then
-      if (sys%hist%release_time >= 0.0_wp) then
-        tension = 0.0_wp
-        return
-      end if
-      call sys%rigging_state(t, y, seg, sling, paid, lumps)
-      tension = max(0.0_wp, maxval(seg), maxval(sling))
-    else
-      tension = maxval(sys%sling_tensions(y))
-    end if
-  end function largest_tension
 
   !> The lowering is over once the hooks are released (or, with release off, once the
   !> boat is waterborne).
