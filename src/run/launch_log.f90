@@ -17,7 +17,7 @@ module davit_run_launch_log
   use davit_io_limits_keys, only: minimum_breaking_load
   use davit_io_namelist, only: int_to_str
   use davit_solve_integrator, only: ode_problem
-  use davit_system_parameters, only: fender_gaps, side_plane, ship_pose
+  use davit_system_parameters, only: fender_gaps, side_plane, ship_pose, nslings
   use davit_system_model, only: system_type
   use davit_run_step_monitor, only: step_monitor
   use davit_run_impact_events, only: impact_tracker
@@ -70,9 +70,9 @@ module davit_run_launch_log
     integer :: snatches = 0
     !> Whether the falls were slack at the last step.
     logical :: slack = .false.
-    !> On the davit, the largest cable segment or sling tension at the last step [N] (0 once
-    !> the hooks are released): the sweep's metrics read it rather than evaluate the
-    !> rigging's state a second time.
+    !> The largest cable segment or sling tension at the last step [N] (the foundation
+    !> slings' off the davit; 0 once the hooks are released or with the slings detached):
+    !> the sweep's metrics read it rather than evaluate the tensions a second time.
     real(wp) :: step_tension = 0.0_wp
   contains
     procedure :: watch => log_watch
@@ -185,12 +185,15 @@ contains
     type(system_type), intent(in) :: sys
     real(wp), intent(in) :: t, y(:)
     real(wp) :: seg(sys%par%rig%nseg), sling(sys%par%rig%nlump + 1, 2), paid
-    real(wp) :: lumps(3, sys%par%rig%nlump, 2), fall
+    real(wp) :: lumps(3, sys%par%rig%nlump, 2), fall, foundation(nslings)
     self%step_tension = 0.0_wp
     if (sys%hist%release_time >= 0.0_wp) return
     if (.not. sys%par%on_davit) then
-      if (sys%par%slings_attached) call self%loads%update(t, [real(wp) ::], &
-                                                           sys%sling_tensions(y))
+      if (sys%par%slings_attached) then
+        foundation = sys%sling_tensions(y)
+        self%step_tension = maxval(foundation)
+        call self%loads%update(t, [real(wp) ::], foundation)
+      end if
       return
     end if
     call sys%rigging_state(t, y, seg, sling, paid, lumps)

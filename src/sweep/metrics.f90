@@ -157,12 +157,8 @@ contains
       self%end_time = t
       call watch_contact(self, sys, t, y)
       call watch_acceleration(self, sys, t, y)
-      ! on the davit the log has just formed the step's largest tension (0 once released)
-      if (sys%par%on_davit) then
-        self%peak_tension = max(self%peak_tension, self%log%step_tension)
-      else
-        self%peak_tension = max(self%peak_tension, maxval(sys%sling_tensions(y)))
-      end if
+      ! the log has just formed the step's largest tension (0 once released)
+      self%peak_tension = max(self%peak_tension, self%log%step_tension)
       self%waterborne_time = sys%hist%waterborne_time
       if (lowering_over(sys)) then
         self%open = .false.

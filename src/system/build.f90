@@ -384,10 +384,11 @@ contains
       c = rotation_matrix(cfg%boat%euler)
       y(b%q(1):b%q(2)) = [cfg%boat%euler, matmul(transpose(c), cfg%boat%position)]
       y(b%u(1):b%u(2)) = [cfg%boat%angular_velocity, matmul(transpose(c), cfg%boat%velocity)]
+      ! the wet volume (a water-load evaluation) only where the terms have states to start
       associate (x => par%radiation_part%q)
-        call par%water_terms%start_states(initial_wet_volume(par%water, par%sea, &
-                                                             self%hist%watch, self%hist%waves, &
-                                                             b, y), y(x(1):x(2)))
+        if (x(2) >= x(1)) call par%water_terms%start_states(initial_wet_volume(par%water, &
+                                                           par%sea, self%hist%watch, &
+                                                           self%hist%waves, b, y), y(x(1):x(2)))
       end associate
       if (.not. par%on_davit) return
       call hook_kinematics(b, par%hooks, y, hook_pos, hook_vel)
